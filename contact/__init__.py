@@ -1,0 +1,1 @@
+"""Analytic contact laws of a bearing outer ring in its support (foundation layer)."""

@@ -1,0 +1,1 @@
+"""FEM reference: gmsh meshes + scikit-fem frictionless contact of ring in ring."""

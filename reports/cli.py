@@ -1,0 +1,41 @@
+"""The ``ringcontact`` console command: one entry point, one sub-command per job.
+
+Each job lives in the module of the layer that owns it and exposes
+``main(argv: list[str]) -> int`` with its own ``argparse`` parser. The table
+below is the only place jobs are registered; modules are imported only when
+their job runs, so ``ringcontact --help`` stays instant.
+"""
+from __future__ import annotations
+
+import importlib
+import sys
+
+# job name -> (module, one-line help). Keep sorted by data-flow layer.
+JOBS: dict[str, tuple[str, str]] = {
+    "law": ("contact.cli", "evaluate an analytic contact law at given penetrations/tilts (table or --json)"),
+    "report": ("reports.main", "build the committed reports/ from the committed datasets (the main job)"),
+}
+
+
+def _usage() -> str:
+    width = max(len(k) for k in JOBS)
+    lines = ["usage: ringcontact JOB [options]   (ringcontact JOB --help for a job's options)", "", "jobs:"]
+    lines += [f"  {name:<{width}}  {help_}" for name, (_, help_) in JOBS.items()]
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or argv[0] in {"-h", "--help", "help"}:
+        print(_usage())
+        return 0
+    job, rest = argv[0], argv[1:]
+    if job not in JOBS:
+        print(f"ringcontact: unknown job {job!r}\n\n{_usage()}", file=sys.stderr)
+        return 2
+    module = importlib.import_module(JOBS[job][0])
+    return int(module.main(rest) or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

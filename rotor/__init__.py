@@ -1,0 +1,1 @@
+"""Multi-support rotor with a loose support: model, linear analyses, time integration."""
