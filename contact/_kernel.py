@@ -1,0 +1,317 @@
+"""Compiled (numba) point kernel of the loose-support force; see :mod:`contact.loose_support`.
+
+Private module: the public entry points and the sign conventions are documented in
+:mod:`contact.loose_support`. The same scalar kernel serves the vectorized array path
+(:func:`many_points`) and the integrator's step loop (:func:`point_force`,
+:func:`point_force_jacobian`), so both always agree.
+
+Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
+
+====  ==================================================================
+ 0    clearance δ0 (m)
+ 1    ring width l0 (m)
+ 2    law code: 0 conformal, 1 Pereira
+ 3    conformal constant 2π E* δ0 (N/m per unit b²(1+b²)/D)
+ 4    Dundurs α
+ 5    β coefficient c_β of the denominator (0 for the "zero" reading)
+ 6    Pereira C (N / m / m^n)
+ 7    Pereira exponent n
+ 8    collision factor c_c (s/m)
+ 9    1.0: clip (1 + c_c v_n) at zero; 0.0: raw product
+10    μN, sliding friction force of one end face (N)
+11    1.0: tilt ignored (line contact, translation-only friction)
+12    friction smoothing velocity ε (m/s); 0 = ideal Coulomb
+====  ==================================================================
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from contact.errors import OutsideDomainError
+
+N_PARAMS = 13
+STATE_NONE, STATE_EDGE1, STATE_EDGE2, STATE_TWO_POINT, STATE_LINE = 0, 1, 2, 3, 4
+
+
+@numba.njit(cache=True, inline="always")
+def _law(pen, p):
+    """Force per unit contact length h(Δr) (N/m), dh/dΔr, and 1 if inside the domain."""
+    if p[2] == 0.0:
+        d0 = p[0]
+        q = 2.0 * d0 + pen
+        s = pen / q
+        ds = 2.0 * d0 / (q * q)
+        one_m_a = 1.0 - p[4]
+        D = 2.0 - one_m_a * (math.log1p(s) + 2.0 * s * s) + p[5] * s * (1.0 + s)
+        if D <= 0.0:
+            return 0.0, 0.0, 0
+        dD = -one_m_a * (1.0 / (1.0 + s) + 4.0 * s) + p[5] * (1.0 + 2.0 * s)
+        g = s * (1.0 + s) / D
+        dg = ((1.0 + 2.0 * s) * D - s * (1.0 + s) * dD) / (D * D)
+        return p[3] * g, p[3] * dg * ds, 1
+    n = p[7]
+    return p[6] * pen ** n, p[6] * n * pen ** (n - 1.0), 1
+
+
+@numba.njit(cache=True, inline="always")
+def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac):
+    """Add weight ``w`` × the contact force/moment of edge ``sgn`` (+1 right, −1 left) to ``out``.
+
+    Returns 1 if inside the law's domain (or not in contact), 0 otherwise.
+    """
+    d0 = p[0]
+    l0 = p[1]
+    h = 0.5 * l0
+    a = sgn * h
+    ry = y + a * thz
+    rz = z - a * thy
+    rho = math.sqrt(ry * ry + rz * rz)
+    pen = rho - d0
+    if pen <= 0.0:
+        return 1
+    ny = ry / rho
+    nz = rz / rho
+    vky = vy + a * wz
+    vkz = vz - a * wy
+    vn = ny * vky + nz * vkz
+    hv, dh, ok = _law(pen, p)
+    if ok == 0:
+        return 0
+    partial = pen < t * l0
+    if partial:
+        l = pen / t
+    else:
+        l = l0
+    P = l * hv
+    damp = 1.0 + p[8] * vn
+    clipped = False
+    if p[9] != 0.0 and damp < 0.0:
+        damp = 0.0
+        clipped = True
+    fy = -P * damp * ny
+    fz = -P * damp * nz
+    d = 0.5 * (l0 - l)
+    out[0] += w * fy
+    out[1] += w * fz
+    out[2] += w * sgn * d * (-fz)
+    out[3] += w * sgn * d * fy
+    if not want_jac:
+        return 1
+    # derivatives of r_k (and of r_k-dot w.r.t. velocities) w.r.t. (y, z, thy, thz)
+    dry = (1.0, 0.0, 0.0, a)
+    drz = (0.0, 1.0, -a, 0.0)
+    for j in range(4):
+        dpen = ny * dry[j] + nz * drz[j]
+        dny = ((1.0 - ny * ny) * dry[j] - ny * nz * drz[j]) / rho
+        dnz = (-ny * nz * dry[j] + (1.0 - nz * nz) * drz[j]) / rho
+        if partial:
+            dt = 0.0
+            if j == 2:
+                dt = thy / t
+            elif j == 3:
+                dt = thz / t
+            dl = dpen / t - pen / (t * t) * dt
+        else:
+            dl = 0.0
+        dP = dl * hv + l * dh * dpen
+        dvn = vky * dny + vkz * dnz
+        ddamp = 0.0 if clipped else p[8] * dvn
+        dfy = -(dP * damp * ny + P * ddamp * ny + P * damp * dny)
+        dfz = -(dP * damp * nz + P * ddamp * nz + P * damp * dnz)
+        dd = -0.5 * dl
+        jac[0, j] += w * dfy
+        jac[1, j] += w * dfz
+        jac[2, j] += w * sgn * (dd * (-fz) + d * (-dfz))
+        jac[3, j] += w * sgn * (dd * fy + d * dfy)
+        # velocity columns: r_k-dot depends on (vy, vz, wy, wz) exactly as r_k on (y, z, thy, thz)
+        dvn_v = ny * dry[j] + nz * drz[j]
+        ddamp_v = 0.0 if clipped else p[8] * dvn_v
+        dfy_v = -P * ddamp_v * ny
+        dfz_v = -P * ddamp_v * nz
+        jac[0, 4 + j] += w * dfy_v
+        jac[1, 4 + j] += w * dfz_v
+        jac[2, 4 + j] += w * sgn * d * (-dfz_v)
+        jac[3, 4 + j] += w * sgn * d * dfy_v
+    return 1
+
+
+@numba.njit(cache=True, inline="always")
+def _face_friction(sgn, vy, vz, wy, wz, p, want_jac, out, jac):
+    """Add the Coulomb friction force and moment of end face ``sgn`` (+1 right, −1 left)."""
+    muN = p[10]
+    if muN == 0.0:
+        return
+    a = sgn * 0.5 * p[1]
+    uy = vy + a * wz
+    uz = vz - a * wy
+    u2 = uy * uy + uz * uz
+    eps = p[12]
+    S2 = u2 + eps * eps
+    if S2 == 0.0:
+        return                      # zero relative velocity: stick, friction set by constraints
+    S = math.sqrt(S2)
+    fy = -muN * uy / S
+    fz = -muN * uz / S
+    h = 0.5 * p[1]
+    out[0] += fy
+    out[1] += fz
+    out[2] += sgn * h * (-fz)
+    out[3] += sgn * h * fy
+    if not want_jac:
+        return
+    S3 = S2 * S
+    # d(u/S)/du = (I S² − u uᵀ)/S³
+    gyy = (S2 - uy * uy) / S3
+    gyz = -uy * uz / S3
+    gzz = (S2 - uz * uz) / S3
+    duy = (1.0, 0.0, 0.0, a)
+    duz = (0.0, 1.0, -a, 0.0)
+    for j in range(4):
+        dfy = -muN * (gyy * duy[j] + gyz * duz[j])
+        dfz = -muN * (gyz * duy[j] + gzz * duz[j])
+        jac[0, 4 + j] += dfy
+        jac[1, 4 + j] += dfz
+        jac[2, 4 + j] += sgn * h * (-dfz)
+        jac[3, 4 + j] += sgn * h * dfy
+
+
+@numba.njit(cache=True)
+def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, want_jac, out, jac):
+    """Total force/moment into ``out`` (4,), Jacobian into ``jac`` (4, 8) if ``want_jac``.
+
+    Returns (in_domain, state, penetration_1, penetration_2).
+    """
+    for i in range(4):
+        out[i] = 0.0
+    if want_jac:
+        for i in range(4):
+            for j in range(8):
+                jac[i, j] = 0.0
+    d0 = p[0]
+    h = 0.5 * p[1]
+    tilt_ignored = p[11] != 0.0
+    if tilt_ignored:
+        thy = 0.0
+        thz = 0.0
+        wy = 0.0
+        wz = 0.0
+    t = math.sqrt(thy * thy + thz * thz)
+    pen1 = math.sqrt((y + h * thz) ** 2 + (z - h * thy) ** 2) - d0
+    pen2 = math.sqrt((y - h * thz) ** 2 + (z + h * thy) ** 2) - d0
+    rho0 = math.sqrt(y * y + z * z)
+    if pen1 <= 0.0 and pen2 <= 0.0:
+        w1 = 0.0
+        w2 = 0.0
+        state = STATE_NONE
+    elif rho0 <= d0:
+        # centre inside the clearance: the edges touch opposite sides (or one edge only)
+        w1 = 1.0 if pen1 > 0.0 else 0.0
+        w2 = 1.0 if pen2 > 0.0 else 0.0
+        if w1 > 0.0 and w2 > 0.0:
+            state = STATE_TWO_POINT
+        elif w1 > 0.0:
+            state = STATE_EDGE1
+        else:
+            state = STATE_EDGE2
+    elif pen1 > pen2:
+        w1 = 1.0
+        w2 = 0.0
+        state = STATE_EDGE1
+    elif pen2 > pen1:
+        w1 = 0.0
+        w2 = 1.0
+        state = STATE_EDGE2
+    else:
+        # tie (line contact at θ = 0, or r ∥ θ): the mean, never the sum (contact-laws.md Q8)
+        w1 = 0.5
+        w2 = 0.5
+        state = STATE_LINE
+    ok = 1
+    if w1 > 0.0:
+        ok &= _edge(1.0, w1, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac)
+    if w2 > 0.0:
+        ok &= _edge(-1.0, w2, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac)
+    _face_friction(1.0, vy, vz, wy, wz, p, want_jac, out, jac)
+    _face_friction(-1.0, vy, vz, wy, wz, p, want_jac, out, jac)
+    if tilt_ignored:
+        out[2] = 0.0
+        out[3] = 0.0
+        if want_jac:
+            for i in range(4):
+                for j in (2, 3, 6, 7):
+                    jac[i, j] = 0.0
+            for j in range(8):
+                jac[2, j] = 0.0
+                jac[3, j] = 0.0
+    return ok, state, pen1, pen2
+
+
+@numba.njit(cache=True)
+def point_force(y, z, thy, thz, vy, vz, wy, wz, p):
+    """Scalar path for a compiled step loop: ``(Fy, Fz, My, Mz)`` on the bearing (N, N·m).
+
+    Raises OutsideDomainError if a contact edge is beyond the conformal law's neat-fit limit.
+    """
+    out = np.empty(4)
+    jac = np.empty((1, 1))
+    ok, state, pen1, pen2 = _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, False, out, jac)
+    if ok == 0:
+        raise OutsideDomainError("loose support: penetration beyond the conformal law's neat-fit limit D(b) <= 0")
+    return out[0], out[1], out[2], out[3]
+
+
+@numba.njit(cache=True)
+def point_force_jacobian(y, z, thy, thz, vy, vz, wy, wz, p, jac):
+    """Like :func:`point_force`, and writes ∂(Fy,Fz,My,Mz)/∂(y,z,θy,θz,vy,vz,ωy,ωz) into ``jac`` (4, 8)."""
+    out = np.empty(4)
+    ok, state, pen1, pen2 = _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, True, out, jac)
+    if ok == 0:
+        raise OutsideDomainError("loose support: penetration beyond the conformal law's neat-fit limit D(b) <= 0")
+    return out[0], out[1], out[2], out[3]
+
+
+@numba.njit(cache=True)
+def many_points(y, z, thy, thz, vy, vz, wy, wz, p, want_jac, want_state, F, J, ok, state, pen):
+    """Loop over 1-D arrays; fills F (n,4), J (n,4,8) if want_jac, ok/state/pen (n,2) if want_state.
+
+    Returns the index of the first non-finite input or first point outside the domain
+    (-1 if none) and a code (0 fine, 1 non-finite, 2 outside domain).
+    """
+    n = y.shape[0]
+    out = np.empty(4)
+    jac = np.empty((4, 8))
+    first_bad = -1
+    code = 0
+    for i in range(n):
+        a0 = y[i]; a1 = z[i]; a2 = thy[i]; a3 = thz[i]
+        a4 = vy[i]; a5 = vz[i]; a6 = wy[i]; a7 = wz[i]
+        s = a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7
+        if not math.isfinite(s):
+            return i, 1
+        o, st, p1, p2 = _evaluate(a0, a1, a2, a3, a4, a5, a6, a7, p, want_jac, out, jac)
+        if o == 0:
+            if first_bad < 0:
+                first_bad = i
+                code = 2
+            F[i, 0] = np.nan
+            F[i, 1] = np.nan
+            F[i, 2] = np.nan
+            F[i, 3] = np.nan
+        else:
+            F[i, 0] = out[0]
+            F[i, 1] = out[1]
+            F[i, 2] = out[2]
+            F[i, 3] = out[3]
+        if want_jac:
+            for r in range(4):
+                for c in range(8):
+                    J[i, r, c] = jac[r, c] if o != 0 else np.nan
+        if want_state:
+            ok[i] = o != 0
+            state[i] = st
+            pen[i, 0] = p1
+            pen[i, 1] = p2
+    return first_bad, code
