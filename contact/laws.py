@@ -424,3 +424,29 @@ def damping_factor(normal_velocity_m_s, c_c_s_per_m: float, *, clip_at_zero: boo
 
 
 LAWS = {"conformal": conformal_force, "johnson": johnson_force, "pereira": pereira_force}
+
+
+def force_per_width_function(law: str, *, clearance_m: float, bearing_E_Pa: float, bearing_nu: float,
+                             support_E_Pa: float, support_nu: float, modulus: str | None = None,
+                             beta_reading: str = "zero"):
+    """Return ``f(penetration_m) -> (force per unit contact length N/m, in_domain)`` for ``law``.
+
+    All three laws are linear in the contact length l, so the tilted-contact geometry
+    (:mod:`contact.tilt`) multiplies this by the patch length ``l_k``. ``modulus`` None
+    means the law's default (conformal: plane stress; Johnson and Pereira: plane strain).
+    Parameters are validated once here.
+    """
+    _check_choice("law", law, tuple(LAWS))
+    modulus = modulus or ("plane_stress" if law == "conformal" else "plane_strain")
+    kw = dict(clearance_m=clearance_m, width_m=1.0, bearing_E_Pa=bearing_E_Pa, bearing_nu=bearing_nu,
+              support_E_Pa=support_E_Pa, support_nu=support_nu, modulus=modulus)
+    if law == "conformal":
+        kw["beta_reading"] = beta_reading
+    LAWS[law](np.zeros(1), **kw)          # validates every parameter now, not at the first call
+    fn = LAWS[law]
+
+    def per_width(penetration_m):
+        res = fn(penetration_m, **kw)
+        return res.force_N, res.in_domain
+
+    return per_width
