@@ -1,0 +1,162 @@
+"""``ringcontact law``: evaluate an analytic contact law at given points, for people and scripts.
+
+Penetrations in mm and tilts in arcminutes come from the command line (every penetration is
+combined with every tilt) or from a CSV file with the columns ``penetration_mm`` and,
+optionally, ``tilt_arcmin`` (one point per row). Output is a table, or JSON with
+``--json``: force in N, moment in N·m, contact width in m and an explicit
+``outside_domain`` flag (force and moment are ``null`` there, never a number).
+
+Tilted points use the tilt geometry of Dai et al. (2025) Eqs. 8–19 (:mod:`contact.tilt`)
+with the tilt aligned so that edge 1 penetrates most; ``--penetration-at centre`` (default)
+reads the penetration at the ring centre plane, ``edge`` at the leading edge (Q9 of the
+reference note).
+
+Examples::
+
+    ringcontact law --penetration-mm 0.01 0.02 0.03
+    ringcontact law --law johnson --penetration-mm 0.01 0.03 --json
+    ringcontact law --penetration-mm 0.01 0.05 --tilt-arcmin 0.5 1 2
+    ringcontact law --csv points.csv --clearance-mm 0.05 --width-mm 30 --json
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from contact import laws, tilt
+from contact.errors import DatasetError, InputError, RingContactError
+from contact.units import ARCMIN, GPA, MM
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="ringcontact law",
+        description="Evaluate an analytic contact law of a bearing ring in its support (Dai et al. 2025). "
+                    "Defaults are the paper's Table 1 (204 GPa, nu 0.3, l0 30 mm, clearance 0.05 mm).",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("--law", choices=sorted(laws.LAWS), default="conformal", help="contact law")
+    src = p.add_mutually_exclusive_group(required=True)
+    src.add_argument("--penetration-mm", type=float, nargs="+", metavar="MM",
+                     help="penetration(s) Δr = |r| − δ0 in mm")
+    src.add_argument("--csv", type=Path, metavar="FILE",
+                     help="CSV with a column penetration_mm and optionally tilt_arcmin")
+    p.add_argument("--tilt-arcmin", type=float, nargs="+", default=[0.0], metavar="ARCMIN",
+                   help="relative tilt(s) in arcminutes (combined with every penetration)")
+    p.add_argument("--penetration-at", choices=("centre", "edge"), default="centre",
+                   help="where a tilted ring's penetration is measured")
+    p.add_argument("--clearance-mm", type=float, default=0.05, help="radial clearance δ0 (mm)")
+    p.add_argument("--width-mm", type=float, default=30.0, help="ring width l0 (mm)")
+    p.add_argument("--bearing-E-GPa", type=float, default=204.0, help="Young's modulus of the ring (GPa)")
+    p.add_argument("--bearing-nu", type=float, default=0.3, help="Poisson's ratio of the ring")
+    p.add_argument("--support-E-GPa", type=float, default=204.0, help="Young's modulus of the support (GPa)")
+    p.add_argument("--support-nu", type=float, default=0.3, help="Poisson's ratio of the support")
+    p.add_argument("--modulus", choices=laws.MODULI, default=None,
+                   help="2D idealisation (default: plane_stress for conformal, plane_strain otherwise)")
+    p.add_argument("--beta-reading", choices=laws.BETA_READINGS, default="zero",
+                   help="reading of the conformal law's beta term")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    return p
+
+
+def read_points_csv(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """Read ``penetration_mm`` and optional ``tilt_arcmin`` columns; raise DatasetError on any problem."""
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = list(csv.DictReader(fh))
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise DatasetError(f"csv = {path}: cannot read ({exc})") from exc
+    if not rows or "penetration_mm" not in (rows[0].keys() if rows else []):
+        raise DatasetError(f"csv = {path}: needs a header with a column 'penetration_mm' and at least one row")
+    pen, tilts = [], []
+    for i, row in enumerate(rows, start=2):
+        try:
+            pen.append(float(row["penetration_mm"]))
+            t = row.get("tilt_arcmin")
+            tilts.append(float(t) if t not in (None, "") else 0.0)
+        except (TypeError, ValueError) as exc:
+            raise DatasetError(f"csv = {path}, line {i}: not a number ({exc})") from exc
+    return np.array(pen), np.array(tilts)
+
+
+def evaluate(args: argparse.Namespace, pen_mm: np.ndarray, tilt_arcmin: np.ndarray) -> list[dict]:
+    """Evaluate the chosen law at the points (SI inside); one dict per point."""
+    for name, vals, unit in (("penetration_mm", pen_mm, "mm"), ("tilt_arcmin", tilt_arcmin, "arcmin")):
+        bad = ~np.isfinite(vals)
+        if np.any(bad):
+            raise InputError(f"{name} = {vals[bad][0]} {unit}: must be finite")
+    clearance_m, width_m = args.clearance_mm * MM, args.width_mm * MM
+    per_width = laws.force_per_width_function(
+        args.law, clearance_m=clearance_m, bearing_E_Pa=args.bearing_E_GPa * GPA, bearing_nu=args.bearing_nu,
+        support_E_Pa=args.support_E_GPa * GPA, support_nu=args.support_nu, modulus=args.modulus,
+        beta_reading=args.beta_reading)
+    laws.check_width(width_m)
+    tilt_rad = np.abs(tilt_arcmin) * ARCMIN
+    centre_pen_m = pen_mm * MM
+    if args.penetration_at == "edge":
+        centre_pen_m = centre_pen_m - tilt_rad * width_m / 2
+    res = tilt.aligned_tilt_contact(centre_pen_m, tilt_rad, clearance_m=clearance_m, width_m=width_m,
+                                    force_per_width=per_width)
+    points = []
+    for i in range(pen_mm.size):
+        ok = bool(res.in_domain[i])
+        points.append({
+            "penetration_mm": float(pen_mm[i]),
+            "tilt_arcmin": float(tilt_arcmin[i]),
+            "force_N": float(res.force_N[i]) if ok else None,
+            "moment_Nm": float(res.moment_Nm[i]) if ok else None,
+            "contact_width_m": float(res.contact_width_m[i]),
+            "edge_penetration_mm": float(max(res.penetration_1_m[i], res.penetration_2_m[i]) / MM),
+            "state": {0: "none", 1: "edge1", 2: "edge2", 3: "two_point", 4: "line"}[int(res.state[i])],
+            "outside_domain": not ok,
+        })
+    return points
+
+
+def format_table(law: str, points: list[dict]) -> str:
+    head = ["penetration_mm", "tilt_arcmin", "force_N", "moment_Nm", "contact_width_m", "state", "outside_domain"]
+    rows = []
+    for p in points:
+        rows.append([f"{p['penetration_mm']:g}", f"{p['tilt_arcmin']:g}",
+                     "outside domain" if p["outside_domain"] else f"{p['force_N']:.6g}",
+                     "-" if p["outside_domain"] else f"{p['moment_Nm']:.6g}",
+                     f"{p['contact_width_m']:.6g}", p["state"], "yes" if p["outside_domain"] else "no"])
+    widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
+    lines = [f"law: {law}", "  ".join(h.rjust(w) for h, w in zip(head, widths)),
+             "  ".join("-" * w for w in widths)]
+    lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        if args.csv is not None:
+            pen_mm, tilt_arcmin = read_points_csv(args.csv)
+        else:
+            pen, tl = np.meshgrid(np.asarray(args.penetration_mm, dtype=float),
+                                  np.asarray(args.tilt_arcmin, dtype=float))
+            order = np.argsort(tl.ravel(), kind="stable")
+            pen_mm, tilt_arcmin = pen.ravel()[order], tl.ravel()[order]
+        points = evaluate(args, pen_mm, tilt_arcmin)
+    except RingContactError as exc:
+        print(f"ringcontact law: error: {exc}", file=sys.stderr)
+        return 2
+    if args.json:
+        params = {"clearance_m": args.clearance_mm * MM, "width_m": args.width_mm * MM,
+                  "bearing_E_Pa": args.bearing_E_GPa * GPA, "bearing_nu": args.bearing_nu,
+                  "support_E_Pa": args.support_E_GPa * GPA, "support_nu": args.support_nu,
+                  "modulus": args.modulus or ("plane_stress" if args.law == "conformal" else "plane_strain"),
+                  "beta_reading": args.beta_reading, "penetration_at": args.penetration_at}
+        print(json.dumps({"law": args.law, "parameters": params, "points": points}, indent=2, allow_nan=False))
+    else:
+        print(format_table(args.law, points))
+    return 0
+
+
+if __name__ == "__main__":   # pragma: no cover
+    sys.exit(main())
