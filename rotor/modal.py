@@ -77,6 +77,54 @@ def _whirl_measure(model: RotorModel, shapes: np.ndarray) -> np.ndarray:
     return np.where(tot > 0, fwd / np.where(tot > 0, tot, 1.0), 0.5)
 
 
+def _whirl_forms(model: RotorModel) -> tuple[np.ndarray, np.ndarray]:
+    """Hermitian forms ``H`` (forward − backward)/4 and ``N`` (forward + backward)/2 on model DOFs.
+
+    Per node pair ``(Y, Z)``: ``|Y+iZ|² − |Y−iZ|² = 4 Im(Y Z̄) = 4 vᴴ[[0, i/2], [−i/2, 0]]v`` and
+    ``|Y+iZ|² + |Y−iZ|² = 2(|Y|² + |Z|²)``; tilts enter as the slope pair ``(θz, −θy)`` scaled by
+    a tenth of the rotor length.
+    """
+    n = model.n_dofs
+    idx = {nm: i for i, nm in enumerate(model.dof_names)}
+    scale = 0.1 * (float(np.ptp(model.node_x_m)) or 1.0)
+    H = np.zeros((n, n), complex)
+    N = np.zeros((n, n))
+    for node in model.node_names:
+        for a, b, sa, sb in ((f"{node}.y", f"{node}.z", 1.0, 1.0), (f"{node}.θz", f"{node}.θy", scale, -scale)):
+            ia, ib = idx.get(a), idx.get(b)
+            if ia is None or ib is None:
+                continue
+            H[ia, ib] += 0.5j * sa * sb
+            H[ib, ia] += -0.5j * sa * sb
+            N[ia, ia] += sa * sa
+            N[ib, ib] += sb * sb
+    return H, N
+
+
+def _split_degenerate(model: RotorModel, lam: np.ndarray, shapes: np.ndarray, rtol: float = 1e-7) -> np.ndarray:
+    """Within each cluster of equal eigenvalues, rotate the shapes into pure forward/backward whirl.
+
+    Needed at rest and for rotors without gyroscopic coupling, where forward and backward whirl
+    share a frequency and the eigen-solver returns arbitrary (often planar) combinations.
+    """
+    H, N = _whirl_forms(model)
+    out = shapes.copy()
+    j = 0
+    while j < len(lam):
+        k = j + 1
+        while k < len(lam) and abs(lam[k] - lam[j]) <= rtol * max(abs(lam[j]), 1e-300):
+            k += 1
+        if k - j > 1:
+            V = shapes[:, j:k]
+            W = V.conj().T @ H @ V
+            Nm = V.conj().T @ N @ V
+            if np.all(np.linalg.eigvalsh(Nm) > 1e-14 * np.trace(Nm).real):
+                _, X = sla.eigh(W, Nm)
+                out[:, j:k] = V @ X
+        j = k
+    return out
+
+
 def _label(frac: float) -> str:
     return "forward" if frac > 0.75 else "backward" if frac < 0.25 else "mixed"
 
@@ -113,6 +161,7 @@ def modes(model: RotorModel, speed_rad_s: float = 0.0, *, n_modes: int | None = 
     if n_modes is not None:
         lam, vec = lam[:n_modes], vec[:, :n_modes]
     shapes = vec if T.shape[0] == T.shape[1] else T @ vec
+    shapes = _split_degenerate(model, lam, shapes)
     lateral = [i for i, nm in enumerate(model.dof_names) if nm.endswith(".y") or nm.endswith(".z")]
     for j in range(shapes.shape[1]):
         sub = shapes[lateral, j] if lateral else shapes[:, j]

@@ -14,7 +14,7 @@ from scipy.optimize import brentq
 from rotor import elements as el
 from rotor.model import assemble
 from rotor.modal import critical_speeds, modes
-from rotor.scene import loads_scene
+from rotor.scene import load_scene, loads_scene
 
 E, NU, RHO = 200e9, 0.3, 7800.0
 L_BEAM, D_OUT, D_IN = 1.0, 0.100, 0.060
@@ -203,52 +203,6 @@ def test_free_free_timoshenko_first_four_modes():
 # ------------------------------------------------------------------------------------------
 # rotors
 # ------------------------------------------------------------------------------------------
-JEFFCOTT = """
-schema = "ringcontact.rotor-scene/1"
-name = "jeffcott"
-title = "Jeffcott rotor"
-[[materials]]
-name = "massless"
-density_kg_m3 = 0
-youngs_modulus_gpa = 200
-poisson_ratio = 0.3
-[[stations]]
-name = "A"
-x_mm = 0
-[[stations]]
-name = "disk"
-x_mm = 400
-[[stations]]
-name = "B"
-x_mm = 800
-[[shafts]]
-from = "A"
-to = "disk"
-outer_diameter_mm = 20
-material = "massless"
-[[shafts]]
-from = "disk"
-to = "B"
-outer_diameter_mm = 20
-material = "massless"
-[[disks]]
-name = "d"
-station = "disk"
-mass_kg = 10
-polar_inertia_kg_m2 = 0
-diametral_inertia_kg_m2 = 0
-unbalance_g_mm = 100
-[[bearings]]
-name = "bA"
-station = "A"
-stiffness_n_per_m = 2.0e6
-[[bearings]]
-name = "bB"
-station = "B"
-stiffness_n_per_m = 2.0e6
-"""
-
-
 def test_jeffcott_critical_speed():
     """Jeffcott (1919): ω_c = √(k/m) with 1/k = L³/(48EI) + L/(4κGA) + 1/(2k_b) for a central
     disk on a massless shaft in two flexible bearings. The 1X forward critical speed found by the
@@ -258,44 +212,13 @@ def test_jeffcott_critical_speed():
     kappa = el.cowper_shear_coefficient(d, 0.0, NU)
     k = 1.0 / (L ** 3 / (48 * E * I) + L / (4 * kappa * G_MOD * A) + 1 / (2 * kb))
     w_exact = math.sqrt(k / m)
-    model = assemble(loads_scene(JEFFCOTT))
+    scene = load_scene("verify-jeffcott")
+    assert (scene.disks[0].mass_kg, scene.bearings[0].stiffness_n_m, scene.shafts[0].outer_diameter_m) == (m, kb, d)
+    model = assemble(scene)
     crit = [c for c in critical_speeds(model, 2 * w_exact, orders=(1,), families=("forward",), n_modes=4)]
     assert crit, "no forward 1X critical speed found"
     assert crit[0].speed_rad_s == pytest.approx(w_exact, rel=1e-6)
     assert crit[0].whirl == "forward"
-
-
-def _overhung(ip: float) -> str:
-    return f"""
-schema = "ringcontact.rotor-scene/1"
-name = "overhung"
-title = "overhung disk on a clamped massless shaft"
-[[materials]]
-name = "massless"
-density_kg_m3 = 0
-youngs_modulus_gpa = 200
-poisson_ratio = 0.3
-[[stations]]
-name = "root"
-x_mm = 0
-[[stations]]
-name = "tip"
-x_mm = 300
-[[shafts]]
-from = "root"
-to = "tip"
-outer_diameter_mm = 30
-material = "massless"
-[[disks]]
-name = "disk"
-station = "tip"
-mass_kg = 8
-polar_inertia_kg_m2 = {ip}
-diametral_inertia_kg_m2 = 0.06
-[[boundaries]]
-station = "root"
-fixed = ["y", "z", "theta_y", "theta_z"]
-"""
 
 
 def _overhung_analytic(speed: float, ip: float) -> tuple[np.ndarray, np.ndarray]:
@@ -326,10 +249,13 @@ def _overhung_analytic(speed: float, ip: float) -> tuple[np.ndarray, np.ndarray]
 def test_overhung_disk_gyroscopic_splitting(speed_rpm):
     """Forward whirl frequencies rise and backward fall with speed, both equal to the analytic
     roots of the overhung-disk characteristic equation to 1e-8."""
+    scene = load_scene("verify-overhung-disk")
     ip = 0.11
+    disk = scene.disks[0]
+    assert (disk.mass_kg, disk.polar_inertia_kg_m2, disk.diametral_inertia_kg_m2) == (8.0, ip, 0.06)
     w = speed_rpm * math.pi / 30
     fwd_exact, bwd_exact = _overhung_analytic(w, ip)
-    res = modes(assemble(loads_scene(_overhung(ip))), w)
+    res = modes(assemble(scene), w)
     fwd = np.sort(res.frequency_hz[np.array(res.whirl) == "forward"])
     bwd = np.sort(res.frequency_hz[np.array(res.whirl) == "backward"])
     assert len(fwd) == len(fwd_exact) == 2 and len(bwd) == len(bwd_exact) == 2
