@@ -13,6 +13,7 @@ import sys
 # job name -> (module, one-line help). Keep sorted by data-flow layer.
 JOBS: dict[str, tuple[str, str]] = {
     "law": ("contact.cli", "evaluate an analytic contact law at given penetrations/tilts (table or --json)"),
+    "rotor": ("rotor.cli", "rotor linear analyses: modes, campbell, critical-speeds, unbalance (table or --json)"),
     "report": ("reports.main", "build the committed reports/ from the committed datasets (the main job)"),
 }
 
