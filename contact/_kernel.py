@@ -57,10 +57,11 @@ def _law(pen, p):
 
 
 @numba.njit(cache=True, inline="always")
-def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac):
-    """Add weight ``w`` × the contact force/moment of edge ``sgn`` (+1 right, −1 left) to ``out``.
+def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, jac):
+    """Weight ``w`` × the contact force/moment of edge ``sgn`` (+1 right, −1 left).
 
-    Returns 1 if inside the law's domain (or not in contact), 0 otherwise.
+    Returns ``(fy, fz, my, mz, ok)`` with ok = 1 inside the law's domain (or without
+    contact), 0 otherwise; adds ``w`` × its Jacobian to ``jac`` unless ``jac`` is None.
     """
     d0 = p[0]
     l0 = p[1]
@@ -71,7 +72,7 @@ def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac):
     rho = math.sqrt(ry * ry + rz * rz)
     pen = rho - d0
     if pen <= 0.0:
-        return 1
+        return 0.0, 0.0, 0.0, 0.0, 1
     ny = ry / rho
     nz = rz / rho
     vky = vy + a * wz
@@ -79,7 +80,7 @@ def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac):
     vn = ny * vky + nz * vkz
     hv, dh, ok = _law(pen, p)
     if ok == 0:
-        return 0
+        return 0.0, 0.0, 0.0, 0.0, 0
     partial = pen < t * l0
     if partial:
         l = pen / t
@@ -94,12 +95,8 @@ def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac):
     fy = -P * damp * ny
     fz = -P * damp * nz
     d = 0.5 * (l0 - l)
-    out[0] += w * fy
-    out[1] += w * fz
-    out[2] += w * sgn * d * (-fz)
-    out[3] += w * sgn * d * fy
-    if not want_jac:
-        return 1
+    if jac is None:
+        return w * fy, w * fz, w * sgn * d * (-fz), w * sgn * d * fy, 1
     # derivatives of r_k (and of r_k-dot w.r.t. velocities) w.r.t. (y, z, thy, thz)
     dry = (1.0, 0.0, 0.0, a)
     drz = (0.0, 1.0, -a, 0.0)
@@ -135,15 +132,15 @@ def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac):
         jac[1, 4 + j] += w * dfz_v
         jac[2, 4 + j] += w * sgn * d * (-dfz_v)
         jac[3, 4 + j] += w * sgn * d * dfy_v
-    return 1
+    return w * fy, w * fz, w * sgn * d * (-fz), w * sgn * d * fy, 1
 
 
 @numba.njit(cache=True, inline="always")
-def _face_friction(sgn, vy, vz, wy, wz, p, want_jac, out, jac):
-    """Add the Coulomb friction force and moment of end face ``sgn`` (+1 right, −1 left)."""
+def _face_friction(sgn, vy, vz, wy, wz, p, jac):
+    """Coulomb friction ``(fy, fz, my, mz)`` of end face ``sgn`` (+1 right, −1 left); Jacobian into ``jac``."""
     muN = p[10]
     if muN == 0.0:
-        return
+        return 0.0, 0.0, 0.0, 0.0
     a = sgn * 0.5 * p[1]
     uy = vy + a * wz
     uz = vz - a * wy
@@ -151,17 +148,13 @@ def _face_friction(sgn, vy, vz, wy, wz, p, want_jac, out, jac):
     eps = p[12]
     S2 = u2 + eps * eps
     if S2 == 0.0:
-        return                      # zero relative velocity: stick, friction set by constraints
+        return 0.0, 0.0, 0.0, 0.0   # zero relative velocity: stick, friction set by constraints
     S = math.sqrt(S2)
     fy = -muN * uy / S
     fz = -muN * uz / S
     h = 0.5 * p[1]
-    out[0] += fy
-    out[1] += fz
-    out[2] += sgn * h * (-fz)
-    out[3] += sgn * h * fy
-    if not want_jac:
-        return
+    if jac is None:
+        return fy, fz, sgn * h * (-fz), sgn * h * fy
     S3 = S2 * S
     # d(u/S)/du = (I S² − u uᵀ)/S³
     gyy = (S2 - uy * uy) / S3
@@ -176,17 +169,16 @@ def _face_friction(sgn, vy, vz, wy, wz, p, want_jac, out, jac):
         jac[1, 4 + j] += dfz
         jac[2, 4 + j] += sgn * h * (-dfz)
         jac[3, 4 + j] += sgn * h * dfy
+    return fy, fz, sgn * h * (-fz), sgn * h * fy
 
 
 @numba.njit(cache=True)
-def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, want_jac, out, jac):
-    """Total force/moment into ``out`` (4,), Jacobian into ``jac`` (4, 8) if ``want_jac``.
+def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, jac):
+    """Total force and moment on the bearing; Jacobian into ``jac`` (4, 8) unless it is None.
 
-    Returns (in_domain, state, penetration_1, penetration_2).
+    Returns ``(Fy, Fz, My, Mz, in_domain, state, penetration_1, penetration_2)``.
     """
-    for i in range(4):
-        out[i] = 0.0
-    if want_jac:
+    if jac is not None:
         for i in range(4):
             for j in range(8):
                 jac[i, j] = 0.0
@@ -201,12 +193,11 @@ def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, want_jac, out, jac):
     t = math.sqrt(thy * thy + thz * thz)
     pen1 = math.sqrt((y + h * thz) ** 2 + (z - h * thy) ** 2) - d0
     pen2 = math.sqrt((y - h * thz) ** 2 + (z + h * thy) ** 2) - d0
-    rho0 = math.sqrt(y * y + z * z)
     if pen1 <= 0.0 and pen2 <= 0.0:
         w1 = 0.0
         w2 = 0.0
         state = STATE_NONE
-    elif rho0 <= d0:
+    elif y * y + z * z <= d0 * d0:
         # centre inside the clearance: the edges touch opposite sides (or one edge only)
         w1 = 1.0 if pen1 > 0.0 else 0.0
         w2 = 1.0 if pen2 > 0.0 else 0.0
@@ -229,86 +220,104 @@ def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, want_jac, out, jac):
         w1 = 0.5
         w2 = 0.5
         state = STATE_LINE
+    Fy = 0.0
+    Fz = 0.0
+    My = 0.0
+    Mz = 0.0
     ok = 1
     if w1 > 0.0:
-        ok &= _edge(1.0, w1, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac)
+        a, b, c, d, o = _edge(1.0, w1, y, z, thy, thz, vy, vz, wy, wz, t, p, jac)
+        Fy += a
+        Fz += b
+        My += c
+        Mz += d
+        ok &= o
     if w2 > 0.0:
-        ok &= _edge(-1.0, w2, y, z, thy, thz, vy, vz, wy, wz, t, p, want_jac, out, jac)
-    _face_friction(1.0, vy, vz, wy, wz, p, want_jac, out, jac)
-    _face_friction(-1.0, vy, vz, wy, wz, p, want_jac, out, jac)
+        a, b, c, d, o = _edge(-1.0, w2, y, z, thy, thz, vy, vz, wy, wz, t, p, jac)
+        Fy += a
+        Fz += b
+        My += c
+        Mz += d
+        ok &= o
+    a, b, c, d = _face_friction(1.0, vy, vz, wy, wz, p, jac)
+    Fy += a
+    Fz += b
+    My += c
+    Mz += d
+    a, b, c, d = _face_friction(-1.0, vy, vz, wy, wz, p, jac)
+    Fy += a
+    Fz += b
+    My += c
+    Mz += d
     if tilt_ignored:
-        out[2] = 0.0
-        out[3] = 0.0
-        if want_jac:
+        My = 0.0
+        Mz = 0.0
+        if jac is not None:
             for i in range(4):
                 for j in (2, 3, 6, 7):
                     jac[i, j] = 0.0
             for j in range(8):
                 jac[2, j] = 0.0
                 jac[3, j] = 0.0
-    return ok, state, pen1, pen2
+    return Fy, Fz, My, Mz, ok, state, pen1, pen2
 
 
 @numba.njit(cache=True)
 def point_force(y, z, thy, thz, vy, vz, wy, wz, p):
     """Scalar path for a compiled step loop: ``(Fy, Fz, My, Mz)`` on the bearing (N, N·m).
 
-    Raises OutsideDomainError if a contact edge is beyond the conformal law's neat-fit limit.
+    Allocation-free. Raises OutsideDomainError beyond the conformal law's neat-fit limit.
     """
-    out = np.empty(4)
-    jac = np.empty((1, 1))
-    ok, state, pen1, pen2 = _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, False, out, jac)
+    Fy, Fz, My, Mz, ok, state, pen1, pen2 = _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, None)
     if ok == 0:
         raise OutsideDomainError("loose support: penetration beyond the conformal law's neat-fit limit D(b) <= 0")
-    return out[0], out[1], out[2], out[3]
+    return Fy, Fz, My, Mz
 
 
 @numba.njit(cache=True)
 def point_force_jacobian(y, z, thy, thz, vy, vz, wy, wz, p, jac):
     """Like :func:`point_force`, and writes ∂(Fy,Fz,My,Mz)/∂(y,z,θy,θz,vy,vz,ωy,ωz) into ``jac`` (4, 8)."""
-    out = np.empty(4)
-    ok, state, pen1, pen2 = _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, True, out, jac)
+    Fy, Fz, My, Mz, ok, state, pen1, pen2 = _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, jac)
     if ok == 0:
         raise OutsideDomainError("loose support: penetration beyond the conformal law's neat-fit limit D(b) <= 0")
-    return out[0], out[1], out[2], out[3]
+    return Fy, Fz, My, Mz
 
 
 @numba.njit(cache=True)
 def many_points(y, z, thy, thz, vy, vz, wy, wz, p, want_jac, want_state, F, J, ok, state, pen):
-    """Loop over 1-D arrays; fills F (n,4), J (n,4,8) if want_jac, ok/state/pen (n,2) if want_state.
+    """Loop over 1-D arrays; fills F (n,4), J (n,4,8) if want_jac, ok/state (n,), pen (n,2) if want_state.
 
     Returns the index of the first non-finite input or first point outside the domain
     (-1 if none) and a code (0 fine, 1 non-finite, 2 outside domain).
     """
     n = y.shape[0]
-    out = np.empty(4)
     jac = np.empty((4, 8))
     first_bad = -1
     code = 0
     for i in range(n):
-        a0 = y[i]; a1 = z[i]; a2 = thy[i]; a3 = thz[i]
-        a4 = vy[i]; a5 = vz[i]; a6 = wy[i]; a7 = wz[i]
-        s = a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7
-        if not math.isfinite(s):
+        a0 = y[i]; a1 = z[i]; a2 = thy[i]; a3 = thz[i]  # noqa: E702
+        a4 = vy[i]; a5 = vz[i]; a6 = wy[i]; a7 = wz[i]  # noqa: E702
+        if not math.isfinite(a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7):
             return i, 1
-        o, st, p1, p2 = _evaluate(a0, a1, a2, a3, a4, a5, a6, a7, p, want_jac, out, jac)
+        if want_jac:
+            fy, fz, my, mz, o, st, p1, p2 = _evaluate(a0, a1, a2, a3, a4, a5, a6, a7, p, jac)
+            for r in range(4):
+                for c in range(8):
+                    J[i, r, c] = jac[r, c] if o != 0 else np.nan
+        else:
+            fy, fz, my, mz, o, st, p1, p2 = _evaluate(a0, a1, a2, a3, a4, a5, a6, a7, p, None)
         if o == 0:
             if first_bad < 0:
                 first_bad = i
                 code = 2
-            F[i, 0] = np.nan
-            F[i, 1] = np.nan
-            F[i, 2] = np.nan
-            F[i, 3] = np.nan
-        else:
-            F[i, 0] = out[0]
-            F[i, 1] = out[1]
-            F[i, 2] = out[2]
-            F[i, 3] = out[3]
-        if want_jac:
-            for r in range(4):
-                for c in range(8):
-                    J[i, r, c] = jac[r, c] if o != 0 else np.nan
+            fy = np.nan
+            fz = np.nan
+            my = np.nan
+            mz = np.nan
+        F[i, 0] = fy
+        F[i, 1] = fz
+        F[i, 2] = my
+        F[i, 3] = mz
         if want_state:
             ok[i] = o != 0
             state[i] = st
