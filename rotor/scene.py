@@ -417,10 +417,11 @@ def _parse_table(raw: Any, specs: list[Spec], where: str, cls):
             si = conv(value)
         except (TypeError, ValueError) as exc:
             raise InputError(f"{where}.{key} = {value!r}: {exc}") from None
+        shown = f"{value:g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else repr(value)
         if isinstance(si, float) and not math.isfinite(si):
-            raise InputError(f"{where}.{key} = {value} {unit}: must be finite")
+            raise InputError(f"{where}.{key} = {shown} {unit}: must be finite")
         if not check(si):
-            raise InputError(f"{where}.{key} = {value} {unit}".rstrip() + f": {_CHECK_TEXT[check]}")
+            raise InputError(f"{where}.{key} = {shown} {unit}".rstrip() + f": {_CHECK_TEXT[check]}")
         kwargs[attr] = si
     return kwargs
 
