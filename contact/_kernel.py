@@ -324,3 +324,36 @@ def many_points(y, z, thy, thz, vy, vz, wy, wz, p, want_jac, want_state, F, J, o
             pen[i, 0] = p1
             pen[i, 1] = p2
     return first_bad, code
+
+
+@numba.njit(cache=True, parallel=True)
+def many_points_parallel(y, z, thy, thz, vy, vz, wy, wz, p, want_state, F, status, state, pen):
+    """Multi-threaded :func:`many_points` without Jacobian: ``status[i]`` 0 fine, 1 non-finite, 2 outside."""
+    n = y.shape[0]
+    for i in numba.prange(n):
+        a0 = y[i]; a1 = z[i]; a2 = thy[i]; a3 = thz[i]  # noqa: E702
+        a4 = vy[i]; a5 = vz[i]; a6 = wy[i]; a7 = wz[i]  # noqa: E702
+        if not math.isfinite(a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7):
+            status[i] = 1
+            F[i, 0] = np.nan
+            F[i, 1] = np.nan
+            F[i, 2] = np.nan
+            F[i, 3] = np.nan
+            continue
+        fy, fz, my, mz, o, st, p1, p2 = _evaluate(a0, a1, a2, a3, a4, a5, a6, a7, p, None)
+        if o == 0:
+            status[i] = 2
+            fy = np.nan
+            fz = np.nan
+            my = np.nan
+            mz = np.nan
+        else:
+            status[i] = 0
+        F[i, 0] = fy
+        F[i, 1] = fz
+        F[i, 2] = my
+        F[i, 3] = mz
+        if want_state:
+            state[i] = st
+            pen[i, 0] = p1
+            pen[i, 1] = p2

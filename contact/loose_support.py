@@ -77,7 +77,7 @@ import numpy as np
 
 from contact import laws
 from contact._kernel import (N_PARAMS, STATE_EDGE1, STATE_EDGE2, STATE_LINE, STATE_NONE,  # noqa: F401
-                             STATE_TWO_POINT, many_points, point_force, point_force_jacobian)
+                             STATE_TWO_POINT, many_points, many_points_parallel, point_force, point_force_jacobian)
 from contact.errors import InputError, OutsideDomainError
 from contact.units import check_finite, check_positive
 
@@ -243,7 +243,7 @@ def _raise_bad(flat, idx):
     raise InputError(f"inputs at point {idx} are not finite")  # pragma: no cover (sum overflow only)
 
 
-def _run(params, inputs, want_jac, want_state, on_outside):
+def _run(params, inputs, want_jac, want_state, on_outside, parallel=False):
     if on_outside not in ("raise", "flag"):
         raise InputError(f"on_outside = {on_outside!r}: must be 'raise' or 'flag'")
     if not isinstance(params, LooseSupportParams):
@@ -256,20 +256,35 @@ def _run(params, inputs, want_jac, want_state, on_outside):
     ok = np.empty(m, dtype=np.bool_)
     state = np.empty(m, dtype=np.int8)
     pen = np.empty((m, 2))
-    idx, code = many_points(*flat, params.kernel_args, want_jac, want_state, F, J, ok, state, pen)
+    if parallel and not want_jac:
+        status = np.empty(n, dtype=np.int8)
+        many_points_parallel(*flat, params.kernel_args, want_state, F, status, state, pen)
+        bad = np.flatnonzero(status)
+        idx, code = (int(bad[0]), int(status[bad[0]])) if bad.size else (-1, 0)
+        if code == 2:
+            nonfinite = np.flatnonzero(status == 1)
+            if nonfinite.size:
+                idx, code = int(nonfinite[0]), 1
+        if want_state:
+            ok[:] = status == 0
+    else:
+        idx, code = many_points(*flat, params.kernel_args, want_jac, want_state, F, J, ok, state, pen)
     if code == 1:
         _raise_bad(flat, idx)
     if code == 2 and on_outside == "raise":
+        offset = math.hypot(flat[0][idx], flat[1][idx])
+        hint = " (displacements given in mm? SI expected)" if offset > 100 * params.clearance_m else ""
         raise OutsideDomainError(
-            f"loose support: point {idx} (y_m = {flat[0][idx]:g}, z_m = {flat[1][idx]:g}) penetrates beyond the "
-            f"{params.law} law's neat-fit limit of {params.neat_fit_limit_m:g} m (D(b) <= 0); "
+            f"loose support: point {idx} (y_m = {flat[0][idx]:g} m, z_m = {flat[1][idx]:g} m) penetrates beyond the "
+            f"{params.law} law's neat-fit limit of {params.neat_fit_limit_m:g} m (D(b) <= 0){hint}; "
             "use on_outside='flag' to get NaN with in_domain=False")
     return shape, F, J, ok, state, pen
 
 
 def loose_support_force(params: LooseSupportParams, y_m, z_m, theta_y_rad=0.0, theta_z_rad=0.0,
                         vy_m_s=0.0, vz_m_s=0.0, omega_y_rad_s=0.0, omega_z_rad_s=0.0, *,
-                        with_state: bool = False, on_outside: str = "raise") -> LooseSupportForce:
+                        with_state: bool = False, on_outside: str = "raise",
+                        parallel: bool = False) -> LooseSupportForce:
     """Total loose-support force and moment on the bearing (Dai et al. 2025 Eq. 25), vectorized.
 
     Parameters
@@ -287,6 +302,9 @@ def loose_support_force(params: LooseSupportParams, y_m, z_m, theta_y_rad=0.0, t
         Also return the contact state, domain mask and edge penetrations.
     on_outside : {"raise", "flag"}
         What to do at points beyond the law's domain (module docstring).
+    parallel : bool
+        Spread the points over all cores (numba threads). Default False: one thread, which
+        is what a process-parallel sweep wants.
 
     Returns
     -------
@@ -301,7 +319,7 @@ def loose_support_force(params: LooseSupportParams, y_m, z_m, theta_y_rad=0.0, t
         if ``on_outside == "raise"`` and a point is beyond the neat-fit limit.
     """
     inputs = (y_m, z_m, theta_y_rad, theta_z_rad, vy_m_s, vz_m_s, omega_y_rad_s, omega_z_rad_s)
-    shape, F, _, ok, state, pen = _run(params, inputs, False, with_state, on_outside)
+    shape, F, _, ok, state, pen = _run(params, inputs, False, with_state, on_outside, parallel)
     cols = [F[:, i].reshape(shape) for i in range(4)]
     if not with_state:
         return LooseSupportForce(*cols)

@@ -76,10 +76,18 @@ CASES = {
 }
 
 
+CASE_STATES = {"edge1_full_patch": 1, "edge2_partial_patch": 2, "two_point": 3, "no_contact_sliding": 0,
+               "damping_clipped": 1}
+
+
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_jacobian_matches_finite_differences(case):
     params = LooseSupportParams.paper_table4()
     x = np.array(CASES[case])
+    res = loose_support_force(params, *x, with_state=True)
+    assert res.state == CASE_STATES[case]
+    if case == "edge2_partial_patch":      # the patch-length derivative (l = pen/|theta|) is exercised
+        assert 0 < res.penetration_2_m < np.hypot(x[2], x[3]) * params.width_m
     steps = np.array([1e-11, 1e-11, 1e-9, 1e-9, 1e-8, 1e-8, 1e-6, 1e-6])
     F, J = loose_support_jacobian(params, *x)
     Jfd = _fd_jacobian(params, x, steps)
@@ -144,6 +152,11 @@ def test_outside_neat_fit_limit_raises_or_flags():
         point_force(far, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, params.kernel_args)
 
 
+def test_displacement_in_mm_by_mistake_is_caught():
+    with pytest.raises(OutsideDomainError, match=r"y_m = 0.06 m.*given in mm"):
+        loose_support_force(P4, 0.06, 0.0)                 # 0.06 mm typed as m
+
+
 def test_nan_input_names_the_input():
     with pytest.raises(InputError, match=r"omega_z_rad_s = nan rad/s"):
         loose_support_force(P4, [6e-5, 6e-5], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, [0.0, float("nan")])
@@ -183,3 +196,16 @@ def test_params_validation(field, value, pattern):
 def test_radius_catches_clearance_in_mm():
     with pytest.raises(InputError, match=r"clearance_m = 0.008 m"):
         LooseSupportParams.paper_table4(clearance_m=0.008, radius_m=0.1)
+
+
+def test_parallel_path_equals_serial_path():
+    x = random_states(5000, seed=11)
+    a = loose_support_force(P4, *x, with_state=True)
+    b = loose_support_force(P4, *x, with_state=True, parallel=True)
+    for f in ("Fy_N", "Fz_N", "My_Nm", "Mz_Nm", "state", "in_domain", "penetration_1_m", "penetration_2_m"):
+        assert np.array_equal(getattr(a, f), getattr(b, f)), f
+    far = P4.clearance_m + 1.1 * P4.neat_fit_limit_m
+    with pytest.raises(OutsideDomainError):
+        loose_support_force(P4, [6e-5, far], 0.0, parallel=True)
+    with pytest.raises(InputError, match=r"vz_m_s = inf m/s"):
+        loose_support_force(P4, [6e-5, far, 6e-5], 0.0, 0.0, 0.0, 0.0, [0.0, 0.0, np.inf], parallel=True)
