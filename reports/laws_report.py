@@ -202,7 +202,8 @@ def make_figure(rows: list[dict]):
     fig.tight_layout()
     png, svg = io.BytesIO(), io.BytesIO()
     fig.savefig(png, format="png", dpi=130, metadata={"Software": None})
-    fig.savefig(svg, format="svg", metadata={"Date": None, "Creator": None})
+    with plt.rc_context({"svg.hashsalt": "ringcontact-laws-vs-paper"}):   # stable ids: no diff on rebuild
+        fig.savefig(svg, format="svg", metadata={"Date": None, "Creator": None})
     plt.close(fig)
     return png.getvalue(), svg.getvalue()
 
