@@ -209,3 +209,24 @@ def test_parallel_path_equals_serial_path():
         loose_support_force(P4, [6e-5, far], 0.0, parallel=True)
     with pytest.raises(InputError, match=r"vz_m_s = inf m/s"):
         loose_support_force(P4, [6e-5, far, 6e-5], 0.0, 0.0, 0.0, 0.0, [0.0, 0.0, np.inf], parallel=True)
+
+
+def test_line_contact_stiffness_is_symmetric_and_matches_law_slope():
+    """Without damping, friction and tilt the contact force is central, F = -P(|r| - delta0) r/|r|, i.e. the
+    gradient of a potential: its stiffness dF/dr is symmetric, with radial value -dP/d(Delta r) and
+    tangential value -P/|r| (plane kinematics of a central force)."""
+    params = LooseSupportParams.paper_table4(c_c_s_per_m=0.0, mu=0.0)
+    ang = 0.6
+    rho = params.clearance_m + 1.5e-5
+    F, J = loose_support_jacobian(params, rho * np.cos(ang), rho * np.sin(ang))
+    K = J[:2, :2]
+    assert K[0, 1] == pytest.approx(K[1, 0], rel=1e-12)
+    assert np.all(J[:, 4:] == 0)
+    e = np.array([np.cos(ang), np.sin(ang)])
+    t = np.array([-np.sin(ang), np.cos(ang)])
+    kw = dict(clearance_m=5e-5, width_m=30e-3, bearing_E_Pa=204e9, bearing_nu=0.3, support_E_Pa=204e9, support_nu=0.3)
+    h = 1e-10
+    dP = (laws.conformal_force(1.5e-5 + h, **kw).force_N - laws.conformal_force(1.5e-5 - h, **kw).force_N) / (2 * h)
+    P = laws.conformal_force(1.5e-5, **kw).force_N
+    assert e @ K @ e == pytest.approx(-dP, rel=1e-6)
+    assert t @ K @ t == pytest.approx(-P / rho, rel=1e-12)
