@@ -57,24 +57,22 @@ def _law(pen, p):
 
 
 @numba.njit(cache=True, inline="always")
-def _edge(sgn, w, y, z, thy, thz, vy, vz, wy, wz, t, p, jac):
+def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     """Weight ``w`` × the contact force/moment of edge ``sgn`` (+1 right, −1 left).
 
+    ``(ry, rz)`` is the edge's relative displacement and ``rho`` its length.
     Returns ``(fy, fz, my, mz, ok)`` with ok = 1 inside the law's domain (or without
     contact), 0 otherwise; adds ``w`` × its Jacobian to ``jac`` unless ``jac`` is None.
     """
     d0 = p[0]
     l0 = p[1]
-    h = 0.5 * l0
-    a = sgn * h
-    ry = y + a * thz
-    rz = z - a * thy
-    rho = math.sqrt(ry * ry + rz * rz)
+    a = sgn * 0.5 * l0
     pen = rho - d0
     if pen <= 0.0:
         return 0.0, 0.0, 0.0, 0.0, 1
-    ny = ry / rho
-    nz = rz / rho
+    inv_rho = 1.0 / rho
+    ny = ry * inv_rho
+    nz = rz * inv_rho
     vky = vy + a * wz
     vkz = vz - a * wy
     vn = ny * vky + nz * vkz
@@ -150,8 +148,9 @@ def _face_friction(sgn, vy, vz, wy, wz, p, jac):
     if S2 == 0.0:
         return 0.0, 0.0, 0.0, 0.0   # zero relative velocity: stick, friction set by constraints
     S = math.sqrt(S2)
-    fy = -muN * uy / S
-    fz = -muN * uz / S
+    c = muN / S
+    fy = -c * uy
+    fz = -c * uz
     h = 0.5 * p[1]
     if jac is None:
         return fy, fz, sgn * h * (-fz), sgn * h * fy
@@ -191,8 +190,14 @@ def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, jac):
         wy = 0.0
         wz = 0.0
     t = math.sqrt(thy * thy + thz * thz)
-    pen1 = math.sqrt((y + h * thz) ** 2 + (z - h * thy) ** 2) - d0
-    pen2 = math.sqrt((y - h * thz) ** 2 + (z + h * thy) ** 2) - d0
+    r1y = y + h * thz
+    r1z = z - h * thy
+    r2y = y - h * thz
+    r2z = z + h * thy
+    rho1 = math.sqrt(r1y * r1y + r1z * r1z)
+    rho2 = math.sqrt(r2y * r2y + r2z * r2z)
+    pen1 = rho1 - d0
+    pen2 = rho2 - d0
     if pen1 <= 0.0 and pen2 <= 0.0:
         w1 = 0.0
         w2 = 0.0
@@ -226,14 +231,14 @@ def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, jac):
     Mz = 0.0
     ok = 1
     if w1 > 0.0:
-        a, b, c, d, o = _edge(1.0, w1, y, z, thy, thz, vy, vz, wy, wz, t, p, jac)
+        a, b, c, d, o = _edge(1.0, w1, r1y, r1z, rho1, vy, vz, wy, wz, thy, thz, t, p, jac)
         Fy += a
         Fz += b
         My += c
         Mz += d
         ok &= o
     if w2 > 0.0:
-        a, b, c, d, o = _edge(-1.0, w2, y, z, thy, thz, vy, vz, wy, wz, t, p, jac)
+        a, b, c, d, o = _edge(-1.0, w2, r2y, r2z, rho2, vy, vz, wy, wz, thy, thz, t, p, jac)
         Fy += a
         Fz += b
         My += c
