@@ -230,9 +230,17 @@ class LooseSupportForce:
 
 
 def _prepare(inputs):
-    arrays = np.broadcast_arrays(*[np.asarray(a, dtype=float) for a in inputs])
-    shape = arrays[0].shape
-    flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
+    """Broadcast the inputs to one shape; flat, contiguous, writeable float64 (no copy when already so)."""
+    arrays = [np.asarray(a, dtype=float) for a in inputs]
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in arrays))
+    except ValueError as exc:
+        raise InputError(f"inputs of shapes {[a.shape for a in arrays]} do not broadcast: {exc}") from exc
+    flat = []
+    for a in arrays:
+        if a.shape != shape or not a.flags.writeable:
+            a = np.array(np.broadcast_to(a, shape))          # a writeable copy: one compiled signature
+        flat.append(np.ascontiguousarray(a).reshape(-1))
     return shape, flat
 
 

@@ -178,6 +178,12 @@ def test_tilt_ignored_is_line_contact_with_translation_friction():
 def test_forces_act_on_bearing_towards_centre_and_shape_is_kept():
     res = loose_support_force(LooseSupportParams.paper_table4(mu=0.0), np.full((3, 2), 6e-5), 0.0)
     assert res.Fy_N.shape == (3, 2) and np.all(res.Fy_N < 0)
+    y = np.full(2, 6e-5)
+    y.flags.writeable = False                      # read-only and broadcast inputs are accepted
+    res = loose_support_force(P4, y, np.zeros((3, 1)))
+    assert res.Fy_N.shape == (3, 2)
+    with pytest.raises(InputError, match="do not broadcast"):
+        loose_support_force(P4, np.zeros(3), np.zeros(2))
 
 
 @pytest.mark.parametrize("field,value,pattern", [
