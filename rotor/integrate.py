@@ -196,6 +196,9 @@ class RotorSystem:
     lock : (m, n) array L of linear equal-displacement rows (3a/3b), may have 0 rows
     support : LooseSupport or None
     dof_names : tuple of n str
+    coupling : None or ``((θy_a, θz_a), (θy_b, θz_b), a1)``: the cubic remainder
+        ``−a1 |Δθ|² Δθ`` (N m, Δθ = θ_a − θ_b, a1 in N m/rad³) of the transition-shaft spring
+        on node a, the opposite on node b (Dai et al. 2025 Eqs. 32, 44); its linear part is in K.
     """
 
     M: np.ndarray
@@ -208,6 +211,7 @@ class RotorSystem:
     lock: np.ndarray
     support: LooseSupport | None
     dof_names: tuple
+    coupling: tuple | None = None
 
     def __post_init__(self):
         n = self.M.shape[0]
@@ -256,6 +260,7 @@ class Trajectory:
     passes: np.ndarray
     omega_dt_max: float = float("nan")
     scheme: str = ""
+    unconverged_steps: int = 0
 
 
 @dataclass(frozen=True)
@@ -266,15 +271,35 @@ class NewmarkOptions:
     beta: float = 0.25
     gamma: float = 0.5
     tol: float = 1e-10
-    max_iter: int = 40
-    w_reg: float = 1e-9
-    w_stick: float = 1e-7
+    max_iter: int = 25
+    w_reg: float = 1e-6
+    w_stick: float = 1e-5
     max_passes: int = 6
 
 
 # ---------------------------------------------------------------------------
 # helpers shared with the production scheme
 # ---------------------------------------------------------------------------
+
+
+def coupling_map(system: RotorSystem) -> np.ndarray:
+    """``E_c`` (2, n) with ``Δθ = E_c q`` (θ of node a minus node b); zero rows if no coupling."""
+    Ec = np.zeros((2, system.n))
+    if system.coupling is not None:
+        (ia, ib, _) = system.coupling
+        for r in range(2):
+            Ec[r, ia[r]] += 1.0
+            Ec[r, ib[r]] -= 1.0
+    return Ec
+
+
+def coupling_force(system: RotorSystem, q) -> np.ndarray:
+    """Generalised force (n,) of the cubic coupling remainder at ``q``."""
+    if system.coupling is None or system.coupling[2] == 0.0:
+        return np.zeros(system.n)
+    Ec = coupling_map(system)
+    d = Ec @ q
+    return Ec.T @ (-system.coupling[2] * float(d @ d) * d)
 
 
 def support_forces(system: RotorSystem, q, v, modes, lam_faces, opts: NewmarkOptions):
@@ -357,7 +382,7 @@ def initial_acceleration(system: RotorSystem, t0: float, q0, v0, modes, opts: Ne
         rows += [P[k] @ B for k in range(2) if modes[k] == cons.STICK]
     Phi = np.vstack(rows) if rows else np.zeros((0, n))
     _, _, _, _, gnl = support_forces(system, q0, v0, [cons.SLIP if m == cons.SLIP else cons.STICK for m in modes], np.zeros((2, 2)), opts)
-    rhs = system.force(t0) - system.D @ v0 - system.K @ (q0 - system.offset) + gnl
+    rhs = system.force(t0) - system.D @ v0 - system.K @ (q0 - system.offset) + gnl + coupling_force(system, q0)
     m = Phi.shape[0]
     A = np.block([[system.M, Phi.T], [Phi, np.zeros((m, m))]])
     z = np.linalg.solve(A, np.concatenate([rhs, np.zeros(m)]))
@@ -491,7 +516,7 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
                 lam_ = z[n:]
                 qn = q_pre + bdt2 * acc
                 vn = v_pre + gdt * acc
-                r = M @ acc + D @ vn + K @ (qn - off) - Q + Phi.T @ lam_
+                r = M @ acc + D @ vn + K @ (qn - off) - Q + Phi.T @ lam_ - coupling_force(system, qn)
                 if sup is not None:
                     un = B @ qn
                     wn = B @ vn
@@ -512,6 +537,21 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
             z = np.concatenate([a] + lam0)
             z, its, ok, err = _fd_newton(residual, z, opts.tol, opts.max_iter)
             total_its += its
+            if not ok:
+                # slip Newton stalls when the true answer is (near) stick: try stick on the
+                # slipping faces not yet tried in this step (same rule as rotor.production)
+                flip = [k for k in range(n_faces) if modes[k] == cons.SLIP and not tried_stick[k]]
+                if flip and passes < opts.max_passes + 4:
+                    for k in flip:
+                        modes[k] = cons.STICK
+                        tried_stick[k] = True
+                    freeze = [None, None]
+                    continue
+                if np.all(np.isfinite(z)):
+                    # no exact root (discontinuous one-edge selection of the law): keep the
+                    # least-residual iterate and count the step, as rotor.production does
+                    tr.unconverged_steps += 1
+                    ok = True
             if not ok:
                 raise ConvergenceError(
                     f"reference Newton (finite-difference Jacobian) did not converge at step {step}, t = {t:.6g} s: "
@@ -566,10 +606,17 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
 
 
 def _fd_newton(residual, z, tol, max_iter):
-    """Discrete Newton (Eqs. 71–73): Jacobian by forward differences, one column per unknown."""
+    """Discrete Newton (Eqs. 71–73): Jacobian by forward differences, one column per unknown.
+
+    Stops when ``‖Δz‖ ≤ tol (‖z‖ + 1e-12)`` (Eq. 73). Safeguard not in the paper: when a full
+    step does not decrease ``‖F‖`` (a kink of the contact law or of friction), the step is
+    halved until it does (Armijo backtracking), as in :mod:`rotor.production`.
+    """
     err = math.inf
+    F0 = residual(z)
+    nF = np.linalg.norm(F0)
+    best, best_n = z, nF
     for it in range(1, max_iter + 1):
-        F0 = residual(z)
         J = np.empty((z.size, z.size))
         for j in range(z.size):
             h = 1e-7 * max(abs(z[j]), 1e-3)
@@ -580,10 +627,105 @@ def _fd_newton(residual, z, tol, max_iter):
             dz = np.linalg.solve(J, F0)
         except np.linalg.LinAlgError:
             return z, it, False, math.inf
-        z = z - dz
         err = np.linalg.norm(dz) / (np.linalg.norm(z) + 1e-12)
         if not np.isfinite(err):
             return z, it, False, err
         if err <= tol:
-            return z, it, True, err
-    return z, max_iter, False, err
+            return z - dz, it, True, err
+        lam = 1.0
+        for _ in range(40):
+            zt = z - lam * dz
+            Ft = residual(zt)
+            nFt = np.linalg.norm(Ft)
+            if nFt <= (1 - 1e-4 * lam) * nF or nFt == 0.0:
+                break
+            lam *= 0.5
+        z, F0, nF = zt, Ft, nFt
+        if nF < best_n:
+            best, best_n = z, nF
+    return best, max_iter, False, err
+
+
+# ---------------------------------------------------------------------------
+# building a system from the rotor model and a law from contact.loose_support
+# ---------------------------------------------------------------------------
+
+
+def support_law_from_params(params) -> SupportLaw:
+    """Wrap :class:`contact.loose_support.LooseSupportParams` as a :class:`SupportLaw`.
+
+    End-face friction is removed from the law (μN = 0 in its kernel arguments): the
+    integrators treat the faces as stick/slip constraints themselves. Everything else
+    (law, modulus, damping ``c_c`` in s/m, tilt geometry or ``tilt_ignored``) is the
+    contact layer's.
+    """
+    import dataclasses
+
+    from contact.loose_support import loose_support_force
+
+    radial = dataclasses.replace(params, mu=0.0, preload_N=0.0, friction_smoothing_m_s=0.0)
+
+    def force(u, v):
+        r = loose_support_force(radial, u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3])
+        return np.array([float(r.Fy_N), float(r.Fz_N), float(r.My_Nm), float(r.Mz_Nm)])
+
+    from rotor.production import contact_kernel
+
+    name = f"{params.law}{' (tilt ignored)' if params.tilt_ignored else ''}"
+    return SupportLaw(name, float(params.clearance_m), force, contact_kernel, np.array(radial.kernel_args, dtype=float))
+
+
+def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | None = None, tilt_ignored: bool = False,
+                      mu: float | None = None, preload_N: float | None = None, clearance_m: float | None = None,
+                      misalignment_m: float | None = None, nonlinear_coupling: bool = True) -> RotorSystem:
+    """The loose-support rotor of a scene at spin speed ``speed_rad_s`` (rad/s).
+
+    Uses the rotor model API (``rotor.model``): ``K + K_c`` with the misalignment offset
+    ``Δq_m`` (the ``K_c Δq_m`` term moves to the static load, since the coupling spring is
+    not shifted), unbalance (1X) and misalignment excitation (2X), the two linear 3a/3b rows
+    ``model.B`` (not the squared g5), the cubic coupling remainder, and the loose support with
+    the contact law of the scene (``contact.loose_support``; the paper's conformal law as
+    published by default). Overrides: ``law`` (any :class:`SupportLaw`), ``tilt_ignored``
+    (paper Fig. 16), ``mu``, ``preload_N``, ``clearance_m``, ``misalignment_m`` (δ, scales
+    Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
+    """
+    from contact.loose_support import LooseSupportParams
+    from rotor import model as rm
+
+    ls = scene.loose_support
+    n = model.n_dofs
+    check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True, upper=1e4)
+    mu_v = ls.friction_coefficient if mu is None else mu
+    pre_v = ls.preload_n if preload_N is None else preload_N
+    if law is None:
+        params = LooseSupportParams(
+            clearance_m=ls.clearance_m if clearance_m is None else clearance_m, width_m=ls.ring_width_m,
+            bearing_E_Pa=ls.bearing_modulus_pa, bearing_nu=ls.bearing_poisson,
+            support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson,
+            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored)
+        law = support_law_from_params(params)
+    sup = LooseSupport(tuple(model.loose_pair.bearing), tuple(model.loose_pair.support), law,
+                       ls.ring_width_m, mu_v, pre_v)
+    off = rm.misalignment_offset(model)
+    loads = rm.harmonic_loads(model, speed_rad_s)
+    delta0 = scene.misalignment.offset_m if getattr(scene, "misalignment", None) is not None else 0.0
+    scale = 1.0
+    if misalignment_m is not None:
+        check_positive("misalignment_m", misalignment_m, "m", allow_zero=True, upper=0.05)
+        if delta0 == 0.0 and misalignment_m > 0:
+            raise InputError("misalignment_m: the scene has no misalignment to scale; set it in the scene")
+        scale = misalignment_m / delta0 if delta0 else 0.0
+    off = off * scale
+    orders = np.array(sorted(loads), dtype=float)
+    cos = np.array([loads[k][0] * (scale if k == 2 else 1.0) for k in sorted(loads)]).reshape(len(orders), n)
+    sin = np.array([loads[k][1] * (scale if k == 2 else 1.0) for k in sorted(loads)]).reshape(len(orders), n)
+    static = -model.K_c @ off
+    force = HarmonicForce(static, orders, cos, sin, float(speed_rad_s))
+    L = np.asarray(model.B, dtype=float)  # the two linear 3a/3b rows (not the squared g5)
+    coupling = None
+    if nonlinear_coupling and model.couplings:
+        cp = model.couplings[0]
+        if cp.a1_n_m_rad3 != 0.0:
+            coupling = ((cp.a[2], cp.a[3]), (cp.b[2], cp.b[3]), float(cp.a1_n_m_rad3))
+    return RotorSystem(model.M, model.C, model.G, model.K + model.K_c, float(speed_rad_s), force, off, L, sup,
+                       tuple(model.dof_names), coupling)

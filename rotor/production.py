@@ -30,9 +30,10 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from contact._kernel import point_force_jacobian
 from contact.errors import ConvergenceError, InputError
 from rotor import constraints as cons
-from rotor.integrate import (NewmarkOptions, RotorSystem, Trajectory, _allocate, _check_inputs, check_time_step,
+from rotor.integrate import (NewmarkOptions, RotorSystem, Trajectory, _check_inputs, check_time_step, coupling_map,
                              initial_acceleration, relative_compliance)
 
 _slip_force = njit(cache=True)(cons.slip_force)
@@ -42,6 +43,20 @@ _mode_update = njit(cache=True)(cons.face_mode_update)
 @njit(cache=True)
 def _null_kernel(u, v, p):
     return np.zeros(4), np.zeros((4, 4)), np.zeros((4, 4))
+
+
+@njit(cache=True)
+def contact_kernel(u, v, p):
+    """``contact.loose_support`` scalar path as ``(u, v, params) -> (f, Ju, Jv)`` (analytic Jacobian)."""
+    pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12])
+    jac = np.empty((4, 8))
+    fy, fz, my, mz = point_force_jacobian(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], pt, jac)
+    f = np.empty(4)
+    f[0] = fy
+    f[1] = fz
+    f[2] = my
+    f[3] = mz
+    return f, jac[:, :4].copy(), jac[:, 4:].copy()
 
 
 @dataclass(frozen=True)
@@ -64,6 +79,7 @@ class Prepared:
     mu_N: float
     s_yy: float
     dt: float
+    a1: float
 
 
 def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = None) -> Prepared:
@@ -87,99 +103,48 @@ def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = Non
         P = np.zeros((2, 2, 4))
         mu_N = 0.0
         s_yy = 0.0
-    Bt = B @ T
+    E = np.vstack([B, coupling_map(system)])
+    Bt = E @ T
     W = Ainv @ Bt.T
     S = Bt @ W
     f = system.force
     static = T.T @ (f.static + system.K @ system.offset)
+    a1 = float(system.coupling[2]) if system.coupling is not None else 0.0
     return Prepared(T, Ainv, Dr, Kr, Bt, W, S, static, np.asarray(f.orders, float), f.cos @ T, f.sin @ T,
-                    float(f.omega_rad_s), P, float(mu_N), s_yy, float(dt))
+                    float(f.omega_rad_s), P, float(mu_N), s_yy, float(dt), a1)
+
+
+NC = 6  # condensed coordinates: relative support (y, z, θy, θz) + coupling Δθ (y, z)
 
 
 @njit(cache=True)
-def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freeze, freeze_dir, mu_N,
-                   bdt2, gdt, kernel, params, tol, max_iter, w_reg):
-    """Newton on the condensed unknowns [α (4); φ of stuck faces (2 each)].
-
-    Returns (alpha, g, phi (2,2), iterations, converged)."""
-    n_st = 0
+def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
+            g, Jg, phi):
+    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x; stuck-face forces from x[NC:]."""
+    u = u_pre + bdt2 * x[:NC]
+    w = w_pre + gdt * x[:NC]
+    f, Ju, Jv = kernel(u[:4], w[:4], params)
+    for i in range(NC):
+        g[i] = 0.0
+        for j in range(NC):
+            Jg[i, j] = 0.0
+    for i in range(4):
+        g[i] = f[i]
+        for j in range(4):
+            Jg[i, j] = Ju[i, j] * bdt2 + Jv[i, j] * gdt
+    if a1 != 0.0:
+        d0 = u[4]
+        d1 = u[5]
+        s2 = d0 * d0 + d1 * d1
+        g[4] = -a1 * s2 * d0
+        g[5] = -a1 * s2 * d1
+        Jg[4, 4] = -a1 * (s2 + 2 * d0 * d0) * bdt2
+        Jg[4, 5] = -a1 * (2 * d0 * d1) * bdt2
+        Jg[5, 4] = Jg[4, 5]
+        Jg[5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
+    j = NC
     for k in range(2):
-        if modes[k] == 1:
-            n_st += 1
-    m = 4 + 2 * n_st
-    x = np.zeros(m)
-    x[:4] = alpha
-    j = 4
-    for k in range(2):
-        if modes[k] == 1:
-            x[j] = phi_stuck[k, 0]
-            x[j + 1] = phi_stuck[k, 1]
-            j += 2
-    phi = np.zeros((2, 2))
-    g = np.zeros(4)
-    its = 0
-    ok = False
-    for it in range(max_iter):
-        its = it + 1
-        al = x[:4]
-        u = u_pre + bdt2 * al
-        w = w_pre + gdt * al
-        f, Ju, Jv = kernel(u, w, params)
-        g[:] = f
-        Jg = Ju * bdt2 + Jv * gdt
-        R = np.zeros(m)
-        J = np.zeros((m, m))
-        j = 4
-        for k in range(2):
-            Pk = P[k]
-            if modes[k] == 1:
-                phi[k, 0] = x[j]
-                phi[k, 1] = x[j + 1]
-                # dα-part: -S Pkᵀ ; constraint rows Pk w / gdt
-                wk = Pk @ w
-                R[j] = wk[0] / gdt
-                R[j + 1] = wk[1] / gdt
-                for c in range(4):
-                    J[j, c] = Pk[0, c]
-                    J[j + 1, c] = Pk[1, c]
-                SPt = S @ Pk.T
-                for r in range(4):
-                    J[r, j] = -SPt[r, 0]
-                    J[r, j + 1] = -SPt[r, 1]
-                j += 2
-            elif freeze[k]:
-                phi[k, 0] = freeze_dir[k, 0]
-                phi[k, 1] = freeze_dir[k, 1]
-            else:
-                fk, Jk = _slip_force(Pk @ w, mu_N, w_reg)
-                phi[k, 0] = fk[0]
-                phi[k, 1] = fk[1]
-                Jg += (Pk.T @ Jk @ Pk) * gdt
-            g += Pk.T @ phi[k]
-        Rf = al - alpha_lin - S @ g
-        R[:4] = Rf
-        Jaa = np.eye(4) - S @ Jg
-        J[:4, :4] = Jaa
-        dx = np.linalg.solve(J, R)
-        x -= dx
-        nx = 0.0
-        nd = 0.0
-        for i in range(m):
-            nx += x[i] * x[i]
-            nd += dx[i] * dx[i]
-        if not (nd == nd):
-            break
-        if math.sqrt(nd) <= tol * (math.sqrt(nx) + 1e-12):
-            ok = True
-            break
-    # final consistent forces at the converged iterate
-    al = x[:4]
-    u = u_pre + bdt2 * al
-    w = w_pre + gdt * al
-    f, Ju, Jv = kernel(u, w, params)
-    g[:] = f
-    j = 4
-    for k in range(2):
+        Pk = P[k]
         if modes[k] == 1:
             phi[k, 0] = x[j]
             phi[k, 1] = x[j + 1]
@@ -188,16 +153,131 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             phi[k, 0] = freeze_dir[k, 0]
             phi[k, 1] = freeze_dir[k, 1]
         else:
-            fk, Jk = _slip_force(P[k] @ w, mu_N, w_reg)
+            wk = Pk @ w[:4]
+            fk, Jk = _slip_force(wk, mu_N, w_reg)
             phi[k, 0] = fk[0]
             phi[k, 1] = fk[1]
-        g += P[k].T @ phi[k]
-    return x[:4].copy(), g, phi, its, ok
+            PJP = Pk.T @ (Jk @ Pk)
+            for r in range(4):
+                for c in range(4):
+                    Jg[r, c] += PJP[r, c] * gdt
+        for r in range(4):
+            g[r] += Pk[0, r] * phi[k, 0] + Pk[1, r] * phi[k, 1]
+    return w
+
+
+@njit(cache=True)
+def _residual(x, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
+              w_reg, g, Jg, phi, R, J):
+    """Residual R and analytic Jacobian J of the condensed step equations at iterate x."""
+    w = _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
+                g, Jg, phi)
+    J[:, :] = 0.0
+    Sg = S @ g
+    SJ = S @ Jg
+    for r in range(NC):
+        R[r] = x[r] - alpha_lin[r] - Sg[r]
+        for c in range(NC):
+            J[r, c] = (1.0 if r == c else 0.0) - SJ[r, c]
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            Pk = P[k]
+            for rr in range(2):
+                R[j + rr] = (Pk[rr, 0] * w[0] + Pk[rr, 1] * w[1] + Pk[rr, 2] * w[2] + Pk[rr, 3] * w[3]) / gdt
+                for c in range(4):
+                    J[j + rr, c] = Pk[rr, c]
+            for r in range(NC):
+                for rr in range(2):
+                    s = 0.0
+                    for c in range(4):
+                        s += S[r, c] * Pk[rr, c]
+                    J[r, j + rr] = -s
+            j += 2
+    nr = 0.0
+    for i in range(R.shape[0]):
+        nr += R[i] * R[i]
+    return math.sqrt(nr)
+
+
+@njit(cache=True)
+def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freeze, freeze_dir, mu_N, a1,
+                   bdt2, gdt, kernel, params, tol, max_iter, w_reg):
+    """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)], analytic Jacobian,
+    with backtracking on |R| when a full step does not decrease it (kinks of the law).
+
+    Returns (alpha, g, phi (2,2), iterations, converged)."""
+    n_st = 0
+    for k in range(2):
+        if modes[k] == 1:
+            n_st += 1
+    m = NC + 2 * n_st
+    x = np.zeros(m)
+    x[:NC] = alpha
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            x[j] = phi_stuck[k, 0]
+            x[j + 1] = phi_stuck[k, 1]
+            j += 2
+    phi = np.zeros((2, 2))
+    g = np.zeros(NC)
+    Jg = np.zeros((NC, NC))
+    R = np.zeros(m)
+    J = np.zeros((m, m))
+    R2 = np.zeros(m)
+    J2 = np.zeros((m, m))
+    xt = np.zeros(m)
+    its = 0
+    ok = False
+    nR = _residual(x, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
+                   w_reg, g, Jg, phi, R, J)
+    best = x.copy()
+    best_n = nR
+    for it in range(max_iter):
+        its = it + 1
+        dx = np.linalg.solve(J, R)
+        nx = 0.0
+        nd = 0.0
+        for i in range(m):
+            nx += x[i] * x[i]
+            nd += dx[i] * dx[i]
+        if not (nd == nd):
+            break
+        if math.sqrt(nd) <= tol * (math.sqrt(nx) + 1e-12):
+            for i in range(m):
+                x[i] -= dx[i]
+            ok = True
+            break
+        lam = 1.0
+        for ls in range(40):
+            for i in range(m):
+                xt[i] = x[i] - lam * dx[i]
+            nR2 = _residual(xt, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
+                            kernel, params, w_reg, g, Jg, phi, R2, J2)
+            if nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0:
+                break
+            lam *= 0.5
+        for i in range(m):
+            x[i] = xt[i]
+        R[:] = R2
+        J[:, :] = J2
+        nR = nR2
+        if nR < best_n:
+            best_n = nR
+            best[:] = x
+        if nR == 0.0:
+            ok = True
+            break
+    if not ok:
+        x[:] = best
+    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg, g, Jg, phi)
+    return x[:NC].copy(), g, phi, its, ok
 
 
 @njit(cache=True)
 def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
-          Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, s_yy,
+          Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, s_yy, a1,
           has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
           rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
           status):
@@ -210,14 +290,20 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     zero4 = np.zeros(4)
     freeze = np.zeros(2, dtype=np.bool_)
     freeze_dir = np.zeros((2, 2))
+    w_old = np.zeros((2, 2))
+    tried = np.zeros(2, dtype=np.bool_)
+    Q = np.empty(nr)
     for step in range(1, n_steps + 1):
         t = t0 + step * dt
         p_pre = p + dt * v + dt * dt * (0.5 - beta) * a
         v_pre = v + dt * (1.0 - gamma) * a
-        Q = static.copy()
+        Q[:] = static
         for h in range(H):
             ph = orders[h] * omega_f * t
-            Q += math.cos(ph) * cosm[h] + math.sin(ph) * sinm[h]
+            cph = math.cos(ph)
+            sph = math.sin(ph)
+            for i in range(nr):
+                Q[i] += cph * cosm[h, i] + sph * sinm[h, i]
         rhs = Q - Dr @ v_pre - Kr @ p_pre
         a_lin = Ainv @ rhs
         total_its = 0
@@ -226,24 +312,39 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             alpha_lin = Bt @ a_lin
             u_pre = Bt @ p_pre
             w_pre = Bt @ v_pre
-            w_old = np.zeros((2, 2))
             wv = Bt @ v
-            tried = np.zeros(2, dtype=np.bool_)
             for k in range(2):
-                w_old[k] = P[k] @ wv
+                w_old[k] = P[k] @ wv[:4]
                 tried[k] = modes[k] == 1
                 freeze[k] = False
-            g = np.zeros(4)
+            g = np.zeros(NC)
             while True:
                 passes += 1
                 alpha_new, g, phi, its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_face,
-                                                            freeze, freeze_dir, mu_N, bdt2, gdt, kernel, params,
+                                                            freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
                                                             tol, max_iter, w_reg)
                 total_its += its
                 if not ok:
-                    status[0] = 1
-                    status[1] = step
-                    return step - 1, wdt_max
+                    # slip Newton stalls when the true answer is (near) stick: try stick on the
+                    # slipping faces not yet tried in this step, else give up
+                    flipped = False
+                    for k in range(2):
+                        if modes[k] == 0 and not tried[k]:
+                            modes[k] = 1
+                            tried[k] = True
+                            phi_face[k] = phi[k]
+                            flipped = True
+                    if flipped and passes < max_passes + 4:
+                        freeze[0] = False
+                        freeze[1] = False
+                        continue
+                    # no exact root (the one-edge selection of the law is discontinuous where
+                    # the two edge penetrations cross): keep the least-residual iterate, count it
+                    status[2] += 1
+                    alpha = alpha_new
+                    for k in range(2):
+                        phi_face[k] = phi[k]
+                    break
                 alpha = alpha_new
                 if freeze[0] or freeze[1]:
                     freeze[0] = False
@@ -252,7 +353,7 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 w_new = w_pre + gdt * alpha
                 changed = False
                 for k in range(2):
-                    wk = P[k] @ w_new
+                    wk = P[k] @ w_new[:4]
                     nm = _mode_update(modes[k], phi[k], wk, w_old[k], mu_N, w_stick, tried[k])
                     if nm != modes[k]:
                         changed = True
@@ -275,7 +376,7 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             # largest ω_c Δt met: radial tangent stiffness of the law at the new state
             u_new = u_pre + bdt2 * alpha
             w_new = w_pre + gdt * alpha
-            f, Ju, Jv = kernel(u_new, w_new, params)
+            f, Ju, Jv = kernel(u_new[:4], w_new[:4], params)
             kt = -(Ju[0, 0] + Ju[1, 1])
             if kt > 0:
                 wd = math.sqrt(kt * s_yy) * dt
@@ -302,13 +403,13 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             rec_its[i] = total_its
             rec_passes[i] = passes
             if has_support:
-                u = Bt @ p
-                w = Bt @ v
-                rec_u[i] = u
-                rec_w[i] = w
-                f, Ju, Jv = kernel(u, w, params)
+                uu = Bt @ p
+                ww = Bt @ v
+                rec_u[i] = uu[:4]
+                rec_w[i] = ww[:4]
+                f, Ju, Jv = kernel(uu[:4], ww[:4], params)
                 rec_fc[i] = f
-                fe, Ju, Jv = kernel(u, zero4, params)
+                fe, Ju, Jv = kernel(uu[:4], zero4, params)
                 rec_fel[i] = fe
                 rec_face[i] = phi_face
                 rec_modes[i, 0] = modes[0]
@@ -368,12 +469,13 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
         rec["fel"][0] = sup.law.force(u0, np.zeros(4))
         rec["modes"][0] = modes
         rec["face"][0] = phi_face
-    kernel = sup.law.kernel if sup is not None else _null_kernel
-    params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(1)
-    status = np.zeros(2, dtype=np.int64)
+    # without a support the kernel is never called; reuse the contact kernel's compiled loop
+    kernel = sup.law.kernel if sup is not None else contact_kernel
+    params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(13)
+    status = np.zeros(3, dtype=np.int64)
     done, wdt_max = _loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
                           pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin,
-                          pre.omega_force, pre.P, pre.mu_N, pre.s_yy, sup is not None, kernel, params,
+                          pre.omega_force, pre.P, pre.mu_N, pre.s_yy, pre.a1, sup is not None, kernel, params,
                           opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
                           rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"],
                           rec["face"], rec["modes"], rec["its"], rec["passes"], status)
@@ -386,5 +488,6 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     tr = Trajectory(t=rec["t"], q=rec["p"] @ T.T, v=rec["v"] @ T.T, a=rec["a"] @ T.T, u=rec["u"], w=rec["w"],
                     f_contact=rec["fc"], f_elastic=rec["fel"], face_force=rec["face"], modes=rec["modes"],
                     newton_iters=rec["its"], passes=rec["passes"], omega_dt_max=float(wdt_max),
+                    unconverged_steps=int(status[2]),
                     scheme="production (condensed, analytic Jacobian, numba)")
     return tr
