@@ -226,3 +226,30 @@ def test_cli_json_and_errors(capsys, tmp_path):
     err = capsys.readouterr().err
     assert "bad.toml: shafts[0].inner_diameter_mm = 25 mm: must be < outer_diameter_mm = 20 mm" in err
     assert err.count("\n") == 1
+
+
+def test_damped_modes_of_jeffcott_rotor():
+    """Single-DOF per direction: λ = −ζω_n ± iω_n√(1−ζ²), ζ = c/(2√(km)) (e.g. Rao 2011, Mechanical
+    Vibrations, Eq. 2.72); forward and backward whirl share it (no gyroscopic term)."""
+    from rotor.elements import cowper_shear_coefficient
+    from rotor.modal import modes
+    model = assemble(loads_scene(DAMPED_JEFFCOTT))
+    E, d, L, nu, m, c = 200e9, 0.02, 0.8, 0.3, 10.0, 150.0
+    A, I = math.pi / 4 * d * d, math.pi / 64 * d ** 4
+    k = 1 / (L ** 3 / (48 * E * I) + L / (4 * cowper_shear_coefficient(d, 0, nu) * E / (2 * (1 + nu)) * A))
+    wn, zeta = math.sqrt(k / m), c / (2 * math.sqrt(k * m))
+    res = modes(model, 300.0, damped=True)
+    assert res.frequency_hz == pytest.approx([wn * math.sqrt(1 - zeta ** 2) / (2 * math.pi)] * 2, rel=1e-9)
+    assert res.damping_ratio == pytest.approx([zeta] * 2, rel=1e-9)
+    assert sorted(res.whirl) == ["backward", "forward"]
+
+
+def test_cli_writes_plots(tmp_path, capsys):
+    prefix = tmp_path / "camp"
+    assert cli.main(["campbell", "verify-overhung-disk", "--points", "4", "--plot", str(prefix)]) == 0
+    capsys.readouterr()
+    for ext in ("png", "svg"):
+        data = (tmp_path / f"camp.{ext}").read_bytes()
+        assert len(data) > 1000
+    assert b"<svg" in (tmp_path / "camp.svg").read_bytes()
+    assert not list(tmp_path.glob(".*.tmp"))          # atomic write left no temporary file
