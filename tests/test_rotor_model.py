@@ -253,3 +253,19 @@ def test_cli_writes_plots(tmp_path, capsys):
         assert len(data) > 1000
     assert b"<svg" in (tmp_path / "camp.svg").read_bytes()
     assert not list(tmp_path.glob(".*.tmp"))          # atomic write left no temporary file
+
+
+def test_misalignment_offset_on_a_subdivided_mesh():
+    """Eq. 33 as a rigid rotation about 3b: interior nodes of 3b–4 and 4–5 lie on the same line."""
+    m = assemble(load_scene("paper-table4"), elements_per_segment=3)
+    dq = misalignment_offset(m)
+    tilt = 1e-3 / 1.5
+    checked = 0
+    for node, x in zip(m.node_names, m.node_x_m):
+        if node.startswith(("3b~4#", "4~5#")):
+            assert dq[m.dof_index(f"{node}.y")] == pytest.approx(tilt * (x - 0.6), rel=1e-12)
+            assert dq[m.dof_index(f"{node}.θz")] == pytest.approx(tilt, rel=1e-12)
+            checked += 1
+        elif node.startswith(("1~", "2~")):
+            assert not np.any(dq[list(m.node_dofs(node))])
+    assert checked == 4
