@@ -192,6 +192,25 @@ def mesh_report(out: Path) -> list[Path]:
 # --------------------------------------------------------------------------------------------
 # Table 4 rotor
 # --------------------------------------------------------------------------------------------
+def _table4_assumptions(scene: Scene):
+    sp, cp, d1 = scene.supports[0], scene.couplings[0], scene.disks[0]
+    return [
+        ["support stiffness / damping to ground k_s, c_s", f"{sp.stiffness_n_m:.3g} N/m, {sp.damping_n_s_m:.3g} N·s/m",
+         "Table 4's 3# bearing k3, c3: the bearing node is merged with node 5, so k3 can only act from the support to ground"],
+        ["support inertia J_s", f"{sp.inertia_kg_m2:.3g} kg·m²", "100 kg steel annulus, bore 220 mm, OD 500 mm"],
+        ["support tilt stiffness / damping k_sθ, c_sθ",
+         f"{sp.angular_stiffness_n_m_rad:.3g} N·m/rad, {sp.angular_damping_n_m_s_rad:.3g} N·m·s/rad",
+         "k_s b², c_s b² with b = 0.1 m (two radial springs k_s/2 at ±100 mm)"],
+        ["transition spring a0", f"{cp.a0_n_m_rad:.3g} N·m/rad", "a bit softer than 150 mm of the adjoining turbine shaft (EI/l = 7.2e6 N·m/rad)"],
+        ["transition spring a1", f"{cp.a1_n_m_rad3:.3g} N·m/rad³", "k_c,θ doubles at 2 mrad (3× the misalignment tilt)"],
+        ["transition-shaft mass m_sp, lever L", f"{cp.shaft_mass_kg:.3g} kg, {cp.lever_m * 1e3:.3g} mm",
+         "steel sleeve D140/d100 mm, 150 mm long; L = half its length"],
+        ["disk skew τ, phase φ", f"{d1.skew_rad * 1e3:.3g} mrad, {math.degrees(d1.skew_phase_rad):.3g}°",
+         "not given; 1X attributed to unbalance in the paper"],
+        ["collision factor c_c", f"{scene.loose_support.collision_factor_s_m:.3g} s/m", "Table 4's 100 \"s/N\" read as s/m"],
+    ]
+
+
 def table4_report(out: Path) -> list[Path]:
     scene = load_scene("paper-table4")
     model = assemble(scene)
@@ -227,6 +246,8 @@ def table4_report(out: Path) -> list[Path]:
              "as speeds of high response. They lie just above the 2nd forward critical speed here, which is "
              "indeed dominated by disk 1, and the 3rd. The nonlinear loose support (clearance, stick–slip), "
              "and the assumed support tilt stiffness and a0, move these values.", "",
+             "## Inputs the paper does not give (defaults of the scene, reasons in `rotor/scenes/paper-table4.toml`)",
+             "", _table(["input", "value", "reason (short)"], _table4_assumptions(scene)), "",
              "![Campbell diagram](rotor-table4-campbell.png)", "",
              "![Unbalance response](rotor-table4-unbalance.png)", ""]
     p = out / "rotor-table4.md"
