@@ -153,7 +153,9 @@ def modes(model: RotorModel, speed_rad_s: float = 0.0, *, n_modes: int | None = 
         Bm = np.block([[np.eye(r), np.zeros((r, r))], [np.zeros((r, r)), M]])
         lam, vec = sla.eig(A, Bm)
         fin = np.isfinite(lam)
-        scale = max(1.0, float(np.max(np.abs(lam[fin]), initial=1.0)))
+        # rigid-body roots are ~0; singular M (massless DOFs) gives infinite or huge roots, so
+        # measure "zero" against the median root, not the largest
+        scale = max(1.0, float(np.median(np.abs(lam[fin])))) if np.any(fin) else 1.0
         ok = fin & (lam.imag > 1e-7 * scale)
         lam, vec = lam[ok], vec[:r, ok]
     order = np.argsort(lam.imag)
