@@ -14,6 +14,7 @@ import sys
 JOBS: dict[str, tuple[str, str]] = {
     "law": ("contact.cli", "evaluate an analytic contact law at given penetrations/tilts (table or --json)"),
     "rotor": ("rotor.cli", "rotor linear analyses: modes, campbell, critical-speeds, unbalance (table or --json)"),
+    "simulate": ("rotor.dynamics_cli", "time histories of the loose-support rotor at one speed (CSV/NPZ + summary)"),
     "report": ("reports.main", "build the committed reports/ from the committed datasets (the main job)"),
 }
 

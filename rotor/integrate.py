@@ -389,6 +389,28 @@ def initial_acceleration(system: RotorSystem, t0: float, q0, v0, modes, opts: Ne
     return z[:n], z[n:]
 
 
+def initial_state(system: RotorSystem, t0: float, q0, v0, modes0, opts: NewmarkOptions):
+    """``(q̈_0, multipliers, modes)``: like :func:`initial_acceleration`, with the stick test applied
+    to the requested initial modes (a face whose holding force exceeds μN starts slipping)."""
+    modes = list(modes0)
+    n_l = system.lock.shape[0]
+    for _ in range(3):
+        a0, lam = initial_acceleration(system, t0, q0, v0, modes, opts)
+        if system.support is None:
+            return a0, lam, modes
+        j = n_l
+        changed = False
+        for k in range(2):
+            if modes[k] == cons.STICK:
+                if float(np.hypot(*lam[j:j + 2])) > system.support.mu_N * (1 + 1e-12):
+                    modes[k] = cons.SLIP
+                    changed = True
+                j += 2
+        if not changed:
+            return a0, lam, modes
+    return a0, lam, modes
+
+
 def _allocate(n_rec: int, n: int) -> Trajectory:
     return Trajectory(
         t=np.zeros(n_rec), q=np.zeros((n_rec, n)), v=np.zeros((n_rec, n)), a=np.zeros((n_rec, n)),
@@ -451,7 +473,7 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
     n_faces = 2 if sup is not None else 0
     modes = [int(m) for m in modes0][:n_faces] + [cons.SLIP] * (2 - n_faces)
 
-    a, lam = initial_acceleration(system, t0, q0, v0, modes, opts)
+    a, lam, modes = initial_state(system, t0, q0, v0, modes, opts)
     q, v = q0, v0
     lam_lock = lam[:L.shape[0]]
     lam_face = np.zeros((2, 2))

@@ -34,7 +34,7 @@ from contact._kernel import point_force_jacobian
 from contact.errors import ConvergenceError, InputError
 from rotor import constraints as cons
 from rotor.integrate import (NewmarkOptions, RotorSystem, Trajectory, _check_inputs, check_time_step, coupling_map,
-                             initial_acceleration, relative_compliance)
+                             initial_state, relative_compliance)
 
 _slip_force = njit(cache=True)(cons.slip_force)
 _mode_update = njit(cache=True)(cons.face_mode_update)
@@ -444,7 +444,8 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
         raise InputError("q0: violates the lock (3a/3b equal displacement) constraint")
     n_faces = 2 if sup is not None else 0
     modes = np.array([int(m) for m in modes0][:n_faces] + [cons.SLIP] * (2 - n_faces), dtype=np.int64)
-    a0, lam = initial_acceleration(system, t0, q0, v0, list(modes), opts)
+    a0, lam, m0 = initial_state(system, t0, q0, v0, list(modes), opts)
+    modes = np.array(m0, dtype=np.int64)
     phi_face = np.zeros((2, 2))
     j = system.lock.shape[0]
     for k in range(n_faces):
