@@ -46,6 +46,9 @@ class MeshSpec:
         Extra size factor at the bottom (y = -R_b) of the unloaded half [-].
     max_size_factor : float
         Cap of the grading function g [-].
+    top_refinement : float
+        Size factor (<= 1) at the top contact point (on the load axis), blending linearly to 1
+        at ``top_radius_m`` from it: resolves the tiny arcs of small penetrations.
     """
 
     h_contact_m: float = 2e-3
@@ -53,12 +56,16 @@ class MeshSpec:
     grading_length_m: float = 5e-3
     bottom_coarsening: float = 2.0
     max_size_factor: float = 400.0
+    top_refinement: float = 1.0
+    top_radius_m: float = 15e-3
 
     def __post_init__(self):
         check_positive("h_contact_m", self.h_contact_m, "m", upper=1.0)
         check_positive("grading_length_m", self.grading_length_m, "m", upper=100.0)
         check_positive("bottom_coarsening", self.bottom_coarsening, "-", allow_zero=True)
         check_positive("max_size_factor", self.max_size_factor, "-")
+        check_positive("top_refinement", self.top_refinement, "-", upper=1.0)
+        check_positive("top_radius_m", self.top_radius_m, "m", upper=10.0)
         if self.order not in (1, 2):
             raise InputError(f"order = {self.order!r}: must be 1 or 2")
 
@@ -107,10 +114,18 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
                          f"thickness {min(t_b, t_s):g} m (mesh too coarse)")
     R_c = 0.5 * (rings.outer_radius_m + rings.bore_radius_m)
     hc, L = spec.h_contact_m, spec.grading_length_m
+    rho = "sqrt(x*x+y*y)"
+    # main term: h on the contact circle, doubling every L away from it, coarser at the bottom,
+    # refined by spec.top_refinement within spec.top_radius_m of the top contact point (tiny arcs)
+    top = (f"({spec.top_refinement!r}+(1-{spec.top_refinement!r})*min(1,sqrt(x*x+(y-{R_c!r})^2)/{spec.top_radius_m!r}))")
+    main = (f"{hc!r}*{top}*(1+{spec.bottom_coarsening!r}*max(0,-y)/{R_c!r})*(1+abs({rho}-{R_c!r})/{L!r})")
+    terms = [f"{hc * spec.max_size_factor!r}", main]
     r_core = rings.inner_radius_m
-    expr = (f"min({hc * spec.max_size_factor!r}, "
-            f"{hc!r}*(1+{spec.bottom_coarsening!r}*max(0,-y)/{R_c!r})*(1+abs(sqrt(x*x+y*y)-{R_c!r})/{L!r}), "
-            f"max({0.4 * r_core!r},{hc!r}) + 0.3*abs(sqrt(x*x+y*y)-{r_core!r}))")
+    if r_core < 0.5 * rings.outer_radius_m:
+        # a small driven core (solid pin): resolve it proportionally to h as well
+        c = min(1.0, 0.2 * r_core / 2e-3)
+        terms.append(f"{hc!r}*({c!r}+abs({rho}-{r_core!r})/{L!r})")
+    expr = "min(" + ", ".join(terms) + ")"
     with _GMSH_LOCK:
         gmsh.initialize(readConfigFiles=False)
         try:

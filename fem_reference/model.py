@@ -112,10 +112,10 @@ class ContactModel:
         u0 = t * self.u_unit
         b_all = mo.G + mo.D @ u0
         phi_nodes = np.pi / 2 - self.slave.node_theta[: self.slave.n_corners]
-        # candidate window: 1.5 x the rigid-overlap half-angle + 10 deg, widened until no node
+        # candidate window: the rigid-overlap half-angle + 10 deg, widened until no node
         # outside it would penetrate (checked on the full solution below)
         eps_rigid = np.arccos(min(1.0, rings.clearance_m / t)) if t > 0 else 0.0
-        window = min(np.pi, max(1.5 * eps_rigid + np.radians(10), np.radians(20)))
+        window = min(np.pi, max(eps_rigid + np.radians(10), np.radians(20)))
         gap_tol = tol * max(np.abs(b_all).max(), 1e-300)
         iterations = 0
         while True:

@@ -15,6 +15,10 @@ JOBS: dict[str, tuple[str, str]] = {
     "law": ("contact.cli", "evaluate an analytic contact law at given penetrations/tilts (table or --json)"),
     "rotor": ("rotor.cli", "rotor linear analyses: modes, campbell, critical-speeds, unbalance (table or --json)"),
     "simulate": ("rotor.dynamics_cli", "time histories of the loose-support rotor at one speed (CSV/NPZ + summary)"),
+    "fem-point": ("fem_reference.job_point", "solve one 2D FEM contact point (penetration in mm; --json)"),
+    "fem-sweep": ("fem_reference.job_sweep", "regenerate the committed 2D FEM reference dataset (with progress)"),
+    "fem-check": ("fem_reference.job_check", "recompute a few committed 2D FEM points, report differences"),
+    "fem-vtu": ("fem_reference.job_vtu", "export a solved 2D FEM point to VTU for ParaView"),
     "report": ("reports.main", "build the committed reports/ from the committed datasets (the main job)"),
 }
 

@@ -1,0 +1,260 @@
+"""Reference points with a Richardson error estimate, sweeps, and the committed dataset.
+
+A reference point is solved on three meshes ``h, h/2, h/4`` (a fourth, ``h/8``, is added where
+the estimate misses 0.1 % and the mesh stays affordable) (all sizes scale with the contact
+size, :class:`~fem_reference.mesh.MeshSpec`); the finest value is reported together with the
+observed order and an error estimate (Richardson 1911; Roache 1998):
+
+* monotone convergence (``d1 = f1 − f2`` and ``d2 = f2 − f3`` of one sign, ``|d1| > |d2|``):
+  ``p = log2(d1/d2)``, error of ``f3`` = ``|d2|/(2^p − 1)`` with ``p`` clipped to [0.5, 6];
+* otherwise (oscillating or not yet asymptotic): order reported as NaN → ``null`` and the
+  error estimate is the last change ``|d2|`` (conservative for a contracting sequence).
+"""
+from __future__ import annotations
+
+import math
+import os
+import platform
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from datetime import datetime, timezone
+from pathlib import Path
+
+import numpy as np
+
+from contact.dataset import read_dataset, write_dataset
+from contact.errors import InputError
+from fem_reference.mesh import MeshSpec
+from fem_reference.model import ContactModel
+from fem_reference.scenes import Scene, by_name
+
+DATA_DIR = Path(__file__).resolve().parent / "data"
+DATASET_PATH = DATA_DIR / "fem2d-reference.json"
+DEFAULT_SCENES = ("clamped", "clamped-stress", "persson-40")
+DEFAULT_PENETRATIONS_MM = (0.001, 0.002, 0.003, 0.005, 0.0075, 0.01, 0.015, 0.02, 0.025, 0.03, 0.04, 0.05)
+DEFAULT_LEVELS_M = (4e-3, 2e-3, 1e-3, 0.5e-3)   # the 4th only where the first three miss the target
+TARGET_ERROR_REL = 1e-3
+MAX_DOFS_EXTRA_LEVEL = 80_000                     # no extra level beyond this size (plate scenes)
+DEFAULT_ORDER = 2
+SOLVER_TOL = 1e-10
+
+COLUMNS = {
+    "scene": "-", "plane": "-", "penetration_m": "m", "offset_m": "m", "tilt_rad": "rad",
+    "force_n": "N", "force_error_rel": "-", "force_observed_order": "-", "force_extrapolated_n": "N",
+    "force_levels_n": "N", "half_angle_rad": "rad", "half_angle_error_rel": "-", "half_angle_levels_rad": "rad",
+    "peak_pressure_pa": "Pa", "peak_pressure_levels_pa": "Pa", "arc_phi_rad": "rad", "arc_pressure_pa": "Pa",
+    "ndofs": "-", "n_multipliers": "-", "iterations": "-", "lcp_method": "-", "kkt_residual": "-",
+    "wall_s": "s", "wall_levels_s": "s", "h_contact_m": "m", "h_levels_m": "m", "element_order": "-",
+}
+
+
+@dataclass(frozen=True)
+class Richardson:
+    """Richardson estimate from three values on meshes h, h/r, h/r²."""
+
+    value: float
+    observed_order: float     # NaN when not monotone
+    error_abs: float
+    extrapolated: float
+
+    @property
+    def error_rel(self) -> float:
+        return self.error_abs / abs(self.value) if self.value else 0.0
+
+
+def richardson(values, ratio: float = 2.0) -> Richardson:
+    """Observed order and error estimate of the finest of three values (coarse → fine)."""
+    f1, f2, f3 = (float(v) for v in values)
+    d1, d2 = f1 - f2, f2 - f3
+    if d2 == 0.0:
+        return Richardson(f3, math.nan, 0.0, f3)
+    if d1 * d2 > 0 and abs(d1) > abs(d2):
+        p = math.log(d1 / d2) / math.log(ratio)
+        pc = min(max(p, 0.5), 6.0)
+        err = abs(d2) / (ratio ** pc - 1)
+        return Richardson(f3, p, err, f3 - math.copysign(err, d2))
+    return Richardson(f3, math.nan, abs(d2), f3)
+
+
+def spec_for(scene: Scene, h_contact_m: float, order: int = DEFAULT_ORDER) -> MeshSpec:
+    """Mesh settings used for a scene: 5 mm grading for rings, 10 mm for the large plate."""
+    grading = 10e-3 if scene.name.startswith("persson") else 5e-3
+    return MeshSpec(h_contact_m=h_contact_m, order=order, grading_length_m=grading)
+
+
+class Levels:
+    """Mesh levels of one scene, built lazily (coarse → fine) and kept for a whole sweep."""
+
+    def __init__(self, scene: Scene, levels_m=DEFAULT_LEVELS_M, order: int = DEFAULT_ORDER):
+        if len(levels_m) < 3:
+            raise InputError(f"levels_m = {levels_m!r} m: need at least three mesh sizes (coarse to fine)")
+        self.scene, self.levels_m, self.order = scene, tuple(levels_m), order
+        self._models: dict[int, ContactModel] = {}
+
+    def model(self, i: int) -> ContactModel:
+        if i not in self._models:
+            self._models[i] = ContactModel.build(self.scene, spec_for(self.scene, self.levels_m[i], self.order))
+        return self._models[i]
+
+    def can_refine(self, i: int) -> bool:
+        """Level ``i`` exists and is not predicted to exceed MAX_DOFS_EXTRA_LEVEL (~3.3x per halving)."""
+        if i >= len(self.levels_m):
+            return False
+        if i < 3 or i in self._models:
+            return True
+        return self.model(i - 1).ndofs * 3.3 <= MAX_DOFS_EXTRA_LEVEL
+
+    def built(self) -> list[ContactModel]:
+        return [self._models[i] for i in sorted(self._models)]
+
+
+def reference_point(levels: Levels, penetration_m: float, target_rel: float = TARGET_ERROR_REL) -> dict:
+    """Solve one penetration on three levels; add a finer one while the estimate misses the target.
+
+    The finest level used is reported, with the Richardson estimate of the last three levels.
+    """
+    sols = [levels.model(i).solve(penetration_m, tol=SOLVER_TOL) for i in range(3)]
+    rf = richardson([s.force_n for s in sols[-3:]])
+    while rf.error_rel > target_rel and levels.can_refine(len(sols)):
+        sols.append(levels.model(len(sols)).solve(penetration_m, tol=SOLVER_TOL))
+        rf = richardson([s.force_n for s in sols[-3:]])
+    used = [levels.model(i) for i in range(len(sols))]
+    fine = sols[-1]
+    ra = richardson([s.half_angle_rad for s in sols[-3:]])
+    act = np.flatnonzero(fine.arc_pressure_pa > 0)
+    keep = slice(0, min(len(fine.arc_phi_rad), (act[-1] + 3) if len(act) else 1))
+    scene = levels.scene
+    return {
+        "scene": scene.name, "plane": scene.plane, "penetration_m": float(penetration_m),
+        "offset_m": fine.offset_m, "tilt_rad": 0.0,
+        "force_n": fine.force_n, "force_error_rel": rf.error_rel,
+        "force_observed_order": None if math.isnan(rf.observed_order) else rf.observed_order,
+        "force_extrapolated_n": rf.extrapolated, "force_levels_n": [s.force_n for s in sols],
+        "half_angle_rad": fine.half_angle_rad, "half_angle_error_rel": ra.error_rel,
+        "half_angle_levels_rad": [s.half_angle_rad for s in sols],
+        "peak_pressure_pa": fine.peak_pressure_pa, "peak_pressure_levels_pa": [s.peak_pressure_pa for s in sols],
+        "arc_phi_rad": fine.arc_phi_rad[keep], "arc_pressure_pa": fine.arc_pressure_pa[keep],
+        "ndofs": fine.ndofs, "n_multipliers": fine.n_multipliers, "iterations": fine.iterations,
+        "lcp_method": fine.method, "kkt_residual": fine.kkt_residual,
+        "wall_s": fine.wall_s, "wall_levels_s": sum(s.wall_s for s in sols),
+        "h_contact_m": used[-1].spec.h_contact_m, "h_levels_m": [m.spec.h_contact_m for m in used],
+        "element_order": used[-1].spec.order,
+    }
+
+
+class Progress:
+    """Count, rate and time left on a terminal (stderr); silent when not a TTY or under CI."""
+
+    def __init__(self, total: int, label: str, enabled: bool | None = None):
+        self.total, self.label, self.done, self.t0 = total, label, 0, time.perf_counter()
+        if enabled is None:
+            enabled = sys.stderr.isatty() and not os.environ.get("CI")
+        self.enabled = enabled
+
+    def step(self, note: str = "") -> None:
+        self.done += 1
+        if not self.enabled:
+            return
+        dt = time.perf_counter() - self.t0
+        rate = self.done / dt if dt > 0 else 0.0
+        left = (self.total - self.done) / rate if rate > 0 else 0.0
+        sys.stderr.write(f"\r{self.label}: {self.done}/{self.total}  {rate:.2f} pt/s  ~{left:.0f} s left  {note:<30}")
+        if self.done == self.total:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+
+def package_versions() -> dict:
+    import gmsh
+    import meshio
+    import scipy
+    import skfem
+
+    return {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
+            "scikit-fem": skfem.__version__, "gmsh": gmsh.__version__, "meshio": meshio.__version__}
+
+
+def code_revision() -> str:
+    """``git describe``-like revision of the repository, '+dirty' if fem_reference has changes."""
+    root = Path(__file__).resolve().parent.parent
+    try:
+        rev = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True, text=True,
+                             timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--", "fem_reference", "contact/dataset.py"],
+                               cwd=root, capture_output=True, text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return (rev or "unknown") + ("+dirty" if dirty else "")
+
+
+def run_sweep(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFAULT_LEVELS_M,
+              order: int = DEFAULT_ORDER, progress: bool | None = None) -> tuple[dict, list[dict]]:
+    """Solve every (scene, penetration); returns (metadata, points)."""
+    if penetrations_m is None:
+        penetrations_m = [v * 1e-3 for v in DEFAULT_PENETRATIONS_MM]
+    t0 = time.perf_counter()
+    scenes = [by_name(n) for n in scene_names]
+    bar = Progress(len(scenes) * len(penetrations_m), "fem sweep", progress)
+    points, builds = [], {}
+    for scene in scenes:
+        levels = Levels(scene, levels_m, order)
+        for dr in penetrations_m:
+            points.append(reference_point(levels, dr))
+            bar.step(f"{scene.name} {dr * 1e3:.4f} mm")
+        models = levels.built()
+        builds[scene.name] = {"total_s": sum(m.build_s for m in models), "levels_h_m": [m.spec.h_contact_m for m in models],
+                              "per_level_s": [m.build_s for m in models], "ndofs": [m.ndofs for m in models]}
+    meta = {
+        "title": "2D ring-in-ring FEM reference (gmsh + scikit-fem, frictionless mortar contact)",
+        "created_utc": datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "code_revision": code_revision(),
+        "package_versions": package_versions(),
+        "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count()},
+        "scenes": {s.name: s.to_dict() for s in scenes},
+        "mesh": {"levels_h_contact_m": list(levels_m), "element_order": order,
+                 "extra_levels": f"the 4th+ level only where the 3-level estimate exceeds {TARGET_ERROR_REL:g} "
+                                 f"and the level stays below {MAX_DOFS_EXTRA_LEVEL} DOFs",
+                 "grading": "size = h·(1+2·max(0,−y)/R)·(1+d/L), L = 5 mm (rings) or 10 mm (plate); "
+                            "all sizes scale with h", "model": "half model x >= 0, u_x = 0 on x = 0"},
+        "solver": {"method": "mortar (P1 multipliers on the support bore), gap of exact circles for the "
+                             "rigid offset; condensed QP solved by primal-dual active set, NNLS fallback",
+                   "kkt_tolerance": SOLVER_TOL},
+        "definitions": {
+            "penetration_m": "Δr = t − δ0, t = drive displacement of the bearing along +y",
+            "force_n": "reaction of the driven surface = total contact force, full ring, times width l0",
+            "half_angle_rad": "edge of the contact arc from the load axis (p² fit, see contact_solver)",
+            "force_error_rel": "Richardson estimate of the finest level's relative error (see sweep.py)",
+            "wall_s": "wall time of the finest level's contact solve (mesh built once per sweep)",
+        },
+        "timings": {"total_s": time.perf_counter() - t0, "build": builds},
+    }
+    return meta, points
+
+
+def regenerate(path=DATASET_PATH, **kw) -> Path:
+    """Run the default sweep and write it (atomically) to ``path``."""
+    meta, points = run_sweep(**kw)
+    return write_dataset(path, meta, COLUMNS, points)
+
+
+def check_against_committed(path=DATASET_PATH, n_points: int = 3, scene_names=None) -> list[dict]:
+    """Recompute a few committed points; returns rows with committed/new force and the difference."""
+    ds = read_dataset(path)
+    levels = tuple(ds.metadata["mesh"]["levels_h_contact_m"])
+    order = int(ds.metadata["mesh"]["element_order"])
+    rows = []
+    for name in scene_names or ds.scenes():
+        pts = ds.select(scene=name)
+        idx = np.unique(np.linspace(0, len(pts) - 1, n_points).round().astype(int))
+        lv = Levels(by_name(name), levels, order)
+        for i in idx:
+            old = pts[i]
+            new = reference_point(lv, old["penetration_m"])
+            rows.append({"scene": name, "penetration_m": old["penetration_m"], "committed_force_n": old["force_n"],
+                         "new_force_n": new["force_n"], "diff_rel": new["force_n"] / old["force_n"] - 1
+                         if old["force_n"] else new["force_n"],
+                         "committed_half_angle_rad": old["half_angle_rad"], "new_half_angle_rad": new["half_angle_rad"],
+                         "error_estimate_rel": old["force_error_rel"]})
+    return rows
