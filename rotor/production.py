@@ -118,11 +118,50 @@ NC = 6  # condensed coordinates: relative support (y, z, θy, θz) + coupling Δ
 
 
 @njit(cache=True)
+def _small_solve(A, b, m, out):
+    """Solve A[:m,:m] out = b[:m] by Gaussian elimination with partial pivoting (A, b destroyed).
+
+    Hand-written because LAPACK's call overhead (~2 µs) dominates at m ≤ 10. Returns False if singular."""
+    for c in range(m):
+        piv = c
+        best = abs(A[c, c])
+        for r in range(c + 1, m):
+            if abs(A[r, c]) > best:
+                best = abs(A[r, c])
+                piv = r
+        if best == 0.0 or not (best == best):
+            return False
+        if piv != c:
+            for k in range(c, m):
+                tmp = A[c, k]
+                A[c, k] = A[piv, k]
+                A[piv, k] = tmp
+            tmp = b[c]
+            b[c] = b[piv]
+            b[piv] = tmp
+        inv = 1.0 / A[c, c]
+        for r in range(c + 1, m):
+            fct = A[r, c] * inv
+            if fct != 0.0:
+                for k in range(c + 1, m):
+                    A[r, k] -= fct * A[c, k]
+                b[r] -= fct * b[c]
+    for r in range(m - 1, -1, -1):
+        s = b[r]
+        for k in range(r + 1, m):
+            s -= A[r, k] * out[k]
+        out[r] = s / A[r, r]
+    return True
+
+
+@njit(cache=True)
 def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
-            g, Jg, phi):
-    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x; stuck-face forces from x[NC:]."""
-    u = u_pre + bdt2 * x[:NC]
-    w = w_pre + gdt * x[:NC]
+            g, Jg, phi, u, w):
+    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x (stuck-face forces from x[NC:]);
+    also leaves the condensed displacement u and velocity w of the iterate."""
+    for i in range(NC):
+        u[i] = u_pre[i] + bdt2 * x[i]
+        w[i] = w_pre[i] + gdt * x[i]
     f, Ju, Jv = kernel(u[:4], w[:4], params)
     for i in range(NC):
         g[i] = 0.0
@@ -143,8 +182,8 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
         Jg[5, 4] = Jg[4, 5]
         Jg[5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
     j = NC
+    wk = np.empty(2)
     for k in range(2):
-        Pk = P[k]
         if modes[k] == 1:
             phi[k, 0] = x[j]
             phi[k, 1] = x[j + 1]
@@ -153,49 +192,58 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
             phi[k, 0] = freeze_dir[k, 0]
             phi[k, 1] = freeze_dir[k, 1]
         else:
-            wk = Pk @ w[:4]
+            for rr in range(2):
+                wk[rr] = P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]
             fk, Jk = _slip_force(wk, mu_N, w_reg)
             phi[k, 0] = fk[0]
             phi[k, 1] = fk[1]
-            PJP = Pk.T @ (Jk @ Pk)
+            # Jg += Pkᵀ Jk Pk γΔt
             for r in range(4):
                 for c in range(4):
-                    Jg[r, c] += PJP[r, c] * gdt
+                    s = 0.0
+                    for a in range(2):
+                        for b in range(2):
+                            s += P[k, a, r] * Jk[a, b] * P[k, b, c]
+                    Jg[r, c] += s * gdt
         for r in range(4):
-            g[r] += Pk[0, r] * phi[k, 0] + Pk[1, r] * phi[k, 1]
-    return w
+            g[r] += P[k, 0, r] * phi[k, 0] + P[k, 1, r] * phi[k, 1]
 
 
 @njit(cache=True)
-def _residual(x, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
-              w_reg, g, Jg, phi, R, J):
-    """Residual R and analytic Jacobian J of the condensed step equations at iterate x."""
-    w = _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
-                g, Jg, phi)
-    J[:, :] = 0.0
-    Sg = S @ g
-    SJ = S @ Jg
+def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
+              w_reg, g, Jg, phi, u, w, R, J):
+    """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|."""
+    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
+            g, Jg, phi, u, w)
+    for r in range(m):
+        for c in range(m):
+            J[r, c] = 0.0
     for r in range(NC):
-        R[r] = x[r] - alpha_lin[r] - Sg[r]
+        s = 0.0
         for c in range(NC):
-            J[r, c] = (1.0 if r == c else 0.0) - SJ[r, c]
+            s += S[r, c] * g[c]
+        R[r] = x[r] - alpha_lin[r] - s
+        for c in range(NC):
+            s = 0.0
+            for k in range(NC):
+                s += S[r, k] * Jg[k, c]
+            J[r, c] = (1.0 if r == c else 0.0) - s
     j = NC
     for k in range(2):
         if modes[k] == 1:
-            Pk = P[k]
             for rr in range(2):
-                R[j + rr] = (Pk[rr, 0] * w[0] + Pk[rr, 1] * w[1] + Pk[rr, 2] * w[2] + Pk[rr, 3] * w[3]) / gdt
+                R[j + rr] = (P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]) / gdt
                 for c in range(4):
-                    J[j + rr, c] = Pk[rr, c]
+                    J[j + rr, c] = P[k, rr, c]
             for r in range(NC):
                 for rr in range(2):
                     s = 0.0
                     for c in range(4):
-                        s += S[r, c] * Pk[rr, c]
+                        s += S[r, c] * P[k, rr, c]
                     J[r, j + rr] = -s
             j += 2
     nr = 0.0
-    for i in range(R.shape[0]):
+    for i in range(m):
         nr += R[i] * R[i]
     return math.sqrt(nr)
 
@@ -205,6 +253,7 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
                    bdt2, gdt, kernel, params, tol, max_iter, w_reg):
     """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)], analytic Jacobian,
     with backtracking on |R| when a full step does not decrease it (kinks of the law).
+    If it does not converge, the least-residual iterate is returned with ok = False.
 
     Returns (alpha, g, phi (2,2), iterations, converged)."""
     n_st = 0
@@ -212,8 +261,10 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
         if modes[k] == 1:
             n_st += 1
     m = NC + 2 * n_st
-    x = np.zeros(m)
-    x[:NC] = alpha
+    MX = NC + 4
+    x = np.zeros(MX)
+    for i in range(NC):
+        x[i] = alpha[i]
     j = NC
     for k in range(2):
         if modes[k] == 1:
@@ -223,20 +274,28 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
     phi = np.zeros((2, 2))
     g = np.zeros(NC)
     Jg = np.zeros((NC, NC))
-    R = np.zeros(m)
-    J = np.zeros((m, m))
-    R2 = np.zeros(m)
-    J2 = np.zeros((m, m))
-    xt = np.zeros(m)
+    u = np.zeros(NC)
+    w = np.zeros(NC)
+    R = np.zeros(MX)
+    J = np.zeros((MX, MX))
+    R2 = np.zeros(MX)
+    J2 = np.zeros((MX, MX))
+    rhs = np.zeros(MX)
+    xt = np.zeros(MX)
+    dx = np.zeros(MX)
+    best = np.zeros(MX)
     its = 0
     ok = False
-    nR = _residual(x, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
-                   w_reg, g, Jg, phi, R, J)
-    best = x.copy()
+    nR = _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel,
+                   params, w_reg, g, Jg, phi, u, w, R, J)
+    best[:] = x
     best_n = nR
     for it in range(max_iter):
         its = it + 1
-        dx = np.linalg.solve(J, R)
+        for i in range(m):
+            rhs[i] = R[i]
+        if not _small_solve(J, rhs, m, dx):
+            break
         nx = 0.0
         nd = 0.0
         for i in range(m):
@@ -250,18 +309,20 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             ok = True
             break
         lam = 1.0
+        nR2 = nR
         for ls in range(40):
             for i in range(m):
                 xt[i] = x[i] - lam * dx[i]
-            nR2 = _residual(xt, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
-                            kernel, params, w_reg, g, Jg, phi, R2, J2)
+            nR2 = _residual(xt, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
+                            kernel, params, w_reg, g, Jg, phi, u, w, R2, J2)
             if nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0:
                 break
             lam *= 0.5
         for i in range(m):
             x[i] = xt[i]
-        R[:] = R2
-        J[:, :] = J2
+            R[i] = R2[i]
+            for c in range(m):
+                J[i, c] = J2[i, c]
         nR = nR2
         if nR < best_n:
             best_n = nR
@@ -271,7 +332,8 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             break
     if not ok:
         x[:] = best
-    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg, g, Jg, phi)
+    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg, g, Jg, phi,
+            u, w)
     return x[:NC].copy(), g, phi, its, ok
 
 
