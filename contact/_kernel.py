@@ -10,7 +10,8 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
 ====  ==================================================================
  0    clearance δ0 (m)
  1    ring width l0 (m)
- 2    law code: 0 conformal, 1 Pereira
+ 2    law code: 0 conformal, 1 Pereira (power law C·Δr^n), 2 elastic foundation
+      (calibrated law of contact.calibrate: h = k_f R e (ε − sin ε cos ε), slot 6 = k_f R)
  3    conformal constant 2π E* δ0 (N/m per unit b²(1+b²)/D)
  4    Dundurs α
  5    β coefficient c_β of the denominator (0 for the "zero" reading)
@@ -52,6 +53,14 @@ def _law(pen, p):
         g = s * (1.0 + s) / D
         dg = ((1.0 + 2.0 * s) * D - s * (1.0 + s) * dD) / (D * D)
         return p[3] * g, p[3] * dg * ds, 1
+    if p[2] == 2.0:
+        # --- additive hook for contact.calibrate (issue 5): Winkler elastic foundation ---
+        # h = k_f R e (ε − sin ε cos ε), e = δ0 + Δr, cos ε = δ0/e; dh/dΔr = k_f R (ε + sin ε cos ε)
+        e = p[0] + pen
+        sn = math.sqrt(pen * (2.0 * p[0] + pen)) / e
+        cs = p[0] / e
+        eps = math.atan2(sn, cs)
+        return p[6] * e * (eps - sn * cs), p[6] * (eps + sn * cs), 1
     n = p[7]
     return p[6] * pen ** n, p[6] * n * pen ** (n - 1.0), 1
 

@@ -19,6 +19,7 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-sweep": ("fem_reference.job_sweep", "regenerate the committed 2D FEM reference dataset (with progress)"),
     "fem-check": ("fem_reference.job_check", "recompute a few committed 2D FEM points, report differences"),
     "fem-vtu": ("fem_reference.job_vtu", "export a solved 2D FEM point to VTU for ParaView"),
+    "calibrate": ("contact.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
     "report": ("reports.main", "build the committed reports/ from the committed datasets (the main job)"),
 }
 
