@@ -20,6 +20,7 @@ DEFAULT_OUT = Path(__file__).resolve().parent / "published"
 # name -> (module with a build(out_dir) function, one-line description). Order = run order.
 BUILDERS: dict[str, tuple[str, str]] = {
     "laws": ("reports.laws_report", "analytic laws vs the paper's Table 2 (laws-vs-paper.md/.csv/.png/.svg)"),
+    "accuracy": ("reports.accuracy", "laws and calibrated laws vs the FEM datasets, Tables 2-3 style (accuracy-*.md/.csv/.png/.svg)"),
 }
 
 
