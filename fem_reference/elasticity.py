@@ -72,39 +72,89 @@ def pressure_load(rmesh: RingMesh, basis: Basis, radius_m: float, pressure_pa: f
     return load.assemble(fb)
 
 
+def circle_mean_weights(rmesh: RingMesh, basis: Basis, radius_m: float, body: int) -> np.ndarray:
+    """Weights ``w`` with ``w @ u`` = mean u_y over the circle ``radius_m`` of ``body`` (arc-length mean)."""
+    facets = facets_on_circle(rmesh.mesh, radius_m, element_mask=rmesh.body == body)
+    fb = FacetBasis(rmesh.mesh, basis.elem, facets=facets, intorder=2 * rmesh.order + 2)
+
+    @LinearForm
+    def ey(v, w):
+        return v[1]
+
+    w = ey.assemble(fb)
+    return w / w.sum()
+
+
+def body_mean_weights(rmesh: RingMesh, basis: Basis, body: int) -> np.ndarray:
+    """Weights ``w`` with ``w @ u`` = area-mean u_y of ``body`` (its centroid's displacement)."""
+    b = Basis(rmesh.mesh, basis.elem, elements=np.flatnonzero(rmesh.body == body), intorder=2 * rmesh.order)
+
+    @LinearForm
+    def ey(v, w):
+        return v[1]
+
+    w = ey.assemble(b)
+    return w / w.sum()
+
+
 @dataclass
 class ElasticSystem:
     """Dirichlet-condensed, factorised stiffness of one mesh and one plane assumption.
 
-    ``solve(rhs_full, u_dirichlet)`` returns the full displacement vector for a full-size load
-    vector and prescribed values on the Dirichlet DOFs (zeros elsewhere).
+    Optional linear constraints ``Qᵀ u = c`` (one column of ``Q`` per constraint, e.g. a
+    distributing coupling: mean displacement of a surface prescribed) are added by bordering:
+    ``[[K_ff, Q_f], [Q_fᵀ, 0]]`` is factorised instead of ``K_ff``.
+
+    ``solve(rhs, u_dirichlet, c)`` returns the full displacement vector.
     """
 
     K: sp.csr_matrix
     dirichlet: np.ndarray   # sorted DOF indices with prescribed values
     free: np.ndarray        # the other DOFs
-    lu: object              # scipy SuperLU of K[free][:, free]
+    lu: object              # scipy SuperLU of the (bordered) free-DOF matrix
+    Q: np.ndarray | None = None   # (n, m) constraint columns or None
+    q_scale: float = 1.0          # the bordered rows hold Q·q_scale
 
     @classmethod
-    def build(cls, K: sp.csr_matrix, dirichlet: np.ndarray) -> "ElasticSystem":
+    def build(cls, K: sp.csr_matrix, dirichlet: np.ndarray, Q: np.ndarray | None = None) -> "ElasticSystem":
         dirichlet = np.unique(np.asarray(dirichlet, dtype=np.int64))
         free = np.setdiff1d(np.arange(K.shape[0]), dirichlet)
-        Kff = K[free][:, free].tocsc()
-        lu = spla.splu(Kff, permc_spec="COLAMD")
+        Kff = K[free][:, free]
+        scale = 1.0
+        if Q is not None:
+            # scale the constraint rows to the stiffness so the bordered pivots stay well sized
+            scale = float(np.mean(np.abs(Kff.diagonal())) / np.abs(np.asarray(Q)[free]).max())
+            Qf = sp.csr_matrix(np.asarray(Q)[free] * scale)
+            m = Qf.shape[1]
+            Kff = sp.bmat([[Kff, Qf], [Qf.T, sp.csr_matrix((m, m))]])
+        lu = spla.splu(Kff.tocsc(), permc_spec="COLAMD")
         diag = lu.U.diagonal()
         if not np.all(np.isfinite(diag)) or np.min(np.abs(diag)) < 1e-12 * np.max(np.abs(diag)):
             from contact.errors import ConvergenceError
 
             raise ConvergenceError("elastic stiffness is singular (a body is not held: check the "
                                    "boundary-condition scene)")
-        return cls(K=K, dirichlet=dirichlet, free=free, lu=lu)
+        return cls(K=K, dirichlet=dirichlet, free=free, lu=lu, Q=None if Q is None else np.asarray(Q),
+                   q_scale=scale)
 
     @property
     def ndofs(self) -> int:
         return self.K.shape[0]
 
-    def solve(self, rhs: np.ndarray, u_dirichlet: np.ndarray | None = None) -> np.ndarray:
-        """Full displacement for load ``rhs`` (n,) or (n, k) and Dirichlet values (same shape)."""
+    @property
+    def n_constraints(self) -> int:
+        return 0 if self.Q is None else self.Q.shape[1]
+
+    def solve_free(self, b: np.ndarray, c: np.ndarray | None = None) -> np.ndarray:
+        """Free-DOF solution for free-DOF right-hand side ``b`` (n_free,), constraint values ``c``."""
+        m = self.n_constraints
+        if m:
+            b = np.concatenate([b, np.zeros(m) if c is None else np.asarray(c, dtype=float) * self.q_scale])
+        return self.lu.solve(np.ascontiguousarray(b))[: len(self.free)]
+
+    def solve(self, rhs: np.ndarray, u_dirichlet: np.ndarray | None = None,
+              c: np.ndarray | None = None) -> np.ndarray:
+        """Full displacement for load ``rhs`` (n,), Dirichlet values (n,) and constraint values (m,)."""
         rhs = np.asarray(rhs, dtype=float)
         u = np.zeros_like(rhs)
         r = rhs[self.free]
@@ -112,5 +162,7 @@ class ElasticSystem:
             ud = np.asarray(u_dirichlet, dtype=float)[self.dirichlet]
             u[self.dirichlet] = ud
             r = r - self.K[self.free][:, self.dirichlet] @ ud
-        u[self.free] = self.lu.solve(np.asarray(r, order="F") if r.ndim == 2 else r)
+            if self.Q is not None and c is not None:
+                c = np.asarray(c, dtype=float) - self.Q[self.dirichlet].T @ ud
+        u[self.free] = self.solve_free(r, c)
         return u

@@ -99,7 +99,9 @@ def graded_symmetric(a: float, b: float, n: int, ratio: float) -> np.ndarray:
     if n % 2:
         sizes = np.insert(sizes, half, sizes[half - 1] * q)
     cum = np.concatenate([[0.0], np.cumsum(sizes)])
-    return a + (b - a) * cum / cum[-1]
+    t = cum / cum[-1]
+    t = 0.5 * (t + 1.0 - t[::-1])          # exactly mirror-symmetric (the solver relies on it)
+    return 0.5 * (a + b) + (b - a) * (t - 0.5)
 
 
 def graded_one_sided(a: float, b: float, n: int, ratio: float) -> np.ndarray:
@@ -160,9 +162,13 @@ def build_meshes(geom: RingPair3D, level: MeshLevel3D) -> tuple[RingMesh, RingMe
     return bearing, support
 
 
-# Mesh levels used by the committed reference (each refines the previous one by 2 in phi, x and rho).
+# Mesh levels of the committed reference: every element count grows by about sqrt(2) per level
+# (phi, x and radial), so the effective size ratio is (DOFs ratio)^(1/3) ~ 1.4 (Richardson with
+# unequal ratios, sweep3d.richardson3). Grading: phi toward 0 and pi (ratio 2), x toward the
+# ring edges (ratio 3), radially toward the contact surfaces (ratio 3).
 LEVELS: dict[str, MeshLevel3D] = {
-    "L0": MeshLevel3D("L0", n_phi=24, n_axial=8, n_radial=2),
-    "L1": MeshLevel3D("L1", n_phi=48, n_axial=16, n_radial=4),
-    "L2": MeshLevel3D("L2", n_phi=96, n_axial=32, n_radial=8),
+    "L0": MeshLevel3D("L0", n_phi=32, n_axial=12, n_radial=3, axial_ratio=3.0),
+    "L1": MeshLevel3D("L1", n_phi=46, n_axial=16, n_radial=4, axial_ratio=3.0),
+    "L2": MeshLevel3D("L2", n_phi=64, n_axial=22, n_radial=6, axial_ratio=3.0),
 }
+DEFAULT_LEVELS = ("L0", "L1", "L2")

@@ -18,15 +18,15 @@ from contact.units import check_finite
 from fem_reference.contact_solver import (CircleSurface, ContactSolution, contact_half_angle, circle_surface,
                                           mortar_operator, solve_lcp)
 from fem_reference.elasticity import ElasticSystem, circle_dofs, stiffness, symmetry_dofs, vector_basis
-from fem_reference.mesh import BEARING, SUPPORT, MeshSpec, RingMesh, build_mesh
+from fem_reference.mesh import BEARING, SUPPORT, MeshSpec, RingMesh, build_mesh, facets_on_circle
 from fem_reference.scenes import Scene
 
 
-def _solve_columns(lu, B: np.ndarray) -> np.ndarray:
-    """``lu.solve`` column by column: measured ~2x faster than SuperLU's multi-RHS solve here."""
+def _solve_columns(system: ElasticSystem, B: np.ndarray) -> np.ndarray:
+    """Column by column: measured ~2x faster than SuperLU's multi-RHS solve here."""
     out = np.empty_like(B)
     for k in range(B.shape[1]):
-        out[:, k] = lu.solve(np.ascontiguousarray(B[:, k]))
+        out[:, k] = system.solve_free(B[:, k])
     return out
 
 
@@ -37,11 +37,17 @@ def _dirichlet(scene: Scene, rmesh: RingMesh, basis):
     fixed = [symmetry_dofs(rmesh, basis)]
     unit = np.zeros(n)
     inner = circle_dofs(rmesh, basis, rings.inner_radius_m)
+    Q = None
     if scene.bearing_drive == "rigid-inner":
         fixed += [inner[0], inner[1]]
-    else:  # rigid-inner-y
+        unit[inner[1]] = 1.0
+    elif scene.bearing_drive == "rigid-inner-y":
         fixed += [inner[1]]
-    unit[inner[1]] = 1.0
+        unit[inner[1]] = 1.0
+    else:  # coupled-inner: distributing coupling, mean u_y of the inner surface = t
+        from fem_reference.elasticity import circle_mean_weights
+
+        Q = circle_mean_weights(rmesh, basis, rings.inner_radius_m, BEARING)[:, None]
     outer = circle_dofs(rmesh, basis, rings.support_outer_radius_m)
     y = basis.doflocs[1]
     if scene.support_hold == "clamped-outer":
@@ -52,7 +58,7 @@ def _dirichlet(scene: Scene, rmesh: RingMesh, basis):
     elif scene.support_hold == "clamped-outer-upper":
         keep = y[outer[0]] >= -1e-12
         fixed += [outer[0][keep], outer[1][keep]]
-    return np.unique(np.concatenate(fixed)), unit
+    return np.unique(np.concatenate(fixed)), unit, Q
 
 
 @dataclass
@@ -75,9 +81,9 @@ class ContactModel:
         rmesh = build_mesh(scene.rings, spec)
         basis = vector_basis(rmesh)
         K = stiffness(rmesh, basis, scene.plane)
-        fixed, unit = _dirichlet(scene, rmesh, basis)
-        system = ElasticSystem.build(K, fixed)
-        u_unit = system.solve(np.zeros(basis.N), unit)
+        fixed, unit, Q = _dirichlet(scene, rmesh, basis)
+        system = ElasticSystem.build(K, fixed, Q)
+        u_unit = system.solve(np.zeros(basis.N), unit, None if Q is None else np.ones(Q.shape[1]))
         slave = circle_surface(rmesh, basis, scene.rings.bore_radius_m, SUPPORT)
         master = circle_surface(rmesh, basis, scene.rings.outer_radius_m, BEARING)
         return cls(scene, spec, rmesh, basis, system, u_unit, slave, master, time.perf_counter() - t0)
@@ -121,7 +127,7 @@ class ContactModel:
         while True:
             sel = np.flatnonzero(phi_nodes <= window + 1e-12)
             Df = mo.D[sel][:, sysm.free]
-            Z = _solve_columns(sysm.lu, Df.T.toarray())
+            Z = _solve_columns(sysm, Df.T.toarray())
             A = np.asarray(Df @ Z)
             A = 0.5 * (A + A.T)
             lcp = solve_lcp(A, b_all[sel], tol=tol)

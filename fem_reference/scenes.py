@@ -33,6 +33,8 @@ from fem_reference.geometry import RingPair, table1_rings
 BEARING_DRIVES = {
     "rigid-inner": "bearing inner surface moved rigidly by t along +y (u_x = 0, u_y = t)",
     "rigid-inner-y": "bearing inner surface: u_y = t prescribed, u_x free (frictionless shaft fit)",
+    "coupled-inner": "bearing inner surface: distributing coupling (RBE3-like): its mean u_y = t, "
+                     "load as uniform y-traction, surface free to deform",
 }
 SUPPORT_HOLDS = {
     "clamped-outer": "support outer surface clamped (u = 0)",

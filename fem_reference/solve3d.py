@@ -43,6 +43,7 @@ import scipy.linalg as sla
 import scipy.optimize as sopt
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 from skfem import Basis, ElementHex1, ElementHex2, ElementVector, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
@@ -54,6 +55,8 @@ SCENES = {
     "clamped": "support outer surface clamped (all displacement components zero); bearing inner surface "
                "moved rigidly (translation r along y + tilt theta about z); symmetry u_z = 0 on z = 0; "
                "ring end faces free; frictionless contact",
+    "clamped-axially-fixed-ends": "as 'clamped' but u_x = 0 on both end faces of both rings: at zero tilt "
+               "this is exactly the 2D plane-strain 'clamped' scene (verification scene)",
 }
 
 
@@ -75,6 +78,8 @@ class ContactCompliance:
 
     Attributes
     ----------
+    scene : str
+        Key of :data:`SCENES`.
     level : MeshLevel3D
     geom : RingPair3D
     phi_grid, x_grid : ndarray
@@ -91,6 +96,7 @@ class ContactCompliance:
         Wall time to mesh, assemble, factorise and form G (s).
     """
 
+    scene: str
     level: MeshLevel3D
     geom: RingPair3D
     phi_grid: np.ndarray
@@ -141,7 +147,8 @@ def _dof_points(nodes: np.ndarray, order: int) -> np.ndarray:
 
 
 def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
-                  phi_grid: np.ndarray, x_grid: np.ndarray, chunk: int = 256) -> RingOperator:
+                  phi_grid: np.ndarray, x_grid: np.ndarray, chunk: int = 256,
+                  use_mirrors: bool = True, fix_end_faces_axially: bool = False) -> RingOperator:
     """Assemble, condense and factorise one ring; form ``B K^-1 B^T`` on the contact grid.
 
     The held surface (radius ``ring.held_radius_m``) is fixed (w = 0); the symmetry plane z = 0
@@ -163,6 +170,10 @@ def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
     held = facets_where(np.abs(vr - ring.held_radius_m) < rtol)
     sym = facets_where(np.abs(mesh.p[2]) < rtol)
     fixed = np.union1d(basis.get_dofs(held).all(), basis.get_dofs(sym).all("u^3"))
+    if fix_end_faces_axially:
+        half = np.max(np.abs(mesh.p[0]))
+        ends = facets_where(np.abs(np.abs(mesh.p[0]) - half) < rtol)
+        fixed = np.union1d(fixed, basis.get_dofs(ends).all("u^1"))
     surf = facets_where(np.abs(vr - ring.contact_radius_m) < rtol)
     dview = basis.get_dofs(surf)
     dy = np.sort(dview.all("u^2"))
@@ -186,6 +197,9 @@ def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
     if (np.max(np.abs(phi - want_phi)) > 1e-9 or np.max(np.abs(xs - want_x)) > 1e-9 * ring.contact_radius_m
             or np.max(np.abs(loc[:, dz] - loc[:, dy])) > 1e-12):
         raise ConvergenceError("contact DOF points do not match the (phi, x) grid: mesh pairing broken")
+    if use_mirrors and (np.max(np.abs(phi_grid + phi_grid[::-1] - math.pi)) > 1e-12
+                        or np.max(np.abs(x_grid + x_grid[::-1])) > 1e-12 * ring.contact_radius_m):
+        raise InputError("use_mirrors needs a contact grid symmetric about phi = pi/2 and x = 0")
     rows = np.concatenate([np.arange(n_c), np.arange(n_c)])
     cols = np.concatenate([dy, dz])
     vals = np.concatenate([np.cos(phi), np.sin(phi)])
@@ -194,36 +208,101 @@ def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
     Kff = K[free][:, free].tocsc()
     Bf = B[:, free].tocsc()
     t0 = time.perf_counter()
-    lu = spla.splu(Kff, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+    # Reverse Cuthill-McKee + SuperLU without further column ordering: a banded factor whose
+    # many-right-hand-side solves are cache-friendly (measured faster than MMD/COLAMD orderings
+    # for the compliance solves on these thin structured rings; benchmarks/bench_fem3d.py).
+    perm = reverse_cuthill_mckee(Kff.tocsr(), symmetric_mode=True)
+    inv = np.empty_like(perm)
+    inv[perm] = np.arange(len(perm))
+    lu = spla.splu(Kff[perm][:, perm].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
                    options={"SymmetricMode": True})
+    Bf = Bf[:, perm].tocsc()
     t1 = time.perf_counter()
-    G = np.empty((n_c, n_c))
     BT = Bf.T.tocsc()
-    for s in range(0, n_c, chunk):
-        e = min(s + chunk, n_c)
-        X = lu.solve(BT[:, s:e].toarray())
-        G[:, s:e] = Bf @ X
+    nphi, nx = len(phi_grid), len(x_grid)
+    if use_mirrors:
+        # Columns of the quadrant phi <= pi/2, x >= 0 only; the rest follow from the mirror
+        # symmetries of rings, supports and mesh about y = 0 (phi -> pi - phi) and x = 0.
+        ii, jj = np.meshgrid(np.arange(nphi), np.arange(nx), indexing="ij")
+        in_q = (ii <= (nphi - 1) // 2) & (jj >= nx // 2)
+        cols = np.flatnonzero(in_q.ravel())
+    else:
+        cols = np.arange(n_c)
+    Gq = np.empty((n_c, len(cols)))
+    for s in range(0, len(cols), chunk):
+        e = min(s + chunk, len(cols))
+        X = lu.solve(BT[:, cols[s:e]].toarray())
+        Gq[:, s:e] = Bf @ X
+    if use_mirrors:
+        G = np.empty((n_c, n_c))
+        pos = -np.ones(n_c, dtype=int)
+        pos[cols] = np.arange(len(cols))
+        flat = np.arange(n_c).reshape(nphi, nx)
+        for perm in (flat, flat[::-1, :], flat[:, ::-1], flat[::-1, ::-1]):
+            perm = perm.ravel()              # perm[k] = image of pair k under the mirror
+            target = np.flatnonzero(pos[perm] >= 0)
+            G[:, target] = Gq[perm][:, pos[perm[target]]]
+    else:
+        G = Gq
     t2 = time.perf_counter()
     G = 0.5 * (G + G.T)
     return RingOperator(basis.N, phi, xs, G, t1 - t0, t2 - t1)
 
 
-def build_compliance(geom: RingPair3D, level: MeshLevel3D) -> ContactCompliance:
-    """Mesh, assemble and factorise both rings of ``level`` and form the contact compliance."""
+def build_compliance(geom: RingPair3D, level: MeshLevel3D, scene: str = "clamped") -> ContactCompliance:
+    """Mesh, assemble and factorise both rings of ``level`` and form the contact compliance.
+
+    ``scene`` is a key of :data:`SCENES`.
+    """
+    if scene not in SCENES:
+        raise InputError(f"scene = {scene!r}: must be one of {sorted(SCENES)}")
+    fix_ends = scene == "clamped-axially-fixed-ends"
     t0 = time.perf_counter()
     bearing, support = build_meshes(geom, level)
     phi_grid = _dof_points(bearing.phi_nodes, level.order)
     x_grid = _dof_points(bearing.x_nodes, level.order)
-    ob = ring_operator(bearing, geom.young_bearing_pa, geom.poisson_bearing, level.order, phi_grid, x_grid)
-    os_ = ring_operator(support, geom.young_support_pa, geom.poisson_support, level.order, phi_grid, x_grid)
+    ob = ring_operator(bearing, geom.young_bearing_pa, geom.poisson_bearing, level.order, phi_grid, x_grid,
+                       fix_end_faces_axially=fix_ends)
+    os_ = ring_operator(support, geom.young_support_pa, geom.poisson_support, level.order, phi_grid, x_grid,
+                        fix_end_faces_axially=fix_ends)
     G = ob.compliance + os_.compliance
     wphi = _line_weights(bearing.phi_nodes, level.order) * geom.support_inner_radius_m
     wx = _line_weights(bearing.x_nodes, level.order)
     area = np.outer(wphi, wx).ravel()
     build = time.perf_counter() - t0
-    return ContactCompliance(level, geom, phi_grid, x_grid, np.repeat(phi_grid, len(x_grid)),
+    return ContactCompliance(scene, level, geom, phi_grid, x_grid, np.repeat(phi_grid, len(x_grid)),
                              np.tile(x_grid, len(phi_grid)), area, G, ob.n_dofs + os_.n_dofs, build,
                              {"factor_s": ob.factor_s + os_.factor_s, "compliance_s": ob.solve_s + os_.solve_s})
+
+
+def save_compliance(comp: ContactCompliance, path) -> None:
+    """Write a compliance to ``path`` (.npz, written atomically) for reuse by other processes."""
+    import io
+    import json
+
+    from contact.files import atomic_write_bytes
+    buf = io.BytesIO()
+    meta = {"scene": comp.scene, "level": comp.level.as_dict(), "geom": comp.geom.as_dict(),
+            "n_dofs": comp.n_dofs, "build_s": comp.build_s, "timings": comp.timings}
+    np.savez(buf, meta=np.array(json.dumps(meta)), phi_grid=comp.phi_grid, x_grid=comp.x_grid,
+             area_m2=comp.area_m2, G=comp.G)
+    atomic_write_bytes(path, buf.getvalue())
+
+
+def load_compliance(path) -> ContactCompliance:
+    """Read a compliance written by :func:`save_compliance` (DatasetError if unreadable)."""
+    import json
+
+    from contact.errors import DatasetError
+    try:
+        with np.load(path) as z:
+            meta = json.loads(str(z["meta"]))
+            phi_grid, x_grid, area, G = z["phi_grid"], z["x_grid"], z["area_m2"], z["G"]
+    except (OSError, ValueError, KeyError) as exc:
+        raise DatasetError(f"{path}: cannot read cached 3D compliance ({exc})") from exc
+    return ContactCompliance(meta["scene"], MeshLevel3D(**meta["level"]), RingPair3D(**meta["geom"]), phi_grid,
+                             x_grid, np.repeat(phi_grid, len(x_grid)), np.tile(x_grid, len(phi_grid)), area, G,
+                             int(meta["n_dofs"]), float(meta["build_s"]), meta["timings"])
 
 
 def solve_lcp(G: np.ndarray, g0: np.ndarray, *, max_iter: int = 100) -> tuple[np.ndarray, int, str]:

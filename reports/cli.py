@@ -18,8 +18,10 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-point": ("fem_reference.job_point", "solve one 2D FEM contact point (penetration in mm; --json)"),
     "fem-sweep": ("fem_reference.job_sweep", "regenerate the committed 2D FEM reference dataset (with progress)"),
     "fem-check": ("fem_reference.job_check", "recompute a few committed 2D FEM points, report differences"),
+    "fem-paper": ("fem_reference.paper_setup", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
     "fem-vtu": ("fem_reference.job_vtu", "export a solved 2D FEM point to VTU for ParaView"),
     "calibrate": ("contact.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
+    "study": ("reports.study_cli", "steady-state sweeps, cascades, test rig, run-up, regime map (resumable, parallel)"),
     "report": ("reports.main", "build the committed reports/ from the committed datasets (the main job)"),
 }
 

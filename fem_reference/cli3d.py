@@ -1,0 +1,157 @@
+"""Console job ``ringcontact fem3d`` of the 3D tilted-ring FEM reference (registered in reports/cli.py).
+
+    ringcontact fem3d point 0.02 --tilt-arcmin 2 [--tilt-axis z|y] [--level L2 | --levels] [--json]
+    ringcontact fem3d sweep [--out PATH] [--workers 2] [--fresh]   regenerate the committed dataset
+    ringcontact fem3d check [--points 3] [--cached]                recompute a few committed points
+
+Engineer units at this edge only (mm, arcmin, kN, kN*m, MPa); everything inside is SI. Mesh
+levels are cached under ``RINGCONTACT_CACHE`` (default ``~/.cache/ringcontact/fem3d``).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+import numpy as np
+
+from contact.errors import RingContactError
+from contact.units import ARCMIN, MM
+
+
+def _fmt_point(rec: dict) -> str:
+    lines = [
+        f"scene            {rec['scene']}",
+        f"penetration      {rec['penetration_m'] / MM:.5g} mm at the mid-plane, tilt {rec['tilt_rad'] / ARCMIN:.4g}'"
+        + (f" about {rec['tilt_axis']}" if "tilt_axis" in rec else ""),
+        f"force            {rec['force_n'] / 1e3:.4f} kN"
+        + (f"  (est. error {rec['force_error_rel']:.1e})" if rec.get("force_error_rel") is not None else ""),
+        f"moment           {rec['moment_nm'] / 1e3:.5f} kN*m"
+        + (f"  (est. error {rec['moment_error_rel']:.1e})" if rec.get("moment_error_rel") is not None else ""),
+        f"contact width    {rec['width_m'] / MM:.3f} mm from x = {rec['contact_x_min_m'] / MM:.3f} to "
+        f"{rec['contact_x_max_m'] / MM:.3f} mm (law {rec['width_law_m'] / MM:.3f} mm)",
+        f"contact          sides {rec['sides']}, edges loaded {rec['edges_loaded']}, "
+        f"half-angle {math.degrees(rec['half_angle_rad']):.2f} deg, peak pressure {rec['peak_pressure_pa'] / 1e6:.1f} MPa",
+        f"mesh             {rec['ndofs']} DOFs, {rec['n_pairs']} contact pairs ({rec['n_active']} active)",
+        f"solver           {rec['iterations']} active-set iterations ({rec['lcp_method']}), "
+        f"{rec['wall_s']:.3f} s on a ready mesh",
+    ]
+    if "force_y_n" in rec:
+        lines.append(f"vectors          F on bearing (y, z) = ({rec['force_y_n'] / 1e3:.3f}, {rec['force_z_n'] / 1e3:.3f}) kN,"
+                     f" M (y, z) = ({rec['moment_y_nm'] / 1e3:.4f}, {rec['moment_z_nm'] / 1e3:.4f}) kN*m")
+    return "\n".join(lines)
+
+
+def point_main(argv: list[str]) -> int:
+    """``fem3d point``: solve one (penetration, tilt) and print it (or JSON with --json)."""
+    ap = argparse.ArgumentParser(prog="ringcontact fem3d point", description="solve one 3D contact point")
+    ap.add_argument("penetration_mm", type=float, help="mid-plane penetration Δr = r − δ0 [mm]")
+    ap.add_argument("--tilt-arcmin", type=float, default=0.0, help="tilt [arcmin]")
+    ap.add_argument("--tilt-axis", choices=("z", "y"), default="z",
+                    help="z: translation along y, tilt about z (canonical); y: translation along z, tilt about y")
+    ap.add_argument("--scene", default="clamped", help="clamped | clamped-axially-fixed-ends")
+    ap.add_argument("--level", default=None, help="one mesh level (L0, L1, L2) instead of the three-level estimate")
+    ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
+    ap.add_argument("--json", action="store_true", help="print the full record as JSON (SI units)")
+    args = ap.parse_args(argv)
+    from fem_reference.geometry3d import RingPair3D, reduce_motion, rotate_about_x
+    from fem_reference.mesh3d import DEFAULT_LEVELS, LEVELS
+    from fem_reference.sweep3d import _jsonable, get_compliance, reference_point
+
+    try:
+        geom = RingPair3D()
+        r = geom.clearance_m + args.penetration_mm * MM
+        tilt = args.tilt_arcmin * ARCMIN
+        if args.tilt_axis == "z":
+            canon = reduce_motion(r, 0.0, 0.0, tilt)
+        else:
+            canon = reduce_motion(0.0, r, -tilt, 0.0)    # lateral slope (theta_z, -theta_y) along +z
+        names = [args.level] if args.level else list(DEFAULT_LEVELS)
+        for n in names:
+            if n not in LEVELS:
+                raise RingContactError(f"level = {n!r}: must be one of {sorted(LEVELS)}")
+        comps = [get_compliance(geom, LEVELS[n], args.scene, use_cache=not args.no_cache) for n in names]
+        m = canon.motion
+        if len(comps) == 1:
+            comps = comps * 3      # no error estimate from one level: the differences are zero
+        rec = reference_point(comps, m.translation_m - geom.clearance_m, m.tilt_rad)
+        if args.level:
+            rec["force_error_rel"] = rec["moment_error_rel"] = None
+        fy, fz = rotate_about_x(-rec["force_n"], 0.0, canon.frame_angle_rad)
+        # moment vector (M_y, M_z) = (0, M_z) in the canonical frame, rotated with the frame
+        my, mz = rotate_about_x(0.0, rec["moment_nm"], canon.frame_angle_rad)
+        rec.update({"tilt_axis": args.tilt_axis, "force_y_n": fy, "force_z_n": fz, "moment_y_nm": my,
+                    "moment_z_nm": mz})
+    except RingContactError as exc:
+        print(f"fem3d point: {exc}", file=sys.stderr)
+        return 2
+    if args.json:
+        print(json.dumps(_jsonable(rec), indent=1))
+    else:
+        print(_fmt_point(rec))
+    return 0
+
+
+def sweep_main(argv: list[str]) -> int:
+    """``fem3d sweep``: regenerate the 3D dataset through a process pool (resumable)."""
+    from fem_reference.sweep3d import DATASET_PATH, regenerate
+
+    ap = argparse.ArgumentParser(prog="ringcontact fem3d sweep", description="regenerate the 3D FEM reference dataset")
+    ap.add_argument("--out", default=str(DATASET_PATH), help="output JSON (default: the committed copy)")
+    ap.add_argument("--workers", type=int, default=2, help="processes")
+    ap.add_argument("--fresh", action="store_true", help="ignore finished points kept from an interrupted run")
+    args = ap.parse_args(argv)
+    if args.workers < 1:
+        print(f"fem3d sweep: workers = {args.workers}: must be >= 1", file=sys.stderr)
+        return 2
+    try:
+        path = regenerate(args.out, workers=args.workers, resume=not args.fresh)
+    except RingContactError as exc:
+        print(f"fem3d sweep: {exc}", file=sys.stderr)
+        return 2
+    print(f"wrote {path}")
+    return 0
+
+
+def check_main(argv: list[str]) -> int:
+    """``fem3d check``: recompute a few committed points and report the differences."""
+    from fem_reference.sweep3d import DATASET_PATH, check_against_committed
+
+    ap = argparse.ArgumentParser(prog="ringcontact fem3d check", description="recompute committed 3D points, compare")
+    ap.add_argument("--path", default=str(DATASET_PATH))
+    ap.add_argument("--points", type=int, default=3)
+    ap.add_argument("--cached", action="store_true", help="reuse cached mesh levels instead of rebuilding them")
+    ap.add_argument("--tol", type=float, default=1e-6, help="relative difference that counts as a change")
+    args = ap.parse_args(argv)
+    try:
+        rows = check_against_committed(args.path, args.points, use_cache=args.cached)
+    except RingContactError as exc:
+        print(f"fem3d check: {exc}", file=sys.stderr)
+        return 2
+    worst = 0.0
+    print(f"{'Δr mm':>8}{'tilt′':>7}{'committed kN':>14}{'new kN':>14}{'diff':>10}"
+          f"{'committed kN*m':>16}{'new kN*m':>12}{'diff':>10}{'est.err':>9}")
+    for r in rows:
+        worst = max(worst, abs(r["force_diff_rel"]), abs(r["moment_diff_rel"]))
+        print(f"{r['penetration_m'] / MM:>8.4f}{r['tilt_rad'] / ARCMIN:>7.2f}{r['committed_force_n'] / 1e3:>14.3f}"
+              f"{r['new_force_n'] / 1e3:>14.3f}{r['force_diff_rel']:>10.1e}{r['committed_moment_nm'] / 1e3:>16.4f}"
+              f"{r['new_moment_nm'] / 1e3:>12.4f}{r['moment_diff_rel']:>10.1e}{r['force_error_estimate_rel']:>9.1e}")
+    print(f"largest difference {worst:.2e} ({'OK' if worst <= args.tol else 'CHANGED'} at tol {args.tol:g})")
+    return 0 if worst <= args.tol else 1
+
+
+SUBCOMMANDS = {"point": point_main, "sweep": sweep_main, "check": check_main}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``ringcontact fem3d {point,sweep,check} ...``"""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or argv[0] in {"-h", "--help"} or argv[0] not in SUBCOMMANDS:
+        print(__doc__.strip())
+        return 0 if (not argv or argv[0] in {"-h", "--help"}) else 2
+    return int(SUBCOMMANDS[argv[0]](argv[1:]) or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
