@@ -20,6 +20,7 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-check": ("fem_reference.job_check", "recompute a few committed 2D FEM points, report differences"),
     "fem-paper": ("fem_reference.paper_setup", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
     "fem-vtu": ("fem_reference.job_vtu", "export a solved 2D FEM point to VTU for ParaView"),
+    "fem3d": ("fem_reference.cli3d", "3D tilted-ring FEM reference: point | sweep | check (mm, arcmin; --json)"),
     "calibrate": ("contact.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
     "study": ("reports.study_cli", "steady-state sweeps, cascades, test rig, run-up, regime map (resumable, parallel)"),
     "report": ("reports.main", "build the committed reports/ from the committed datasets (the main job)"),
