@@ -55,6 +55,10 @@ from fem_reference.mesh import RingMesh, facets_on_circle
 _GAUSS = np.polynomial.legendre.leggauss(5)
 
 
+class ArcNotResolvedError(ConvergenceError):
+    """The contact arc spans fewer than three multiplier nodes: the mesh is too coarse for it."""
+
+
 # ---------------------------------------------------------------------------------------------
 # surfaces
 

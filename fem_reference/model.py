@@ -15,7 +15,7 @@ import numpy as np
 
 from contact.errors import ConvergenceError, InputError
 from contact.units import check_finite
-from fem_reference.contact_solver import (CircleSurface, ContactSolution, contact_half_angle, circle_surface,
+from fem_reference.contact_solver import (ArcNotResolvedError, CircleSurface, ContactSolution, contact_half_angle, circle_surface,
                                           mortar_operator, solve_lcp)
 from fem_reference.elasticity import ElasticSystem, circle_dofs, stiffness, symmetry_dofs, vector_basis
 from fem_reference.mesh import BEARING, SUPPORT, MeshSpec, RingMesh, build_mesh, facets_on_circle
@@ -157,7 +157,7 @@ class ContactModel:
                                    f"penetration_m = {penetration_m:g} m: the rings are too flexible or the "
                                    f"load too large for this scene")
         if 0 < len(active) < 3:
-            raise ConvergenceError(f"contact arc not resolved by the mesh at penetration_m = {penetration_m:g} m: "
+            raise ArcNotResolvedError(f"contact arc not resolved by the mesh at penetration_m = {penetration_m:g} m: "
                                    f"{len(active)} active node(s), need >= 3 (reduce h_contact_m = "
                                    f"{self.spec.h_contact_m:g} m)")
         return ContactSolution(offset_m=t, force_n=force, half_angle_rad=contact_half_angle(phi, p),

@@ -26,6 +26,7 @@ import numpy as np
 
 from contact.dataset import read_dataset, write_dataset
 from contact.errors import InputError
+from fem_reference.contact_solver import ArcNotResolvedError
 from fem_reference.mesh import MeshSpec
 from fem_reference.model import ContactModel
 from fem_reference.scenes import Scene, by_name
@@ -90,6 +91,8 @@ class Levels:
     def __init__(self, scene: Scene, levels_m=DEFAULT_LEVELS_M, order: int = DEFAULT_ORDER):
         if len(levels_m) < 3:
             raise InputError(f"levels_m = {levels_m!r} m: need at least three mesh sizes (coarse to fine)")
+        if np.any(np.diff(levels_m) >= 0):
+            raise InputError(f"levels_m = {levels_m!r} m: mesh sizes must strictly decrease (coarse to fine)")
         self.scene, self.levels_m, self.order = scene, tuple(levels_m), order
         self._models: dict[int, ContactModel] = {}
 
@@ -115,12 +118,25 @@ def reference_point(levels: Levels, penetration_m: float, target_rel: float = TA
 
     The finest level used is reported, with the Richardson estimate of the last three levels.
     """
-    sols = [levels.model(i).solve(penetration_m, tol=SOLVER_TOL) for i in range(3)]
+    # levels too coarse for a tiny arc are skipped (ArcNotResolvedError): Richardson then uses the
+    # next three finer levels, if the affordable ones reach that far
+    first, sols, i = 0, [], 0
+    while len(sols) < 3:
+        if not levels.can_refine(i):
+            raise ArcNotResolvedError(
+                f"penetration_m = {penetration_m:g} m: the contact arc is resolved by fewer than three of the "
+                f"affordable mesh levels {levels.levels_m} m (the finest that resolves it: "
+                f"{'none' if not sols else levels.levels_m[first]}); add finer levels")
+        try:
+            sols.append(levels.model(i).solve(penetration_m, tol=SOLVER_TOL))
+        except ArcNotResolvedError:
+            first, sols = i + 1, []
+        i += 1
     rf = richardson([s.force_n for s in sols[-3:]])
-    while rf.error_rel > target_rel and levels.can_refine(len(sols)):
-        sols.append(levels.model(len(sols)).solve(penetration_m, tol=SOLVER_TOL))
+    while rf.error_rel > target_rel and levels.can_refine(first + len(sols)):
+        sols.append(levels.model(first + len(sols)).solve(penetration_m, tol=SOLVER_TOL))
         rf = richardson([s.force_n for s in sols[-3:]])
-    used = [levels.model(i) for i in range(len(sols))]
+    used = [levels.model(first + k) for k in range(len(sols))]
     fine = sols[-1]
     ra = richardson([s.half_angle_rad for s in sols[-3:]])
     act = np.flatnonzero(fine.arc_pressure_pa > 0)
