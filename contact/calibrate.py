@@ -62,6 +62,7 @@ SCHEMA = "ringcontact/calibrated-law"
 VERSION = 1
 REPO_ROOT = Path(__file__).resolve().parents[1]
 DATASET_2D = REPO_ROOT / "fem_reference" / "data" / "fem2d-reference.json"
+DATA_3D_DIR = REPO_ROOT / "fem_reference" / "data" / "3d"
 CALIBRATED_DIR = Path(__file__).resolve().parent / "calibrated"
 SELECTION_GAIN = 2.0          # a k+1-parameter family must at least halve the held-out RMS error
 FAMILIES = ("conformal-scaled", "foundation", "power")
@@ -84,8 +85,9 @@ class SceneGeometry:
         Radial thickness of the two rings (m); only for the foundation modulus estimate.
     bearing_E_Pa, bearing_nu, support_E_Pa, support_nu : float
         Elastic constants (Pa, –).
-    plane : {"strain", "stress"}
-        2D idealisation of the FEM scene.
+    plane : {"strain", "stress", "3d"}
+        Idealisation of the FEM scene ("3d": a full 3D ring with free end faces; its conformal
+        baseline uses the paper's plane-stress modulus, its foundation yardstick plane strain).
     """
 
     clearance_m: float
@@ -101,7 +103,7 @@ class SceneGeometry:
 
     @property
     def modulus(self) -> str:
-        return "plane_strain" if self.plane == "strain" else "plane_stress"
+        return "plane_strain" if self.plane == "strain" else "plane_stress"   # "3d": the paper's plane stress
 
     @property
     def e_star_Pa(self) -> float:
@@ -116,7 +118,7 @@ class SceneGeometry:
         in series. A physical yardstick for the fitted ``k_f`` (Johnson 1985 §4.3).
         """
         def m(E, nu):
-            return E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) if self.plane == "strain" else E / (1 - nu ** 2)
+            return E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) if self.plane != "stress" else E / (1 - nu ** 2)
         compliance = self.bearing_thickness_m / m(self.bearing_E_Pa, self.bearing_nu) \
             + self.support_thickness_m / m(self.support_E_Pa, self.support_nu)
         return 1.0 / compliance
@@ -326,6 +328,56 @@ class CalibratedLaw:
             res.require_in_domain(check)
         return res
 
+    def force_per_length(self, penetration_m) -> np.ndarray:
+        """Force per unit axial length (N/m) at penetration Δr (m), no validity check (0 for Δr <= 0)."""
+        return family_force(self.family, self.parameters, penetration_m, self.geometry) / self.geometry.width_m
+
+    def tilted(self, penetration_m: float, tilt_rad: float, *, n_gauss: int = 48) -> tuple[float, float, float]:
+        """Slice-integrated force of a tilted ring: each axial slice carries the 2D law of its own penetration.
+
+        The ring centre is at ``y = δ0 + Δr`` and the tilt ``θ`` is about z, so the slice at axial
+        position x has ``Δr(x) = Δr + θx`` on the +y side and ``−2δ0 − Δr − θx`` on the −y side
+        (small angles, contact-laws.md §1, §8). ``P = ∫ h(Δr(x)) dx`` and ``M_z = Σ x F_y`` over the
+        contact, by Gauss–Legendre quadrature on each contact interval (exact for a Winkler bed,
+        whose slices are independent; Johnson 1985 §4.3). This is the calibrated law's tilt
+        model; the paper's edge/patch model (Eqs. 8–19) is the compiled kernel's.
+
+        Returns
+        -------
+        load_N : float
+            ``−F_y`` on the bearing (N), positive when the +y side carries the load.
+        moment_z_Nm : float
+            ``M_z`` of the contact force about the ring centre (N·m), ``Σ x F_y``.
+        width_m : float
+            Axial length of the contact on the +y side (m).
+        """
+        laws._penetration(penetration_m)
+        check = np.asarray(tilt_rad, dtype=float)
+        laws.check_finite("tilt_rad", check, "rad")
+        g = self.geometry
+        half = 0.5 * g.width_m
+        pen, th = float(penetration_m), float(tilt_rad)
+        xg, wg = np.polynomial.legendre.leggauss(n_gauss)
+
+        def side(depth0: float, slope: float, sign: float):
+            # contact where depth0 + slope*x > 0 on [-half, half]; returns (∫h, ∫x h, length)
+            if slope == 0.0:
+                return (g.width_m * float(self.force_per_length(depth0)), 0.0, g.width_m) if depth0 > 0 else (0.0, 0.0, 0.0)
+            x0 = -depth0 / slope
+            a, b = (max(-half, x0), half) if slope > 0 else (-half, min(half, x0))
+            if b <= a:
+                return 0.0, 0.0, 0.0
+            x = 0.5 * (b - a) * xg + 0.5 * (a + b)
+            h = self.force_per_length(depth0 + slope * x)
+            w = 0.5 * (b - a) * wg
+            return float(w @ h), float(w @ (x * h)), b - a
+
+        f_plus, m_plus, width = side(pen, th, 1.0)
+        f_minus, m_minus, _ = side(-2.0 * g.clearance_m - pen, -th, -1.0)
+        fy = -f_plus + f_minus                  # force on the bearing
+        mz = -m_plus + m_minus                  # M_z = Σ x F_y
+        return -fy, mz, width
+
     def kernel_law(self) -> tuple[float, float, float, float]:
         """Kernel law slots ``(code, slot 3, slot 6, slot 7)`` of ``contact._kernel`` for this law."""
         g = self.geometry
@@ -449,7 +501,22 @@ class CalibratedSupportParams(LooseSupportParams):
 # --------------------------------------------------------------------------------------------
 
 def scene_geometry(dataset: ReferenceDataset, scene: str) -> SceneGeometry:
-    """Geometry of ``scene`` from the dataset metadata (``metadata.scenes[scene].rings``)."""
+    """Geometry of ``scene`` from the dataset metadata.
+
+    2D datasets (``fem_reference.sweep``) hold ``metadata.scenes[scene].rings``; 3D datasets
+    (``fem_reference.sweep3d``) one ``metadata.geometry`` for all scenes (then ``plane = "3d"``).
+    """
+    g = dataset.metadata.get("geometry")
+    if isinstance(g, dict) and "bearing_outer_radius_m" in g:
+        try:
+            return SceneGeometry(
+                clearance_m=float(g["clearance_m"]), width_m=float(g["width_m"]), radius_m=float(g["bearing_outer_radius_m"]),
+                bearing_thickness_m=float(g["bearing_outer_radius_m"]) - float(g["bearing_inner_radius_m"]),
+                support_thickness_m=float(g["support_thickness_m"]),
+                bearing_E_Pa=float(g["young_bearing_pa"]), bearing_nu=float(g["poisson_bearing"]),
+                support_E_Pa=float(g["young_support_pa"]), support_nu=float(g["poisson_support"]), plane="3d")
+        except (KeyError, TypeError, ValueError) as exc:
+            raise DatasetError(f"3D dataset metadata 'geometry' is not usable ({exc!r})") from exc
     try:
         s = dataset.metadata["scenes"][scene]
         r = s["rings"]
@@ -486,7 +553,10 @@ def _dataset_info(path: Path, ds: ReferenceDataset) -> dict:
 
 
 def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | None = None) -> tuple[CalibratedLaw, list[FamilyFit]]:
-    """Fit every family to a scene, select one, return it as a :class:`CalibratedLaw` and all fits."""
+    """Fit every family to a scene's zero-tilt points, select one, return it as a :class:`CalibratedLaw` and all fits.
+
+    The law's name is ``<scene>-<family>`` for 2D datasets and ``<scene>-3d-<family>`` for 3D ones.
+    """
     geo = scene_geometry(dataset, scene)
     pen, force, fem_err = scene_points(dataset, scene)
     fits = [fit_family(fam, pen, force, geo) for fam in FAMILIES]
@@ -504,17 +574,27 @@ def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | 
     if best.family == "foundation":
         fit_doc["foundation_modulus_estimate_Pa_per_m"] = geo.foundation_modulus_estimate_Pa_per_m()
     law = CalibratedLaw(
-        name=f"{scene}-{best.family}", scene=scene, family=best.family, parameters=best.parameters,
+        name=f"{scene}{'-3d' if geo.plane == '3d' else ''}-{best.family}", scene=scene, family=best.family, parameters=best.parameters,
         parameter_std=best.parameter_std, parameter_units=dict(PARAMETERS[best.family]), geometry=geo,
         validity_penetration_m=(float(pen.min()), float(pen.max())), dataset=dataset_info or {}, fit=fit_doc)
     return law, fits
 
 
+def committed_datasets() -> list[Path]:
+    """The committed reference datasets to calibrate on: the 2D one and every 3D one present."""
+    return [DATASET_2D] + sorted(DATA_3D_DIR.glob("*.json")) if DATA_3D_DIR.is_dir() else [DATASET_2D]
+
+
 def calibrate_dataset(path=DATASET_2D) -> list[CalibratedLaw]:
-    """One calibrated law per scene of a dataset file."""
+    """One calibrated law per scene (with zero-tilt points) of a dataset file."""
     ds = read_dataset(path)
     info = _dataset_info(Path(path), ds)
-    return [calibrate_scene(ds, scene, info)[0] for scene in ds.scenes()]
+    out = []
+    for scene in ds.scenes():
+        pts = [p for p in ds.select(scene=scene) if float(p.get("tilt_rad", 0.0)) == 0.0 and p["penetration_m"] > 0]
+        if len(pts) >= 4:
+            out.append(calibrate_scene(ds, scene, info)[0])
+    return out
 
 
 def available(directory=CALIBRATED_DIR) -> list[str]:
@@ -547,24 +627,32 @@ def load_calibrated(name: str, directory=CALIBRATED_DIR) -> CalibratedLaw:
     return CalibratedLaw.from_json(text, str(path))
 
 
-def write_calibrations(path=DATASET_2D, directory=CALIBRATED_DIR) -> list[Path]:
-    """Refit every scene of the dataset and write ``<directory>/<name>.json``; stale files of the same scenes go."""
+def _calibrate_all(paths) -> list[CalibratedLaw]:
+    paths = committed_datasets() if paths is None else [paths] if isinstance(paths, (str, Path)) else list(paths)
+    return [law for p in paths for law in calibrate_dataset(p)]
+
+
+def write_calibrations(paths=None, directory=CALIBRATED_DIR) -> list[Path]:
+    """Refit every scene of the datasets (default: all committed) and write ``<directory>/<name>.json``.
+
+    A stored file of the same scene and dataset kind but another family is removed.
+    """
     directory = Path(directory)
     out = []
-    cal = calibrate_dataset(path)
-    for law in cal:
+    for law in _calibrate_all(paths):
+        stem = law.name[: -len(law.family) - 1]
         for fam in FAMILIES:
-            old = directory / f"{law.scene}-{fam}.json"
+            old = directory / f"{stem}-{fam}.json"
             if fam != law.family and old.exists():
                 old.unlink()
         out.append(atomic_write_text(directory / f"{law.name}.json", law.to_json()))
     return out
 
 
-def check_calibrations(path=DATASET_2D, directory=CALIBRATED_DIR) -> list[str]:
-    """Differences between the stored calibrations and a fresh fit (empty list = up to date)."""
+def check_calibrations(paths=None, directory=CALIBRATED_DIR) -> list[str]:
+    """Differences between the stored calibrations and a fresh fit of the datasets (empty list = up to date)."""
     problems = []
-    for law in calibrate_dataset(path):
+    for law in _calibrate_all(paths):
         try:
             stored = load_calibrated(law.name, directory)
         except DatasetError as exc:
@@ -581,7 +669,8 @@ def main(argv: list[str] | None = None) -> int:
     """``ringcontact calibrate``: fit and store the calibrated laws of the committed 2D dataset."""
     p = argparse.ArgumentParser(prog="ringcontact calibrate",
                                 description="Fit one calibrated contact law per FEM scene and store it in contact/calibrated/.")
-    p.add_argument("--dataset", type=Path, default=DATASET_2D, help=f"reference dataset (default {DATASET_2D})")
+    p.add_argument("--dataset", type=Path, action="append",
+                   help="reference dataset (repeatable; default: the committed 2D dataset and every 3D one)")
     p.add_argument("--out", type=Path, default=CALIBRATED_DIR, help=f"directory of the JSON files (default {CALIBRATED_DIR})")
     p.add_argument("--check", action="store_true", help="only compare the stored files with a fresh fit; exit 1 on drift")
     args = p.parse_args(argv)

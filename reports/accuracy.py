@@ -52,7 +52,7 @@ LAW_LABELS = {
     "calibrated-fit": "calibrated (fit on all points)",
     "calibrated-holdout": "calibrated, held out",
 }
-DATA_3D_DIR = cal.REPO_ROOT / "fem_reference" / "data" / "3d"
+DATA_3D_DIR = cal.DATA_3D_DIR
 
 
 def _law_kwargs(geo: cal.SceneGeometry) -> dict:
@@ -178,7 +178,8 @@ def write_markdown(tables: list[dict], t3: dict) -> str:
         *ms_lines,
         "",
         f"Overall: **{'met' if ms_ok else 'NOT met'}** for the 2D (Table 2) points. Table 3: "
-        + ("see below." if t3["have_data"] else "**not shown — no 3D dataset is committed** (see the last section)."),
+        + ((f"**{'met' if t3['ok'] else 'NOT met'}** (details in the last section)." ) if t3["have_data"]
+           else "**not shown — no 3D dataset is committed** (see the last section)."),
         "",
     ]
     for t in tables:
@@ -226,6 +227,8 @@ def write_markdown(tables: list[dict], t3: dict) -> str:
               "FEM that it was calibrated on, above.", ""]
     lines += ["## Table 3 style: tilted ring (3D)", ""]
     lines += t3["lines"]
+    if t3["have_data"] and t3["rows"]:
+        lines += ["", "![3D force–displacement](accuracy-table3-force-displacement.png)"]
     lines += ["", "Data: [accuracy-table2.csv](accuracy-table2.csv)"
               + (", [accuracy-table3.csv](accuracy-table3.csv)" if t3["have_data"] else "") + ".", ""]
     return "\n".join(lines)
@@ -256,91 +259,187 @@ def table2_csv(tables: list[dict]) -> str:
 # Table 3 (3D): whatever is committed under fem_reference/data/3d/
 # --------------------------------------------------------------------------------------------
 
-def load_3d_points() -> tuple[list[dict], list[str]]:
-    """Tilted FEM points (with ``tilt_rad``) of every committed 3D dataset, and the file names."""
-    pts, files = [], []
-    if DATA_3D_DIR.is_dir():
-        for path in sorted(DATA_3D_DIR.glob("*.json")):
-            ds = read_dataset(path)
-            files.append(str(path.relative_to(cal.REPO_ROOT)))
-            for p in ds.points:
-                if "tilt_rad" in p:
-                    pts.append(dict(p, _source=path.name, _metadata_scenes=ds.metadata.get("scenes", {})))
-    return pts, files
+T3_METHODS = {
+    "conformal-paper": "conformal, paper's tilt model (Eqs. 8–19)",
+    "calibrated-kernel": "calibrated, paper's tilt model (compiled kernel)",
+    "calibrated-slices": "calibrated, slice-integrated",
+}
 
 
-def table3(calibrations: dict[str, cal.CalibratedLaw]) -> dict:
-    """Table 3-style comparison from the committed 3D data (aligned tilt, centre penetration)."""
-    pts, files = load_3d_points()
-    if not pts:
-        return {"have_data": False, "rows": [], "lines": [
-            f"No 3D reference dataset is committed (`{DATA_3D_DIR.relative_to(cal.REPO_ROOT)}/` "
-            + ("is empty" if DATA_3D_DIR.is_dir() else "does not exist")
+def _rel(path: Path) -> str:
+    try:
+        return str(Path(path).resolve().relative_to(cal.REPO_ROOT))
+    except ValueError:
+        return str(path)
+
+
+def _paper_t3(tilt_arcmin: float, pen_mm: float):
+    row = PAPER_TABLE3_PCT.get(round(tilt_arcmin, 6))
+    j = next((k for k, p in enumerate(PENETRATIONS_MM) if math.isclose(p, pen_mm, rel_tol=1e-9)), None)
+    return None if row is None or j is None else row[j]
+
+
+def table3_rows(ds: ReferenceDataset, scene: str, law: cal.CalibratedLaw) -> list[dict]:
+    """One row per tilted FEM point: FEM force/moment/width and each method's prediction and % error."""
+    geo = law.geometry
+    per_w = laws.force_per_width_function("conformal", modulus="plane_stress", clearance_m=geo.clearance_m,
+                                          bearing_E_Pa=geo.bearing_E_Pa, bearing_nu=geo.bearing_nu,
+                                          support_E_Pa=geo.support_E_Pa, support_nu=geo.support_nu)
+    params = law.loose_support_params()
+    rows = []
+    for p in sorted(ds.select(scene=scene), key=lambda q: (q["tilt_rad"], q["penetration_m"])):
+        th, pen = float(p.get("tilt_rad", 0.0)), float(p["penetration_m"])
+        if th == 0.0 or pen <= 0.0:
+            continue
+        y = geo.clearance_m + pen
+        rc = tilt.tilted_contact(y, 0.0, 0.0, th, clearance_m=geo.clearance_m, width_m=geo.width_m, force_per_width=per_w)
+        rk = loose_support_force(params, y, 0.0, 0.0, th)
+        fs, ms, ws = law.tilted(pen, th)
+        pred = {"conformal-paper": (-float(rc.Fy_N), float(rc.Mz_Nm), float(rc.width_1_m)),
+                "calibrated-kernel": (-float(rk.Fy_N), float(rk.Mz_Nm), None),
+                "calibrated-slices": (fs, ms, ws)}
+        F, M = float(p["force_n"]), p.get("moment_nm")
+        row = {"scene": scene, "tilt_arcmin": th / ARCMIN, "penetration_mm": pen / MM, "force_fem_N": F,
+               "force_error_rel": float(p.get("force_error_rel") or 0.0), "moment_fem_Nm": None if M is None else float(M),
+               "moment_error_rel": None if p.get("moment_error_rel") is None else float(p["moment_error_rel"]),
+               "width_fem_m": p.get("width_m")}
+        for key, (f, m, w) in pred.items():
+            row[f"{key}_N"] = f
+            row[f"{key}_pct"] = 100.0 * (f - F) / F
+            row[f"{key}_moment_Nm"] = m
+            row[f"{key}_moment_pct"] = (100.0 * (m - M) / M) if (M is not None and M != 0.0) else None
+            row[f"{key}_width_m"] = w
+        rows.append(row)
+    return rows
+
+
+def table3() -> dict:
+    """Table 3-style comparison from every committed 3D dataset (centre penetration, tilt about z)."""
+    paths = sorted(DATA_3D_DIR.glob("*.json")) if DATA_3D_DIR.is_dir() else []
+    rel = _rel(DATA_3D_DIR)
+    if not paths:
+        return {"have_data": False, "rows": [], "ok": None, "laws": [], "lines": [
+            f"No 3D reference dataset is committed (`{rel}/` " + ("is empty" if DATA_3D_DIR.is_dir() else "does not exist")
             + "). The paper's Table 3 (its conformal law with tilt vs its FEM: 0.5′: 10.96/4.11/0.60/1.14/1.76 %, "
             "1′: 2.34/2.87/2.02/1.37/10.51 %, 2′: 9.26/2.94/0.70/2.71/4.92 %) therefore has no counterpart here "
             "yet, and the calibrated law's tilted accuracy is **not shown**. This section fills itself in when "
-            "`fem_reference` commits a 3D dataset (points with `tilt_rad`, `penetration_m`, `force_n`, optional "
-            "`moment_nm`/`moment_z_nm`, `contact_width_m`)."]}
-    rows = []
-    for p in pts:
-        scene = p["scene"]
-        pen, th = float(p["penetration_m"]), abs(float(p["tilt_rad"]))
-        law = calibrations.get(scene)
-        geo = law.geometry if law else None
-        if geo is None:
-            continue
-        kw = _law_kwargs(geo)
-        modulus = geo.modulus
-        per_w = laws.force_per_width_function("conformal", modulus=modulus,
-                                              **{k: v for k, v in kw.items() if k != "width_m"})
-        rc = tilt.aligned_tilt_contact(np.array([pen]), th, clearance_m=geo.clearance_m, width_m=geo.width_m,
-                                       force_per_width=per_w)
-        params = law.loose_support_params()
-        r = loose_support_force(params, geo.clearance_m + pen, 0.0, 0.0, th)
-        f_cal = float(np.hypot(r.Fy_N, r.Fz_N))
-        m_fem = p.get("moment_nm", p.get("moment_z_nm"))
-        row = {"scene": scene, "tilt_arcmin": th / ARCMIN, "penetration_mm": pen / MM, "force_fem_N": float(p["force_n"]),
-               "fem_error_rel": float(p.get("force_error_rel", 0.0)),
-               "conformal_pct": 100 * (float(rc.force_N[0]) - p["force_n"]) / p["force_n"],
-               "calibrated_pct": 100 * (f_cal - p["force_n"]) / p["force_n"],
-               "moment_fem_Nm": None if m_fem is None else abs(float(m_fem)),
-               "moment_conformal_Nm": float(rc.moment_Nm[0]), "moment_calibrated_Nm": float(np.hypot(r.My_Nm, r.Mz_Nm)),
-               "width_fem_m": p.get("contact_width_m"), "width_law_m": float(rc.contact_width_m[0])}
-        rows.append(row)
-    lines = [f"Source: {', '.join(f'`{f}`' for f in files)}. Rows: tilt; columns: centre penetration; cells: "
-             "force difference in % (conformal law with the tilt geometry of Eqs. 8–19 / calibrated law of the scene "
-             "through the same tilt geometry); paper's |%| in brackets.", ""]
-    tilts = sorted({round(r["tilt_arcmin"], 6) for r in rows})
-    pens = sorted({round(r["penetration_mm"], 9) for r in rows})
-    lines += ["| scene, tilt | " + " | ".join(f"{p:g} mm" for p in pens) + " |", "|---|" + "---|" * len(pens)]
-    for scene in sorted({r["scene"] for r in rows}):
-        for tl in tilts:
-            cells = []
-            for pm in pens:
-                hit = [r for r in rows if r["scene"] == scene and round(r["tilt_arcmin"], 6) == tl
-                       and round(r["penetration_mm"], 9) == pm]
-                if not hit:
-                    cells.append("")
-                    continue
-                r = hit[0]
-                paper = PAPER_TABLE3_PCT.get(tl)
-                j = PENETRATIONS_MM.index(pm) if pm in PENETRATIONS_MM else None
-                ptxt = f" ({paper[j]:.2f})" if paper and j is not None else ""
-                cells.append(f"{r['conformal_pct']:+.2f} / {r['calibrated_pct']:+.2f}{ptxt}")
-            lines.append(f"| {scene}, {tl:g}′ | " + " | ".join(cells) + " |")
-    lines += ["", "The calibrated law was fitted at zero tilt only: these tilted cells are out-of-sample by construction."]
-    return {"have_data": True, "rows": rows, "lines": lines}
+            "`fem_reference` commits a 3D dataset (points with `tilt_rad`, `penetration_m`, `force_n`, "
+            "`moment_nm`, `width_m`)."]}
+    rows, laws_, lines, all_ok = [], [], [], True
+    for path in paths:
+        ds = read_dataset(path)
+        info = cal._dataset_info(path, ds)
+        for scene in ds.scenes():
+            try:
+                law, fits = cal.calibrate_scene(ds, scene, info)
+            except (cal.DatasetError, cal.InputError) as exc:
+                lines.append(f"- `{path.name}` scene `{scene}`: no zero-tilt calibration possible ({exc}).")
+                continue
+            chosen = next(f for f in fits if f.family == law.family)
+            laws_.append(law)
+            srows = table3_rows(ds, scene, law)
+            rows += srows
+            tilts = sorted({round(r["tilt_arcmin"], 6) for r in srows})
+            pens = sorted({round(r["penetration_mm"], 9) for r in srows})
+            pars = ", ".join(f"{k} = {v:.6g} ± {law.parameter_std[k]:.2g} {law.parameter_units[k]}"
+                             for k, v in law.parameters.items())
+            lines += [f"### `{_rel(path)}`, scene `{scene}`", "",
+                      f"Calibrated at zero tilt on this dataset's own {len(chosen.penetration_m)} points: `{law.name}`, "
+                      f"{pars} (held-out max {100 * chosen.holdout_max:.3f} % at zero tilt). Every tilted cell below is "
+                      "therefore held out. Cells: force difference in %, signed; the paper's |%| in brackets.", "",
+                      "| tilt | method | " + " | ".join(f"{p:g} mm" for p in pens) + " |",
+                      "|---|---|" + "---|" * len(pens)]
+
+            def find(tl, pm):
+                return next((r for r in srows if round(r["tilt_arcmin"], 6) == tl and round(r["penetration_mm"], 9) == pm), None)
+
+            for tl in tilts:
+                for key, label in T3_METHODS.items():
+                    cells = []
+                    for pm in pens:
+                        r = find(tl, pm)
+                        paper = _paper_t3(tl, pm)
+                        cells.append("" if r is None else f"{r[key + '_pct']:+.2f}"
+                                     + (f" ({paper:.2f})" if paper is not None and key == "conformal-paper" else ""))
+                    lines.append(f"| {tl:g}′ | {label} | " + " | ".join(cells) + " |")
+                lines.append(f"| {tl:g}′ | FEM force (N) ± error (%) | " + " | ".join(
+                    "" if find(tl, pm) is None else f"{find(tl, pm)['force_fem_N']:,.0f} ± {100 * find(tl, pm)['force_error_rel']:.2f}".replace(",", " ")
+                    for pm in pens) + " |")
+            lines += ["", "Moment M_z (difference in %, FEM value in N·m) and contact width (FEM / law, mm):", "",
+                      "| tilt | quantity | " + " | ".join(f"{p:g} mm" for p in pens) + " |", "|---|---|" + "---|" * len(pens)]
+            for tl in tilts:
+                for key in ("conformal-paper", "calibrated-slices"):
+                    lines.append(f"| {tl:g}′ | M_z, {T3_METHODS[key]} | " + " | ".join(
+                        "" if find(tl, pm) is None or find(tl, pm)[key + "_moment_pct"] is None
+                        else f"{find(tl, pm)[key + '_moment_pct']:+.1f}" for pm in pens) + " |")
+                lines.append(f"| {tl:g}′ | M_z FEM (N·m) | " + " | ".join(
+                    "" if find(tl, pm) is None or find(tl, pm)["moment_fem_Nm"] is None
+                    else f"{find(tl, pm)['moment_fem_Nm']:.1f}" for pm in pens) + " |")
+                lines.append(f"| {tl:g}′ | width FEM / paper law / slices (mm) | " + " | ".join(
+                    "" if find(tl, pm) is None else
+                    f"{(find(tl, pm)['width_fem_m'] or float('nan')) / MM:.1f} / {find(tl, pm)['conformal-paper_width_m'] / MM:.1f} / "
+                    f"{find(tl, pm)['calibrated-slices_width_m'] / MM:.1f}" for pm in pens) + " |")
+            # must-show: calibrated (slice-integrated) vs the paper's Table 3 cells
+            ms = []
+            for tl, paper_row in PAPER_TABLE3_PCT.items():
+                for pm, paper in zip(PENETRATIONS_MM, paper_row):
+                    r = find(round(tl, 6), round(pm, 9))
+                    if r is None:
+                        ms.append((tl, pm, None, paper))
+                    else:
+                        ms.append((tl, pm, abs(r["calibrated-slices_pct"]), paper))
+            have = [m for m in ms if m[2] is not None]
+            ok = bool(have) and all(v < q for _, _, v, q in have) and len(have) == len(ms)
+            all_ok &= ok
+            lines += ["", "Must show (calibrated law, slice-integrated, held out, vs the paper's Table 3): "
+                      + "; ".join(f"{tl:g}′/{pm:g} mm: " + ("no FEM point" if v is None else f"{v:.2f} % {'<' if v < q else '≥'} {q:.2f} %")
+                                  for tl, pm, v, q in ms) + f" — **{'met' if ok else 'NOT met'}**.", ""]
+    return {"have_data": True, "rows": rows, "ok": all_ok, "laws": laws_, "lines": lines}
+
+
+T3_CSV_COLUMNS = ("scene", "tilt_arcmin", "penetration_mm", "force_fem_N", "force_error_rel", "moment_fem_Nm",
+                  "moment_error_rel", "width_fem_m") + tuple(
+    f"{k}_{q}" for k in T3_METHODS for q in ("N", "pct", "moment_Nm", "moment_pct", "width_m"))
 
 
 def table3_csv(rows: list[dict]) -> str:
-    cols = ("scene", "tilt_arcmin", "penetration_mm", "force_fem_N", "fem_error_rel", "conformal_pct", "calibrated_pct",
-            "moment_fem_Nm", "moment_conformal_Nm", "moment_calibrated_Nm", "width_fem_m", "width_law_m")
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(cols)
+    w.writerow(T3_CSV_COLUMNS)
     for r in rows:
-        w.writerow(["" if r[c] is None else (f"{r[c]:.10g}" if isinstance(r[c], float) else r[c]) for c in cols])
+        w.writerow(["" if r.get(c) is None else (f"{r[c]:.10g}" if isinstance(r[c], float) else r[c]) for c in T3_CSV_COLUMNS])
     return buf.getvalue()
+
+
+def make_figure_3d(t3: dict):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = t3["rows"]
+    tilts = sorted({round(r["tilt_arcmin"], 6) for r in rows})
+    fig, axes = plt.subplots(1, len(tilts), figsize=(4.2 * len(tilts), 4.2), squeeze=False)
+    for ax, tl in zip(axes[0], tilts):
+        rr = sorted((r for r in rows if round(r["tilt_arcmin"], 6) == tl), key=lambda r: r["penetration_mm"])
+        x = np.array([r["penetration_mm"] for r in rr])
+        F = np.array([r["force_fem_N"] for r in rr])
+        ax.errorbar(x, F / 1e3, yerr=np.array([r["force_error_rel"] for r in rr]) * F / 1e3, fmt="ks", ms=4, capsize=3,
+                    label="3D FEM (Richardson error bar)")
+        for k, (key, label) in enumerate(T3_METHODS.items()):
+            ax.plot(x, np.array([r[key + "_N"] for r in rr]) / 1e3, marker="o", ms=3, color=f"C{k}", label=label)
+        ax.set_title(f"tilt {tl:g}′")
+        ax.set_xlabel("centre penetration Δr (mm)")
+        ax.set_ylabel("contact force (kN)")
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=7)
+    fig.suptitle("Tilted ring: laws against the 3D FEM reference")
+    fig.tight_layout()
+    png, svg = io.BytesIO(), io.BytesIO()
+    fig.savefig(png, format="png", dpi=110, metadata={"Software": None})
+    with plt.rc_context({"svg.hashsalt": "ringcontact-accuracy-3d"}):
+        fig.savefig(svg, format="svg", metadata={"Date": None, "Creator": None})
+    plt.close(fig)
+    return png.getvalue(), svg.getvalue()
 
 
 # --------------------------------------------------------------------------------------------
@@ -413,8 +512,7 @@ def compute(dataset_path=cal.DATASET_2D) -> tuple[list[dict], dict]:
         law, _ = cal.calibrate_scene(ds, scene, info)
         t["law"] = law
         tables.append(t)
-    t3 = table3({t["scene"]: t["law"] for t in tables})
-    return tables, t3
+    return tables, table3()
 
 
 def build(out_dir: Path) -> list[Path]:
@@ -425,6 +523,10 @@ def build(out_dir: Path) -> list[Path]:
     files = [atomic_write_text(out_dir / "accuracy-table2.csv", table2_csv(tables))]
     if t3["have_data"]:
         files.append(atomic_write_text(out_dir / "accuracy-table3.csv", table3_csv(t3["rows"])))
+        if t3["rows"]:
+            png3, svg3 = make_figure_3d(t3)
+            files += [atomic_write_bytes(out_dir / "accuracy-table3-force-displacement.png", png3),
+                      atomic_write_bytes(out_dir / "accuracy-table3-force-displacement.svg", svg3)]
     files += [atomic_write_bytes(out_dir / "accuracy-force-displacement.png", png),
               atomic_write_bytes(out_dir / "accuracy-force-displacement.svg", svg),
               atomic_write_text(out_dir / "accuracy-table2.md", write_markdown(tables, t3))]

@@ -95,3 +95,56 @@ def test_committed_report_is_what_the_builder_writes_now(tmp_path):
     has3d = accuracy.DATA_3D_DIR.is_dir() and any(accuracy.DATA_3D_DIR.glob("*.json"))
     text = (tmp_path / "accuracy-table2.md").read_text()
     assert ("No 3D reference dataset is committed" in text) == (not has3d)
+
+
+def _winkler_slices(k, pen, th, d0=5e-5, R=0.1, l=0.03):
+    """Independent slice integral of a Winkler bed (Johnson 1985 §4.3) with scipy.quad: (load, M_z)."""
+    from scipy.integrate import quad
+
+    def h(d):
+        if d <= 0:
+            return 0.0
+        e = d0 + d
+        eps = np.arccos(d0 / e)
+        return k * R * e * (eps - np.sin(eps) * np.cos(eps))
+
+    brk = [-pen / th] if th and -l / 2 < -pen / th < l / 2 else None
+    F = quad(lambda x: h(pen + th * x), -l / 2, l / 2, points=brk, epsabs=0, epsrel=1e-11)[0]
+    M = quad(lambda x: -x * h(pen + th * x), -l / 2, l / 2, points=brk, epsabs=1e-6, epsrel=1e-11)[0]
+    return F, M
+
+
+def test_table3_on_a_synthetic_3d_winkler_dataset(tmp_path, monkeypatch):
+    # A 3D dataset whose "FEM" is an exact Winkler bed: the zero-tilt calibration must recover k_f and
+    # the slice-integrated tilted prediction must reproduce every tilted point (force and moment).
+    from contact.dataset import write_dataset
+    from contact.units import ARCMIN
+
+    k = 1.25e13
+    geom = {"bearing_inner_radius_m": 0.09, "bearing_outer_radius_m": 0.1, "clearance_m": 5e-5,
+            "support_thickness_m": 0.01, "width_m": 0.03, "young_bearing_pa": 204e9, "young_support_pa": 204e9,
+            "poisson_bearing": 0.3, "poisson_support": 0.3}
+    pts = []
+    for t in (0.0, 0.5, 1.0, 2.0):
+        for pm in (0.005, 0.01, 0.02, 0.03, 0.04, 0.05):
+            F, M = _winkler_slices(k, pm * 1e-3, t * ARCMIN)
+            pts.append({"scene": "clamped", "penetration_m": pm * 1e-3, "tilt_rad": t * ARCMIN, "force_n": F,
+                        "force_error_rel": 1e-4, "moment_nm": M, "width_m": 0.03})
+    d3 = tmp_path / "3d"
+    write_dataset(d3 / "fem3d-reference.json",
+                  {"title": "synthetic", "created_utc": "x", "code_revision": "x", "package_versions": {}, "geometry": geom},
+                  {"scene": "-", "penetration_m": "m", "tilt_rad": "rad", "force_n": "N", "force_error_rel": "-",
+                   "moment_nm": "N*m", "width_m": "m"}, pts)
+    monkeypatch.setattr(accuracy, "DATA_3D_DIR", d3)
+    t3 = accuracy.table3()
+    assert t3["have_data"] and t3["ok"] is True
+    (law,) = t3["laws"]
+    assert law.name == "clamped-3d-foundation"
+    assert law.parameters["foundation_modulus_Pa_per_m"] == pytest.approx(k, rel=1e-9)
+    assert len(t3["rows"]) == 18
+    for r in t3["rows"]:
+        assert abs(r["calibrated-slices_pct"]) < 1e-6
+        assert r["calibrated-slices_moment_pct"] == pytest.approx(0.0, abs=1e-5)
+    assert "**met**" in "\n".join(t3["lines"])
+    text = accuracy.table3_csv(t3["rows"])
+    assert text.count("\n") == 19

@@ -185,3 +185,22 @@ def test_calibrated_params_refuse_another_geometry():
         law.loose_support_params(clearance_m=1e-4)
     p = law.loose_support_params(mu=0.3, preload_N=5000.0, c_c_s_per_m=100.0)
     assert p.kernel_args[2] == 2.0 and p.neat_fit_limit_m == math.inf and p.calibration_name == law.name
+
+
+def test_rotor_solver_takes_a_calibrated_law_by_name():
+    # The rotor wraps LooseSupportParams with rotor.integrate.support_law_from_params; a calibrated
+    # law loaded by name goes through both its numpy force and its compiled kernel unchanged.
+    from rotor.integrate import support_law_from_params
+
+    law = cal.load_calibrated("clamped-foundation")
+    sl = support_law_from_params(law.loose_support_params(c_c_s_per_m=100.0))
+    u = np.array([law.geometry.clearance_m + 2e-5, 0.0, 0.0, 0.0])
+    expected = law.force([2e-5]).force_N[0]
+    assert -sl.force(u, np.zeros(4))[0] == pytest.approx(expected, rel=1e-12)
+    f, Ju, _ = sl.kernel(u, np.zeros(4), sl.params)
+    assert -f[0] == pytest.approx(expected, rel=1e-12)
+    # radial tangent stiffness dP/dΔr = k_f R l (ε + sin ε cos ε) (derivative of the Winkler law)
+    e = law.geometry.clearance_m + 2e-5
+    eps = math.acos(law.geometry.clearance_m / e)
+    k_t = law.parameters["foundation_modulus_Pa_per_m"] * 0.1 * 0.03 * (eps + math.sin(eps) * math.cos(eps))
+    assert -Ju[0, 0] == pytest.approx(k_t, rel=1e-10)
