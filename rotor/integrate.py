@@ -39,6 +39,19 @@ unconditionally stable for linear systems, but with ``ω_c Δt > 2`` a contact
 event is crossed in fewer than about three steps: Newton then fails or the impact
 energy is wrong.)
 
+Safeguards not in the paper (identical in both schemes, so they still agree)
+--------------------------------------------------------------------------
+* Backtracking on ``‖F‖`` when a full Newton step does not reduce it (kinks of the contact
+  law: first touch, damping clip, edge switch).
+* If Newton does not converge with a face slipping (the regularised direction
+  ``w/√(|w|²+w_reg²)`` is very stiff near ``w = 0``), that face is tried in stick.
+* The law's one-edge selection (contact-laws.md §8, Q8) is discontinuous where the two edge
+  penetrations cross; there an implicit step can have no exact root. After the fallbacks, the
+  least-residual iterate is accepted and counted in ``Trajectory.unconverged_steps``
+  (typically 0–1 % of the steps; reported by the benchmark and the ``simulate`` job).
+* Initial modes: a face asked to start stuck whose holding force exceeds ``μN`` starts slipping
+  (:func:`initial_state`).
+
 This module is the *reference*: clear and faithful, not fast. Use
 :mod:`rotor.production` for real runs; the two agree to the Newton tolerance.
 """
@@ -751,3 +764,29 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
             coupling = ((cp.a[2], cp.a[3]), (cp.b[2], cp.b[3]), float(cp.a1_n_m_rad3))
     return RotorSystem(model.M, model.C, model.G, model.K + model.K_c, float(speed_rad_s), force, off, L, sup,
                        tuple(model.dof_names), coupling)
+
+
+def linear_initial_state(system: RotorSystem, t0: float = 0.0, lock_support: bool = True):
+    """``(q0, v0)``: the exact periodic solution at ``t0`` of the *linear* system with the loose
+    support locked (bearing and support moving together, both end faces stuck) or free.
+
+    A good start for a steady-state run: the 1X/2X response of the rotor is already there,
+    so only the (much smaller) nonlinear correction has to decay. Static part
+    ``K (q − Δq_m) = static``, harmonics ``(K − (kΩ)² M + i kΩ D) X_k = c_k − i s_k``.
+    """
+    n = system.n
+    rows = [system.lock]
+    if lock_support and system.support is not None:
+        rows.append(system.support.relative_map(n))
+    T = cons.null_space_map(np.vstack(rows))
+    Mr, Dr, Kr = T.T @ system.M @ T, T.T @ system.D @ T, T.T @ system.K @ T
+    f = system.force
+    q = T @ np.linalg.solve(Kr, T.T @ (f.static + system.K @ system.offset))
+    v = np.zeros(n)
+    for k, c, s in zip(f.orders, f.cos, f.sin):
+        wk = k * f.omega_rad_s
+        X = T @ np.linalg.solve(Kr - wk * wk * Mr + 1j * wk * Dr, T.T @ (c - 1j * s))
+        e = np.exp(1j * wk * t0)
+        q += (X * e).real
+        v += (1j * wk * X * e).real
+    return q, v
