@@ -271,7 +271,7 @@ def build_compliance(geom: RingPair3D, level: MeshLevel3D, scene: str = "clamped
     area = np.outer(wphi, wx).ravel()
     build = time.perf_counter() - t0
     return ContactCompliance(scene, level, geom, phi_grid, x_grid, np.repeat(phi_grid, len(x_grid)),
-                             np.tile(x_grid, len(phi_grid)), area, G, ob.n_dofs + os_.n_dofs, build,
+                             np.tile(x_grid, len(phi_grid)), area, G, int(ob.n_dofs + os_.n_dofs), build,
                              {"factor_s": ob.factor_s + os_.factor_s, "compliance_s": ob.solve_s + os_.solve_s})
 
 
@@ -283,7 +283,8 @@ def save_compliance(comp: ContactCompliance, path) -> None:
     from contact.files import atomic_write_bytes
     buf = io.BytesIO()
     meta = {"scene": comp.scene, "level": comp.level.as_dict(), "geom": comp.geom.as_dict(),
-            "n_dofs": comp.n_dofs, "build_s": comp.build_s, "timings": comp.timings}
+            "n_dofs": int(comp.n_dofs), "build_s": float(comp.build_s),
+            "timings": {k: float(v) for k, v in comp.timings.items()}}
     np.savez(buf, meta=np.array(json.dumps(meta)), phi_grid=comp.phi_grid, x_grid=comp.x_grid,
              area_m2=comp.area_m2, G=comp.G)
     atomic_write_bytes(path, buf.getvalue())

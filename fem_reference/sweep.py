@@ -5,10 +5,9 @@ the estimate misses 0.1 % and the mesh stays affordable) (all sizes scale with t
 size, :class:`~fem_reference.mesh.MeshSpec`); the finest value is reported together with the
 observed order and an error estimate (Richardson 1911; Roache 1998):
 
-* monotone convergence (``d1 = f1 − f2`` and ``d2 = f2 − f3`` of one sign, ``|d1| > |d2|``):
-  ``p = log2(d1/d2)``, error of ``f3`` = ``|d2|/(2^p − 1)`` with ``p`` clipped to [0.5, 6];
-* otherwise (oscillating or not yet asymptotic): order reported as NaN → ``null`` and the
-  error estimate is the last change ``|d2|`` (conservative for a contracting sequence).
+* error estimate: the larger of Roache's GCI (observed order clipped to [0.5, 2], safety 1.25;
+  order 0.5 when the sequence is not monotone) and the finest level's error implied by the two
+  coarser levels at the nominal order 2 (see :func:`richardson`).
 """
 from __future__ import annotations
 
@@ -65,18 +64,30 @@ class Richardson:
         return self.error_abs / abs(self.value) if self.value else 0.0
 
 
+SAFETY_FACTOR = 1.25      # Roache's GCI factor for three-grid studies
+MAX_ORDER = 2.0           # the square-root pressure edge limits the force's order (P1 observed ~2)
+
+
 def richardson(values, ratio: float = 2.0) -> Richardson:
-    """Observed order and error estimate of the finest of three values (coarse → fine)."""
+    """Observed order and a conservative error estimate of the finest of three values (coarse → fine).
+
+    error = max(GCI, nominal): ``GCI = 1.25·|d2|/(r^p − 1)`` with the observed order ``p`` clipped to
+    [0.5, 2] (Roache 1998), and ``nominal = |d1|/(r²(r² − 1))``, the finest level's error implied by
+    the coarse pair at order 2. The second term catches the arc-edge "lucky" cancellations that make
+    ``|d2|`` alone too small (measured: Δr = 0.002 mm, 4-2-1 mm, true error 1.3e-4, |d2| 3.7e-5).
+    ``extrapolated`` uses the unclipped observed order when the sequence is monotone, else = finest.
+    """
     f1, f2, f3 = (float(v) for v in values)
     d1, d2 = f1 - f2, f2 - f3
-    if d2 == 0.0:
-        return Richardson(f3, math.nan, 0.0, f3)
+    nominal = abs(d1) / (ratio ** MAX_ORDER * (ratio ** MAX_ORDER - 1))
     if d1 * d2 > 0 and abs(d1) > abs(d2):
         p = math.log(d1 / d2) / math.log(ratio)
-        pc = min(max(p, 0.5), 6.0)
-        err = abs(d2) / (ratio ** pc - 1)
-        return Richardson(f3, p, err, f3 - math.copysign(err, d2))
-    return Richardson(f3, math.nan, abs(d2), f3)
+        pc = min(max(p, 0.5), MAX_ORDER)
+        gci = SAFETY_FACTOR * abs(d2) / (ratio ** pc - 1)
+        extrap = f3 - d2 / (ratio ** p - 1)
+        return Richardson(f3, p, max(gci, nominal), extrap)
+    gci = SAFETY_FACTOR * abs(d2) / (ratio ** 0.5 - 1) if d2 else 0.0
+    return Richardson(f3, math.nan, max(gci, nominal) if d2 or d1 else 0.0, f3)
 
 
 def spec_for(scene: Scene, h_contact_m: float, order: int = DEFAULT_ORDER) -> MeshSpec:

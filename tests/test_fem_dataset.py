@@ -73,9 +73,13 @@ def test_richardson_recovers_order_and_limit_of_a_power_law():
     r = richardson([f0 + C * h ** p for h in (4.0, 2.0, 1.0)])
     assert r.observed_order == pytest.approx(p, rel=1e-10)
     assert r.extrapolated == pytest.approx(f0, rel=1e-12)
-    assert r.error_abs == pytest.approx(C, rel=1e-10)
+    # Roache's GCI with safety factor 1.25 bounds the true error C·1^p
+    assert r.error_abs == pytest.approx(1.25 * C, rel=1e-10)
+    # a "lucky" small last change does not hide the coarse pair's error (nominal order 2)
+    lucky = richardson([1.0, 0.9, 0.8999])
+    assert lucky.error_abs >= 0.1 / 12
     osc = richardson([1.0, 0.9, 0.91])
-    assert math.isnan(osc.observed_order) and osc.error_abs == pytest.approx(0.01)
+    assert math.isnan(osc.observed_order) and osc.error_abs >= 0.01
 
 
 @pytest.fixture(scope="module")
