@@ -18,6 +18,14 @@ measures how much, per boundary-condition scene. This module fits, per scene, th
     ``P = k_f R l e (ε − sin ε cos ε)``, ``R`` the contact radius, ``l`` the width. For thin
     rings clamped on their far faces ``k_f`` should be the constrained (oedometric) modulus
     over the total ring thickness, ``M/(h_b + h_s)``; the fit is compared with that.
+``conformal-compliance`` (1 parameter)
+    The conformal law's force–angle relation (exact for a pin in an infinite plate) with the
+    penetration of a finite body: the rigid overlap ``δ0(sec ε − 1)`` plus the elastic approach
+    of the contact in series, ``P/(π E* l) · (2 ln(1/sin ε) + C)``. The ``2 ln`` term is the
+    logarithm of 2D contact mechanics (the approach of a line contact of half-width ``R sin ε``,
+    Johnson 1985 §5.6); the dimensionless ``C`` lumps the far field (support size and how it is
+    held). ``P(Δr)`` is the root of a monotone equation in ``b² = tan²(ε/2)`` (bisection), so
+    this family is not available in the compiled kernel.
 ``power`` (2 parameters)
     ``P = C · l · Δr^n``: the form of Pereira et al. (2015) with its constants refitted.
 
@@ -65,7 +73,8 @@ DATASET_2D = REPO_ROOT / "fem_reference" / "data" / "fem2d-reference.json"
 DATA_3D_DIR = REPO_ROOT / "fem_reference" / "data" / "3d"
 CALIBRATED_DIR = Path(__file__).resolve().parent / "calibrated"
 SELECTION_GAIN = 2.0          # a k+1-parameter family must at least halve the held-out RMS error
-FAMILIES = ("conformal-scaled", "foundation", "power")
+FAMILIES = ("conformal-scaled", "foundation", "conformal-compliance", "power")
+LINEAR_FAMILIES = ("conformal-scaled", "foundation", "power")       # log P linear in the fit coordinates
 KERNEL_LAW_CODE = {"conformal-scaled": 0.0, "power": 1.0, "foundation": 2.0}
 
 
@@ -152,11 +161,44 @@ def _base_and_design(family: str, pen: np.ndarray, geo: SceneGeometry) -> tuple[
     raise InputError(f"family = {family!r}: must be one of {', '.join(FAMILIES)}")
 
 
+def conformal_compliance_force(penetration_m, constant: float, geo: SceneGeometry) -> np.ndarray:
+    """Force (N) of the ``conformal-compliance`` family at penetrations Δr (m) (module docstring).
+
+    With ``s = b²``: ``Δr/δ0 = 2s/(1−s) + 2 s(1+s)/D(s) · (2 ln((1+s)/(2√s)) + C)`` and
+    ``P = 2π E* δ0 l s(1+s)/D(s)``; solved for s by bisection on ``(0, s_max)``, ``D(s_max) = 0``.
+    """
+    pen = np.asarray(penetration_m, dtype=float)
+    flat = np.maximum(pen.ravel(), 0.0)
+    alpha, _ = laws.dundurs_constants(geo.bearing_E_Pa, geo.bearing_nu, geo.support_E_Pa, geo.support_nu, geo.modulus)
+    s_max_pen = laws.conformal_neat_fit_limit_m(geo.clearance_m, alpha)
+    s_max = 1.0 if math.isinf(s_max_pen) else s_max_pen / (2 * geo.clearance_m + s_max_pen)
+    target = flat / geo.clearance_m
+
+    def rhs(sv):
+        D = laws.conformal_denominator(sv, alpha)
+        g = sv * (1 + sv) / D
+        return 2 * sv / (1 - sv) + 2 * g * (2 * np.log((1 + sv) / (2 * np.sqrt(sv))) + constant), g
+
+    lo = np.full(flat.shape, 1e-300)
+    hi = np.full(flat.shape, s_max * (1 - 1e-12))
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        big = rhs(mid)[0] > target
+        hi = np.where(big, mid, hi)
+        lo = np.where(big, lo, mid)
+        if np.all(hi - lo <= 1e-15 * hi):
+            break
+    sv = 0.5 * (lo + hi)
+    force = 2 * math.pi * geo.e_star_Pa * geo.clearance_m * geo.width_m * rhs(sv)[1]
+    return np.where(flat > 0, force, 0.0).reshape(pen.shape)
+
+
 PARAMETERS = {
     # family: ((name, unit, from fit coordinate θ_i), ...)
     "conformal-scaled": (("stiffness_factor", "-"),),
     "foundation": (("foundation_modulus_Pa_per_m", "Pa/m"),),
     "power": (("coefficient_N_per_m_pow_n_plus_1", "N/m^(n+1)"), ("exponent", "-")),
+    "conformal-compliance": (("far_field_constant", "-"),),
 }
 
 
@@ -180,6 +222,8 @@ def _theta_from_parameters(family: str, params: dict) -> np.ndarray:
 
 def family_force(family: str, params: dict, penetration_m, geo: SceneGeometry) -> np.ndarray:
     """Force (N) of a family with given physical parameters; 0 for Δr <= 0."""
+    if family == "conformal-compliance":
+        return conformal_compliance_force(penetration_m, params["far_field_constant"], geo)
     pen = np.asarray(penetration_m, dtype=float)
     flat = pen.ravel()
     out = np.zeros(flat.size)
@@ -251,6 +295,8 @@ def fit_family(family: str, penetration_m, force_N, geo: SceneGeometry) -> Famil
     laws.check_clearance(geo.clearance_m)
     if np.any(pen <= 0) or np.any(f <= 0) or not np.all(np.isfinite(pen)) or not np.all(np.isfinite(f)):
         raise InputError(f"fit_family({family}): penetration_m and force_N must be finite and > 0")
+    if family not in LINEAR_FAMILIES:
+        return _fit_nonlinear(family, pen, f, geo)
     base, X = _base_and_design(family, pen, geo)
     y = np.log(f) - base
     theta, cov = _lstsq(y, X)
@@ -262,6 +308,37 @@ def fit_family(family: str, penetration_m, force_N, geo: SceneGeometry) -> Famil
         loo[i] = math.exp(float(X[i] @ th_i - y[i])) - 1.0
     values, std = _to_parameters(family, theta, cov)
     return FamilyFit(family, k, values, std, pen, f, fit, loo)
+
+
+def _fit_nonlinear(family: str, pen: np.ndarray, f: np.ndarray, geo: SceneGeometry) -> FamilyFit:
+    """One-parameter nonlinear least squares in log force (``conformal-compliance``), same outputs as the linear path."""
+    from scipy.optimize import least_squares
+
+    name = PARAMETERS[family][0][0]
+    bounds = (0.0, 100.0)     # C >= 0: a finite body only adds compliance; keeps Δr(s) monotone
+
+    def resid(c, idx):
+        return np.log(family_force(family, {name: float(c[0])}, pen[idx], geo)) - np.log(f[idx])
+
+    def solve(idx, c0=None):
+        if c0 is None:     # coarse scan for the start (the residual is smooth and monotone in C per point)
+            grid = np.concatenate([[0.0], np.geomspace(0.01, bounds[1], 15)])
+            c0 = grid[int(np.argmin([np.sum(resid([g], idx) ** 2) for g in grid]))]
+        return least_squares(resid, [c0], args=(idx,), bounds=bounds, x_scale=[1.0], xtol=1e-12, ftol=1e-14, gtol=1e-14)
+
+    allidx = np.arange(pen.size)
+    r = solve(allidx)
+    n = pen.size
+    s2 = float(r.fun @ r.fun) / (n - 1)
+    J = r.jac
+    var = s2 / float(J[:, 0] @ J[:, 0]) if float(J[:, 0] @ J[:, 0]) > 0 else math.inf
+    c = float(r.x[0])
+    fit = np.exp(r.fun) - 1.0
+    loo = np.empty(n)
+    for i in range(n):
+        ri = solve(allidx[allidx != i], float(r.x[0]))
+        loo[i] = math.exp(float(resid(ri.x, np.array([i]))[0])) - 1.0
+    return FamilyFit(family, 1, {name: c}, {name: math.sqrt(var)}, pen, f, fit, loo)
 
 
 def select_family(fits: list[FamilyFit]) -> FamilyFit:
@@ -379,8 +456,18 @@ class CalibratedLaw:
         return -fy, mz, width
 
     def kernel_law(self) -> tuple[float, float, float, float]:
-        """Kernel law slots ``(code, slot 3, slot 6, slot 7)`` of ``contact._kernel`` for this law."""
+        """Kernel law slots ``(code, slot 3, slot 6, slot 7)`` of ``contact._kernel`` for this law.
+
+        Raises
+        ------
+        InputError
+            for the ``conformal-compliance`` family (implicit in Δr; not in the compiled kernel).
+        """
         g = self.geometry
+        if self.family not in KERNEL_LAW_CODE:
+            raise InputError(f"calibrated law {self.name!r}: family {self.family!r} is implicit in the penetration "
+                             "and not available in the compiled loose-support kernel (families usable by the rotor: "
+                             f"{', '.join(KERNEL_LAW_CODE)})")
         if self.family == "conformal-scaled":
             return (0.0, self.parameters["stiffness_factor"] * 2.0 * math.pi * g.e_star_Pa * g.clearance_m, 0.0, 1.0)
         if self.family == "power":
@@ -394,6 +481,7 @@ class CalibratedLaw:
         ``clearance_m`` or ``width_m`` raises :class:`InputError` (the law holds for its scene only).
         """
         g = self.geometry
+        kernel_law = self.kernel_law()
         for key, val in (("clearance_m", g.clearance_m), ("width_m", g.width_m)):
             if key in overrides and not math.isclose(overrides[key], val, rel_tol=1e-9):
                 raise InputError(f"{key} = {overrides[key]:g} m: calibrated law {self.name!r} holds for "
@@ -402,7 +490,7 @@ class CalibratedLaw:
                       bearing_nu=g.bearing_nu, support_E_Pa=g.support_E_Pa, support_nu=g.support_nu,
                       law="pereira" if self.family == "power" else "conformal",
                       modulus=g.modulus if self.family != "power" else None,
-                      calibration_name=self.name, calibrated_kernel_law=self.kernel_law())
+                      calibration_name=self.name, calibrated_kernel_law=kernel_law)
         values.update(overrides)
         return CalibratedSupportParams(**values)
 
@@ -649,6 +737,31 @@ def write_calibrations(paths=None, directory=CALIBRATED_DIR) -> list[Path]:
     return out
 
 
+def _first_difference(a, b, where: str = "", rel: float = 1e-8) -> str | None:
+    """Path of the first difference between two JSON trees (floats compared to ``rel``), or None."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        if set(a) != set(b):
+            return f"{where or '/'} keys {sorted(set(a) ^ set(b))}"
+        for k in a:
+            d = _first_difference(a[k], b[k], f"{where}/{k}", rel)
+            if d:
+                return d
+        return None
+    if isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            return f"{where} length {len(a)} != {len(b)}"
+        for i, (x, y) in enumerate(zip(a, b)):
+            d = _first_difference(x, y, f"{where}/{i}", rel)
+            if d:
+                return d
+        return None
+    if isinstance(a, float) or isinstance(b, float):
+        if isinstance(a, (int, float)) and isinstance(b, (int, float)) and math.isclose(a, b, rel_tol=rel, abs_tol=1e-12):
+            return None
+        return f"{where}: {a!r} != {b!r}"
+    return None if a == b else f"{where}: {a!r} != {b!r}"
+
+
 def check_calibrations(paths=None, directory=CALIBRATED_DIR) -> list[str]:
     """Differences between the stored calibrations and a fresh fit of the datasets (empty list = up to date)."""
     problems = []
@@ -658,8 +771,9 @@ def check_calibrations(paths=None, directory=CALIBRATED_DIR) -> list[str]:
         except DatasetError as exc:
             problems.append(str(exc))
             continue
-        if stored.to_json() != law.to_json():
-            problems.append(f"{law.name}: stored file differs from a refit of {law.dataset.get('path')} "
+        diff = _first_difference(json.loads(stored.to_json()), json.loads(law.to_json()))
+        if diff is not None:
+            problems.append(f"{law.name}: stored file differs from a refit of {law.dataset.get('path')} at {diff} "
                             f"(dataset {law.dataset.get('points_sha256', '')[:12]}…, stored from "
                             f"{stored.dataset.get('points_sha256', '')[:12]}…)")
     return problems

@@ -158,9 +158,19 @@ def test_calibrated_force_domain():
 
 # ---------------------------------------------------------------------------- rotor hook
 
-@pytest.mark.parametrize("name", ["clamped-foundation", "persson-40-power"])
-def test_loose_support_kernel_uses_the_calibrated_law(name):
+def _power_law_of(name: str) -> cal.CalibratedLaw:
+    """The stored law's scene refitted with the 2-parameter power family (to exercise kernel code 1)."""
+    import dataclasses
+
     law = cal.load_calibrated(name)
+    fit = cal.fit_family("power", law.fit["penetration_m"], law.fit["force_fem_n"], law.geometry)
+    return dataclasses.replace(law, name=f"{law.scene}-power", family="power", parameters=fit.parameters,
+                               parameter_std=fit.parameter_std, parameter_units=dict(cal.PARAMETERS["power"]))
+
+
+@pytest.mark.parametrize("name", ["clamped-foundation", "power:persson-40"])
+def test_loose_support_kernel_uses_the_calibrated_law(name):
+    law = _power_law_of(name.split(":")[1]) if name.startswith("power:") else cal.load_calibrated(name)
     params = law.loose_support_params()
     pen = np.array([2e-6, 1e-5, 3e-5, 5e-5])
     r = loose_support_force(params, law.geometry.clearance_m + pen, 0.0)
@@ -204,3 +214,42 @@ def test_rotor_solver_takes_a_calibrated_law_by_name():
     eps = math.acos(law.geometry.clearance_m / e)
     k_t = law.parameters["foundation_modulus_Pa_per_m"] * 0.1 * 0.03 * (eps + math.sin(eps) * math.cos(eps))
     assert -Ju[0, 0] == pytest.approx(k_t, rel=1e-10)
+
+
+def test_conformal_compliance_inverts_its_parametric_form():
+    # Forward, explicit in s = b² = tan²(ε/2): Δr = δ0[2s/(1−s) + 2g(2 ln((1+s)/(2√s)) + C)],
+    # P = 2π E* δ0 l g with g = s(1+s)/D(s) (conformal law, Dai et al. 2025 Eq. 5). The bisection must invert it.
+    from contact import laws
+
+    geo = cal.SceneGeometry(**{**GEO.to_dict(), "radius_m": 0.1})
+    C = 2.8
+    for s_ in (1e-4, 0.01, 0.1, 0.3, 0.6):
+        D = laws.conformal_denominator(s_, 0.0)
+        g = s_ * (1 + s_) / D
+        pen = geo.clearance_m * (2 * s_ / (1 - s_) + 2 * g * (2 * math.log((1 + s_) / (2 * math.sqrt(s_))) + C))
+        P = 2 * math.pi * geo.e_star_Pa * geo.clearance_m * geo.width_m * g
+        assert cal.conformal_compliance_force(pen, C, geo) == pytest.approx(P, rel=1e-10)
+
+
+def test_persson_fem_approach_has_the_2d_contact_logarithm(dataset):
+    # In the pin-in-plate scene the FEM penetration minus the rigid overlap δ0(sec ε − 1), per unit
+    # P/(π E* l), grows like 2 ln(1/sin ε) (+ const): the log term of the approach of a 2D contact
+    # (Johnson 1985 §5.6). Fitted slope over the 12 FEM points must be 2 within 3 %.
+    from contact import laws
+
+    pts = [p for p in dataset.select(scene="persson-40")]
+    e_star = laws.composite_modulus(204e9, 0.3, 204e9, 0.3, "plane_strain")
+    eps = np.array([p["half_angle_rad"] for p in pts])
+    extra = np.array([p["penetration_m"] for p in pts]) - 5e-5 * (1 / np.cos(eps) - 1)
+    y = extra / np.array([p["force_n"] for p in pts]) * math.pi * e_star * 0.03
+    slope, intercept = np.polyfit(np.log(1 / np.sin(eps)), y, 1)
+    assert slope == pytest.approx(2.0, rel=0.03)
+    law = cal.load_calibrated("persson-40")
+    assert law.family == "conformal-compliance"
+    assert law.parameters["far_field_constant"] == pytest.approx(intercept, rel=0.03)
+
+
+def test_implicit_family_is_refused_by_the_kernel_with_a_clear_error():
+    law = cal.load_calibrated("persson-40")
+    with pytest.raises(InputError, match="not available in the compiled loose-support kernel"):
+        law.loose_support_params()
