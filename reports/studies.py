@@ -1,0 +1,412 @@
+"""Figures and tables of the rotor studies (Dai et al. 2025, Sections 5–6, and beyond).
+
+Every function reads a finished sweep directory (:mod:`rotor.sweep`, written by
+``ringcontact study …``), writes PNG + SVG (units on every axis) and a CSV of the plotted
+numbers, and returns the files written. Nothing here computes dynamics.
+
+Quantities: as in the paper, cascades show the amplitude of the **y velocity** (mm/s; the
+misalignment's static offset would swamp a displacement spectrum); Figs. 18–19 show
+**displacement** amplitudes (µm). "3# bearing" is the *support* of the 3# bearing (node s), as
+in the paper ("the response at 3# bearing represents the motion of the support").
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+from pathlib import Path
+
+import numpy as np
+
+from contact.files import atomic_write_bytes, atomic_write_text
+from rotor.sweep import ResultStore, load_sweep
+
+LOCATIONS = (("disk1.y", "disk 1"), ("disk2.y", "disk 2"), ("s.y", "3# bearing (support)"))
+
+
+def _plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    plt.rcParams["svg.hashsalt"] = "ringcontact"
+    return plt
+
+
+def save(fig, prefix: Path) -> list[Path]:
+    """Write ``prefix.png`` and ``prefix.svg`` atomically and close the figure."""
+    plt = _plt()
+    out = []
+    for ext in ("png", "svg"):
+        buf = io.BytesIO()
+        fig.savefig(buf, format=ext, dpi=130, bbox_inches="tight", metadata={"Date": None} if ext == "svg" else None)
+        out.append(atomic_write_bytes(f"{prefix}.{ext}", buf.getvalue()))
+    plt.close(fig)
+    return out
+
+
+def write_csv(path: Path, header: list[str], rows) -> Path:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    for r in rows:
+        w.writerow([f"{x:.6g}" if isinstance(x, (float, np.floating)) else x for x in r])
+    return atomic_write_text(path, buf.getvalue())
+
+
+def load_points(out, tasks=None) -> list:
+    """Verified points of a sweep in task order (missing/corrupt ones left out)."""
+    res = load_sweep(out, tasks)
+    keys = [t.key for t in tasks] if tasks is not None else sorted(res, key=lambda k: res[k].params.get("speed_rpm", 0))
+    return [res[k] for k in keys if k in res]
+
+
+def _col(p, name: str) -> int:
+    return list(p.arrays["channels"]).index(name)
+
+
+def harmonic_table(points, quantity: str = "v", channels=("disk1.y", "disk2.y", "s.y"), orders=(1, 2, 3, 4, 5)):
+    """``(speeds_rpm (P,), amps (P, len(channels), len(orders)))`` of |harmonic| amplitudes (SI)."""
+    rpm = np.array([p.params["speed_rpm"] for p in points])
+    A = np.zeros((len(points), len(channels), len(orders)))
+    for i, p in enumerate(points):
+        h = np.abs(p.arrays[f"harm_{quantity}"])
+        for j, c in enumerate(channels):
+            col = _col(p, c) if quantity != "u" else {"y": 0, "z": 1, "θy": 2, "θz": 3}[c]
+            A[i, j] = h[[o - 1 for o in orders], col]
+    return rpm, A
+
+
+# ---------------------------------------------------------------------------
+# Figure 12/16/17: spectrum cascades
+# ---------------------------------------------------------------------------
+
+
+def _cascade_axes(ax, points, get, unit_scale, label, floor_rel=1e-4):
+    plt = _plt()
+    from matplotlib.colors import LogNorm
+
+    xs, ys, cs = [], [], []
+    for p in points:
+        rpm = p.params["speed_rpm"]
+        if rpm <= 0:
+            continue
+        f = rpm / 60.0
+        amp = get(p) * unit_scale
+        orders = p.arrays["spec_orders"]
+        xs.append(orders * f)
+        ys.append(np.full(orders.shape, rpm))
+        cs.append(amp)
+    if not xs:
+        return None
+    x, y, c = np.concatenate(xs), np.concatenate(ys), np.concatenate(cs)
+    top = c.max() if c.size else 1.0
+    keep = c > top * floor_rel
+    order = np.argsort(c[keep])
+    sc = ax.scatter(x[keep][order], y[keep][order], c=c[keep][order], s=6 + 30 * (c[keep][order] / top) ** 0.5,
+                    norm=LogNorm(vmin=top * floor_rel, vmax=top), cmap="viridis", linewidths=0)
+    rmax = max(p.params["speed_rpm"] for p in points)
+    for k in range(1, 6):
+        ax.plot([0, k * rmax / 60], [0, rmax], ":", color="0.6", lw=0.7)
+        ax.annotate(f"{k}f", (min(k * rmax / 60, 5.4 * rmax / 60), min(rmax, 5.4 * rmax / k)), fontsize=7, color="0.4")
+    ax.set_xlim(0, 5.5 * rmax / 60)
+    ax.set_ylim(0, rmax * 1.02)
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("rotor speed (rpm)")
+    ax.set_title(label, fontsize=9)
+    plt.colorbar(sc, ax=ax, pad=0.01)
+    return sc
+
+
+def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "") -> list[Path]:
+    """Velocity-y spectrum cascades at disk 1, disk 2, 3# bearing (Fig. 12 / 16), the relative-tilt
+    cascade (Fig. 17), and ``<prefix>.csv`` with 1X–5X per speed, convergence and regime."""
+    plt = _plt()
+    figs = Path(figs)
+    points = load_points(out, tasks)
+    files = []
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), constrained_layout=True)
+    for ax, (ch, lab) in zip(axes, LOCATIONS):
+        _cascade_axes(ax, points, lambda p, ch=ch: p.arrays["spec_v"][:, _col(p, ch)], 1e3,
+                      f"{lab}: y-velocity amplitude (mm/s)")
+    fig.suptitle(title or "Steady-state spectrum cascades (y velocity), Table 4 rotor", fontsize=10)
+    files += save(fig, figs / prefix)
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.6), constrained_layout=True)
+    for ax, (k, lab) in zip(axes, ((2, "relative tilt θy (mrad)"), (3, "relative tilt θz (mrad)"))):
+        _cascade_axes(ax, points, lambda p, k=k: p.arrays["spec_u"][:, k], 1e3, f"bearing − support: {lab}")
+    fig.suptitle("Relative angular deflection between bearing and support (paper Fig. 17)", fontsize=10)
+    files += save(fig, figs / f"{prefix}-tilt")
+    rpm, V = harmonic_table(points, "v")
+    _, U = harmonic_table(points, "u", channels=("θy", "θz"), orders=(1, 2, 3))
+    header = ["speed_rpm", "converged", "period_revs", "regime", "contact_fraction", "stick_fraction",
+              "transient_revs", "wall_s"]
+    header += [f"{c}_v{o}X_mm_s" for c in ("disk1", "disk2", "support") for o in range(1, 6)]
+    header += [f"tilt_{a}_{o}X_mrad" for a in ("y", "z") for o in range(1, 4)]
+    rows = []
+    for i, p in enumerate(points):
+        inf = p.info
+        rows.append([rpm[i], int(inf["converged"]), inf["period_revs"], inf["label"], inf["contact_fraction"],
+                     inf["stick_fraction"], inf["transient_revs"], p.record.get("run", {}).get("wall_s", float("nan"))]
+                    + list((V[i] * 1e3).ravel()) + list((U[i] * 1e3).ravel()))
+    files.append(write_csv(figs / f"{prefix}.csv", header, rows))
+    return files
+
+
+# ---------------------------------------------------------------------------
+# Figures 13-15: one speed in detail
+# ---------------------------------------------------------------------------
+
+
+def point_figures(out, figs, *, tasks=None, prefix: str = "study-point") -> list[Path]:
+    """Per speed: rotor deflection, orbits, time histories, spectra (Figs. 13–14) and r1/r2 vs δ0 (Fig. 15)."""
+    from rotor.study import _scene_model
+
+    plt = _plt()
+    figs = Path(figs)
+    files = []
+    for p in load_points(out, tasks):
+        rpm = p.params["speed_rpm"]
+        _, model = _scene_model(p.params["scene"])
+        a = p.arrays
+        tag = f"{prefix}-{rpm:.0f}rpm"
+        fig = plt.figure(figsize=(14, 9), constrained_layout=True)
+        gs = fig.add_gridspec(3, 4)
+        # (a) deflection: y of the stations (static misalignment offset and mean removed), 8 instants
+        ax = fig.add_subplot(gs[0, 0])
+        names = [n for n in model.node_names if f"{n}.y" in set(model.dof_names) and n != "s"]
+        xs = np.array([model.node_x_m[list(model.node_names).index(n)] for n in names])
+        iy = [list(a["dof_names"]).index(f"{n}.y") for n in names]
+        order = np.argsort(xs, kind="stable")
+        Q = a["q_all"][:, iy] - a["q_all"][:, iy].mean(axis=0)
+        spr = p.info["samples_per_rev"]
+        for k in range(0, spr, max(1, spr // 8)):
+            ax.plot(xs[order] * 1e3, Q[k, order] * 1e6, "-o", ms=3, lw=1)
+        ax.set_xlabel("axial position x (mm)")
+        ax.set_ylabel("dynamic deflection y (µm)")
+        ax.set_title("(a) rotor deflection over one revolution", fontsize=9)
+        for j, (ch, lab) in enumerate(LOCATIONS):
+            c = _col(p, ch)
+            cz = _col(p, ch.replace(".y", ".z"))
+            y = (a["q"][:, c] - a["q"][:, c].mean()) * 1e6
+            z = (a["q"][:, cz] - a["q"][:, cz].mean()) * 1e6
+            ax = fig.add_subplot(gs[0, j + 1])
+            ax.plot(y, z, lw=0.8)
+            ax.set_aspect("equal", "datalim")
+            ax.set_xlabel("y (µm)")
+            ax.set_ylabel("z (µm)")
+            ax.set_title(f"orbit, {lab}", fontsize=9)
+            ax = fig.add_subplot(gs[1, j + 1])
+            ax.plot((a["t"] - a["t"][0]) * 1e3, y, lw=0.8)
+            ax.set_xlabel("time (ms)")
+            ax.set_ylabel("y − mean (µm)")
+            ax.set_title(f"time history, {lab}", fontsize=9)
+            ax = fig.add_subplot(gs[2, j + 1])
+            f = rpm / 60 * a["spec_orders"]
+            ax.semilogy(f, a["spec_v"][:, c] * 1e3, lw=0.8)
+            for k in range(1, 6):
+                ax.axvline(k * rpm / 60, color="0.8", lw=0.5, zorder=0)
+            ax.set_ylim(max(a["spec_v"][:, c].max() * 1e3 * 1e-6, 1e-9), a["spec_v"][:, c].max() * 1e3 * 3)
+            ax.set_xlabel("frequency (Hz)")
+            ax.set_ylabel("y-velocity amplitude (mm/s)")
+            ax.set_title(f"spectrum, {lab}", fontsize=9)
+        # Fig. 15: r1, r2 against the clearance
+        ax = fig.add_subplot(gs[1:, 0])
+        d0 = p.info["clearance_m"]
+        tt = (a["t"] - a["t"][0]) * 1e3
+        ax.plot(tt, a["r1"] * 1e3, lw=0.9, label="r1 (right edge)")
+        ax.plot(tt, a["r2"] * 1e3, lw=0.9, label="r2 (left edge)")
+        ax.axhline(d0 * 1e3, color="k", ls="--", lw=0.8, label=f"clearance δ0 = {d0 * 1e3:g} mm")
+        ax.set_xlabel("time (ms)")
+        ax.set_ylabel("relative edge offset (mm)")
+        ax.legend(fontsize=8)
+        ax.set_title(f"r1, r2 vs δ0 ({p.info['label']}, contact {100 * p.info['contact_fraction']:.0f} % of time)",
+                     fontsize=9)
+        fig.suptitle(f"{p.params['scene']} at {rpm:.0f} rpm (converged: {p.info['converged']}, "
+                     f"period {p.info['period_revs']} rev)", fontsize=10)
+        files += save(fig, figs / tag)
+    return files
+
+
+# ---------------------------------------------------------------------------
+# Figures 18-19: harmonic amplitudes vs speed for several parameter values
+# ---------------------------------------------------------------------------
+
+
+def _groups(points, key):
+    g = {}
+    for p in points:
+        g.setdefault(p.params.get(key), []).append(p)
+    return {k: sorted(v, key=lambda p: p.params["speed_rpm"]) for k, v in g.items()}
+
+
+def amplitude_grid(groups: dict, label, title: str):
+    plt = _plt()
+    fig, axes = plt.subplots(3, 3, figsize=(13, 9.5), constrained_layout=True, sharex=True)
+    for val, pts in sorted(groups.items(), key=lambda kv: kv[0]):
+        rpm, A = harmonic_table(pts, "q", orders=(1, 2, 3))
+        for i in range(3):
+            for j, (_, lab) in enumerate(LOCATIONS):
+                ax = axes[i, j]
+                ax.semilogy(rpm, np.maximum(A[:, j, i] * 1e6, 1e-6), "-o", ms=2.5, lw=1, label=label(val))
+                ax.set_title(f"{i + 1}f, {lab}", fontsize=9)
+                ax.set_ylabel("displacement amplitude (µm)")
+                if i == 2:
+                    ax.set_xlabel("rotor speed (rpm)")
+    axes[0, 0].legend(fontsize=8)
+    fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def params_figures(out, figs, *, tasks=None, prefix: str = "study-params") -> list[Path]:
+    """1X/2X/3X displacement amplitude vs speed for several clearances (Fig. 18) and misalignments (Fig. 19)."""
+    figs = Path(figs)
+    pts = load_points(out, tasks)
+    files = []
+    byc = _groups([p for p in pts if "clearance_m" in p.params], "clearance_m")
+    if byc:
+        fig = amplitude_grid(byc, lambda v: f"δ0 = {v * 1e3:g} mm", "Harmonic amplitudes vs speed, several clearances (paper Fig. 18)")
+        files += save(fig, figs / f"{prefix}-clearance")
+    bym = _groups([p for p in pts if "misalignment_m" in p.params], "misalignment_m")
+    if bym:
+        fig = amplitude_grid(bym, lambda v: f"δ = {v * 1e3:g} mm", "Harmonic amplitudes vs speed, several misalignments (paper Fig. 19)")
+        files += save(fig, figs / f"{prefix}-misalignment")
+    rows = []
+    for p in pts:
+        rpm, A = harmonic_table([p], "q", orders=(1, 2, 3))
+        rows.append([p.key, p.params.get("clearance_m", float("nan")) * 1e3 if "clearance_m" in p.params else "",
+                     p.params.get("misalignment_m", float("nan")) * 1e3 if "misalignment_m" in p.params else "",
+                     rpm[0], p.info["label"], int(p.info["converged"])] + list((A[0] * 1e6).ravel()))
+    files.append(write_csv(figs / f"{prefix}.csv", ["key", "clearance_mm", "misalignment_mm", "speed_rpm", "regime",
+                                                    "converged"] + [f"{c}_{o}X_um" for c in ("disk1", "disk2", "support")
+                                                                    for o in (1, 2, 3)], rows))
+    return files
+
+
+# ---------------------------------------------------------------------------
+# Test rig (Figs. 27-28), regime map
+# ---------------------------------------------------------------------------
+
+
+def testrig_figures(out, figs, *, tasks=None, prefix: str = "study-testrig") -> list[Path]:
+    """Spectra of disk 2 and the 3# bearing support at each speed step for the clearance pair and the
+    misalignment pair (paper Figs. 27–28), plus the 1X–5X table."""
+    plt = _plt()
+    figs = Path(figs)
+    pts = load_points(out, tasks)
+    files = []
+    rows = []
+    for rpm in sorted({p.params["speed_rpm"] for p in pts}):
+        fig, axes = plt.subplots(2, 2, figsize=(11, 7), constrained_layout=True)
+        cases = {"clearance (δ = 1 mm)": [p for p in pts if p.params["speed_rpm"] == rpm and p.params["misalignment_m"] == 1e-3],
+                 "misalignment (δ0 = 0.05 mm)": [p for p in pts if p.params["speed_rpm"] == rpm and p.params["clearance_m"] == 0.05e-3]}
+        for i, (case, cps) in enumerate(cases.items()):
+            for j, (ch, lab) in enumerate(LOCATIONS[1:]):
+                ax = axes[i, j]
+                for p in cps:
+                    c = _col(p, ch)
+                    lbl = (f"δ0 = {p.params['clearance_m'] * 1e3:g} mm" if i == 0 else f"δ = {p.params['misalignment_m'] * 1e3:g} mm")
+                    ax.semilogy(p.arrays["spec_orders"] * rpm / 60, p.arrays["spec_v"][:, c] * 1e3, lw=0.9,
+                                label=f"{lbl} ({p.info['label']})")
+                ax.set_xlabel("frequency (Hz)")
+                ax.set_ylabel("y-velocity amplitude (mm/s)")
+                ax.set_title(f"{lab}, varying {case}", fontsize=9)
+                ax.legend(fontsize=8)
+        fig.suptitle(f"Test rig (Table 5 scene) at {rpm:.0f} rpm", fontsize=10)
+        files += save(fig, figs / f"{prefix}-{rpm:.0f}rpm")
+    for p in pts:
+        _, A = harmonic_table([p], "v")
+        rows.append([p.params["speed_rpm"], p.params["clearance_m"] * 1e3, p.params["misalignment_m"] * 1e3,
+                     p.info["label"], p.info["contact_fraction"], int(p.info["converged"])] + list((A[0] * 1e3).ravel()))
+    files.append(write_csv(figs / f"{prefix}.csv", ["speed_rpm", "clearance_mm", "misalignment_mm", "regime",
+                                                    "contact_fraction", "converged"]
+                           + [f"{c}_v{o}X_mm_s" for c in ("disk1", "disk2", "support") for o in range(1, 6)], rows))
+    return files
+
+
+REGIMES = ("stick", "slip", "impact", "contact")
+
+
+def map_figures(out, figs, *, tasks=None, prefix: str = "study-map") -> list[Path]:
+    """Where the support sticks, slips and impacts over (speed, clearance); contact fraction as number."""
+    plt = _plt()
+    from matplotlib.colors import ListedColormap
+
+    figs = Path(figs)
+    pts = load_points(out, tasks)
+    rpms = sorted({p.params["speed_rpm"] for p in pts})
+    cls = sorted({p.params["clearance_m"] for p in pts})
+    grid = np.full((len(cls), len(rpms)), np.nan)
+    frac = np.full_like(grid, np.nan)
+    conv = np.ones_like(grid, dtype=bool)
+    for p in pts:
+        i, j = cls.index(p.params["clearance_m"]), rpms.index(p.params["speed_rpm"])
+        grid[i, j] = REGIMES.index(p.info["label"])
+        frac[i, j] = p.info["contact_fraction"]
+        conv[i, j] = p.info["converged"]
+    fig, ax = plt.subplots(figsize=(11, 4.2), constrained_layout=True)
+    cmap = ListedColormap(["#4c72b0", "#dd8452", "#c44e52", "#8172b2"])
+    ax.imshow(grid, origin="lower", aspect="auto", cmap=cmap, vmin=-0.5, vmax=3.5,
+              extent=(-0.5, len(rpms) - 0.5, -0.5, len(cls) - 0.5))
+    for i in range(len(cls)):
+        for j in range(len(rpms)):
+            if np.isfinite(frac[i, j]):
+                ax.text(j, i, f"{100 * frac[i, j]:.0f}%" + ("" if conv[i, j] else "*"), ha="center", va="center",
+                        fontsize=7, color="w")
+    ax.set_xticks(range(len(rpms)), [f"{r:.0f}" for r in rpms], rotation=45, fontsize=8)
+    ax.set_yticks(range(len(cls)), [f"{c * 1e3:g}" for c in cls])
+    ax.set_xlabel("rotor speed (rpm)")
+    ax.set_ylabel("radial clearance δ0 (mm)")
+    from matplotlib.patches import Patch
+    ax.legend(handles=[Patch(color=cmap(k), label=r) for k, r in enumerate(REGIMES)], loc="upper left",
+              bbox_to_anchor=(1.0, 1.0), fontsize=8)
+    ax.set_title("Loose-support regime (numbers: % of time in radial contact; * = no periodic steady state)",
+                 fontsize=9)
+    files = save(fig, figs / prefix)
+    rows = [[p.params["speed_rpm"], p.params["clearance_m"] * 1e3, p.info["label"], p.info["contact_fraction"],
+             p.info["stick_fraction"], p.info["max_r_over_clearance"], int(p.info["converged"]), p.info["period_revs"]]
+            for p in pts]
+    files.append(write_csv(figs / f"{prefix}.csv", ["speed_rpm", "clearance_mm", "regime", "contact_fraction",
+                                                    "stick_fraction", "max_r_over_clearance", "converged",
+                                                    "period_revs"], rows))
+    return files
+
+
+def runup_figures(out, figs, *, prefix: str = "study-runup") -> list[Path]:
+    """Time–frequency cascade of a run-up (see :mod:`rotor.runup`)."""
+    from rotor.runup import load_runup, stft_cascade
+
+    plt = _plt()
+    from matplotlib.colors import LogNorm
+
+    figs = Path(figs)
+    r = load_runup(out)
+    files = []
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.8), constrained_layout=True)
+    for ax, (ch, lab) in zip(axes, LOCATIONS):
+        tc, fr, A, rpm_c = stft_cascade(r, ch)
+        A = A * 1e3
+        top = A.max()
+        m = ax.pcolormesh(fr, rpm_c, A, norm=LogNorm(vmin=top * 1e-4, vmax=top), cmap="viridis", shading="auto")
+        for k in range(1, 6):
+            ax.plot(k * rpm_c / 60, rpm_c, ":", color="w", lw=0.6)
+        ax.set_xlim(0, 5.5 * rpm_c.max() / 60)
+        ax.set_xlabel("frequency (Hz)")
+        ax.set_ylabel("rotor speed (rpm)")
+        ax.set_title(f"{lab}: y-velocity (mm/s)", fontsize=9)
+        plt.colorbar(m, ax=ax, pad=0.01)
+    fig.suptitle(f"Run-up {r['rpm'][0]:.0f} → {r['rpm'][-1]:.0f} rpm in {r['t'][-1] - r['t'][0]:.1f} s: "
+                 "time–frequency cascade (STFT)", fontsize=10)
+    files += save(fig, figs / prefix)
+    fig, axes = plt.subplots(2, 1, figsize=(11, 6), constrained_layout=True, sharex=True)
+    for ch, lab in LOCATIONS:
+        c = list(r["channels"]).index(ch)
+        axes[0].plot(r["rpm"], r["q"][:, c] * 1e6 - np.median(r["q"][:, c]) * 1e6, lw=0.4, label=lab)
+    axes[0].set_ylabel("y − median (µm)")
+    axes[0].legend(fontsize=8)
+    axes[1].plot(r["rpm"], r["r1"] * 1e3, lw=0.4, label="r1")
+    axes[1].plot(r["rpm"], r["r2"] * 1e3, lw=0.4, label="r2")
+    axes[1].axhline(r["clearance_m"] * 1e3, color="k", ls="--", lw=0.8, label="δ0")
+    axes[1].set_ylabel("relative edge offset (mm)")
+    axes[1].set_xlabel("rotor speed (rpm)")
+    axes[1].legend(fontsize=8)
+    files += save(fig, figs / f"{prefix}-time")
+    return files
