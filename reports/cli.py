@@ -18,6 +18,7 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-point": ("fem_reference.job_point", "solve one 2D FEM contact point (penetration in mm; --json)"),
     "fem-sweep": ("fem_reference.job_sweep", "regenerate the committed 2D FEM reference dataset (with progress)"),
     "fem-check": ("fem_reference.job_check", "recompute a few committed 2D FEM points, report differences"),
+    "fem-report": ("fem_reference.report2d", "write reports/published/fem2d-reference.* from the committed 2D dataset"),
     "fem-paper": ("fem_reference.paper_setup", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
     "fem-vtu": ("fem_reference.job_vtu", "export a solved 2D FEM point to VTU for ParaView"),
     "fem3d": ("fem_reference.cli3d", "3D tilted-ring FEM reference: point | sweep | check (mm, arcmin; --json)"),
