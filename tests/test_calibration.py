@@ -253,3 +253,17 @@ def test_implicit_family_is_refused_by_the_kernel_with_a_clear_error():
     law = cal.load_calibrated("persson-40")
     with pytest.raises(InputError, match="not available in the compiled loose-support kernel"):
         law.loose_support_params()
+
+
+def test_calibrate_cli_check_and_errors(tmp_path, capsys):
+    assert cal.main(["--check"]) == 0
+    assert "up to date" in capsys.readouterr().out
+    assert cal.main(["--check", "--out", str(tmp_path)]) == 1          # nothing stored there: drift reported
+    assert "not found" in capsys.readouterr().out
+    assert cal.main(["--dataset", str(tmp_path / "missing.json")]) == 2
+    assert "cannot read reference dataset" in capsys.readouterr().err
+    # writing into a fresh directory gives the same files as the committed ones
+    assert cal.main(["--out", str(tmp_path)]) == 0
+    for name in cal.available():
+        assert (tmp_path / f"{name}.json").exists()
+    assert cal.check_calibrations(directory=tmp_path) == []
