@@ -61,6 +61,15 @@ def main() -> int:
         rows.append(r)
         print(f"P{order} h={h * 1e3:g} mm: {r['ndofs']} DOFs, error {r['error']:.2e}, "
               f"build {r['build_s']:.2f} s + solve {r['solve_s']:.2f} s", flush=True)
+    # a reference point from scratch: 3 (or 4) mesh levels built + solved + Richardson, Table 2 points
+    from fem_reference.sweep import Levels, reference_point
+
+    scratch = []
+    for d in (0.01e-3, 0.02e-3, 0.03e-3, 0.04e-3, 0.05e-3):
+        t = time.perf_counter()
+        rec = reference_point(Levels(clamped()), d)
+        scratch.append((d, time.perf_counter() - t, rec["force_error_rel"], rec["force_n"]))
+        print(f"reference point {d * 1e3:g} mm from scratch: {scratch[-1][1]:.2f} s, est. error {rec['force_error_rel']:.1e}")
     load1 = os.getloadavg()[0]
 
     def cheapest(target):
@@ -121,6 +130,14 @@ def main() -> int:
     for r in rows:
         lines.append(f"| P{r['order']} | {r['h_mm']:g} | {r['ndofs']} | {r['error']:.2e} | {r['build_s']:.3f} | "
                      f"{r['solve_s']:.3f} | {r['wall_s']:.3f} |")
+    lines += ["", "## A reference point from scratch", "",
+              "Mesh + assembly + factorisation of the levels 4, 2, 1 mm (P2), the three contact solves and the "
+              "Richardson estimate, for the Table 2 penetrations (clamped scene):", "",
+              "| Δr (mm) | force (kN) | est. error | wall (s) |", "|---|---|---|---|"]
+    for d, tw, e, f in scratch:
+        lines.append(f"| {d * 1e3:g} | {f / 1e3:.3f} | {e:.1e} | {tw:.2f} |")
+    lines += ["", f"Median {statistics.median([x[1] for x in scratch]):.2f} s, max {max(x[1] for x in scratch):.2f} s "
+              "(target: error ≤ 0.1 % in ≤ 3 s)."]
     lines += ["", "P2 (geometry-snapped 6-node triangles) pays: at equal cost it is one to two orders of magnitude "
               "more accurate than P1, whose observed order is ≈ 2 only below h = 2 mm (the square-root pressure "
               "edge limits both). A committed reference point uses P2 on 4-2-1 mm (Richardson) and reports the 1 mm "
