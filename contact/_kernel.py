@@ -11,7 +11,8 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
  0    clearance δ0 (m)
  1    ring width l0 (m)
  2    law code: 0 conformal, 1 Pereira (power law C·Δr^n), 2 elastic foundation
-      (calibrated law of contact.calibrate: h = k_f R e (ε − sin ε cos ε), slot 6 = k_f R)
+      (calibrated law of contact.calibrate: h = k_f R e (ε − sin ε cos ε), slot 6 = k_f R;
+      a tilted patch is integrated slice by slice, see _slices, instead of l·h(Δr_edge))
  3    conformal constant 2π E* δ0 (N/m per unit b²(1+b²)/D)
  4    Dundurs α
  5    β coefficient c_β of the denominator (0 for the "zero" reading)
@@ -65,6 +66,56 @@ def _law(pen, p):
     return p[6] * pen ** n, p[6] * n * pen ** (n - 1.0), 1
 
 
+# Gauss–Legendre nodes/weights on [0, 1] (8 points) for the slice integral of law code 2.
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
+_GL_X = 0.5 * (_GL_X + 1.0)
+_GL_W = 0.5 * _GL_W
+
+
+@numba.njit(cache=True)
+def _slices(pen, t, l0, partial, p):
+    """Slice-integrated load of a tilted patch for law code 2 (additive hook for contact.calibrate, issue 5).
+
+    A Winkler bed has independent axial slices, so the patch load is ``P = ∫_0^l h(pen − t s) ds``
+    (s from the loaded edge, l = pen/t for a partial patch, l0 otherwise) and its first moment about
+    the edge ``S = ∫_0^l s h(pen − t s) ds``; with ``s = l (1 − w²)`` both integrands are smooth on
+    w ∈ [0, 1] (also at the open end of a partial patch, where h ~ Δ^1.5) and 8 Gauss points give
+    ~1e-10 relative accuracy. Returns ``P, S, ∂P/∂pen, ∂P/∂t, ∂S/∂pen, ∂S/∂t``.
+    """
+    P = 0.0
+    S = 0.0
+    Pp = 0.0
+    Pt = 0.0
+    Sp = 0.0
+    St = 0.0
+    for i in range(_GL_X.shape[0]):
+        wv = _GL_X[i]
+        q = 1.0 - wv * wv
+        if partial:
+            lv = pen / t
+            dlv = pen * wv * wv                 # Δ = pen w², independent of t
+            h, dh, _ok = _law(dlv, p)
+            c = 2.0 * _GL_W[i] * wv
+            P += c * lv * h
+            S += c * lv * lv * q * h
+            Pp += c * (h / t + lv * dh * wv * wv)
+            Sp += c * q * (2.0 * lv / t * h + lv * lv * dh * wv * wv)
+        else:
+            dlv = pen - t * l0 * q
+            h, dh, _ok = _law(dlv, p)
+            c = 2.0 * _GL_W[i] * wv
+            P += c * l0 * h
+            S += c * l0 * l0 * q * h
+            Pp += c * l0 * dh
+            Pt += -c * l0 * dh * l0 * q
+            Sp += c * l0 * l0 * q * dh
+            St += -c * l0 * l0 * q * dh * l0 * q
+    if partial:
+        Pt = -P / t
+        St = -2.0 * S / t
+    return P, S, Pp, Pt, Sp, St
+
+
 @numba.njit(cache=True, inline="always")
 def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     """Weight ``w`` × the contact force/moment of edge ``sgn`` (+1 right, −1 left).
@@ -93,7 +144,13 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
         l = pen / t
     else:
         l = l0
-    P = l * hv
+    slices = p[2] == 2.0
+    if slices:
+        P, S, Pp, Pt, Sp, St = _slices(pen, t, l0, partial, p)
+        d = 0.5 * l0 - S / P
+    else:
+        P = l * hv
+        d = 0.5 * (l0 - l)
     damp = 1.0 + p[8] * vn
     clipped = False
     if p[9] != 0.0 and damp < 0.0:
@@ -101,7 +158,6 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
         clipped = True
     fy = -P * damp * ny
     fz = -P * damp * nz
-    d = 0.5 * (l0 - l)
     if jac is None:
         return w * fy, w * fz, w * sgn * d * (-fz), w * sgn * d * fy, 1
     # derivatives of r_k (and of r_k-dot w.r.t. velocities) w.r.t. (y, z, thy, thz)
@@ -111,21 +167,31 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
         dpen = ny * dry[j] + nz * drz[j]
         dny = ((1.0 - ny * ny) * dry[j] - ny * nz * drz[j]) / rho
         dnz = (-ny * nz * dry[j] + (1.0 - nz * nz) * drz[j]) / rho
-        if partial:
+        if slices:
             dt = 0.0
-            if j == 2:
-                dt = thy / t
-            elif j == 3:
-                dt = thz / t
-            dl = dpen / t - pen / (t * t) * dt
+            if t > 0.0:
+                if j == 2:
+                    dt = thy / t
+                elif j == 3:
+                    dt = thz / t
+            dP = Pp * dpen + Pt * dt
+            dd = -((Sp * dpen + St * dt) * P - S * dP) / (P * P)
         else:
-            dl = 0.0
-        dP = dl * hv + l * dh * dpen
+            if partial:
+                dt = 0.0
+                if j == 2:
+                    dt = thy / t
+                elif j == 3:
+                    dt = thz / t
+                dl = dpen / t - pen / (t * t) * dt
+            else:
+                dl = 0.0
+            dP = dl * hv + l * dh * dpen
+            dd = -0.5 * dl
         dvn = vky * dny + vkz * dnz
         ddamp = 0.0 if clipped else p[8] * dvn
         dfy = -(dP * damp * ny + P * ddamp * ny + P * damp * dny)
         dfz = -(dP * damp * nz + P * ddamp * nz + P * damp * dnz)
-        dd = -0.5 * dl
         jac[0, j] += w * dfy
         jac[1, j] += w * dfz
         jac[2, j] += w * sgn * (dd * (-fz) + d * (-dfz))

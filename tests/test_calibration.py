@@ -267,3 +267,40 @@ def test_calibrate_cli_check_and_errors(tmp_path, capsys):
     for name in cal.available():
         assert (tmp_path / f"{name}.json").exists()
     assert cal.check_calibrations(directory=tmp_path) == []
+
+
+@pytest.mark.parametrize("pen,tilt_arcmin", [(1e-5, 2.0), (2e-6, 2.0), (3e-5, 0.5), (5e-5, 30.0), (1e-6, 1.0)])
+def test_kernel_slice_integration_matches_the_numpy_tilted_law(pen, tilt_arcmin):
+    # Law code 2 integrates a tilted patch slice by slice (Winkler, Johnson 1985 §4.3) in the compiled
+    # kernel; CalibratedLaw.tilted does the same with adaptive Gauss–Legendre in numpy, and
+    # _winkler_slices-like integrals are checked against scipy in test_accuracy_report. One patch here
+    # (no contact on the opposite generatrix), so the two must agree to quadrature accuracy.
+    from contact.units import ARCMIN
+
+    law = cal.load_calibrated("clamped-foundation")
+    th = tilt_arcmin * ARCMIN
+    F, M, _ = law.tilted(pen, th)
+    r = loose_support_force(law.loose_support_params(), law.geometry.clearance_m + pen, 0.0, 0.0, th)
+    assert -float(r.Fy_N) == pytest.approx(F, rel=1e-8)
+    assert float(r.Mz_Nm) == pytest.approx(M, rel=1e-6)
+
+
+@pytest.mark.parametrize("y_off,thy,thz", [(2e-5, 0.0, 2e-4), (3e-6, 1e-4, 5e-4), (2e-5, -3e-4, 1e-3)])
+def test_kernel_slice_jacobian_against_central_differences(y_off, thy, thz):
+    # Full patch, partial patch and a skewed tilt: analytic Jacobian of (Fy, Fz, My, Mz) w.r.t.
+    # (y, z, θy, θz) of law code 2 against central differences.
+    law = cal.load_calibrated("clamped-foundation")
+    params = law.loose_support_params()
+    x0 = np.array([law.geometry.clearance_m + y_off, 2e-6, thy, thz])
+    _, J = loose_support_jacobian(params, *x0)
+    steps = (1e-10, 1e-10, 1e-8, 1e-8)
+    for j in range(4):
+        xp, xm = x0.copy(), x0.copy()
+        xp[j] += steps[j]
+        xm[j] -= steps[j]
+        fp = loose_support_force(params, *xp)
+        fm = loose_support_force(params, *xm)
+        fd = np.array([(a - b) / (2 * steps[j]) for a, b in zip((fp.Fy_N, fp.Fz_N, fp.My_Nm, fp.Mz_Nm),
+                                                                 (fm.Fy_N, fm.Fz_N, fm.My_Nm, fm.Mz_Nm))], dtype=float)
+        scale = np.abs(J[:, j]).max()
+        np.testing.assert_allclose(J[:, j], fd, rtol=2e-5, atol=2e-5 * scale)
