@@ -144,6 +144,8 @@ def test_table3_on_a_synthetic_3d_winkler_dataset(tmp_path, monkeypatch):
     assert len(t3["rows"]) == 18
     for r in t3["rows"]:
         assert abs(r["calibrated-slices_pct"]) < 1e-6
+        assert abs(r["calibrated-kernel_pct"]) < 1e-6          # the rotor's compiled path integrates slices too
+        assert r["calibrated-edge_pct"] > 1.0                  # the paper's edge model over-predicts a Winkler bed
         assert r["calibrated-slices_moment_pct"] == pytest.approx(0.0, abs=1e-5)
     assert "**met**" in "\n".join(t3["lines"])
     text = accuracy.table3_csv(t3["rows"])
