@@ -122,3 +122,18 @@ def test_bad_penetration_is_rejected_with_name_and_unit(clamped_levels, bad):
 def test_mesh_coarser_than_ring_rejected():
     with pytest.raises(InputError, match="h_contact_m"):
         ContactModel.build(clamped(), MeshSpec(h_contact_m=20e-3))
+
+
+def test_persson_load_vs_penetration_falls_as_the_plate_grows():
+    # Persson (1964): the rigid approach of a pin in an infinite plate diverges like ln(R_o), so at a
+    # fixed penetration the load keeps falling as the plate grows, while load vs measured angle does not
+    # depend on the plate (checked above); compliance Δr/F grows about linearly in ln(R_o).
+    from fem_reference.verify import persson_plate_study
+
+    rows = persson_plate_study(plate_ratios=(10.0, 40.0, 160.0), penetrations_m=(5e-5,), h_contact_m=2e-3)
+    f = np.array([r["force_n"] for r in rows])
+    assert np.all(np.diff(f) < 0)
+    c = 5e-5 / f
+    step1, step2 = c[1] - c[0], c[2] - c[1]          # equal steps in ln(R_o)
+    assert step1 > 0 and abs(step2 / step1 - 1) < 0.15
+    assert all(abs(r["force_over_law"] - 1) < 0.02 for r in rows)
