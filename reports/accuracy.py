@@ -94,7 +94,13 @@ def scene_table(ds: ReferenceDataset, scene: str, dataset_info: dict | None = No
     half = np.array([p.get("half_angle_rad", np.nan) for p in sorted(
         (q for q in ds.select(scene=scene) if float(q.get("tilt_rad", 0.0)) == 0.0 and q["penetration_m"] > 0),
         key=lambda q: q["penetration_m"])])
+    pts_sorted = sorted((q for q in ds.select(scene=scene) if float(q.get("tilt_rad", 0.0)) == 0.0 and q["penetration_m"] > 0),
+                        key=lambda q: q["penetration_m"])
+    half_err = np.array([q.get("half_angle_error_rel", np.nan) for q in pts_sorted], dtype=float)
     if np.all(np.isfinite(half[idx])):
+        extra["half_angle_fem_deg"] = np.degrees(half[idx])
+        extra["half_angle_fem_err_rel"] = half_err[idx]
+        extra["half_angle_law_deg"] = np.degrees(laws.contact_half_angle_rad(pen_t, geo.clearance_m))
         # conformal law evaluated at the FEM's measured contact half-angle (force–angle relation only)
         b2 = np.tan(half[idx] / 2) ** 2
         e_star = geo.e_star_Pa
@@ -196,6 +202,11 @@ def write_markdown(tables: list[dict], t3: dict) -> str:
                          + " | ".join(_cell(v) for v in t["conformal_at_fem_angle_pct"]) + " |")
         lines.append("| FEM force (N) | " + " | ".join(f"{v:,.0f}".replace(",", " ") for v in t["force_fem_N"][t["idx"]]) + " |")
         lines.append("| FEM error estimate (%) | " + " | ".join(f"{100 * v:.3f}" for v in t["fem_error_rel"][t["idx"]]) + " |")
+        if "half_angle_fem_deg" in t:
+            lines.append("| contact half-angle: FEM ± error (°) | " + " | ".join(
+                f"{a:.2f} ± {a * e:.2f}" for a, e in zip(t["half_angle_fem_deg"], t["half_angle_fem_err_rel"])) + " |")
+            lines.append("| contact half-angle: laws' rigid overlap, cos ε = δ0/(δ0+Δr) (°, diff %) | " + " | ".join(
+                f"{b:.2f} ({100 * (b - a) / a:+.1f})" for a, b in zip(t["half_angle_fem_deg"], t["half_angle_law_deg"])) + " |")
         lines += ["", "Paper's Table 2 beside ours (|%|, paper / ours):", "", head, sep]
         for key, vals in PAPER_TABLE2_PCT.items():
             cells = [f"{'–' if p is None else f'{p:.2f}'} / {'–' if not np.isfinite(o) else f'{abs(o):.2f}'}"
