@@ -62,7 +62,7 @@ def write_vtu(path, model, sol: ContactSolution, warp_scale: float = 1.0) -> Pat
     if order == 1:
         cells = [("triangle", mesh.t.T)]
     else:
-        t6 = np.vstack([mesh.t, mesh.p.shape[1] + mesh.t2f]).T  # skfem facets 01,12,02 = gmsh 3,4,5
+        t6 = np.vstack([mesh.t, mesh.nvertices + mesh.t2f]).T  # skfem facets 01,12,02 = gmsh 3,4,5
         cells = [("triangle6", t6)]
     pts = np.zeros((n, 3))
     pts[:, :2] = nodes.T

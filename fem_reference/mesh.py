@@ -10,9 +10,11 @@ Second-order meshes use gmsh's geometry-snapped (curved) 6-node triangles. The g
 taken from the element geometry anyway: :mod:`fem_reference.contact_solver` computes it
 from the exact circles, so straight P1 edges (sag h^2/(8R)) do not bias the contact.
 
-The mesh goes to scikit-fem straight from gmsh's arrays (``MeshTri1``/``MeshTri2``), with the
-body of each element recorded; boundaries are found by radius (:func:`facets_on_circle`),
-which is what ``from_meshio`` would need on quadratic meshes anyway (fem-notes.md).
+The mesh goes to scikit-fem straight from gmsh's arrays (``MeshTri1``/``MeshTri2``; no file, no
+meshio round trip), with the body of each element recorded and named boundaries
+(``mesh.boundaries``: bearing_inner, bearing_outer, support_bore, support_outer, symmetry) found
+by radius and body (:func:`facets_on_circle`) – what ``from_meshio`` would need on quadratic
+meshes anyway, since it ignores gmsh's physical groups there (fem-notes.md).
 """
 from __future__ import annotations
 
@@ -179,7 +181,16 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
     else:
         t[:, neg] = t[[0, 2, 1, 5, 4, 3]][:, neg]
         mesh = MeshTri2(np.ascontiguousarray(p), np.ascontiguousarray(t))
-    return RingMesh(mesh=mesh, body=np.concatenate(body), rings=rings, spec=spec)
+    body = np.concatenate(body)
+    named = {
+        "bearing_inner": facets_on_circle(mesh, rings.inner_radius_m, element_mask=body == BEARING),
+        "bearing_outer": facets_on_circle(mesh, rings.outer_radius_m, element_mask=body == BEARING),
+        "support_bore": facets_on_circle(mesh, rings.bore_radius_m, element_mask=body == SUPPORT),
+        "support_outer": facets_on_circle(mesh, rings.support_outer_radius_m, element_mask=body == SUPPORT),
+        "symmetry": facets_on_symmetry_line(mesh),
+    }
+    mesh = mesh.with_boundaries(named)
+    return RingMesh(mesh=mesh, body=body, rings=rings, spec=spec)
 
 
 def facets_on_circle(mesh, radius_m: float, rel_tol: float = 1e-6,

@@ -49,6 +49,14 @@ def test_vtu_export_round_trip(tmp_path):
     path = write_vtu(tmp_path / "p.vtu", m, s)
     back = meshio.read(path)
     assert "triangle6" in back.cells_dict
+    conn = back.cells_dict["triangle6"]
+    assert conn.max() == len(back.points) - 1  # every node used, none out of range
+    # mid-side nodes sit at their edge's middle, up to the sag L²/(8R) of curved boundary edges
+    # (R >= 90 mm); a wrong numbering would put them anywhere
+    pts = back.points[:, :2]
+    a, b_, mid = pts[conn[:, 0]], pts[conn[:, 1]], pts[conn[:, 3]]
+    L = np.linalg.norm(a - b_, axis=1)
+    assert np.all(np.linalg.norm(mid - 0.5 * (a + b_), axis=1) <= 1.01 * L ** 2 / (8 * 0.09) + 1e-12)
     assert back.point_data["contact_pressure_pa"].max() == pytest.approx(s.peak_pressure_pa)
     d = back.point_data["displacement_m"]
     # the bearing's inner surface moved rigidly by t = δ0 + Δr along +y

@@ -119,6 +119,23 @@ def test_bad_penetration_is_rejected_with_name_and_unit(clamped_levels, bad):
         clamped_levels[(2, 4e-3)].solve(bad)
 
 
+def test_named_boundaries_and_curved_p2_edges():
+    # gmsh's second-order nodes lie on the exact circles (geometry-snapped P2), and every named
+    # boundary is found; P1 chords sag by h²/(8R) (fem-notes.md), P2 mid-side nodes do not.
+    from fem_reference.mesh import build_mesh
+
+    rm = build_mesh(table1_rings(), MeshSpec(h_contact_m=2e-3, order=2))
+    b = rm.mesh.boundaries
+    assert set(b) >= {"bearing_inner", "bearing_outer", "support_bore", "support_outer", "symmetry"}
+    nverts = rm.mesh.nvertices
+    mids = rm.mesh.doflocs[:, nverts + b["support_bore"]]
+    assert np.allclose(np.hypot(*mids), 0.10005, rtol=0, atol=1e-12)
+    chord_mid = rm.mesh.p[:, rm.mesh.facets[:, b["support_bore"]]].mean(axis=1)
+    sag = 0.10005 - np.hypot(*chord_mid)
+    h = np.linalg.norm(np.diff(rm.mesh.p[:, rm.mesh.facets[:, b["support_bore"]]], axis=1)[:, 0], axis=0)
+    assert np.allclose(sag, h ** 2 / (8 * 0.10005), rtol=1e-3)
+
+
 def test_mesh_coarser_than_ring_rejected():
     with pytest.raises(InputError, match="h_contact_m"):
         ContactModel.build(clamped(), MeshSpec(h_contact_m=20e-3))
