@@ -82,6 +82,9 @@ def _slices(pen, t, l0, partial, p):
     w ∈ [0, 1] (also at the open end of a partial patch, where h ~ Δ^1.5) and 8 Gauss points give
     ~1e-10 relative accuracy. Returns ``P, S, ∂P/∂pen, ∂P/∂t, ∂S/∂pen, ∂S/∂t``.
     """
+    if t == 0.0:                 # straight ring: uniform slices, no quadrature needed
+        h, dh, _ok = _law(pen, p)
+        return l0 * h, 0.5 * l0 * l0 * h, l0 * dh, -0.5 * l0 * l0 * dh, 0.5 * l0 * l0 * dh, -l0 * l0 * l0 * dh / 3.0
     P = 0.0
     S = 0.0
     Pp = 0.0
