@@ -4,6 +4,10 @@ Example::
 
     ringcontact simulate --scene paper-table4 --speed-rpm 10500 --revolutions 20 --out runs/b
 
+or, for one steady-state point (transient detected and discarded, then 64 kept revolutions)::
+
+    ringcontact simulate --speed-rpm 10500 --steady --revolutions 64 --out runs/b
+
 writes ``runs/b/simulate.csv`` (time, named DOFs, relative edge offsets r1/r2, relative tilts,
 stick/slip of each end face, contact flags), ``runs/b/simulate.npz`` (full state) and
 ``runs/b/simulate-summary.json``; every file is written atomically. Engineer units at the edge
@@ -21,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contact.errors import RingContactError
+from contact.errors import InputError, RingContactError
 from contact.files import atomic_write_bytes, atomic_write_text
 from contact.units import check_positive
 from rotor import constraints as cons
@@ -44,6 +48,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--preload-n", type=float, default=None, help="nut preload per face (N, default: scene)")
     p.add_argument("--clearance-mm", type=float, default=None, help="radial clearance (mm, default: scene)")
     p.add_argument("--misalignment-mm", type=float, default=None, help="misalignment δ (mm, default: scene)")
+    p.add_argument("--steady", action="store_true",
+                   help="run to steady state first (Poincaré criterion), then --revolutions kept revolutions "
+                        "with 1X-5X velocity amplitudes of --dofs in the summary")
     p.add_argument("--out", default="simulate-out", help="output directory")
     return p
 
@@ -87,7 +94,23 @@ def _run(args) -> int:
     rec = max(1, args.steps_per_rev // args.record_per_rev)
     run = simulate_production if args.scheme == "production" else simulate_reference
     t0 = time.perf_counter()
-    tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
+    extra = {}
+    if args.steady:
+        from rotor.production import steady_state
+
+        keep = int(round(args.revolutions))
+        if args.scheme != "production" or keep < 1 or args.steps_per_rev % args.record_per_rev:
+            raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
+                             "dividing --steps-per-rev")
+        ss = steady_state(system, args.steps_per_rev, idx, keep_revs=keep, samples_per_rev=args.record_per_rev)
+        tr = ss.trajectory
+        n_steps = keep * args.steps_per_rev
+        extra = {"transient_revs": ss.transient_revs, "steady_converged": ss.converged,
+                 "poincare_change": ss.poincare_change,
+                 "velocity_amplitudes_mm_s_1X_to_5X": {n: [round(float(a) * 1e3, 6) for a in row]
+                                                       for n, row in zip(names, ss.amplitudes)}}
+    else:
+        tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
     wall = time.perf_counter() - t0
     r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
     d0 = system.support.law.clearance_m
@@ -112,7 +135,7 @@ def _run(args) -> int:
                "max_r1_mm": float(r1.max() * 1e3), "max_r2_mm": float(r2.max() * 1e3),
                "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
-               "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max}
+               "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max, **extra}
     atomic_write_text(out / "simulate-summary.json", json.dumps(summary, indent=2) + "\n")
     print(json.dumps(summary, indent=2))
     return 0

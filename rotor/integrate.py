@@ -279,7 +279,11 @@ class Trajectory:
 @dataclass(frozen=True)
 class NewmarkOptions:
     """β, γ (average acceleration by default), Newton tolerance ε and iteration cap,
-    friction regularisation velocity ``w_reg`` and stick threshold ``w_stick`` (m/s)."""
+    friction regularisation velocity ``w_reg`` and stick threshold ``w_stick`` (m/s), active-set
+    passes per step, and the stick test's weight of the start-of-step face force
+    (``stick_mean_weight``: 0.5 = Coulomb bound on the step's friction impulse, the default;
+    0 = on the end-of-step force, which lets the undamped trapezoidal multipliers ring and the
+    faces chatter, see :func:`rotor.constraints.face_mode_update`)."""
 
     beta: float = 0.25
     gamma: float = 0.5
@@ -288,6 +292,7 @@ class NewmarkOptions:
     w_reg: float = 1e-6
     w_stick: float = 1e-5
     max_passes: int = 6
+    stick_mean_weight: float = 0.5
 
 
 # ---------------------------------------------------------------------------
@@ -520,7 +525,9 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
         v_pre = v + dt * (1 - gamma) * a
         Q = system.force(t)
         w_old = [P[k] @ (B @ v) for k in range(2)]
+        phi_old = phi.copy()
         tried_stick = [modes[k] == cons.STICK for k in range(2)]
+        stuck_at_start = list(tried_stick)
         freeze = [None, None]
         passes = 0
         total_its = 0
@@ -613,7 +620,8 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
                     fk = -lam_face_new[k]
                 else:
                     fk = cons.slip_force(wk, mu_N, opts.w_reg)[0]
-                nm = cons.face_mode_update(modes[k], fk, wk, w_old[k], mu_N, opts.w_stick, tried_stick[k])
+                nm = cons.face_mode_update(modes[k], fk, wk, w_old[k], mu_N, opts.w_stick, tried_stick[k],
+                                           phi_old[k], opts.stick_mean_weight if stuck_at_start[k] else 0.0)
                 if nm != modes[k]:
                     changed = True
                     new_modes[k] = nm
@@ -634,8 +642,8 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
         v = v_pre + gdt * a
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
             raise ConvergenceError(f"reference scheme: non-finite state at step {step}, t = {t:.6g} s; reduce dt_s = {dt:.3e} s")
+        u, w, fc, phi, _ = support_forces(system, q, v, modes, lam_face, opts)
         if step % record_every == 0:
-            u, w, fc, phi, _ = support_forces(system, q, v, modes, lam_face, opts)
             record(step // record_every, t, total_its, passes)
     return tr
 

@@ -345,7 +345,7 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
 @njit(cache=True)
 def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
           Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, s_yy, a1,
-          has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
+          has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
           rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
           status):
     nr = p.shape[0]
@@ -358,7 +358,9 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     freeze = np.zeros(2, dtype=np.bool_)
     freeze_dir = np.zeros((2, 2))
     w_old = np.zeros((2, 2))
+    phi_old = np.zeros((2, 2))
     tried = np.zeros(2, dtype=np.bool_)
+    stuck0 = np.zeros(2, dtype=np.bool_)
     Q = np.empty(nr)
     for step in range(1, n_steps + 1):
         t = t0 + step * dt
@@ -383,7 +385,10 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             for k in range(2):
                 w_old[k] = P[k] @ wv[:4]
                 tried[k] = modes[k] == 1
+                stuck0[k] = modes[k] == 1
                 freeze[k] = False
+                phi_old[k, 0] = phi_face[k, 0]
+                phi_old[k, 1] = phi_face[k, 1]
             g = np.zeros(NC)
             while True:
                 passes += 1
@@ -421,7 +426,8 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 changed = False
                 for k in range(2):
                     wk = P[k] @ w_new[:4]
-                    nm = _mode_update(modes[k], phi[k], wk, w_old[k], mu_N, w_stick, tried[k])
+                    nm = _mode_update(modes[k], phi[k], wk, w_old[k], mu_N, w_stick, tried[k], phi_old[k],
+                                      stick_mean_weight if stuck0[k] else 0.0)
                     if nm != modes[k]:
                         changed = True
                         modes[k] = nm
@@ -519,6 +525,9 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
         if modes[k] == cons.STICK:
             phi_face[k] = -lam[j:j + 2]
             j += 2
+        else:  # as the reference: the slip force at the initial velocity
+            wk = cons.face_maps(sup.width_m)[k] @ (sup.relative_map(n) @ v0)
+            phi_face[k] = cons.slip_force(wk, sup.mu_N, opts.w_reg)[0]
     T = pre.T
     p, vp, ap = T.T @ q0, T.T @ v0, T.T @ a0
     n_rec = n_steps // record_every + 1
@@ -545,6 +554,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
                           pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin,
                           pre.omega_force, pre.P, pre.mu_N, pre.s_yy, pre.a1, sup is not None, kernel, params,
                           opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
+                          float(opts.stick_mean_weight),
                           rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"],
                           rec["face"], rec["modes"], rec["its"], rec["passes"], status)
     if status[0] != 0:
