@@ -43,7 +43,19 @@ file, its checksum and code revision, the fit and hold-out errors, the family co
 loaded with :func:`load_calibrated`. :meth:`CalibratedLaw.loose_support_params` turns it into
 :class:`CalibratedSupportParams`, a :class:`~contact.loose_support.LooseSupportParams` that the
 rotor solver uses like any other (same compiled kernel; the ``foundation`` family is the
-kernel's law code 2, see ``contact._kernel``).
+kernel's law code 2, see ``contact._kernel``). Under tilt, a calibrated law is evaluated slice by
+slice along the ring width (:meth:`CalibratedLaw.tilted`; the kernel does the same for code 2),
+not with the paper's edge-penetration × patch-length rule: for a Winkler bed every axial slice
+carries the load of its own penetration. The ``power`` family goes through the kernel's Pereira
+branch and keeps the paper's tilt rule.
+
+Example::
+
+    from contact.calibrate import load_calibrated
+    from rotor.integrate import support_law_from_params
+    law = load_calibrated("clamped")                  # -> "clamped-foundation"
+    params = law.loose_support_params(c_c_s_per_m=100.0, mu=0.3, preload_N=5000.0)
+    support_law = support_law_from_params(params)     # pass as system_from_model(..., law=support_law)
 
 ``ringcontact calibrate`` (``main``) refits every scene of the committed 2D dataset and writes
 the files; ``--check`` only compares the stored files with a fresh fit.
