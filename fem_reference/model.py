@@ -111,6 +111,10 @@ class ContactModel:
         if abs(penetration_m) > 0.02 * rings.outer_radius_m:
             raise InputError(f"penetration_m = {penetration_m:g} m: |Δr| must be <= 2 % of R_b "
                              f"= {0.02 * rings.outer_radius_m:g} m (small-strain model; wrong unit?)")
+        if penetration_m < -rings.clearance_m:
+            raise InputError(f"penetration_m = {penetration_m:g} m: must be >= -clearance_m = "
+                             f"{-rings.clearance_m:g} m (the bearing is driven along +y only; the contact "
+                             "window is the upper arc)")
         t0 = time.perf_counter()
         t = rings.clearance_m + penetration_m
         sysm = self.system

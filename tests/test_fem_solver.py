@@ -113,7 +113,7 @@ def test_no_contact_below_clearance_gives_zero_force(clamped_levels):
     assert sol.force_n == 0.0 and sol.half_angle_rad == 0.0
 
 
-@pytest.mark.parametrize("bad", [float("nan"), float("inf"), 0.05])
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), 0.05, -6e-5])
 def test_bad_penetration_is_rejected_with_name_and_unit(clamped_levels, bad):
     with pytest.raises(InputError, match="penetration_m"):
         clamped_levels[(2, 4e-3)].solve(bad)
