@@ -50,7 +50,8 @@ def point_main(argv: list[str]) -> int:
     ap.add_argument("penetration_mm", type=float, help="mid-plane penetration Δr = r − δ0 [mm]")
     ap.add_argument("--tilt-arcmin", type=float, default=0.0, help="tilt [arcmin]")
     ap.add_argument("--tilt-axis", choices=("z", "y"), default="z",
-                    help="z: translation along y, tilt about z (canonical); y: translation along z, tilt about y")
+                    help="z: translation along +y, tilt theta_z (canonical); y: translation along +z, tilt theta_y "
+                         "(the rotated case: same magnitudes, vectors rotated, see contact-laws.md §1)")
     ap.add_argument("--scene", default="clamped", help="clamped | clamped-axially-fixed-ends")
     ap.add_argument("--level", default=None, help="one mesh level (L0, L1, L2) instead of the three-level estimate")
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
@@ -61,13 +62,16 @@ def point_main(argv: list[str]) -> int:
     from fem_reference.sweep3d import _jsonable, get_compliance, reference_point
 
     try:
+        from contact.units import check_finite
+        check_finite("penetration_mm", args.penetration_mm, "mm")
+        check_finite("tilt_arcmin", args.tilt_arcmin, "arcmin")
         geom = RingPair3D()
         r = geom.clearance_m + args.penetration_mm * MM
         tilt = args.tilt_arcmin * ARCMIN
         if args.tilt_axis == "z":
             canon = reduce_motion(r, 0.0, 0.0, tilt)
         else:
-            canon = reduce_motion(0.0, r, -tilt, 0.0)    # lateral slope (theta_z, -theta_y) along +z
+            canon = reduce_motion(0.0, r, tilt, 0.0)     # theta_y = tilt: the -x edge is loaded more
         names = [args.level] if args.level else list(DEFAULT_LEVELS)
         for n in names:
             if n not in LEVELS:

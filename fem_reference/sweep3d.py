@@ -225,7 +225,7 @@ def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, s
     ----------
     tilts_rad, penetrations_m : sequences of float
         Defaults :data:`DEFAULT_TILTS_ARCMIN` and :data:`DEFAULT_PENETRATIONS_MM` in SI.
-    level_names : three keys of :data:`~fem_reference.mesh3d.LEVELS` (coarse -> fine).
+    level_names : three keys of :data:`~fem_reference.mesh3d.LEVELS` or MeshLevel3D (coarse -> fine).
     workers : int
         Processes of the local pool (ignored if ``executor`` is given).
     executor : concurrent.futures.Executor, optional
@@ -239,14 +239,14 @@ def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, s
         penetrations_m = [p * MM for p in DEFAULT_PENETRATIONS_MM]
     if len(level_names) != 3:
         raise InputError(f"level_names = {level_names!r}: need exactly three mesh levels (coarse to fine)")
-    unknown = [n for n in level_names if n not in LEVELS]
+    unknown = [n for n in level_names if not isinstance(n, MeshLevel3D) and n not in LEVELS]
     if unknown:
         raise InputError(f"mesh levels {unknown} unknown: choose from {sorted(LEVELS)}")
     if scene not in SCENES:
         raise InputError(f"scene = {scene!r}: must be one of {sorted(SCENES)}")
     geom = geom or RingPair3D()
     cache = cache_dir() if cache is None else Path(cache)
-    levels = [LEVELS[n] for n in level_names]
+    levels = [n if isinstance(n, MeshLevel3D) else LEVELS[n] for n in level_names]
     t0 = time.perf_counter()
     own = executor is None
     ex = cf.ProcessPoolExecutor(max_workers=workers) if own else executor
