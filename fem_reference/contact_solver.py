@@ -41,7 +41,6 @@ coordinate) with the same condensed-QP solver (:func:`solve_lcp`), which is dime
 """
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 
 import numpy as np

@@ -15,10 +15,10 @@ import numpy as np
 
 from contact.errors import ConvergenceError, InputError
 from contact.units import check_finite
-from fem_reference.contact_solver import (ArcNotResolvedError, CircleSurface, ContactSolution, contact_half_angle, circle_surface,
-                                          mortar_operator, solve_lcp)
+from fem_reference.contact_solver import (ArcNotResolvedError, CircleSurface, ContactSolution, circle_surface,
+                                          contact_half_angle, mortar_operator, solve_lcp)
 from fem_reference.elasticity import ElasticSystem, circle_dofs, stiffness, symmetry_dofs, vector_basis
-from fem_reference.mesh import BEARING, SUPPORT, MeshSpec, RingMesh, build_mesh, facets_on_circle
+from fem_reference.mesh import BEARING, SUPPORT, MeshSpec, RingMesh, build_mesh
 from fem_reference.scenes import Scene
 
 

@@ -33,7 +33,7 @@ from fem_reference.elasticity import body_mean_weights, circle_mean_weights
 from fem_reference.geometry import table1_rings
 from fem_reference.mesh import BEARING, SUPPORT, MeshSpec
 from fem_reference.model import ContactModel
-from fem_reference.scenes import BEARING_DRIVES, SUPPORT_HOLDS, Scene
+from fem_reference.scenes import Scene
 
 PAPER_DR_MM = np.array([0.01, 0.02, 0.03, 0.04, 0.05])
 PAPER_FEM_KN = np.array([44.878, 105.247, 169.351, 235.945, 304.036])  # contact-laws.md §10

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from contact.dataset import SCHEMA, read_dataset, write_dataset
+from contact.dataset import read_dataset, write_dataset
 from contact.errors import DatasetError
 from fem_reference.sweep import COLUMNS, DATASET_PATH, Levels, reference_point, richardson
 from fem_reference.scenes import by_name

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contact.errors import ConvergenceError, InputError
+from contact.errors import InputError
 from fem_reference.geometry import STEEL, table1_rings
 from fem_reference.mesh import MeshSpec
 from fem_reference.model import ContactModel
