@@ -43,6 +43,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--scheme", choices=("production", "reference"), default="production",
                    help="production (fast, default) or the paper's reference scheme (slow)")
     p.add_argument("--dofs", default=DEFAULT_DOFS, help=f"comma-separated DOF names (default {DEFAULT_DOFS})")
+    p.add_argument("--law", default="conformal", choices=("conformal", "pereira"),
+                   help="radial contact law of contact.loose_support (default: the paper's conformal law)")
     p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
     p.add_argument("--mu", type=float, default=None, help="end-face friction coefficient (default: scene)")
     p.add_argument("--preload-n", type=float, default=None, help="nut preload per face (N, default: scene)")
@@ -84,7 +86,7 @@ def _run(args) -> int:
     if args.misalignment_mm is not None:
         check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True, upper=50.0)
         kw["misalignment_m"] = args.misalignment_mm * 1e-3
-    system = system_from_model(model, scene, omega, tilt_ignored=args.tilt_ignored, mu=args.mu,
+    system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
                                preload_N=args.preload_n, **kw)
     names = [s.strip() for s in args.dofs.split(",") if s.strip()]
     idx = [model.dof_index(n) for n in names]

@@ -718,7 +718,8 @@ def support_law_from_params(params) -> SupportLaw:
     return SupportLaw(name, float(params.clearance_m), force, contact_kernel, np.array(radial.kernel_args, dtype=float))
 
 
-def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | None = None, tilt_ignored: bool = False,
+def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | None = None, law_name: str = "conformal",
+                      tilt_ignored: bool = False,
                       mu: float | None = None, preload_N: float | None = None, clearance_m: float | None = None,
                       misalignment_m: float | None = None, nonlinear_coupling: bool = True) -> RotorSystem:
     """The loose-support rotor of a scene at spin speed ``speed_rad_s`` (rad/s).
@@ -728,7 +729,9 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     not shifted), unbalance (1X) and misalignment excitation (2X), the two linear 3a/3b rows
     ``model.B`` (not the squared g5), the cubic coupling remainder, and the loose support with
     the contact law of the scene (``contact.loose_support``; the paper's conformal law as
-    published by default). Overrides: ``law`` (any :class:`SupportLaw`), ``tilt_ignored``
+    published by default). Overrides: ``law`` (any :class:`SupportLaw`, e.g. a calibrated one
+    wrapped by :func:`support_law_from_params`), ``law_name`` (a law of
+    ``contact.loose_support`` by name: "conformal", "pereira"), ``tilt_ignored``
     (paper Fig. 16), ``mu``, ``preload_N``, ``clearance_m``, ``misalignment_m`` (δ, scales
     Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
     """
@@ -745,7 +748,7 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
             clearance_m=ls.clearance_m if clearance_m is None else clearance_m, width_m=ls.ring_width_m,
             bearing_E_Pa=ls.bearing_modulus_pa, bearing_nu=ls.bearing_poisson,
             support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson,
-            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored)
+            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored, law=law_name)
         law = support_law_from_params(params)
     sup = LooseSupport(tuple(model.loose_pair.bearing), tuple(model.loose_pair.support), law,
                        ls.ring_width_m, mu_v, pre_v)

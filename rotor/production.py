@@ -35,19 +35,14 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from contact._kernel import point_force_jacobian
-from contact.errors import ConvergenceError, InputError
+from contact.loose_support import point_force_jacobian
+from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor import constraints as cons
 from rotor.integrate import (NewmarkOptions, RotorSystem, Trajectory, _check_inputs, check_time_step, coupling_map,
                              initial_state, relative_compliance)
 
 _slip_force = njit(cache=True)(cons.slip_force)
 _mode_update = njit(cache=True)(cons.face_mode_update)
-
-
-@njit(cache=True)
-def _null_kernel(u, v, p):
-    return np.zeros(4), np.zeros((4, 4)), np.zeros((4, 4))
 
 
 @njit(cache=True)
@@ -550,13 +545,19 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     kernel = sup.law.kernel if sup is not None else contact_kernel
     params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(13)
     status = np.zeros(3, dtype=np.int64)
-    done, wdt_max = _loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
-                          pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin,
-                          pre.omega_force, pre.P, pre.mu_N, pre.s_yy, pre.a1, sup is not None, kernel, params,
-                          opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
-                          float(opts.stick_mean_weight),
-                          rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"],
-                          rec["face"], rec["modes"], rec["its"], rec["passes"], status)
+    try:
+        done, wdt_max = _loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
+                              pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin,
+                              pre.omega_force, pre.P, pre.mu_N, pre.s_yy, pre.a1, sup is not None, kernel, params,
+                              opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
+                              float(opts.stick_mean_weight),
+                              rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"],
+                              rec["face"], rec["modes"], rec["its"], rec["passes"], status)
+    except OutsideDomainError as e:
+        raise OutsideDomainError(
+            f"{e} (production run from t = {t0:g} s, dt_s = {dt:.3e} s, {n_steps} steps, clearance "
+            f"{sup.law.clearance_m * 1e3:g} mm): the load drives the ring beyond the law's validity; use a larger "
+            "clearance, a smaller load, or a law without a neat-fit limit (law 'pereira')") from e
     if status[0] != 0:
         t_fail = t0 + status[1] * dt
         what = "Newton did not converge" if status[0] == 1 else "non-finite state"
