@@ -40,6 +40,11 @@ from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor import constraints as cons
 from rotor.integrate import (NewmarkOptions, RotorSystem, Trajectory, _check_inputs, check_time_step, coupling_map,
                              initial_state, relative_compliance)
+from rotor._numba_cache import drop_stale_cache
+
+# The kernels below inline contact._kernel and rotor.constraints: drop our numba cache when
+# either source changes (numba itself only watches this file).
+drop_stale_cache(__file__, ["contact._kernel", "rotor.constraints"])
 
 _slip_force = njit(cache=True)(cons.slip_force)
 _mode_update = njit(cache=True)(cons.face_mode_update)
