@@ -9,7 +9,7 @@ exactly on its circle, and both contact surfaces (bearing outer, support bore) u
 
 Why not gmsh here: the 2D reference meshes with gmsh; for the 3D rings a gmsh transfinite
 extrusion gives the same structured hexes, but a mapped tensor mesh gives the node pairing and
-the grading (toward the loaded generatrices phi = 0 and phi = pi, toward the ring edges
+the grading (optionally toward the generatrices phi = 0 and phi = pi, toward the ring edges
 x = +-l0/2 and toward the contact surfaces) directly, with no prism/orphan-node risk
 (fem-notes.md, gmsh facts). The rings' curvature enters the gap exactly (geometry3d), never
 through the faceted surface.
@@ -166,8 +166,10 @@ def build_meshes(geom: RingPair3D, level: MeshLevel3D) -> tuple[RingMesh, RingMe
 # (phi, x and radial), so the effective size ratio is (DOFs ratio)^(1/3) ~ 1.4 (Richardson with
 # unequal ratios, sweep3d.richardson3). Radial layers are generous because trilinear hexahedra
 # are too stiff with few layers (measured: 3 -> 6 layers lowers the force by 0.7 %, halving the
-# phi or x size changes it by < 0.2 %). Grading: phi toward 0 and pi (ratio 2), x toward the ring
-# edges (ratio 3), radially toward the contact surfaces (ratio 3).
+# phi or x size changes it by < 0.2 %). Grading: x toward the ring edges (ratio 3), radially toward
+# the contact surfaces (ratio 3); phi uniform: the contact-arc edges sweep 20-80 deg over the sweep,
+# and grading toward the loaded generatrix (phi = 0, where the pressure is smooth) coarsened them -
+# measured: the largest moment error estimate fell from 2.6 % (phi ratio 2) to 1.1 % (uniform).
 LEVELS: dict[str, MeshLevel3D] = {
     "L0": MeshLevel3D("L0", n_phi=24, n_axial=8, n_radial=4, phi_ratio=1.0, axial_ratio=3.0),
     "L1": MeshLevel3D("L1", n_phi=34, n_axial=12, n_radial=6, phi_ratio=1.0, axial_ratio=3.0),

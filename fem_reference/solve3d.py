@@ -358,9 +358,9 @@ class PointResult3D:
         Moment about +z through the ring centre of the contact force on the bearing (N*m),
         ``sum x*F_y`` (contact-laws.md §1 convention; negative for a positive tilt).
     contact_x_min_m, contact_x_max_m, contact_width_m : float
-        Axial extent of the contact on the loaded (+y) side, measured on the mesh: from the
-        mid-point between the first active node and its open neighbour (or the ring edge) to the
-        same at the other end (m). Zero width when the side is open.
+        Axial extent of the contact on the loaded (+y) side (m): active nodes on any generatrix
+        of that side; each open end located by extrapolating the squared pressure on phi = 0 to
+        zero (see ``_extent``), or at the ring edge. Zero width when the side is open.
     contact_width_law_m : float
         The law's width ``min(Delta r_1/|theta|, l0)`` (Dai et al. 2025 Eq. 11) for comparison.
     load_centre_x_m : float
@@ -406,14 +406,34 @@ class PointResult3D:
     x_grid: np.ndarray = field(repr=False, compare=False)
 
 
-def _extent(x_grid: np.ndarray, active_x: np.ndarray, half: float) -> tuple[float, float]:
-    """Axial extent of an active node set on the x line, to the mid-points toward open nodes."""
+def _extent(x_grid: np.ndarray, active_x: np.ndarray, half: float,
+            line_pressure: np.ndarray | None = None) -> tuple[float, float]:
+    """Axial extent of an active node set on the x line.
+
+    Each open end of the set is placed by extrapolating the square of the pressure along the
+    line (``line_pressure``, the pressure on the loaded generatrix) linearly to zero from the last
+    two active nodes (pressure ~ sqrt(distance) at the edge of a contact), kept between the last
+    active node and its open neighbour; without a usable pressure the end is the mid-point
+    between them. An end at a ring edge stays at the edge.
+    """
     ix = np.flatnonzero(active_x)
     if ix.size == 0:
         return 0.0, 0.0
     lo, hi = ix.min(), ix.max()
-    x_lo = -half if lo == 0 else 0.5 * (x_grid[lo] + x_grid[lo - 1])
-    x_hi = half if hi == len(x_grid) - 1 else 0.5 * (x_grid[hi] + x_grid[hi + 1])
+
+    def end(last: int, inner: int, outer: int) -> float:
+        mid = 0.5 * (x_grid[last] + x_grid[outer])
+        if line_pressure is None or not (0 <= inner < len(x_grid)):
+            return mid
+        p2, p1 = line_pressure[last] ** 2, line_pressure[inner] ** 2
+        if not (p2 > 0 and p1 > p2):
+            return mid
+        xe = x_grid[last] + (x_grid[last] - x_grid[inner]) * p2 / (p1 - p2)
+        a, b = sorted((x_grid[last], x_grid[outer]))
+        return float(min(max(xe, a), b))
+
+    x_lo = -half if lo == 0 else end(lo, lo + 1, lo - 1)
+    x_hi = half if hi == len(x_grid) - 1 else end(hi, hi - 1, hi + 1)
     return float(x_lo), float(x_hi)
 
 
@@ -465,7 +485,8 @@ def solve_point(comp: ContactCompliance, motion: RigidMotion, *, candidate_margi
     act_plus = (active & plus).reshape(nphi, nx).any(axis=0)
     act_minus = (active & ~plus).reshape(nphi, nx).any(axis=0)
     half = 0.5 * geom.width_m
-    x_lo, x_hi = _extent(comp.x_grid, act_plus, half)
+    press_phi0 = (lam_all / comp.area_m2).reshape(nphi, nx)[0]     # loaded generatrix phi = 0
+    x_lo, x_hi = _extent(comp.x_grid, act_plus, half, press_phi0)
     sides = ("both" if act_plus.any() and act_minus.any() else
              "+y" if act_plus.any() else "-y" if act_minus.any() else "none")
     any_x = act_plus | act_minus

@@ -82,11 +82,12 @@ def test_tilt_sign_symmetry_and_moment_convention(small):
 
 
 def test_partial_width_matches_law(small):
-    # 2' at 0.005 mm: Dai et al. 2025 Eq. 11 gives l = Delta r_1/theta = 23.6 mm. The elastic
-    # width is close to the rigid-overlap width (as in 2D, 32.8 deg vs 33.6 deg).
+    # 2' at 0.005 mm: Dai et al. 2025 Eq. 11 gives l = Delta r_1/theta = 23.6 mm, the rigid-overlap
+    # length. The elastic patch is somewhat shorter (as in 2D, where the contact arc is 32.8 deg
+    # against a rigid overlap of 33.6 deg at 0.01 mm; contact-laws.md §2).
     r = solve_point(small, RigidMotion.from_penetration(GEOM, 0.005 * MM, 2 * ARCMIN))
     assert r.contact_width_law_m == pytest.approx(23.59 * MM, rel=1e-3)
-    assert r.contact_width_m == pytest.approx(r.contact_width_law_m, rel=0.08)
+    assert 0.85 * r.contact_width_law_m < r.contact_width_m < r.contact_width_law_m
     assert r.edges_loaded == "+x" and r.sides == "+y"
     assert r.contact_x_max_m == pytest.approx(GEOM.width_m / 2)
 
@@ -116,7 +117,7 @@ def test_hard_edge_only_contact(small):
     r = solve_point(small, m)
     assert r.force_n > 0 and r.edges_loaded == "+x" and r.sides == "+y"
     assert r.contact_width_law_m == pytest.approx(1.25 * MM, rel=0.02)
-    assert r.contact_width_m < 0.15 * GEOM.width_m
+    assert 0 < r.contact_width_m < r.contact_width_law_m
     assert r.moment_z_nm / -r.force_n == pytest.approx(GEOM.width_m / 2, rel=0.1)   # load near the edge
 
 
@@ -125,7 +126,7 @@ def test_hard_zero_midplane_penetration(small):
     r = solve_point(small, RigidMotion.from_penetration(GEOM, 0.0, 2 * ARCMIN))
     assert r.force_n > 0 and r.edges_loaded == "+x"
     assert r.contact_width_law_m == pytest.approx(GEOM.width_m / 2, rel=1e-6)
-    assert r.contact_width_m == pytest.approx(GEOM.width_m / 2, rel=0.15)
+    assert 0.7 * GEOM.width_m / 2 < r.contact_width_m < GEOM.width_m / 2
 
 
 def test_hard_two_point_contact(small):
