@@ -154,3 +154,25 @@ def test_persson_load_vs_penetration_falls_as_the_plate_grows():
     step1, step2 = c[1] - c[0], c[2] - c[1]          # equal steps in ln(R_o)
     assert step1 > 0 and abs(step2 / step1 - 1) < 0.15
     assert all(abs(r["force_over_law"] - 1) < 0.02 for r in rows)
+
+
+def test_gap_of_the_rigidly_offset_circles_is_exact():
+    # The gap is taken from the true circles (issue 3): along each ray θ the moved bearing circle
+    # (centre (0, t), radius R_b) is at distance ρ with |ρ e_r − (0, t)| = R_b exactly, and ψ is
+    # the material angle of that point. The rigid-overlap half-angle then obeys
+    # cos ε = δ0/(δ0 + Δr) (Dai et al. 2025, Eq. 7): the gap R_s − ρ vanishes there.
+    from fem_reference.contact_solver import rigid_offset_ray
+
+    R_b, d0, dr = 0.1, 5e-5, 2e-5
+    t = d0 + dr
+    th = np.linspace(-np.pi / 2, np.pi / 2, 721)
+    rho, psi = rigid_offset_ray(th, R_b, t)
+    pts = rho * np.stack([np.cos(th), np.sin(th)])
+    assert np.allclose(np.hypot(pts[0], pts[1] - t), R_b, rtol=0, atol=1e-15)
+    assert np.allclose(pts, R_b * np.stack([np.cos(psi), np.sin(psi)]) + np.array([[0], [t]]), rtol=0, atol=1e-15)
+    # zero gap at the rigid-overlap edge, measured from the load axis
+    eps = np.arccos(d0 / t)
+    r_edge, _ = rigid_offset_ray(np.array([np.pi / 2 - eps]), R_b, t)
+    # exact circles touch where R_b + δ0 = ρ; the law's relation is the small-offset form of that
+    gap = (R_b + d0) - r_edge[0]
+    assert abs(gap) < 0.01 * dr
