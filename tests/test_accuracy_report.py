@@ -90,9 +90,9 @@ def test_committed_held_out_cells_and_must_show_lines(raw_points, csv_rows):
 def test_committed_report_is_what_the_builder_writes_now(tmp_path):
     # The whole Markdown and CSV regenerate byte-identically from the committed data.
     accuracy.build(tmp_path)
-    for name in ("accuracy-table2.md", "accuracy-table2.csv"):
-        assert (tmp_path / name).read_text() == (PUBLISHED / name).read_text(), f"{name} is stale: run `ringcontact report`"
     has3d = accuracy.DATA_3D_DIR.is_dir() and any(accuracy.DATA_3D_DIR.glob("*.json"))
+    for name in ("accuracy-table2.md", "accuracy-table2.csv") + (("accuracy-table3.csv",) if has3d else ()):
+        assert (tmp_path / name).read_text() == (PUBLISHED / name).read_text(), f"{name} is stale: run `ringcontact report`"
     text = (tmp_path / "accuracy-table2.md").read_text()
     assert ("No 3D reference dataset is committed" in text) == (not has3d)
 
@@ -150,3 +150,43 @@ def test_table3_on_a_synthetic_3d_winkler_dataset(tmp_path, monkeypatch):
     assert "**met**" in "\n".join(t3["lines"])
     text = accuracy.table3_csv(t3["rows"])
     assert text.count("\n") == 19
+
+
+DATA3D = cal.DATA_3D_DIR / "fem3d-reference.json"
+needs_3d = pytest.mark.skipif(not DATA3D.exists(), reason="no committed 3D dataset")
+
+
+@needs_3d
+@pytest.mark.parametrize("tilt_arcmin,pen_mm", [(2.0, 0.03), (0.5, 0.01), (1.0, 0.05)])
+def test_committed_table3_cells_recomputed_from_the_3d_dataset(tilt_arcmin, pen_mm):
+    # Independent of reports.accuracy: k_f from the 3D zero-tilt points in closed form (mean log ratio),
+    # the tilted load by scipy quadrature of the Winkler slices; the paper's model (Dai et al. 2025
+    # Eqs. 8-19, full-width patch) as l0 · p_conformal(Δr + θ l0/2).
+    from contact.units import ARCMIN
+
+    pts = json.loads(DATA3D.read_text())["points"]
+    zero = [p for p in pts if p["tilt_rad"] == 0.0 and p["penetration_m"] > 0]
+    d0, R, l = 5e-5, 0.1, 0.03
+    pen0 = np.array([p["penetration_m"] for p in zero])
+    e = d0 + pen0
+    eps = np.arccos(d0 / e)
+    k = np.exp(np.mean(np.log(np.array([p["force_n"] for p in zero]) / (R * l * e * (eps - np.sin(eps) * np.cos(eps))))))
+    th = tilt_arcmin * ARCMIN
+    (p,) = [q for q in pts if abs(q["tilt_rad"] - th) < 1e-12 and abs(q["penetration_m"] - pen_mm * 1e-3) < 1e-12]
+    F_slices, _ = _winkler_slices(k, pen_mm * 1e-3, th)
+    with open(PUBLISHED / "accuracy-table3.csv", newline="") as fh:
+        (row,) = [r for r in csv.DictReader(fh) if abs(float(r["tilt_arcmin"]) - tilt_arcmin) < 1e-9
+                  and abs(float(r["penetration_mm"]) - pen_mm) < 1e-9]
+    assert float(row["force_fem_N"]) == pytest.approx(p["force_n"], rel=1e-9)
+    assert float(row["calibrated-slices_pct"]) == pytest.approx(100 * (F_slices / p["force_n"] - 1), abs=1e-4)
+    p_edge = laws.conformal_force(pen_mm * 1e-3 + th * l / 2, modulus="plane_stress", **TABLE1).force_N
+    assert float(row["conformal-paper_pct"]) == pytest.approx(100 * (p_edge / p["force_n"] - 1), abs=1e-4)
+
+
+@needs_3d
+def test_3d_foundation_modulus_between_plane_stress_and_plane_strain():
+    # A 30 mm ring with free end faces is stiffer than plane stress and softer than plane strain:
+    # its Winkler modulus must lie between E/(1−ν²)/h and E(1−ν)/((1+ν)(1−2ν))/h, h = 20 mm.
+    law = cal.load_calibrated("clamped-3d-foundation")
+    k = law.parameters["foundation_modulus_Pa_per_m"]
+    assert 204e9 / (1 - 0.09) / 0.02 < k < 204e9 * 0.7 / (1.3 * 0.4) / 0.02
