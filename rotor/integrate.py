@@ -714,7 +714,8 @@ def support_law_from_params(params) -> SupportLaw:
 
     from rotor.production import contact_kernel
 
-    name = f"{params.law}{' (tilt ignored)' if params.tilt_ignored else ''}"
+    law_label = getattr(params, "calibration_name", "") or params.law  # calibrated laws by their stored name
+    name = f"{law_label}{' (tilt ignored)' if params.tilt_ignored else ''}"
     return SupportLaw(name, float(params.clearance_m), force, contact_kernel, np.array(radial.kernel_args, dtype=float))
 
 
