@@ -3,8 +3,8 @@
 Dai et al. 2025 study steady states only and leave transient speed as future work. Here the
 speed follows a linear ramp ``Ω(t) = Ω_0 + Ω̇ t``. The production integrator
 (:func:`rotor.production.simulate_production`) is built for a constant spin speed, so the ramp
-is integrated as a sequence of short segments (default 5 ms, shorter than one
-revolution at the top speed) with the state, the end-face modes *and the rotation angle*
+is integrated as a sequence of short segments (default 5 ms, 1.5 revolutions at
+18 000 rpm) with the state, the end-face modes *and the rotation angle*
 carried across segments:
 
 * in segment ``j`` the speed is ``Ω_j = Ω(t_mid)``; the gyroscopic term is ``Ω_j G`` and the
@@ -46,7 +46,8 @@ class RunupSpec:
     scene : scene name or TOML path; rpm_start, rpm_end : speeds (rpm, > 0);
     duration_s : ramp duration (s); segment_s : piecewise-constant speed segment (s);
     sample_rate_hz : recorded samples per second; steps_per_rev : minimum steps per revolution
-    at the highest speed; clearance_m, misalignment_m, tilt_ignored : overrides (None = scene).
+    at the highest speed; clearance_m, misalignment_m, tilt_ignored, mu (end-face friction
+    coefficient), preload_n (N) : overrides (None = scene).
     """
 
     scene: str = "paper-table4"
@@ -59,6 +60,8 @@ class RunupSpec:
     clearance_m: float | None = None
     misalignment_m: float | None = None
     tilt_ignored: bool = False
+    mu: float | None = None
+    preload_n: float | None = None
 
     def __post_init__(self):
         check_positive("rpm_start", self.rpm_start, "rpm", upper=1e5)
@@ -81,7 +84,8 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
     w0 = spec.rpm_start * math.pi / 30
     w1 = spec.rpm_end * math.pi / 30
     wdot = (w1 - w0) / spec.duration_s
-    kw = dict(clearance_m=spec.clearance_m, misalignment_m=spec.misalignment_m, tilt_ignored=spec.tilt_ignored)
+    kw = dict(clearance_m=spec.clearance_m, misalignment_m=spec.misalignment_m, tilt_ignored=spec.tilt_ignored,
+              mu=spec.mu, preload_n=spec.preload_n)
     sc, model, sys_hi = point_system(spec.scene, max(spec.rpm_start, spec.rpm_end), **kw)
     dt_max, _ = largest_stable_step(sys_hi)
     dt = min(2 * math.pi / max(w0, w1) / spec.steps_per_rev, 0.5 * dt_max)

@@ -253,6 +253,8 @@ class SteadyResult:
     wall_s : float
     static : bool, True at zero speed (no dynamics: the static equilibrium is the answer)
     q_all : (N, n) all generalised coordinates over the record (m, rad), for deflection shapes
+    q_end, v_end : (n,) state one step after the record, at a whole revolution (phase 0): a
+        starting state for a neighbouring operating point (continuation)
     """
 
     speed_rad_s: float
@@ -275,6 +277,8 @@ class SteadyResult:
     wall_s: float = 0.0
     static: bool = False
     q_all: np.ndarray | None = None
+    q_end: np.ndarray | None = None
+    v_end: np.ndarray | None = None
 
     def channel(self, name: str) -> int:
         try:
@@ -360,7 +364,7 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
         return SteadyResult(0.0, channels, np.zeros(N), np.tile(q[idx], (N, 1)), np.zeros((N, len(idx))), z4,
                             np.zeros(N), np.zeros(N), np.ones((N, 2), np.int8), z4, opts.spectrum_revs,
                             opts.samples_per_rev, 0, 0, Convergence(True, 1, 0.0, 0.0, 0.0), d0, 0,
-                            time.perf_counter() - t_start, True, np.tile(q, (N, 1)))
+                            time.perf_counter() - t_start, True, np.tile(q, (N, 1)), q.copy(), v.copy())
     T = 2 * math.pi / omega
     nper = step_per_rev(system, opts)
     dt = T / nper
@@ -399,7 +403,8 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
     r1, r2 = cons.edge_offsets(u, width) if system.support is not None else (np.zeros(len(u)),) * 2
     return SteadyResult(omega, channels, tr.t[sl], tr.q[sl][:, idx], tr.v[sl][:, idx], u, r1, r2,
                         tr.modes[sl].astype(np.int8), tr.f_contact[sl], n_rec, opts.samples_per_rev, nper, revs,
-                        conv, d0, unconv, time.perf_counter() - t_start, False, tr.q[sl])
+                        conv, d0, unconv, time.perf_counter() - t_start, False, tr.q[sl], tr.q[-1].copy(),
+                        tr.v[-1].copy())
 
 
 # ---------------------------------------------------------------------------
@@ -474,7 +479,10 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
             "poincare_change": float(c.change), "poincare_remaining": float(c.remaining),
             "transient_revs": int(res.transient_revs), "record_revs": int(res.revolutions),
             "steps_per_rev": int(res.steps_per_rev), "samples_per_rev": int(res.samples_per_rev),
-            "clearance_m": float(res.clearance_m), "least_residual_steps": int(res.unconverged_steps),
+            "clearance_m": float(res.clearance_m),
+            "misalignment_m": float(misalignment_m if misalignment_m is not None
+                                    else (sc.misalignment.offset_m if getattr(sc, "misalignment", None) else 0.0)),
+            "tilt_ignored": bool(tilt_ignored), "least_residual_steps": int(res.unconverged_steps),
             "static": bool(res.static), "wall_s": float(res.wall_s), "law": system.support.law.name,
             "options": dataclasses.asdict(opts), **res.regime()}
     return arrays, info
