@@ -36,14 +36,16 @@ def point_main(argv: list[str]) -> int:
     args = ap.parse_args(argv)
     from fem_reference.model import ContactModel
     from fem_reference.scenes import by_name
-    from fem_reference.sweep import Levels, reference_point, spec_for
+    from fem_reference.sweep import Levels, arc_zone_rad, reference_point, spec_for
 
     try:
         scene = by_name(args.scene)
         if args.h_mm is None:
             rec = reference_point(Levels(scene, order=args.order), args.penetration_mm * MM)
         else:
-            m = ContactModel.build(scene, spec_for(scene, args.h_mm * MM, args.order))
+            # one level of the reference's mesh family (graded toward this point's possible arc)
+            zone = arc_zone_rad(scene.rings, args.penetration_mm * MM)
+            m = ContactModel.build(scene, spec_for(scene, args.h_mm * MM, args.order, zone))
             s = m.solve(args.penetration_mm * MM)
             rec = {"scene": scene.name, "plane": scene.plane, "penetration_m": args.penetration_mm * MM,
                    "force_n": s.force_n, "force_error_rel": None, "half_angle_rad": s.half_angle_rad,

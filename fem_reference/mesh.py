@@ -18,6 +18,7 @@ meshes anyway, since it ignores gmsh's physical groups there (fem-notes.md).
 """
 from __future__ import annotations
 
+import math
 import threading
 from dataclasses import dataclass
 
@@ -51,6 +52,16 @@ class MeshSpec:
     top_refinement : float
         Size factor (<= 1) at the top contact point (on the load axis), blending linearly to 1
         at ``top_radius_m`` from it: resolves the tiny arcs of small penetrations.
+    arc_zone_rad : float
+        Half-angle [rad], from the load axis, of the possible contact arc: the size is ``h`` on
+        the contact circle only for angles ``phi <= arc_zone_rad``; beyond it, it grows linearly
+        with the arc length ``R·(phi − arc_zone_rad)`` and doubles every ``arc_grading_length_m``.
+        ``pi`` (default): the whole bore at size ``h``.
+    arc_grading_length_m : float
+        Arc length beyond the zone over which the size doubles [m].
+    arc_max_factor : float
+        Cap of that along-the-bore coarsening factor [-] (keeps thin rings resolved through
+        their thickness; a multiple of ``h``, so halving ``h`` stays a uniform refinement).
     """
 
     h_contact_m: float = 2e-3
@@ -60,6 +71,9 @@ class MeshSpec:
     max_size_factor: float = 400.0
     top_refinement: float = 1.0
     top_radius_m: float = 15e-3
+    arc_zone_rad: float = math.pi
+    arc_grading_length_m: float = 10e-3
+    arc_max_factor: float = 4.0
 
     def __post_init__(self):
         check_positive("h_contact_m", self.h_contact_m, "m", upper=1.0)
@@ -68,6 +82,10 @@ class MeshSpec:
         check_positive("max_size_factor", self.max_size_factor, "-")
         check_positive("top_refinement", self.top_refinement, "-", upper=1.0)
         check_positive("top_radius_m", self.top_radius_m, "m", upper=10.0)
+        check_positive("arc_zone_rad", self.arc_zone_rad, "rad", upper=math.pi)
+        check_positive("arc_grading_length_m", self.arc_grading_length_m, "m", upper=100.0)
+        if not self.arc_max_factor >= 1.0:
+            raise InputError(f"arc_max_factor = {self.arc_max_factor!r} -: must be >= 1")
         if self.order not in (1, 2):
             raise InputError(f"order = {self.order!r}: must be 1 or 2")
 
@@ -121,6 +139,10 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
     # refined by spec.top_refinement within spec.top_radius_m of the top contact point (tiny arcs)
     top = (f"({spec.top_refinement!r}+(1-{spec.top_refinement!r})*min(1,sqrt(x*x+(y-{R_c!r})^2)/{spec.top_radius_m!r}))")
     main = (f"{hc!r}*{top}*(1+{spec.bottom_coarsening!r}*max(0,-y)/{R_c!r})*(1+abs({rho}-{R_c!r})/{L!r})")
+    if spec.arc_zone_rad < math.pi:
+        # coarsen along the bore beyond the possible contact arc (phi from the load axis +y)
+        arc = f"{R_c!r}*max(0,acos(y/sqrt(x*x+y*y+1e-30))-{spec.arc_zone_rad!r})"
+        main += f"*min({spec.arc_max_factor!r},1+{arc}/{spec.arc_grading_length_m!r})"
     terms = [f"{hc * spec.max_size_factor!r}", main]
     r_core = rings.inner_radius_m
     if r_core < 0.5 * rings.outer_radius_m:

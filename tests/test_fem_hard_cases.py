@@ -15,11 +15,13 @@ from fem_reference.sweep import Levels, reference_point
 
 def test_tiny_arc_skips_unresolving_levels_and_converges():
     # Δr = 1e-4 mm: rigid-overlap half-angle arccos(0.05/0.0501) = 3.6° (Dai et al. 2025 Eq. 7), an arc
-    # of ±6 mm that the 4 mm level cannot resolve; the point uses 2, 1, 0.5 mm instead.
+    # of ±5 mm (2.8° measured) that the 4 mm level cannot resolve; the point starts at the first level
+    # with >= 3 elements across the half-arc measured on the coarsest resolving level: 1, 0.5, 0.25 mm.
     rec = reference_point(Levels(clamped()), 1e-7)
-    assert rec["h_levels_m"][0] == pytest.approx(2e-3)
+    assert rec["h_levels_m"][0] == pytest.approx(1e-3)
+    assert rec["h_levels_m"][0] <= 100e-3 * rec["half_angle_rad"] / 3
     assert 0 < np.degrees(rec["half_angle_rad"]) < np.degrees(np.arccos(0.05 / 0.0501))
-    assert rec["force_error_rel"] < 1e-2  # conservative estimate 0.56 %: reported, not hidden
+    assert rec["force_error_rel"] < 1e-3
     # small-load stiffness: the force is below the linear extrapolation of the 0.001 mm point
     # (the load-penetration curve stiffens, conformal law, contact-laws.md §3.1)
     assert 0 < rec["force_n"] < 10.76e3 / 10
@@ -48,8 +50,10 @@ def test_zero_clearance_contact_spans_nearly_the_half_circle():
 
 
 def test_one_mm_clearance_is_hertz_like():
-    # δ0 = 1 mm, Δr = 0.01 mm: ε = arccos(1/1.01) = 8.1°; a small arc in a stiff clamped pair.
-    rec = reference_point(Levels(Scene("c1", table1_rings(clearance_m=1e-3)), (4e-3, 2e-3, 1e-3)), 1e-5)
+    # δ0 = 1 mm, Δr = 0.01 mm: ε = arccos(1/1.01) = 8.1°; a small arc in a stiff clamped pair. The 4 mm
+    # level holds only ~3 elements across its half-arc (±12.6 mm), so the default levels go on to
+    # 0.5 and 0.25 mm (the 4-2-1 mm sequence alone is not in the asymptotic range: estimate 1.5e-3).
+    rec = reference_point(Levels(Scene("c1", table1_rings(clearance_m=1e-3))), 1e-5)
     assert np.degrees(rec["half_angle_rad"]) < 8.1
     assert rec["force_error_rel"] < 1e-3
 
