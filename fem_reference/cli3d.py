@@ -53,12 +53,14 @@ def point_main(argv: list[str]) -> int:
                     help="z: translation along +y, tilt theta_z (canonical); y: translation along +z, tilt theta_y "
                          "(the rotated case: same magnitudes, vectors rotated, see contact-laws.md §1)")
     ap.add_argument("--scene", default="clamped", help="clamped | clamped-axially-fixed-ends")
-    ap.add_argument("--level", default=None, help="one mesh level (L0, L1, L2) instead of the three-level estimate")
+    ap.add_argument("--level", default=None, help="one mesh level (L0, L1, L2, E0…) instead of the three-level estimate")
+    ap.add_argument("--edge-refined", action="store_true",
+                    help="use the levels E0-E2 graded hard toward the ring edges (edge-only contact, width << l0)")
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
     ap.add_argument("--json", action="store_true", help="print the full record as JSON (SI units)")
     args = ap.parse_args(argv)
     from fem_reference.geometry3d import RingPair3D, reduce_motion, rotate_about_x
-    from fem_reference.mesh3d import DEFAULT_LEVELS, LEVELS
+    from fem_reference.mesh3d import DEFAULT_LEVELS, EDGE_LEVELS, LEVELS
     from fem_reference.sweep3d import _jsonable, get_compliance, reference_point
 
     try:
@@ -72,7 +74,7 @@ def point_main(argv: list[str]) -> int:
             canon = reduce_motion(r, 0.0, 0.0, tilt)
         else:
             canon = reduce_motion(0.0, r, tilt, 0.0)     # theta_y = tilt: the -x edge is loaded more
-        names = [args.level] if args.level else list(DEFAULT_LEVELS)
+        names = [args.level] if args.level else list(EDGE_LEVELS if args.edge_refined else DEFAULT_LEVELS)
         for n in names:
             if n not in LEVELS:
                 raise RingContactError(f"level = {n!r}: must be one of {sorted(LEVELS)}")
@@ -172,6 +174,66 @@ def _plane_strain_check(penetrations_m) -> list[dict]:
     return out
 
 
+def _hard_cases_section(ds) -> list[str]:
+    """Issue 4 hard cases on the committed mesh levels (cached levels reused if present)."""
+    from contact.errors import ConvergenceError, InputError
+    from fem_reference.geometry3d import RingPair3D, reduce_motion, rotate_about_x
+    from fem_reference.mesh3d import EDGE_LEVELS, LEVELS, MeshLevel3D
+    from fem_reference.sweep3d import get_compliance, reference_point
+
+    geom = RingPair3D(**ds.metadata["geometry"])
+    comps = [get_compliance(geom, MeshLevel3D(**lv), ds.points[0]["scene"]) for lv in ds.metadata["mesh"]["levels"]]
+    cases = [
+        ("edge only, width << l0", -0.04, 10.0),
+        ("zero mid-plane penetration, edge in contact", 0.0, 2.0),
+        ("two-point contact at zero mid-plane penetration", 0.0, 60.0),
+        ("bearing centre inside the clearance, no contact", -0.02, 0.0),
+    ]
+    md = ["", "## Hard cases (issue 4)", "",
+          "Solved on the committed levels with the same error estimate. The elastic patch is shorter than the "
+          "law's rigid-overlap length min(Δr_edge/θ, l0).", "",
+          "| case | Δr (mm) | tilt (′) | force (kN) | err F | moment (kN·m) | err M | width (mm) | law width (mm) "
+          "| edges | sides |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    edge_comps = None
+    for name, dr, tilt in cases:
+        try:
+            p = reference_point(comps, dr * MM, tilt * ARCMIN)
+        except ConvergenceError as exc:
+            md.append(f"| {name} (committed levels) | {dr:g} | {tilt:g} | fails clearly: `{exc}` | | | | | | | |")
+            if edge_comps is None:
+                edge_comps = [get_compliance(geom, LEVELS[n], ds.points[0]["scene"]) for n in EDGE_LEVELS]
+            p = reference_point(edge_comps, dr * MM, tilt * ARCMIN)
+            name = f"{name} (edge-refined levels E0-E2)"
+            em = p["moment_error_rel"]
+            md.append(f"| {name} | {dr:g} | {tilt:g} | {p['force_n'] / 1e3:.3f} | {100 * p['force_error_rel']:.2f} % | "
+                      f"{p['moment_nm'] / 1e3:.4f} | {'–' if em is None else f'{100 * em:.2f} %'} | "
+                      f"{p['width_m'] / MM:.2f} | {p['width_law_m'] / MM:.2f} | {p['edges_loaded']} | {p['sides']} |")
+            continue
+        except RingContactError as exc:
+            md.append(f"| {name} | {dr:g} | {tilt:g} | failed: {exc} | | | | | | | |")
+            continue
+        em = p["moment_error_rel"]
+        md.append(f"| {name} | {dr:g} | {tilt:g} | {p['force_n'] / 1e3:.3f} | {100 * p['force_error_rel']:.2f} % | "
+                  f"{p['moment_nm'] / 1e3:.4f} | {'–' if em is None else f'{100 * em:.2f} %'} | "
+                  f"{p['width_m'] / MM:.2f} | {p['width_law_m'] / MM:.2f} | {p['edges_loaded']} | {p['sides']} |")
+    c = reduce_motion(0.0, geom.clearance_m + 0.01 * MM, 2 * ARCMIN, 0.0)
+    p = reference_point(comps, c.motion.translation_m - geom.clearance_m, c.motion.tilt_rad)
+    fy, fz = rotate_about_x(-p["force_n"], 0.0, c.frame_angle_rad)
+    my, mz = rotate_about_x(0.0, p["moment_nm"], c.frame_angle_rad)
+    ref = [q for q in ds.points if abs(q["penetration_m"] - 0.01 * MM) < 1e-12 and abs(q["tilt_rad"] - 2 * ARCMIN) < 1e-12]
+    md += ["", f"Tilt about y (translation 0.06 mm along +z, θ_y = 2′): reduced by a 90° rotation about x to the "
+           f"canonical case; F on bearing (y, z) = ({fy / 1e3:.3f}, {fz / 1e3:.3f}) kN, M (y, z) = ({my / 1e3:.4f}, "
+           f"{mz / 1e3:.4f}) kN·m" + (f"; the committed tilt-about-z point has |F| = {ref[0]['force_n'] / 1e3:.3f} kN, "
+                                      f"M_z = {ref[0]['moment_nm'] / 1e3:.4f} kN·m" if ref else "") + "."]
+    try:
+        reduce_motion(geom.clearance_m + 0.01 * MM, 0.0, 2 * ARCMIN, 0.0)
+        md.append("Translation along y with tilt about y: accepted (unexpected).")
+    except InputError as exc:
+        md.append(f"Translation along y with tilt about y (contact line twisted out of the symmetry plane) fails "
+                  f"clearly: `InputError: {exc}`")
+    return md
+
+
 def report_main(argv: list[str]) -> int:
     """``fem3d report``: tables and figures of the committed 3D dataset into reports/published/."""
     import io
@@ -248,6 +310,7 @@ def report_main(argv: list[str]) -> int:
                   f"{h1['force_3d_fixed_ends_n'] / 1e3:.2f} ({100 * (h1['force_3d_fixed_ends_n'] / s2 - 1):+.2f} %) | "
                   f"{h2['force_3d_fixed_ends_n'] / 1e3:.2f} ({100 * (h2['force_3d_fixed_ends_n'] / s2 - 1):+.2f} %) | "
                   f"{p['force_n'] / 1e3:.2f} | {p['force_n'] / s2:.3f} | {p['force_n'] / st:.3f} |")
+    md += _hard_cases_section(ds)
     atomic_write_text(out / "fem3d-reference.md", "\n".join(md) + "\n")
     atomic_write_text(out / "fem3d-reference.csv", "\n".join(csv) + "\n")
     fig, axs = plt.subplots(1, 3, figsize=(13, 4))

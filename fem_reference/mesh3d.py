@@ -176,3 +176,11 @@ LEVELS: dict[str, MeshLevel3D] = {
     "L2": MeshLevel3D("L2", n_phi=48, n_axial=16, n_radial=8, phi_ratio=1.0, axial_ratio=3.0),
 }
 DEFAULT_LEVELS = ("L0", "L1", "L2")
+# Levels graded hard toward the ring edges (edge elements 0.16, 0.12, 0.08 mm) for edge-only
+# contact whose patch is much shorter than l0 (issue 4 hard case); about 3x the cost of L0-L2.
+LEVELS.update({
+    "E0": MeshLevel3D("E0", n_phi=24, n_axial=16, n_radial=4, phi_ratio=1.0, axial_ratio=40.0),
+    "E1": MeshLevel3D("E1", n_phi=34, n_axial=22, n_radial=6, phi_ratio=1.0, axial_ratio=40.0),
+    "E2": MeshLevel3D("E2", n_phi=48, n_axial=32, n_radial=8, phi_ratio=1.0, axial_ratio=40.0),
+})
+EDGE_LEVELS = ("E0", "E1", "E2")

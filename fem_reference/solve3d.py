@@ -369,6 +369,8 @@ class PointResult3D:
         Load carried on the -y side (N, magnitude), nonzero only for two-point contact.
     peak_pressure_pa : float
     n_dofs, n_pairs, n_active, iterations : int
+    n_active_lines : int
+        Axial node lines with contact on the +y side (resolution of the patch length).
     solve_s : float
         Wall time of the contact solve on a ready compliance (s).
     """
@@ -392,6 +394,7 @@ class PointResult3D:
     n_dofs: int
     n_pairs: int
     n_active: int
+    n_active_lines: int
     iterations: int
     lcp_method: str
     solve_s: float
@@ -497,5 +500,5 @@ def solve_point(comp: ContactCompliance, motion: RigidMotion, *, candidate_margi
         contact_half_angle_rad=float(phi_act.max()) if phi_act.size else 0.0,
         edges_loaded=edges, sides=sides, force_minus_y_side_n=f_minus,
         peak_pressure_pa=float(pressure.max(initial=0.0)), n_dofs=comp.n_dofs, n_pairs=len(g0_all),
-        n_active=int(active.sum()), iterations=iters_total, lcp_method=method,
+        n_active=int(active.sum()), n_active_lines=int(act_plus.sum()), iterations=iters_total, lcp_method=method,
         solve_s=time.perf_counter() - t0, pressure_pa=pressure, phi_grid=comp.phi_grid, x_grid=comp.x_grid)

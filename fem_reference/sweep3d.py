@@ -46,7 +46,8 @@ DATA_DIR = Path(__file__).resolve().parent / "data" / "3d"
 DATASET_PATH = DATA_DIR / "fem3d-reference.json"
 DEFAULT_TILTS_ARCMIN = (0.0, 0.5, 1.0, 2.0, 30.0)
 DEFAULT_PENETRATIONS_MM = (0.005, 0.01, 0.02, 0.03, 0.04, 0.05)
-CODE_VERSION = "fem3d-1"      # bump when the compliance computation changes (invalidates the cache)
+CODE_VERSION = "fem3d-1"
+MIN_ACTIVE_LINES = 3          # axial node lines in contact needed for a reference point      # bump when the compliance computation changes (invalidates the cache)
 
 COLUMNS = {
     "scene": "-", "penetration_m": "m", "offset_m": "m", "tilt_rad": "rad",
@@ -162,8 +163,9 @@ def reference_point(comps: list[ContactCompliance], penetration_m: float, tilt_r
     Raises
     ------
     ConvergenceError
-        If any level fails (message names the level), or the finest level's estimated force or
-        moment error exceeds nothing here - the 2 % acceptance is checked by the sweep/tests.
+        If any level fails (message names the level), or a level resolves the contact patch by
+        fewer than ``MIN_ACTIVE_LINES`` axial node lines (e.g. edge-only contact with width << l0
+        on a mesh not refined toward the edges): a number from such a mesh is not a reference.
     """
     geom = comps[-1].geom
     motion = RigidMotion.from_penetration(geom, penetration_m, tilt_rad)
@@ -173,6 +175,15 @@ def reference_point(comps: list[ContactCompliance], penetration_m: float, tilt_r
             sols.append(solve_point(c, motion))
         except ConvergenceError as exc:
             raise ConvergenceError(f"level {c.level.name} ({c.n_dofs} DOFs): {exc}") from exc
+    for c, s in zip(comps, sols):
+        if 0 < s.n_active_lines < MIN_ACTIVE_LINES:
+            h_edge = float(c.x_grid[1] - c.x_grid[0])
+            raise ConvergenceError(
+                f"contact patch not resolved on level {c.level.name}: {s.n_active_lines} axial node line(s) in "
+                f"contact (width about {s.contact_width_m * 1e3:.2f} mm, law {s.contact_width_law_m * 1e3:.2f} mm; "
+                f"edge element {h_edge * 1e3:.2f} mm; need >= {MIN_ACTIVE_LINES} lines): refine toward the ring "
+                f"edges (MeshLevel3D.axial_ratio / n_axial) for penetration {penetration_m * 1e3:g} mm, "
+                f"tilt {tilt_rad / ARCMIN:g} arcmin")
     fine = sols[-1]
     nd = [c.n_dofs for c in comps]
     rf = richardson3([s.force_n for s in sols], nd)

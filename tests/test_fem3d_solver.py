@@ -148,3 +148,13 @@ def test_hard_tilt_about_y_same_magnitude_rotated(small):
     assert c.frame_angle_rad == pytest.approx(math.pi / 2)
     with pytest.raises(InputError, match="not in one plane"):
         reduce_motion(GEOM.clearance_m + 0.01 * MM, 0.0, 2 * ARCMIN, 0.0)
+
+
+def test_hard_edge_only_unresolved_fails_clearly(small):
+    # A reference point whose patch spans fewer than 3 axial node lines is refused with a message
+    # naming the width, the edge element and the remedy (never a silent number).
+    from contact.errors import ConvergenceError
+    from fem_reference.sweep3d import reference_point
+
+    with pytest.raises(ConvergenceError, match="not resolved.*refine toward the ring edges"):
+        reference_point([small, small, small], -0.04 * MM, 10 * ARCMIN)
