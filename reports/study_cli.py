@@ -72,7 +72,7 @@ def _parser() -> argparse.ArgumentParser:
     ru.add_argument("--rpm-start", type=float, default=600.0)
     ru.add_argument("--rpm-end", type=float, default=18000.0)
     ru.add_argument("--duration-s", type=float, default=20.0)
-    ru.add_argument("--down", action="store_true", help="run down (start above end)")
+    ru.add_argument("--down", action="store_true", help="run down: from the higher of the two speeds to the lower")
     mp = sub.add_parser("map", help="where the support sticks, slips and impacts over (speed, clearance)")
     _common(mp, "runs/map")
     mp.add_argument("--rpm-max", type=float, default=18000.0)
@@ -201,9 +201,13 @@ def _run(args) -> int:
     elif args.study == "runup":
         from rotor.runup import RunupSpec, run_runup
 
-        spec = RunupSpec(scene=args.scene, rpm_start=args.rpm_start, rpm_end=args.rpm_end,
-                         duration_s=args.duration_s)
-        res = run_runup(spec, out)
+        a, b = args.rpm_start, args.rpm_end
+        if args.down and a < b:
+            a, b = b, a
+        spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
+                         steps_per_rev=int(args.steps_per_rev))
+        info = run_runup(spec, out)
+        print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")
         from reports import studies
         files = studies.runup_figures(out, figs)
     else:  # pragma: no cover - argparse guards this

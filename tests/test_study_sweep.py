@@ -191,3 +191,25 @@ def test_progress_quiet_when_piped_or_under_ci(monkeypatch):
     p = Progress(3, stream=tty2)
     p.update()
     assert tty2.getvalue() == ""
+
+
+class _ClientLike:
+    """Stands in for dask.distributed.Client (optional dependency, not installed here): a client is
+    not a concurrent.futures.Executor itself but hands one out through get_executor()."""
+
+    def __init__(self, ex):
+        self.ex = ex
+        self.asked = 0
+
+    def get_executor(self):
+        self.asked += 1
+        return self.ex
+
+
+def test_client_with_get_executor_is_used_like_dask(dirs):
+    store, calls = dirs
+    tasks = _tasks(calls, (1.0, 2.0))
+    with cf.ThreadPoolExecutor(max_workers=2) as ex:
+        client = _ClientLike(ex)
+        s = run_sweep(tasks, store, executor=client, progress=False)
+    assert client.asked == 1 and sorted(s.computed) == ["x1", "x2"]
