@@ -66,6 +66,9 @@ def point_main(argv: list[str]) -> int:
     print(f"peak pressure    {rec['peak_pressure_pa'] / 1e6:.2f} MPa")
     print(f"mesh             h = {rec['h_contact_m'] / MM:g} mm, P{rec['element_order']}, {rec['ndofs']} DOFs")
     print(f"solver           {rec['iterations']} active-set iterations, {rec['wall_s']:.2f} s")
+    if "h_levels_m" in rec:
+        print(f"levels           {', '.join(f'{h / MM:g}' for h in rec['h_levels_m'])} mm (Richardson), "
+              f"{rec['wall_levels_s']:.2f} s for the whole point from scratch")
     if rec["peak_pressure_pa"] > 2e9:
         print(f"note: peak pressure {rec['peak_pressure_pa'] / 1e9:.1f} GPa is beyond the yield of bearing steel; "
               "this is the linear-elastic answer only")
