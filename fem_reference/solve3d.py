@@ -207,10 +207,11 @@ def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
     Kff = K[free][:, free].tocsc()
     Bf = B[:, free].tocsc()
     t0 = time.perf_counter()
-    # SuperLU with the minimum-degree ordering of A^T + A and symmetric mode (no pivoting on the
-    # SPD matrix): the least fill of the orderings measured on these rings (L2 bearing ring:
-    # 14.5 M against 16.4 M for COLAMD and 18.3 M for reverse Cuthill-McKee; benchmarks/bench_fem3d.py).
-    lu = spla.splu(Kff, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    # SuperLU with COLAMD ordering and symmetric mode (no pivoting on the SPD matrix). The
+    # compliance is dominated by many-right-hand-side solves; side by side on the L2 bearing ring
+    # COLAMD was the fastest of COLAMD / MMD(A'+A) / reverse Cuthill-McKee in 3 of 4 interleaved
+    # comparisons (MMD has the least fill, but was slower per solve; benchmarks/bench_fem3d.py).
+    lu = spla.splu(Kff, permc_spec="COLAMD", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
     t1 = time.perf_counter()
     BT = Bf.T.tocsc()
     nphi, nx = len(phi_grid), len(x_grid)

@@ -307,7 +307,7 @@ def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, s
         "mesh": {"levels": [lv.as_dict() for lv in levels], "ndofs_levels": points[0]["ndofs_levels"] if points else [],
                  "model": "half model z >= 0 (plane of load direction y and axis x), u_z = 0 on z = 0; "
                           "mapped structured hexahedra, exact node pairing across the clearance"},
-        "solver": {"method": "rigid motion split off (strain-free); per-level SuperLU factor (RCM order) and "
+        "solver": {"method": "rigid motion split off (strain-free); per-level SuperLU factor (COLAMD) and "
                              "contact compliance G = B K^-1 B^T formed once; LCP g0 + G lam >= 0 solved exactly "
                              "by primal-dual active set (NNLS fallback); complementarity verified on all pairs",
                    "gap": "exact tilted cylinders (geometry3d.rigid_gap_m), elastic part linearised radially"},
