@@ -13,13 +13,12 @@ from __future__ import annotations
 
 import csv
 import io
-import math
 from pathlib import Path
 
 import numpy as np
 
 from contact.files import atomic_write_bytes, atomic_write_text
-from rotor.sweep import ResultStore, load_sweep
+from rotor.sweep import load_sweep
 
 LOCATIONS = (("disk1.y", "disk 1"), ("disk2.y", "disk 2"), ("s.y", "3# bearing (support)"))
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from contact.errors import InputError
-from rotor.study import (Convergence, SteadyStateOptions, harmonic_amplitudes, poincare_convergence, spectrum,
+from rotor.study import (SteadyStateOptions, harmonic_amplitudes, poincare_convergence, spectrum,
                          steady_state)
 
 

@@ -1,6 +1,5 @@
 """Run-up segment stitching and the ``ringcontact study`` job, end to end on small cases."""
 import csv
-import math
 
 import numpy as np
 import pytest
