@@ -347,8 +347,6 @@ class PointResult3D:
 
     force_n : float
         Load magnitude (N): minus the y-component of the contact force on the bearing.
-    force_z_n : float
-        z-component of the contact force on the bearing (0 by symmetry, kept as a check).
     moment_z_nm : float
         Moment about +z through the ring centre of the contact force on the bearing (N*m),
         ``sum x*F_y`` (contact-laws.md §1 convention; negative for a positive tilt).
@@ -380,7 +378,6 @@ class PointResult3D:
     tilt_rad: float
     level: str
     force_n: float
-    force_z_n: float
     moment_z_nm: float
     contact_x_min_m: float
     contact_x_max_m: float
@@ -494,7 +491,7 @@ def solve_point(comp: ContactCompliance, motion: RigidMotion, *, candidate_margi
     f_minus = 2.0 * float(np.sum(lam_all[~plus] * -cosp[~plus]))
     return PointResult3D(
         penetration_m=motion.translation_m - geom.clearance_m, tilt_rad=motion.tilt_rad, level=comp.level.name,
-        force_n=-fy_bearing, force_z_n=0.0, moment_z_nm=mz,
+        force_n=-fy_bearing, moment_z_nm=mz,
         contact_x_min_m=x_lo, contact_x_max_m=x_hi, contact_width_m=x_hi - x_lo,
         contact_width_law_m=law_contact_width_m(geom, motion),
         load_centre_x_m=(mz / fy_bearing) if fy_bearing != 0 else 0.0,

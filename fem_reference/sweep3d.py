@@ -150,7 +150,8 @@ _LOADED: dict[str, ContactCompliance] = {}
 
 def _load_cached(path: str) -> ContactCompliance:
     if path not in _LOADED:
-        _LOADED.clear() if len(_LOADED) > 6 else None
+        if len(_LOADED) > 6:          # a worker keeps at most a few levels in memory
+            _LOADED.clear()
         _LOADED[path] = load_compliance(path)
     return _LOADED[path]
 
