@@ -46,6 +46,12 @@ from rotor._numba_cache import drop_stale_cache
 # either source changes (numba itself only watches this file).
 drop_stale_cache(__file__, ["contact._kernel", "rotor.constraints"])
 
+# Caching note: functions that take the support-law kernel (a numba dispatcher) as an argument
+# are NOT cached on disk. numba keys their cache by the dispatcher's identity, which differs in
+# every process, so the cache never hit, its index grew with every process, and saving it
+# eventually failed ("ReferenceError: underlying object has vanished"). They compile once per
+# process instead; the kernel and the small solver are cached.
+
 _slip_force = njit(cache=True)(cons.slip_force)
 _mode_update = njit(cache=True)(cons.face_mode_update)
 
@@ -159,7 +165,7 @@ def _small_solve(A, b, m, out):
     return True
 
 
-@njit(cache=True)
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
 def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
             g, Jg, phi, u, w):
     """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x (stuck-face forces from x[NC:]);
@@ -214,7 +220,7 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
             g[r] += P[k, 0, r] * phi[k, 0] + P[k, 1, r] * phi[k, 1]
 
 
-@njit(cache=True)
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
 def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
               w_reg, g, Jg, phi, u, w, R, J):
     """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|."""
@@ -253,7 +259,7 @@ def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu
     return math.sqrt(nr)
 
 
-@njit(cache=True)
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
 def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freeze, freeze_dir, mu_N, a1,
                    bdt2, gdt, kernel, params, tol, max_iter, w_reg):
     """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)], analytic Jacobian,
@@ -342,7 +348,7 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
     return x[:NC].copy(), g, phi, its, ok
 
 
-@njit(cache=True)
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
 def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
           Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, s_yy, a1,
           has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
