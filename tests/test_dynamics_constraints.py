@@ -153,13 +153,14 @@ def test_hard_cases_run_or_stop_clearly(table4, label, kw):
     if label == "clearance 1 mm":
         assert max(r1.max(), r2.max()) < 1e-3  # never closes a 1 mm clearance
     # chatter (runs of three consecutive stick/slip flips of a face, i.e. step-by-step
-    # alternation) stays rare; measured 0-6 runs in 2560 steps (the 0.001 mm and 3 mm cases,
-    # during impacts), against 10-50 with the end-of-step stick test
+    # alternation) stays rare; measured 0-3 runs in 2560 steps (the 0.001 mm, 3 mm and μ = 1 cases,
+    # at stick onsets where the face force hovers at μN), against 10-50 with the end-of-step stick test
     d = np.diff(tr.modes.astype(int), axis=0) != 0
     assert (d[:-2] & d[1:-1] & d[2:]).sum() <= 0.005 * 2560
-    # least-residual steps (discontinuous edge selection of the law) are few: measured 0-30 of
-    # 2560 (30 = 1.2 % at the 0.001 mm clearance, where the ring is in near-permanent edge contact)
-    assert tr.unconverged_steps < 0.02 * 2560
+    # least-residual steps are few: measured 0-8 of 2560 (8 = 0.3 % at the 0.001 mm clearance, all
+    # where the two edge penetrations cross, r1 ≈ r2, and the law's one-edge selection jumps);
+    # 0-30 with the former 25-iteration cap (friction stalls, see NewmarkOptions.max_iter)
+    assert tr.unconverged_steps < 0.01 * 2560
     fm = 0.5 * (tr.face_force[1:] + tr.face_force[:-1])
     stuck = tr.modes[1:] == cons.STICK
     if tr.unconverged_steps == 0:
