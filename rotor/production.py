@@ -609,6 +609,12 @@ def steady_state(system: RotorSystem, steps_per_rev: int, dofs, *, keep_revs: in
                  options: NewmarkOptions | None = None) -> SteadyState:
     """Run to steady state, then ``keep_revs`` revolutions, and take the 1X…kX velocity amplitudes.
 
+    A quick check kept for ``ringcontact simulate --steady``. Studies and the performance
+    benchmark use :func:`rotor.study.steady_state` instead (stricter detector: displacement
+    Poincaré samples to 1e-4 with the projected tail of the decay, subharmonic periods). Note
+    that a record decimated below the step rate aliases orders ``samples_per_rev·k ± h`` onto
+    ``hX`` (measured in ``reports/published/perf-integrators.md``: up to 2.7 % on a 5X of 6e-5 × 1X).
+
     Start: the linear periodic solution with the support locked
     (:func:`rotor.integrate.linear_initial_state`). Steady state is *detected*: every
     ``chunk_revs`` revolutions the velocities of ``dofs`` sampled once per revolution
