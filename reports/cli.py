@@ -10,6 +10,8 @@ from __future__ import annotations
 import importlib
 import sys
 
+from contact.errors import RingContactError
+
 # job name -> (module, one-line help). Keep sorted by data-flow layer.
 JOBS: dict[str, tuple[str, str]] = {
     "law": ("contact.cli", "evaluate an analytic contact law at given penetrations/tilts (table or --json)"),
@@ -45,7 +47,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"ringcontact: unknown job {job!r}\n\n{_usage()}", file=sys.stderr)
         return 2
     module = importlib.import_module(JOBS[job][0])
-    return int(module.main(rest) or 0)
+    try:
+        return int(module.main(rest) or 0)
+    except RingContactError as exc:  # safety net: every job reports suite errors the same way
+        print(f"ringcontact {job}: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":
