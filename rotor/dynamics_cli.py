@@ -51,8 +51,10 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--clearance-mm", type=float, default=None, help="radial clearance (mm, default: scene)")
     p.add_argument("--misalignment-mm", type=float, default=None, help="misalignment δ (mm, default: scene)")
     p.add_argument("--steady", action="store_true",
-                   help="run to steady state first (Poincaré criterion), then --revolutions kept revolutions "
-                        "with 1X-5X velocity amplitudes of --dofs in the summary")
+                   help="run to steady state first (rotor.study.steady_state: displacement Poincaré samples "
+                        "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
+                        "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
+                        "amplitudes of --dofs in the summary")
     p.add_argument("--out", default="simulate-out", help="output directory")
     return p
 
@@ -98,19 +100,35 @@ def _run(args) -> int:
     t0 = time.perf_counter()
     extra = {}
     if args.steady:
-        from rotor.production import steady_state
+        from rotor.integrate import linear_initial_state
+        from rotor.study import SteadyStateOptions, harmonic_amplitudes, steady_state
 
         keep = int(round(args.revolutions))
         if args.scheme != "production" or keep < 1 or args.steps_per_rev % args.record_per_rev:
             raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
                              "dividing --steps-per-rev")
-        ss = steady_state(system, args.steps_per_rev, idx, keep_revs=keep, samples_per_rev=args.record_per_rev)
-        tr = ss.trajectory
-        n_steps = keep * args.steps_per_rev
-        extra = {"transient_revs": ss.transient_revs, "steady_converged": ss.converged,
-                 "poincare_change": ss.poincare_change,
-                 "velocity_amplitudes_mm_s_1X_to_5X": {n: [round(float(a) * 1e3, 6) for a in row]
-                                                       for n, row in zip(names, ss.amplitudes)}}
+        # detection by rotor.study (displacement Poincaré samples with the projected tail of the
+        # decay, subharmonic periods); its own record is one period only: the kept revolutions are
+        # integrated below from its end state so that every field of the trajectory is written
+        opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
+                                  spectrum_revs=1)
+        q_start, v_start = linear_initial_state(system, 0.0)
+        ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
+        conv = ss.convergence
+        period = conv.period if conv.converged else 1
+        keep = int(math.ceil(keep / period) * period)  # whole periods: exact DFT bins
+        dt = T / ss.steps_per_rev  # the detector may refine the step (contact step limit)
+        rec = ss.steps_per_rev // args.record_per_rev
+        n_steps = keep * ss.steps_per_rev
+        tr = simulate_production(system, dt, n_steps, q0=ss.q_end, v0=ss.v_end,
+                                 t0=(ss.transient_revs + ss.revolutions) * T,
+                                 modes0=tuple(int(m) for m in ss.modes[-1]), record_every=rec, check_step=False)
+        amps = np.abs(harmonic_amplitudes(tr.v[:-1, idx] - tr.v[:-1, idx].mean(axis=0), keep))
+        extra = {"transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
+                 "period_revs": int(conv.period), "poincare_change": float(conv.change),
+                 "poincare_remaining": float(conv.remaining), "record_revs": keep,
+                 "velocity_amplitudes_mm_s_1X_to_5X": {n: [round(float(a) * 1e3, 6) for a in amps[:, j]]
+                                                       for j, n in enumerate(names)}}
     else:
         tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
     wall = time.perf_counter() - t0
