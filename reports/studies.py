@@ -448,8 +448,8 @@ def cascade_note(points, notilt=None, timing=None) -> str:
         t = timing[-1]
         lines += [f"**Timing:** {len(points)} speeds in {t['wall_s']:.0f} s wall with {t['workers']} worker "
                   f"processes ({t['wall_s'] / max(len(points), 1):.1f} s per point on the sweep clock; median "
-                  f"{t['point_wall_s_median']:.1f} s per point inside a worker), shared 2-core machine under "
-                  f"`nice -n 10`, load average at the end {t['load_avg_end'][0]:.1f}.", ""]
+                  f"{t['point_wall_s_median']:.1f} s per point inside a worker), shared 2-core machine, "
+                  f"load average at the end {t['load_avg_end'][0]:.1f}.", ""]
     # regimes by speed band
     bands = []
     cur = None
