@@ -11,12 +11,19 @@ with the tilt aligned so that edge 1 penetrates most; ``--penetration-at centre`
 reads the penetration at the ring centre plane, ``edge`` at the leading edge (Q9 of the
 reference note).
 
+A calibrated law (:mod:`contact.calibrate`, fitted to a FEM scene) is chosen with
+``--law calibrated:<name>`` (``ringcontact calibrate`` lists them in contact/calibrated/). Its
+geometry and materials are those of its scene (passing others is an error); tilted points use
+its slice-integrated tilt model, and points whose deepest slice lies above the calibration's
+validity range are flagged ``outside_domain`` (no extrapolation).
+
 Examples::
 
     ringcontact law --penetration-mm 0.01 0.02 0.03
     ringcontact law --law johnson --penetration-mm 0.01 0.03 --json
     ringcontact law --penetration-mm 0.01 0.05 --tilt-arcmin 0.5 1 2
     ringcontact law --csv points.csv --clearance-mm 0.05 --width-mm 30 --json
+    ringcontact law --law calibrated:clamped-foundation --penetration-mm 0.01 0.02 --tilt-arcmin 0 1
 """
 from __future__ import annotations
 
@@ -28,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contact import laws, tilt
+from contact import calibrate, laws, tilt
 from contact.errors import DatasetError, InputError, RingContactError
 from contact.units import ARCMIN, GPA, MM
 
@@ -37,9 +44,12 @@ def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="ringcontact law",
         description="Evaluate an analytic contact law of a bearing ring in its support (Dai et al. 2025). "
-                    "Defaults are the paper's Table 1 (204 GPa, nu 0.3, l0 30 mm, clearance 0.05 mm).",
+                    "Geometry and material defaults are the paper's Table 1 (204 GPa, nu 0.3, l0 30 mm, "
+                    "clearance 0.05 mm); a calibrated law brings its own.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    p.add_argument("--law", choices=sorted(laws.LAWS), default="conformal", help="contact law")
+    p.add_argument("--law", default="conformal", metavar="LAW",
+                   help="contact law: " + ", ".join(sorted(laws.LAWS)) + ", or calibrated:<name> with <name> one of "
+                        + ", ".join(calibrate.available()))
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--penetration-mm", type=float, nargs="+", metavar="MM",
                      help="penetration(s) Δr = |r| − δ0 in mm")
@@ -49,12 +59,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="relative tilt(s) in arcminutes (combined with every penetration)")
     p.add_argument("--penetration-at", choices=("centre", "edge"), default="centre",
                    help="where a tilted ring's penetration is measured")
-    p.add_argument("--clearance-mm", type=float, default=0.05, help="radial clearance δ0 (mm)")
-    p.add_argument("--width-mm", type=float, default=30.0, help="ring width l0 (mm)")
-    p.add_argument("--bearing-E-GPa", type=float, default=204.0, help="Young's modulus of the ring (GPa)")
-    p.add_argument("--bearing-nu", type=float, default=0.3, help="Poisson's ratio of the ring")
-    p.add_argument("--support-E-GPa", type=float, default=204.0, help="Young's modulus of the support (GPa)")
-    p.add_argument("--support-nu", type=float, default=0.3, help="Poisson's ratio of the support")
+    p.add_argument("--clearance-mm", type=float, default=None, help="radial clearance δ0 (mm)")
+    p.add_argument("--width-mm", type=float, default=None, help="ring width l0 (mm)")
+    p.add_argument("--bearing-E-GPa", type=float, default=None, help="Young's modulus of the ring (GPa)")
+    p.add_argument("--bearing-nu", type=float, default=None, help="Poisson's ratio of the ring")
+    p.add_argument("--support-E-GPa", type=float, default=None, help="Young's modulus of the support (GPa)")
+    p.add_argument("--support-nu", type=float, default=None, help="Poisson's ratio of the support")
     p.add_argument("--modulus", choices=laws.MODULI, default=None,
                    help="2D idealisation (default: plane_stress for conformal, plane_strain otherwise)")
     p.add_argument("--beta-reading", choices=laws.BETA_READINGS, default="zero",
@@ -83,12 +93,80 @@ def read_points_csv(path: Path) -> tuple[np.ndarray, np.ndarray]:
     return np.array(pen), np.array(tilts)
 
 
+#: the paper's Table 1 (Dai et al. 2025): geometry and materials when none are given
+TABLE1_DEFAULTS = {"clearance_mm": 0.05, "width_mm": 30.0, "bearing_E_GPa": 204.0, "bearing_nu": 0.3,
+                   "support_E_GPa": 204.0, "support_nu": 0.3}
+CALIBRATED_PREFIX = "calibrated:"
+
+
+def _geometry_of_calibrated(law: calibrate.CalibratedLaw) -> dict:
+    g = law.geometry
+    return {"clearance_mm": g.clearance_m / MM, "width_mm": g.width_m / MM, "bearing_E_GPa": g.bearing_E_Pa / GPA,
+            "bearing_nu": g.bearing_nu, "support_E_GPa": g.support_E_Pa / GPA, "support_nu": g.support_nu}
+
+
+def resolve_geometry(args: argparse.Namespace) -> calibrate.CalibratedLaw | None:
+    """Fill the geometry/material fields of ``args`` in place; return the calibrated law if one is chosen.
+
+    Analytic laws take the paper's Table 1 for anything not given. A calibrated law takes its
+    scene's values; a different value given on the command line raises :class:`InputError`.
+    """
+    if args.law.startswith(CALIBRATED_PREFIX):
+        law = calibrate.load_calibrated(args.law[len(CALIBRATED_PREFIX):])
+        own = _geometry_of_calibrated(law)
+        for key, val in own.items():
+            given = getattr(args, key)
+            if given is not None and not np.isclose(given, val, rtol=1e-9, atol=0.0):
+                raise InputError(f"{key} = {given:g}: calibrated law {law.name!r} holds for {key} = {val:g} only "
+                                 "(its FEM scene); leave it out or refit for another geometry")
+            setattr(args, key, val)
+        return law
+    if args.law not in laws.LAWS:
+        raise InputError(f"law = {args.law!r}: unknown (have {', '.join(sorted(laws.LAWS))} or "
+                         f"{CALIBRATED_PREFIX}<name> with <name> in {', '.join(calibrate.available())})")
+    for key, val in TABLE1_DEFAULTS.items():
+        if getattr(args, key) is None:
+            setattr(args, key, val)
+    return None
+
+
+def _evaluate_calibrated(law: calibrate.CalibratedLaw, pen_mm: np.ndarray, tilt_arcmin: np.ndarray,
+                         penetration_at: str) -> list[dict]:
+    """Points of a calibrated law: slice-integrated tilt (:meth:`CalibratedLaw.tilted`), validity flagged."""
+    width_m = law.geometry.width_m
+    top_m = law.validity_penetration_m[1]
+    points = []
+    for pm, ta in zip(pen_mm, tilt_arcmin):
+        tilt_rad = abs(float(ta)) * ARCMIN
+        centre_m = float(pm) * MM - (0.5 * tilt_rad * width_m if penetration_at == "edge" else 0.0)
+        edge_m = centre_m + 0.5 * tilt_rad * width_m
+        ok = edge_m <= top_m * (1 + 1e-12)
+        if edge_m > 0.0:
+            load, moment, width = law.tilted(centre_m, tilt_rad)
+        else:
+            load, moment, width = 0.0, 0.0, 0.0
+        if edge_m <= 0.0:
+            state = "none"
+        elif tilt_rad == 0.0:
+            state = "line"
+        else:
+            state = "edge1"
+        points.append({"penetration_mm": float(pm), "tilt_arcmin": float(ta),
+                       "force_N": float(abs(load)) if ok else None, "moment_Nm": float(abs(moment)) if ok else None,
+                       "contact_width_m": float(width), "edge_penetration_mm": float(edge_m / MM),
+                       "state": state, "outside_domain": not ok})
+    return points
+
+
 def evaluate(args: argparse.Namespace, pen_mm: np.ndarray, tilt_arcmin: np.ndarray) -> list[dict]:
     """Evaluate the chosen law at the points (SI inside); one dict per point."""
     for name, vals, unit in (("penetration_mm", pen_mm, "mm"), ("tilt_arcmin", tilt_arcmin, "arcmin")):
         bad = ~np.isfinite(vals)
         if np.any(bad):
             raise InputError(f"{name} = {vals[bad][0]} {unit}: must be finite")
+    calibrated = resolve_geometry(args)
+    if calibrated is not None:
+        return _evaluate_calibrated(calibrated, pen_mm, tilt_arcmin, args.penetration_at)
     clearance_m, width_m = args.clearance_mm * MM, args.width_mm * MM
     per_width = laws.force_per_width_function(
         args.law, clearance_m=clearance_m, bearing_E_Pa=args.bearing_E_GPa * GPA, bearing_nu=args.bearing_nu,
@@ -150,7 +228,8 @@ def main(argv: list[str] | None = None) -> int:
         params = {"clearance_m": args.clearance_mm * MM, "width_m": args.width_mm * MM,
                   "bearing_E_Pa": args.bearing_E_GPa * GPA, "bearing_nu": args.bearing_nu,
                   "support_E_Pa": args.support_E_GPa * GPA, "support_nu": args.support_nu,
-                  "modulus": args.modulus or ("plane_stress" if args.law == "conformal" else "plane_strain"),
+                  "modulus": (args.modulus or ("plane_stress" if args.law == "conformal" else "plane_strain"))
+                  if not args.law.startswith(CALIBRATED_PREFIX) else None,
                   "beta_reading": args.beta_reading, "penetration_at": args.penetration_at}
         print(json.dumps({"law": args.law, "parameters": params, "points": points}, indent=2, allow_nan=False))
     else:
