@@ -10,6 +10,7 @@ Sub-studies (each resumable: points already in ``--out`` are reused, corrupt one
     ringcontact study runup    --out runs/runup                      # run-up with time–frequency cascade
     ringcontact study map      --out runs/map                        # stick/slip/impact over (speed, clearance)
     ringcontact study publish  --cascade runs/fig12 --notilt runs/fig16 …   # study-* into reports/published
+    ringcontact study sensitivity --out runs/sensitivity             # §5 findings vs the unstated inputs (slow)
 
 Engineer units at the edge (``_rpm``, ``_mm``); results in SI (see rotor.sweep for the file
 layout). Figures (PNG + SVG) go to ``--figures`` (default: ``<out>/figures``).
@@ -78,6 +79,16 @@ def _parser() -> argparse.ArgumentParser:
     mp.add_argument("--rpm-max", type=float, default=18000.0)
     mp.add_argument("--points", type=int, default=13, help="speeds (default 13)")
     mp.add_argument("--clearances-mm", default="0.01,0.02,0.05,0.1,0.2", help="comma list (mm)")
+    se = sub.add_parser("sensitivity", help="do the paper's Section 5 findings hold for plausible values of the "
+                                            "inputs Table 4 does not give? (slow: ~30 min with 2 workers)")
+    se.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
+    se.add_argument("--out", default="runs/sensitivity", help="result directory (default runs/sensitivity)")
+    se.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+    se.add_argument("--variants", default=None, help="comma list of variant names (default: all; see rotor.sensitivity)")
+    se.add_argument("--report-only", action="store_true", help="no computing: report what is in --out")
+    se.add_argument("--to", default=str(Path(__file__).resolve().parent / "published"),
+                    help="where study-sensitivity.{md,csv,png,svg} go (default reports/published)")
+    se.add_argument("--no-progress", action="store_true", help="no progress line")
     pb = sub.add_parser("publish", help="figures + notes of finished study directories into reports/published (study-*)")
     for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup"):
         pb.add_argument(f"--{k}", default=None, help=f"directory of a finished '{k}' study")
@@ -140,6 +151,8 @@ def _run(args) -> int:
         for f in studies.publish(runs, Path(args.to)):
             print(f"  wrote {f}")
         return 0
+    if args.study == "sensitivity":
+        return _sensitivity(args)
     out = Path(args.out)
     figs = Path(args.figures) if args.figures else out / "figures"
     opts = _options(args)
@@ -212,6 +225,41 @@ def _run(args) -> int:
         files = studies.runup_figures(out, figs)
     else:  # pragma: no cover - argparse guards this
         return 2
+    for f in files:
+        print(f"  wrote {f}")
+    return 0
+
+
+def _sensitivity(args) -> int:
+    """Run (resumably) and report the sensitivity study of :mod:`rotor.sensitivity`."""
+    from contact.errors import InputError
+    from reports import sensitivity as rep
+    from rotor import sensitivity as sens
+    from rotor.sweep import code_revision, run_sweep
+
+    variants = sens.study_variants()
+    if args.variants:
+        want = [w.strip() for w in args.variants.split(",") if w.strip()]
+        known = {v.name: v for v in variants}
+        bad = [w for w in want if w not in known]
+        if bad:
+            raise InputError(f"variants: unknown {bad}; known: {', '.join(known)}")
+        variants = [known[w] for w in want]
+    out = Path(args.out)
+    if not args.report_only:
+        if args.workers < 1:
+            raise InputError(f"workers = {args.workers}: must be >= 1")
+        tasks = sens.study_tasks(variants, scene=args.scene)
+        t0 = time.perf_counter()
+        s = run_sweep(tasks, out, max_workers=args.workers, progress=False if args.no_progress else None,
+                      manifest={"study": "sensitivity", "variants": {v.name: v.factors for v in variants},
+                                "speeds_rpm": list(sens.SPEEDS_RPM)})
+        wall = time.perf_counter() - t0
+        print(f"study sensitivity: {len(tasks)} tasks, {len(s.computed)} computed, {len(s.reused)} reused, "
+              f"{len(s.failed)} failed, wall {wall:.1f} s")
+        _timing(out, s, wall, args)
+    files = rep.publish(out, Path(args.to), variants, scene=args.scene, timing=rep.timing_text(out),
+                        code=str(code_revision()))
     for f in files:
         print(f"  wrote {f}")
     return 0
