@@ -23,7 +23,15 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
 10    μN, sliding friction force of one end face (N)
 11    1.0: tilt ignored (line contact, translation-only friction)
 12    friction smoothing velocity ε (m/s); 0 = ideal Coulomb
+13    edge-transition width ε_e (m) of the one-point selection; 0 = the paper's sharp rule
 ====  ==================================================================
+
+Edge selection (Dai et al. 2025 Eqs. 18–19, regularised; :func:`selection`): with the centre
+outside the clearance the paper loads only the edge with the larger penetration, so at
+``Δr1 = Δr2`` the force direction and the moment arm ``±d`` jump; at ``|r| = δ0`` the rule
+jumps from both penetrating edges (two-point) to the larger one. With ``ε_e > 0`` both
+switches become C² smooth steps of width ``ε_e`` (see :func:`_smooth_step`); ``ε_e = 0``
+is the sharp rule exactly (with the Q8 tie: the mean of the two edges at ``Δr1 = Δr2``).
 """
 from __future__ import annotations
 
@@ -34,7 +42,7 @@ import numpy as np
 
 from contact.errors import OutsideDomainError
 
-N_PARAMS = 13
+N_PARAMS = 14
 STATE_NONE, STATE_EDGE1, STATE_EDGE2, STATE_TWO_POINT, STATE_LINE = 0, 1, 2, 3, 4
 
 
@@ -120,19 +128,93 @@ def _slices(pen, t, l0, partial, p):
 
 
 @numba.njit(cache=True, inline="always")
+def _smooth_step(x, half_width, tie):
+    """Smooth step ``S`` and ``dS/dx`` of a switch at ``x = 0`` (x in m).
+
+    Quintic ``S = 1/2 + (15u − 10u³ + 3u⁵)/16`` with ``u = x/half_width`` on ``|u| < 1``, 0 below,
+    1 above: C² (S' and S'' vanish at ``u = ±1``), ``S(0) = 1/2``, and exactly the sharp step
+    outside ``|x| < half_width``. ``half_width = 0``: the sharp step, ``S(0) = tie``.
+    """
+    if half_width == 0.0:
+        if x > 0.0:
+            return 1.0, 0.0
+        if x < 0.0:
+            return 0.0, 0.0
+        return tie, 0.0
+    u = x / half_width
+    if u >= 1.0:
+        return 1.0, 0.0
+    if u <= -1.0:
+        return 0.0, 0.0
+    u2 = u * u
+    q = 1.0 - u2
+    return 0.5 + u * (15.0 - u2 * (10.0 - 3.0 * u2)) / 16.0, 15.0 * q * q / (16.0 * half_width)
+
+
+@numba.njit(cache=True, inline="always")
+def selection(rr, pen1, pen2, d0, eps_e):
+    """Edge weights of Dai et al. (2025) Eqs. 18–19 with the Q8 tie, regularised over ``eps_e`` (m).
+
+    Sharp rule (``eps_e = 0``): centre inside the clearance (``|r| <= δ0``) → every penetrating
+    edge carries load (two-point contact); outside → only the edge with the larger penetration
+    (``w = 1``), a tie → the mean (``w1 = w2 = 1/2``). Regularised: ``s = S(Δr1 − Δr2)`` over the
+    band ``|Δr1 − Δr2| < ε_e/2`` (width ε_e, so ``s = 1/2`` at a tie as the Q8 rule), and the
+    hand-over ``λ = S(δ0 − ε_e/2 − |r|)`` from the two-point to the one-point branch over the band
+    ``δ0 − ε_e < |r| < δ0`` (inside the clearance, so that with θ = 0, where no edge penetrates
+    for ``|r| <= δ0``, nothing changes); ``w_k = λ c_k + (1 − λ) s_k`` with ``c_k = [Δr_k > 0]``,
+    ``s_1 = s``, ``s_2 = 1 − s``.
+
+    Returns ``(w1, w2, state, ds, dlam)``: ``ds = ds/d(Δr1 − Δr2)``, ``dlam = dλ/d(δ0 − |r|)``
+    (1/m), and the state of the sharp rule (0 none, 1 edge 1, 2 edge 2, 3 two-point, 4 tie).
+    """
+    if pen1 <= 0.0 and pen2 <= 0.0:
+        return 0.0, 0.0, STATE_NONE, 0.0, 0.0
+    c1 = 1.0 if pen1 > 0.0 else 0.0
+    c2 = 1.0 if pen2 > 0.0 else 0.0
+    if rr <= d0:
+        if c1 > 0.0 and c2 > 0.0:
+            state = STATE_TWO_POINT
+        elif c1 > 0.0:
+            state = STATE_EDGE1
+        else:
+            state = STATE_EDGE2
+    elif pen1 > pen2:
+        state = STATE_EDGE1
+    elif pen2 > pen1:
+        state = STATE_EDGE2
+    else:
+        state = STATE_LINE
+    s, ds = _smooth_step(pen1 - pen2, 0.5 * eps_e, 0.5)
+    if eps_e == 0.0:
+        lam = 1.0 if rr <= d0 else 0.0
+        dlam = 0.0
+    else:
+        lam, dlam = _smooth_step(d0 - 0.5 * eps_e - rr, 0.5 * eps_e, 0.5)
+    w1 = lam * c1 + (1.0 - lam) * s
+    w2 = lam * c2 + (1.0 - lam) * (1.0 - s)
+    if c1 == 0.0:
+        w1 = 0.0
+    if c2 == 0.0:
+        w2 = 0.0
+    return w1, w2, state, ds, dlam
+
+
+@numba.njit(cache=True, inline="always")
 def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
-    """Weight ``w`` × the contact force/moment of edge ``sgn`` (+1 right, −1 left).
+    """The contact force of edge ``sgn`` (+1 right, −1 left), unweighted, and ``w`` × its Jacobian.
 
     ``(ry, rz)`` is the edge's relative displacement and ``rho`` its length.
-    Returns ``(fy, fz, my, mz, ok)`` with ok = 1 inside the law's domain (or without
-    contact), 0 otherwise; adds ``w`` × its Jacobian to ``jac`` unless ``jac`` is None.
+    Returns ``(fy, fz, sd, ok)``: the force, the signed moment arm ``sd = sgn·d`` (the moment
+    is ``(sd·(−fz), sd·fy)``) and ok = 1 inside the law's domain (or without contact), 0
+    otherwise; adds ``w`` × the Jacobian of force and moment to ``jac`` unless ``jac`` is None
+    (the derivatives of the weight itself are the caller's).
     """
     d0 = p[0]
     l0 = p[1]
     a = sgn * 0.5 * l0
     pen = rho - d0
     if pen <= 0.0:
-        return 0.0, 0.0, 0.0, 0.0, 1
+        return 0.0, 0.0, 0.0, 1
     inv_rho = 1.0 / rho
     ny = ry * inv_rho
     nz = rz * inv_rho
@@ -141,7 +223,7 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     vn = ny * vky + nz * vkz
     hv, dh, ok = _law(pen, p)
     if ok == 0:
-        return 0.0, 0.0, 0.0, 0.0, 0
+        return 0.0, 0.0, 0.0, 0
     partial = pen < t * l0
     if partial:
         l = pen / t
@@ -162,7 +244,7 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     fy = -P * damp * ny
     fz = -P * damp * nz
     if jac is None:
-        return w * fy, w * fz, w * sgn * d * (-fz), w * sgn * d * fy, 1
+        return fy, fz, sgn * d, 1
     # derivatives of r_k (and of r_k-dot w.r.t. velocities) w.r.t. (y, z, thy, thz)
     dry = (1.0, 0.0, 0.0, a)
     drz = (0.0, 1.0, -a, 0.0)
@@ -208,7 +290,7 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
         jac[1, 4 + j] += w * dfz_v
         jac[2, 4 + j] += w * sgn * d * (-dfz_v)
         jac[3, 4 + j] += w * sgn * d * dfy_v
-    return w * fy, w * fz, w * sgn * d * (-fz), w * sgn * d * fy, 1
+    return fy, fz, sgn * d, 1
 
 
 @numba.njit(cache=True, inline="always")
@@ -276,52 +358,54 @@ def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, jac):
     rho2 = math.sqrt(r2y * r2y + r2z * r2z)
     pen1 = rho1 - d0
     pen2 = rho2 - d0
-    if pen1 <= 0.0 and pen2 <= 0.0:
-        w1 = 0.0
-        w2 = 0.0
-        state = STATE_NONE
-    elif y * y + z * z <= d0 * d0:
-        # centre inside the clearance: the edges touch opposite sides (or one edge only)
-        w1 = 1.0 if pen1 > 0.0 else 0.0
-        w2 = 1.0 if pen2 > 0.0 else 0.0
-        if w1 > 0.0 and w2 > 0.0:
-            state = STATE_TWO_POINT
-        elif w1 > 0.0:
-            state = STATE_EDGE1
-        else:
-            state = STATE_EDGE2
-    elif pen1 > pen2:
-        w1 = 1.0
-        w2 = 0.0
-        state = STATE_EDGE1
-    elif pen2 > pen1:
-        w1 = 0.0
-        w2 = 1.0
-        state = STATE_EDGE2
-    else:
-        # tie (line contact at θ = 0, or r ∥ θ): the mean, never the sum (contact-laws.md Q8)
-        w1 = 0.5
-        w2 = 0.5
-        state = STATE_LINE
+    rr = math.sqrt(y * y + z * z)
+    w1, w2, state, ds, dlam = selection(rr, pen1, pen2, d0, p[13])
     Fy = 0.0
     Fz = 0.0
     My = 0.0
     Mz = 0.0
     ok = 1
     if w1 > 0.0:
-        a, b, c, d, o = _edge(1.0, w1, r1y, r1z, rho1, vy, vz, wy, wz, thy, thz, t, p, jac)
-        Fy += a
-        Fz += b
-        My += c
-        Mz += d
+        fy1, fz1, sd1, o = _edge(1.0, w1, r1y, r1z, rho1, vy, vz, wy, wz, thy, thz, t, p, jac)
+        Fy += w1 * fy1
+        Fz += w1 * fz1
+        My += w1 * sd1 * (-fz1)
+        Mz += w1 * sd1 * fy1
         ok &= o
+    else:
+        fy1 = fz1 = sd1 = 0.0
     if w2 > 0.0:
-        a, b, c, d, o = _edge(-1.0, w2, r2y, r2z, rho2, vy, vz, wy, wz, thy, thz, t, p, jac)
-        Fy += a
-        Fz += b
-        My += c
-        Mz += d
+        fy2, fz2, sd2, o = _edge(-1.0, w2, r2y, r2z, rho2, vy, vz, wy, wz, thy, thz, t, p, jac)
+        Fy += w2 * fy2
+        Fz += w2 * fz2
+        My += w2 * sd2 * (-fz2)
+        Mz += w2 * sd2 * fy2
         ok &= o
+    else:
+        fy2 = fz2 = sd2 = 0.0
+    if jac is not None and (ds != 0.0 or dlam != 0.0):
+        # derivatives of the weights (regularised selection): Σ_k E_k ∂w_k/∂(y, z, θy, θz)
+        c1 = 1.0 if pen1 > 0.0 else 0.0
+        c2 = 1.0 if pen2 > 0.0 else 0.0
+        s, _ds = _smooth_step(pen1 - pen2, 0.5 * p[13], 0.5)
+        lam, _dl = _smooth_step(d0 - 0.5 * p[13] - rr, 0.5 * p[13], 0.5)
+        n1y = r1y / rho1 if rho1 > 0.0 else 0.0
+        n1z = r1z / rho1 if rho1 > 0.0 else 0.0
+        n2y = r2y / rho2 if rho2 > 0.0 else 0.0
+        n2z = r2z / rho2 if rho2 > 0.0 else 0.0
+        ey = y / rr if rr > 0.0 else 0.0
+        ez = z / rr if rr > 0.0 else 0.0
+        # ∂Δr1/∂u = (n1y, n1z, −h n1z, h n1y), ∂Δr2/∂u = (n2y, n2z, h n2z, −h n2y), ∂|r|/∂u = (ey, ez, 0, 0)
+        dpd = (n1y - n2y, n1z - n2z, -h * (n1z + n2z), h * (n1y + n2y))
+        drr = (ey, ez, 0.0, 0.0)
+        for j in range(4):
+            dl_j = -dlam * drr[j]
+            dw1 = dl_j * (c1 - s) + (1.0 - lam) * ds * dpd[j]
+            dw2 = dl_j * (c2 - 1.0 + s) - (1.0 - lam) * ds * dpd[j]
+            jac[0, j] += fy1 * dw1 + fy2 * dw2
+            jac[1, j] += fz1 * dw1 + fz2 * dw2
+            jac[2, j] += sd1 * (-fz1) * dw1 + sd2 * (-fz2) * dw2
+            jac[3, j] += sd1 * fy1 * dw1 + sd2 * fy2 * dw2
     a, b, c, d = _face_friction(1.0, vy, vz, wy, wz, p, jac)
     Fy += a
     Fz += b

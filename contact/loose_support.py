@@ -33,6 +33,16 @@ Model choices (open questions of contact-laws.md)
   with the larger penetration acts (one patch; capped at the full width l0 it is the line
   contact). A tie (``Δr1 = Δr2``, e.g. θ = 0 exactly) takes the **mean** of the two edge
   forces, not the paper's sum, so the force is continuous across θ = 0 and never doubled.
+* Edge transition (a regularisation of Eqs. 18–19, ``edge_transition_m`` = ε_e): the sharp
+  one-edge rule jumps where the penetrations cross (``Δr1 = Δr2`` with ``|r| > δ0``: the
+  moment arm changes sign, the force direction jumps) and at ``|r| = δ0`` (both penetrating
+  edges → the larger one), so an implicit time step across those points may have no root.
+  With ε_e > 0 the weights are ``w1 = S(Δr1 − Δr2)``, ``w2 = 1 − w1`` (C² smooth step of width
+  ε_e, ``S = 1/2`` at a tie: the Q8 mean) and the two-point branch hands over to the
+  one-point branch smoothly over ``δ0 − ε_e < |r| < δ0`` (:func:`contact._kernel.selection`).
+  Outside those bands the result is the sharp rule to the last bit; ε_e = 0 is the sharp rule
+  everywhere. The default ε_e (:data:`contact.tilt.EDGE_TRANSITION_M`) and why it is chosen
+  are documented in :mod:`contact.tilt`.
 * Patch length ``l_k = Δr_k/|θ|`` capped at l0; moment arm ``(l0 − l_k)/2`` (small-angle
   forms of Eqs. 8 and 17, consistent with the linearised kinematics above).
 * Damping ``max(0, 1 + c_c v_n)`` by default (``clip_damping_at_zero``), c_c in s/m (Q6).
@@ -55,7 +65,7 @@ Fast scalar path for a numba-compiled step loop
 ::
 
     from contact.loose_support import LooseSupportParams, point_force, point_force_jacobian
-    p = LooseSupportParams.paper_table4().kernel_args      # tuple of 13 floats
+    p = LooseSupportParams.paper_table4().kernel_args      # tuple of 14 floats
     @numba.njit
     def step(..., p):
         Fy, Fz, My, Mz = point_force(y, z, thy, thz, vy, vz, wy, wz, p)
@@ -79,6 +89,7 @@ from contact import laws
 from contact._kernel import (N_PARAMS, STATE_EDGE1, STATE_EDGE2, STATE_LINE, STATE_NONE,  # noqa: F401
                              STATE_TWO_POINT, many_points, many_points_parallel, point_force, point_force_jacobian)
 from contact.errors import InputError, OutsideDomainError
+from contact.tilt import EDGE_TRANSITION_M
 from contact.units import check_finite, check_positive
 
 __all__ = ["LooseSupportParams", "LooseSupportForce", "loose_support_force", "loose_support_jacobian",
@@ -122,6 +133,10 @@ class LooseSupportParams:
         Line contact and translation-only friction (the paper's tilt-neglecting model).
     friction_smoothing_m_s : float
         ε of ``v/sqrt(|v|²+ε²)``; 0 (default) is ideal Coulomb friction.
+    edge_transition_m : float
+        Width ε_e (m) of the smooth edge transition that regularises the one-point selection of
+        Dai et al. (2025) Eqs. 18–19 (see the module docstring); 0 is the paper's sharp rule.
+        Default :data:`contact.tilt.EDGE_TRANSITION_M`.
     radius_m : float or None
         Outer radius of the ring, only to catch a clearance typed in mm.
     """
@@ -142,6 +157,7 @@ class LooseSupportParams:
     tilt_ignored: bool = False
     friction_smoothing_m_s: float = 0.0
     radius_m: float | None = field(default=None)
+    edge_transition_m: float = EDGE_TRANSITION_M
 
     def __post_init__(self):
         laws.check_clearance(self.clearance_m, self.radius_m)
@@ -152,6 +168,7 @@ class LooseSupportParams:
         check_positive("mu", self.mu, "(dimensionless)", allow_zero=True, upper=10.0)
         check_positive("preload_N", self.preload_N, "N", allow_zero=True)
         check_positive("friction_smoothing_m_s", self.friction_smoothing_m_s, "m/s", allow_zero=True)
+        check_positive("edge_transition_m", self.edge_transition_m, "m", allow_zero=True)
         if self.law not in LOOSE_SUPPORT_LAWS:
             raise InputError(f"law = {self.law!r}: must be one of {', '.join(LOOSE_SUPPORT_LAWS)}")
         if self.modulus is not None and self.modulus not in laws.MODULI:
@@ -204,7 +221,7 @@ class LooseSupportParams:
                 2.0 * math.pi * self.e_star_Pa * self.clearance_m, alpha,
                 laws.beta_coefficient(beta, self.beta_reading), pc, pn, self.c_c_s_per_m,
                 1.0 if self.clip_damping_at_zero else 0.0, self.mu * self.preload_N,
-                1.0 if self.tilt_ignored else 0.0, self.friction_smoothing_m_s)
+                1.0 if self.tilt_ignored else 0.0, self.friction_smoothing_m_s, self.edge_transition_m)
         assert len(args) == N_PARAMS
         return tuple(float(a) for a in args)
 

@@ -17,7 +17,33 @@ Model (small-angle forms, consistent with the linearised kinematics):
   unit length (Eq. 16), moment arm ``d_k = (l0 − l_k)/2`` (Eq. 17);
 * selection (Eqs. 18–19 with the Q8 fix): ``|r| <= δ0`` → both edges (opposite sides);
   ``|r| > δ0`` → only the edge with the larger penetration; a tie → the mean of the two
-  (at θ = 0 both equal the line-contact force of Eq. 1, so it is not doubled).
+  (at θ = 0 both equal the line-contact force of Eq. 1, so it is not doubled);
+* edge transition (a regularisation of Eqs. 18–19 with width ε_e, ``edge_transition_m``):
+  the sharp rule jumps where the penetrations cross (moment arm ±d, force direction) and at
+  ``|r| = δ0`` (both penetrating edges → the larger one). :func:`selection_weights` replaces
+  both switches by a C² quintic step ``S`` of width ε_e: ``w1 = S(Δr1 − Δr2)``, ``w2 = 1 − w1``
+  outside, and a hand-over ``λ = S(δ0 − ε_e/2 − |r|)`` over ``δ0 − ε_e < |r| < δ0``,
+  ``w_k = λ [Δr_k > 0] + (1 − λ) w_k,outside``. ``S = 1/2`` at a tie (the Q8 mean, so θ = 0
+  is unchanged), the sharp rule is kept to the last bit outside the bands, ε_e = 0 gives it
+  everywhere. Default :data:`EDGE_TRANSITION_M`.
+
+Choice of ε_e (the default, 0.2 µm)
+-----------------------------------
+*Physical bound.* Inside the bands the rule decides how two edges share the load when their
+penetrations differ by less than ε_e/2 = 0.1 µm, i.e. a relative tilt below ε_e/l0 = 6.7 µrad
+(0.023′) across the 30 mm ring of Table 4, some 20 times below the smallest tilt of the
+paper's Table 3 (0.5′) and below the roughness of ground ring and seat surfaces (Ra of a few
+tenths of a µm), where the rigid-ring model of Eqs. 8–19 cannot tell which edge touches
+first anyway. The regularisation therefore adds no error the model does not already have.
+*Numerical bound.* The width must let an implicit step find a root where the edges cross.
+Measured on the 14 hard-case runs of issue 7 (Table 4 rotor, 10 revolutions at 10 500 rpm,
+Δt = T/256, 7 cases × 2 starts; ``benchmarks/bench_integrators.py`` section 4): steps kept at
+the least residual 203 with the sharp rule, 1 each at ε_e = 10 nm and 30 nm, none from 50 nm up
+to 1 µm; the 15 steady-state 1X–5X amplitudes at 10 500 rpm (T/256, T/512, T/1024) are
+bit-for-bit those of the sharp rule for ε_e <= 0.5 µm (the steady orbit never enters the
+bands), while 1 µm moves them by 1 % (a different path into the stuck position). 0.2 µm
+sits 4× above the lower and 2.5× below the upper measured limit. It is an absolute length:
+at a 1 µm clearance the hand-over band is a fifth of δ0 (still only where both edges touch).
 """
 from __future__ import annotations
 
@@ -26,9 +52,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact import laws
+from contact.errors import InputError
 from contact.units import check_finite
 
 STATE_NONE, STATE_EDGE1, STATE_EDGE2, STATE_TWO_POINT, STATE_LINE = 0, 1, 2, 3, 4
+
+#: Default width ε_e (m) of the smooth edge transition (module docstring: what it is, why this value).
+EDGE_TRANSITION_M = 0.2e-6
 
 
 @dataclass(frozen=True)
@@ -46,7 +76,8 @@ class TiltedContact:
     width_1_m, width_2_m : ndarray
         Patch lengths l1, l2 (m), capped at l0 (0 without contact at that edge).
     weight_1, weight_2 : ndarray
-        Weight of each edge in the total (0, 0.5 or 1) from the selection rule.
+        Weight of each edge in the total from the selection rule (0, 0.5 or 1 for the sharp rule;
+        between 0 and 1 inside the bands of the edge transition).
     state : ndarray of int8
         0 none, 1 right edge, 2 left edge, 3 two-point, 4 line/tie.
     in_domain : ndarray of bool
@@ -101,31 +132,57 @@ def patch_length(penetration_m, tilt_magnitude_rad, width_m: float):
     return np.where(pen > 0, l, 0.0)
 
 
-def selection_weights(centre_offset_m, penetration_1_m, penetration_2_m, clearance_m: float):
-    """Weights of the two edges and the contact state (Dai et al. 2025 Eqs. 18–19 with the Q8 fix).
+def smooth_step(x_m, half_width_m: float, tie: float = 0.5):
+    """C² step ``S(x)`` and ``dS/dx`` (1/m): 0 for ``x <= −half_width``, 1 for ``x >= half_width``,
+    ``1/2 + (15u − 10u³ + 3u⁵)/16`` with ``u = x/half_width`` between; ``half_width = 0`` is the
+    sharp step with ``S(0) = tie``."""
+    x = np.asarray(x_m, dtype=float)
+    if half_width_m == 0.0:
+        return np.where(x > 0, 1.0, np.where(x < 0, 0.0, tie)), np.zeros(x.shape)
+    u = np.clip(x / half_width_m, -1.0, 1.0)
+    u2 = u * u
+    return 0.5 + u * (15.0 - u2 * (10.0 - 3.0 * u2)) / 16.0, 15.0 * (1.0 - u2) ** 2 / (16.0 * half_width_m)
 
-    Returns ``(w1, w2, state)``; see the module docstring for the rule.
+
+def selection_weights(centre_offset_m, penetration_1_m, penetration_2_m, clearance_m: float,
+                      edge_transition_m: float = EDGE_TRANSITION_M):
+    """Weights of the two edges and the contact state (Dai et al. 2025 Eqs. 18–19 with the Q8 fix),
+    regularised over ``edge_transition_m`` (m; 0 = the paper's sharp rule).
+
+    Returns ``(w1, w2, state)``; see the module docstring for the rule. ``state`` is the
+    classification of the sharp rule (0 none, 1 right edge, 2 left edge, 3 two-point, 4 tie)
+    whatever ε_e, so that the reported contact state does not depend on the regularisation.
     """
     rho = np.asarray(centre_offset_m, dtype=float)
     p1 = np.asarray(penetration_1_m, dtype=float)
     p2 = np.asarray(penetration_2_m, dtype=float)
+    eps = float(edge_transition_m)
     c1, c2 = p1 > 0, p2 > 0
     inside = rho <= clearance_m
-    w1 = np.where(inside, c1, np.where(p1 > p2, 1.0, np.where(p1 == p2, 0.5, 0.0)))
-    w2 = np.where(inside, c2, np.where(p2 > p1, 1.0, np.where(p1 == p2, 0.5, 0.0)))
+    s, _ = smooth_step(p1 - p2, 0.5 * eps)
+    if eps == 0.0:
+        lam = inside.astype(float)
+    else:
+        lam, _ = smooth_step(clearance_m - 0.5 * eps - rho, 0.5 * eps)
+    w1 = lam * c1 + (1.0 - lam) * s
+    w2 = lam * c2 + (1.0 - lam) * (1.0 - s)
     w1 = np.where(c1, w1, 0.0).astype(float)
     w2 = np.where(c2, w2, 0.0).astype(float)
     state = np.full(np.shape(w1), STATE_NONE, dtype=np.int8)
-    state[(w1 == 1) & (w2 == 0)] = STATE_EDGE1
-    state[(w2 == 1) & (w1 == 0)] = STATE_EDGE2
-    state[(w1 == 1) & (w2 == 1)] = STATE_TWO_POINT
-    state[(w1 == 0.5) & (w2 == 0.5)] = STATE_LINE
+    any_c = c1 | c2
+    state[any_c & inside & c1 & ~c2] = STATE_EDGE1
+    state[any_c & inside & c2 & ~c1] = STATE_EDGE2
+    state[inside & c1 & c2] = STATE_TWO_POINT
+    state[any_c & ~inside & (p1 > p2)] = STATE_EDGE1
+    state[any_c & ~inside & (p2 > p1)] = STATE_EDGE2
+    state[any_c & ~inside & (p1 == p2)] = STATE_LINE
     return w1, w2, state
 
 
 def tilted_contact(y_m, z_m, theta_y_rad=0.0, theta_z_rad=0.0, vy_m_s=0.0, vz_m_s=0.0,
                    omega_y_rad_s=0.0, omega_z_rad_s=0.0, *, clearance_m: float, width_m: float,
-                   force_per_width, c_c_s_per_m: float = 0.0, clip_damping_at_zero: bool = True) -> TiltedContact:
+                   force_per_width, c_c_s_per_m: float = 0.0, clip_damping_at_zero: bool = True,
+                   edge_transition_m: float = EDGE_TRANSITION_M) -> TiltedContact:
     """Contact force and moment of a tilted ring in its support (Dai et al. 2025 Eqs. 8–19).
 
     Parameters
@@ -140,6 +197,8 @@ def tilted_contact(y_m, z_m, theta_y_rad=0.0, theta_z_rad=0.0, vy_m_s=0.0, vz_m_
         Lankarani–Nikravesh collision factor (s/m).
     clip_damping_at_zero : bool
         Clip ``1 + c_c v_n`` at zero (see :func:`contact.laws.damping_factor`).
+    edge_transition_m : float
+        Width ε_e (m) of the smooth edge transition (module docstring); 0 = the paper's sharp rule.
     """
     laws.check_clearance(clearance_m)
     laws.check_width(width_m)
@@ -156,7 +215,10 @@ def tilted_contact(y_m, z_m, theta_y_rad=0.0, theta_z_rad=0.0, vy_m_s=0.0, vz_m_
     v1y, v1z, v2y, v2z = edge_displacements(vy, vz, wy, wz, width_m)   # same kinematics for velocities
     rho1, rho2 = np.hypot(r1y, r1z), np.hypot(r2y, r2z)
     pen1, pen2 = rho1 - clearance_m, rho2 - clearance_m
-    w1, w2, state = selection_weights(np.hypot(y, z), pen1, pen2, clearance_m)
+    check_finite("edge_transition_m", edge_transition_m, "m")
+    if edge_transition_m < 0:
+        raise InputError(f"edge_transition_m = {edge_transition_m:g} m: must be >= 0")
+    w1, w2, state = selection_weights(np.hypot(y, z), pen1, pen2, clearance_m, edge_transition_m)
     out = np.zeros((4,) + y.shape)
     ok_all = np.ones(y.shape, dtype=bool)
     widths = []

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from contact.loose_support import point_force_jacobian
+from contact.loose_support import N_PARAMS, point_force_jacobian
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor import constraints as cons
 from rotor.integrate import (NewmarkOptions, RotorSystem, Trajectory, _check_inputs, check_time_step, coupling_map,
@@ -59,7 +59,7 @@ _mode_update = njit(cache=True)(cons.face_mode_update)
 @njit(cache=True)
 def contact_kernel(u, v, p):
     """``contact.loose_support`` scalar path as ``(u, v, params) -> (f, Ju, Jv)`` (analytic Jacobian)."""
-    pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12])
+    pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
     jac = np.empty((4, 8))
     fy, fz, my, mz = point_force_jacobian(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], pt, jac)
     f = np.empty(4)
@@ -554,7 +554,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
         rec["face"][0] = phi_face
     # without a support the kernel is never called; reuse the contact kernel's compiled loop
     kernel = sup.law.kernel if sup is not None else contact_kernel
-    params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(13)
+    params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(N_PARAMS)
     status = np.zeros(3, dtype=np.int64)
     try:
         done, wdt_max = _loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),

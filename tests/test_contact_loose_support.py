@@ -30,7 +30,8 @@ def reference(params, x):
                                               support_E_Pa=params.support_E_Pa, support_nu=params.support_nu,
                                               modulus=params.modulus, beta_reading=params.beta_reading)
     c = tilt.tilted_contact(*x, clearance_m=params.clearance_m, width_m=params.width_m, force_per_width=per_width,
-                            c_c_s_per_m=params.c_c_s_per_m, clip_damping_at_zero=params.clip_damping_at_zero)
+                            c_c_s_per_m=params.c_c_s_per_m, clip_damping_at_zero=params.clip_damping_at_zero,
+                            edge_transition_m=params.edge_transition_m)
     f = friction.end_face_friction(*x[4:], width_m=params.width_m, mu=params.mu, preload_N=params.preload_N)
     return np.stack([c.Fy_N + f[0], c.Fz_N + f[1], c.My_Nm + f[2], c.Mz_Nm + f[3]]), c.state
 
@@ -193,6 +194,7 @@ def test_forces_act_on_bearing_towards_centre_and_shape_is_kept():
     ("support_E_Pa", -1.0, r"support_E_Pa = -1 Pa"),
     ("preload_N", float("nan"), r"preload_N = nan N"),
     ("law", "johnson", r"law = 'johnson'"),
+    ("edge_transition_m", -1e-7, r"edge_transition_m = -1e-07 m"),
 ])
 def test_params_validation(field, value, pattern):
     with pytest.raises(InputError, match=pattern):
@@ -236,3 +238,86 @@ def test_line_contact_stiffness_is_symmetric_and_matches_law_slope():
     P = laws.conformal_force(1.5e-5, **kw).force_N
     assert e @ K @ e == pytest.approx(-dP, rel=1e-6)
     assert t @ K @ t == pytest.approx(-P / rho, rel=1e-12)
+
+
+# --- edge transition (regularised Eqs. 18-19): kernel = numpy reference, analytic Jacobian = FD ---
+
+def near_switch_states(n, seed=0):
+    """States with the centre near the clearance circle and the two edge penetrations nearly equal:
+    tilt about an axis along r (edges shifted sideways), plus a small tilt that separates them."""
+    rng = np.random.default_rng(seed)
+    ang = rng.uniform(0, 2 * np.pi, n)
+    rad = P4.clearance_m + rng.uniform(-4e-7, 4e-7, n)
+    side = rng.normal(0, 2 * ARCMIN, n)                   # edges shifted along the tangent: equal penetrations
+    sep = rng.uniform(-1e-5, 1e-5, n)                     # separates them by ~ l0*sep (up to 0.3 um)
+    thy = side * np.cos(ang) - sep * np.sin(ang)
+    thz = side * np.sin(ang) + sep * np.cos(ang)
+    return (rad * np.cos(ang), rad * np.sin(ang), thy, thz,
+            rng.normal(0, 5e-3, n), rng.normal(0, 5e-3, n), rng.normal(0, 0.2, n), rng.normal(0, 0.2, n))
+
+
+@pytest.mark.parametrize("eps", [0.0, P4.edge_transition_m, 1e-6])
+def test_kernel_agrees_with_numpy_reference_near_the_edge_switches(eps):
+    params = LooseSupportParams.paper_table4(edge_transition_m=eps)
+    x = near_switch_states(4000, seed=3)
+    res = loose_support_force(params, *x, with_state=True)
+    ref, state = reference(params, x)
+    got = np.stack([res.Fy_N, res.Fz_N, res.My_Nm, res.Mz_Nm])
+    scale = np.max(np.abs(ref), axis=1, keepdims=True)
+    assert np.max(np.abs(got - ref) / scale) < 1e-11
+    assert np.array_equal(res.state, state)
+    p1, p2 = res.penetration_1_m, res.penetration_2_m
+    band = (np.abs(p1 - p2) < 0.5 * P4.edge_transition_m) & (np.maximum(p1, p2) > 0)
+    assert band.sum() > 200                                # the bands are really exercised
+
+
+def test_kernel_edge_transition_zero_is_the_sharp_rule_and_default_differs_only_in_the_bands():
+    x = near_switch_states(4000, seed=4)
+    sharp = loose_support_force(LooseSupportParams.paper_table4(edge_transition_m=0.0), *x, with_state=True)
+    smooth = loose_support_force(P4, *x, with_state=True)
+    eps = P4.edge_transition_m
+    rho = np.hypot(x[0], x[1])
+    p1, p2 = sharp.penetration_1_m, sharp.penetration_2_m
+    far = (np.abs(p1 - p2) >= eps / 2) & ((rho <= P4.clearance_m - eps) | (rho > P4.clearance_m))
+    for f in ("Fy_N", "Fz_N", "My_Nm", "Mz_Nm"):
+        assert np.array_equal(getattr(sharp, f)[far], getattr(smooth, f)[far]), f
+        assert not np.array_equal(getattr(sharp, f)[~far], getattr(smooth, f)[~far]), f
+    assert np.array_equal(sharp.state, smooth.state)
+    # sharp rule outside the clearance: only the edge with the larger penetration, so with the same
+    # edge loaded the result equals a state where the other edge is pulled far away from contact
+    out = (rho > P4.clearance_m) & (p1 > p2) & (p1 > 0)
+    assert out.sum() > 100
+    assert np.all(sharp.state[out] == 1)
+
+
+BAND_CASES = {
+    # penetrations cross (|dr1 - dr2| < eps/2), centre outside: moment arm and force direction blend
+    "crossing": (5.0e-5 + 2e-7, 0.0, 1 * ARCMIN, 1e-6, 2e-3, -1e-3, 0.05, 0.03),
+    "crossing_oblique": (3.0e-5, 4.0e-5 + 1e-7, -0.6 * ARCMIN - 0.8e-6, -0.8 * ARCMIN + 0.6e-6, -1e-3, 2e-3, -0.1, 0.2),
+    # centre inside the hand-over band delta0 - eps < |r| < delta0, both edges penetrating
+    "hand_over": (5.0e-5 - 1e-7, 0.0, 1 * ARCMIN, 2e-6, 1e-3, 1e-3, -0.3, 0.2),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAND_CASES))
+def test_jacobian_matches_finite_differences_inside_the_edge_transition(case):
+    """The analytic Jacobian includes the derivatives of the regularised weights (checked against
+    central differences like test_jacobian_matches_finite_differences)."""
+    x = np.array(BAND_CASES[case])
+    res = loose_support_force(P4, *x, with_state=True)
+    p1, p2 = float(res.penetration_1_m), float(res.penetration_2_m)
+    assert p1 > 0 and p2 > 0
+    rho = np.hypot(x[0], x[1])
+    if case == "hand_over":
+        assert P4.clearance_m - P4.edge_transition_m < rho < P4.clearance_m
+    else:
+        assert abs(p1 - p2) < 0.5 * P4.edge_transition_m and rho > P4.clearance_m
+    steps = np.array([1e-11, 1e-11, 1e-9, 1e-9, 1e-8, 1e-8, 1e-6, 1e-6])
+    F, J = loose_support_jacobian(P4, *x)
+    Jfd = _fd_jacobian(P4, x, steps)
+    assert _jac_error(J, Jfd, F, steps) < 1e-5, (J, Jfd)
+    # the weight derivatives matter here: without them the position columns would be far off
+    sharp = LooseSupportParams.paper_table4(edge_transition_m=0.0)
+    xs = x.copy()
+    F0, J0 = loose_support_jacobian(sharp, *xs)
+    assert _jac_error(J0, Jfd, F, steps) > 1e-2

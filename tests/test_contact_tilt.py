@@ -124,3 +124,116 @@ def test_one_point_takes_larger_edge_when_centre_penetrates():
     assert res.state == tilt.STATE_EDGE2
     assert res.weight_1 == 0 and res.weight_2 == 1
     assert res.Mz_Nm == 0 or res.Mz_Nm > 0               # restoring for negative tilt
+
+
+# --- edge transition: the regularised one-point selection (Dai et al. 2025 Eqs. 18-19, Q8) ---
+
+def _sharp_rule(rho, p1, p2, d0):
+    """Dai et al. (2025) Eqs. 18-19 with the Q8 tie, written out independently of contact.tilt."""
+    w1 = np.zeros(p1.shape)
+    w2 = np.zeros(p1.shape)
+    for i in range(p1.size):
+        if p1[i] <= 0 and p2[i] <= 0:
+            continue
+        if rho[i] <= d0:
+            w1[i], w2[i] = float(p1[i] > 0), float(p2[i] > 0)
+        elif p1[i] > p2[i]:
+            w1[i] = 1.0
+        elif p2[i] > p1[i]:
+            w2[i] = 1.0
+        else:
+            w1[i] = w2[i] = 0.5
+    return w1, w2
+
+
+def _near_switch_points(n=3000, seed=5):
+    rng = np.random.default_rng(seed)
+    rho = D0 + rng.choice([-1, 1], n) * rng.uniform(0, 3 * tilt.EDGE_TRANSITION_M, n)
+    p1 = rng.uniform(-2e-7, 2e-6, n)
+    p2 = p1 + rng.choice([-1, 1], n) * rng.uniform(0, 3 * tilt.EDGE_TRANSITION_M, n)
+    p2[::7] = p1[::7]                                 # exact ties
+    rho[::11] = D0                                    # exactly on the clearance circle
+    return rho, p1, p2
+
+
+def test_edge_transition_zero_is_the_papers_sharp_rule_exactly():
+    rho, p1, p2 = _near_switch_points()
+    w1, w2, state = tilt.selection_weights(rho, p1, p2, D0, edge_transition_m=0.0)
+    s1, s2 = _sharp_rule(rho, p1, p2, D0)
+    assert np.array_equal(w1, s1) and np.array_equal(w2, s2)
+    assert set(np.unique(np.concatenate([w1, w2]))) == {0.0, 0.5, 1.0}
+    # the regularised weights equal the sharp ones to the last bit outside the two bands
+    eps = tilt.EDGE_TRANSITION_M
+    r1, r2, state_r = tilt.selection_weights(rho, p1, p2, D0)
+    far = (np.abs(p1 - p2) >= eps / 2) & ((rho <= D0 - eps) | (rho > D0))
+    assert far.sum() > 500 and np.array_equal(r1[far], s1[far]) and np.array_equal(r2[far], s2[far])
+    assert np.array_equal(state_r, state)             # the reported state is the sharp rule's
+    inside_band = ~far & (p1 > 0) & (p2 > 0)
+    assert np.any((r1[inside_band] > 0) & (r1[inside_band] < 1))
+
+
+def test_smooth_step_is_c2_with_the_q8_tie_value():
+    hw = 1e-7
+    x = np.linspace(-2 * hw, 2 * hw, 40001)
+    S, dS = tilt.smooth_step(x, hw)
+    assert S[20000] == 0.5 and np.all(S[x <= -hw] == 0) and np.all(S[x >= hw] == 1)
+    assert np.all(np.diff(S) >= 0)
+    h = x[1] - x[0]
+    assert np.max(np.abs(np.gradient(S, h) - dS)) < 1e-6 * dS.max()      # derivative is S'
+    d2 = np.gradient(dS, h)
+    assert np.max(np.abs(np.diff(d2))) < 1e-3 * np.abs(d2).max()          # S'' has no jump (C2)
+    assert tilt.smooth_step(0.0, 0.0)[0] == 0.5 and tilt.smooth_step(-1e-30, 0.0)[0] == 0.0
+
+
+def _sweep(eps, **kw):
+    return tilt.tilted_contact(**kw, clearance_m=D0, width_m=L0, force_per_width=PER_WIDTH, edge_transition_m=eps)
+
+
+def test_edge_transition_is_continuous_where_the_penetrations_cross():
+    """Centre 0.2 um outside the clearance, 1' tilt about y (edges shifted -+4.4 um in z), theta_z sweeping
+    through 0: the penetrations cross (0.39 um each, partial patches). The sharp rule flips the loaded edge,
+    so Fz and Mz change sign in one sample; the regularised rule passes through the Q8 mean (Fz = Mz = 0)."""
+    thz = np.linspace(-1e-5, 1e-5, 4001)
+    kw = dict(y_m=D0 + 2e-7, z_m=0.0, theta_y_rad=1 * ARCMIN, theta_z_rad=thz)
+    sharp, smooth = _sweep(0.0, **kw), _sweep(tilt.EDGE_TRANSITION_M, **kw)
+    assert sharp.penetration_1_m[2000] == sharp.penetration_2_m[2000] > 0
+    for a in ("Fz_N", "Mz_Nm"):              # (Fy, My are even in theta_z: no jump)
+        jump_sharp = np.abs(np.diff(getattr(sharp, a))).max()
+        step_smooth = np.abs(np.diff(getattr(smooth, a))).max()
+        assert step_smooth < 0.01 * jump_sharp, a
+    assert abs(sharp.Fz_N[1999] - sharp.Fz_N[2001]) > 1.5 * abs(sharp.Fz_N[1999])     # sign flip
+    assert smooth.weight_1[2000] == smooth.weight_2[2000] == 0.5 and smooth.Fz_N[2000] == 0.0
+    far = np.abs(sharp.penetration_1_m - sharp.penetration_2_m) >= tilt.EDGE_TRANSITION_M / 2
+    assert np.array_equal(smooth.Fz_N[far], sharp.Fz_N[far]) and np.array_equal(smooth.Mz_Nm[far], sharp.Mz_Nm[far])
+
+
+def test_edge_transition_hands_over_smoothly_at_the_clearance_circle():
+    """|r| sweeping through delta0 with both edges penetrating (1' tilt about y, r along y): the sharp rule
+    goes from the sum of both edges (two-point, |r| <= delta0) to their mean (one-point tie) at |r| = delta0,
+    halving the force; the regularised rule hands over within delta0 - eps < |r| < delta0."""
+    y = D0 + np.linspace(-4e-7, 1e-7, 5001)
+    kw = dict(y_m=y, z_m=0.0, theta_y_rad=1 * ARCMIN, theta_z_rad=0.0)
+    sharp, smooth = _sweep(0.0, **kw), _sweep(tilt.EDGE_TRANSITION_M, **kw)
+    jump_sharp = np.abs(np.diff(sharp.Fy_N)).max()
+    assert jump_sharp > 0.4 * np.abs(sharp.Fy_N).max()
+    assert np.abs(np.diff(smooth.Fy_N)).max() < 0.01 * jump_sharp
+    outside = y > D0
+    assert np.array_equal(smooth.Fy_N[outside], sharp.Fy_N[outside])
+    deep = y <= D0 - tilt.EDGE_TRANSITION_M
+    assert np.array_equal(smooth.Fy_N[deep], sharp.Fy_N[deep])
+
+
+def test_edge_transition_leaves_aligned_tilt_values_unchanged():
+    """Table 3 set-up (aligned tilt, centre penetration >= 0): the crossing is l0|theta| away (>= 4 um
+    at 0.5'), far outside the band, so the regularised law equals the sharp one exactly."""
+    pen = np.array([0.0, 1e-6, 0.01e-3, 0.03e-3, 0.05e-3])
+    for arcmin in (0.0, 0.5, 1.0, 2.0):
+        a = tilt.aligned_tilt_contact(pen, arcmin * ARCMIN, clearance_m=D0, width_m=L0, force_per_width=PER_WIDTH)
+        b = tilt.tilted_contact(D0 + pen, 0.0, 0.0, arcmin * ARCMIN, **GEOM, edge_transition_m=0.0)
+        assert np.array_equal(a.Fy_N, b.Fy_N) and np.array_equal(a.Mz_Nm, b.Mz_Nm)
+
+
+def test_edge_transition_negative_is_refused():
+    from contact.errors import InputError
+    with pytest.raises(InputError, match=r"edge_transition_m = -1e-07 m"):
+        tilt.tilted_contact(D0, 0.0, **GEOM, edge_transition_m=-1e-7)
