@@ -82,6 +82,7 @@ def rows(tabs: dict, variants) -> list:
         t = tabs[v.name]
         per = sens.evaluate(t, require_periodic=True)
         allp = sens.evaluate(t, require_periodic=False)
+        coll = sens.evaluate(t, require_contact=True)
         kr = key_ratios(t)
         n_all6 = int(np.all(np.asarray(t.periodic), axis=0).sum())
         for name, f in per.items():
@@ -90,6 +91,8 @@ def rows(tabs: dict, variants) -> list:
                         "finding": f.name, "quantity": {"q": "displacement", "v": "velocity"}[f.quantity],
                         "holds_periodic": f.holds, "pass_periodic": f.n_pass, "compared_periodic": f.n_compared,
                         "holds_all": g.holds, "pass_all": g.n_pass, "compared_all": g.n_compared,
+                        "holds_collision": coll[name].holds, "pass_collision": coll[name].n_pass,
+                        "compared_collision": coll[name].n_compared,
                         "speeds": len(t.speeds_rpm), "base_periodic": int(t.ok("base").sum()),
                         "all_cases_periodic": n_all6, **kr})
     return out
@@ -106,25 +109,52 @@ def _fmt(x, d=3):
     return "–" if not np.isfinite(x) else f"{x:.{d}g}"
 
 
+def per_speed_ratios(table: sens.AmplitudeTable) -> dict:
+    """Per speed, the deciding ratio of each finding at disk 2 and whether every compared case is
+    periodic: ``{finding: (ratios (S,), periodic (S,) bool)}``; clearance 3f(0.03)/3f(0.08) and
+    misalignment 3f(2)/3f(0.5) of the displacement, tilt Σ3f–5f off/on of the y velocity."""
+    j = table.locations.index("disk2.y")
+    out = {}
+    for f, (a, b, q, sl) in {"clearance": ("clear0.03", "clear0.08", "q", slice(2, 3)),
+                             "misalignment": ("mis2", "mis0.5", "q", slice(2, 3)),
+                             "tilt": ("notilt", "base", "v", slice(2, 5))}.items():
+        num = table.amp(q, a)[:, sl, j].sum(axis=1)
+        den = table.amp(q, b)[:, sl, j].sum(axis=1)
+        cases = {"clearance": ("clear0.03", "base", "clear0.08"), "misalignment": ("mis0.5", "base", "mis2"),
+                 "tilt": ("base", "notilt")}[f]
+        per = np.all([table.ok(c) for c in cases], axis=0)
+        out[f] = (num / np.maximum(den, 1e-300), per)
+    return out
+
+
 def figure(tabs: dict, variants, prefix: Path) -> list:
-    """Deciding ratio of each finding per variant (log scale), the paper's side shaded."""
+    """Deciding ratio of each finding per variant and speed at disk 2 (log scale); filled markers:
+    every compared case periodic; the paper's side shaded."""
     plt = _plt()
     names = [v.name for v in variants if v.name in tabs]
-    kr = [key_ratios(tabs[n]) for n in names]
-    panels = [("clear_3f_disk2", "clear_3f_support", "3f(δ0=0.03 mm) / 3f(δ0=0.08 mm)\n(displacement; >1 = paper, Fig. 18)", 1.0, "above"),
-              ("mis_3f_disk2", "mis_3f_support", "3f(δ=2 mm) / 3f(δ=0.5 mm)\n(displacement; >1 = paper, Fig. 19)", 1.0, "above"),
-              ("tilt_disk2", "tilt_support", "Σ3f–5f tilt ignored / with tilt\n(y velocity; ≤0.7 = paper, Fig. 16)", 0.7, "below")]
-    fig, axes = plt.subplots(1, 3, figsize=(13, 0.28 * len(names) + 1.8), sharey=True)
-    y = np.arange(len(names))
-    for ax, (k1, k2, lab, thr, side) in zip(axes, panels):
-        a = np.array([r[k1] for r in kr])
-        b = np.array([r[k2] for r in kr])
-        ax.scatter(a, y, marker="o", s=22, label="disk 2", zorder=3)
-        ax.scatter(b, y + 0.18, marker="s", s=18, label="3# bearing support", zorder=3)
+    panels = [("clearance", "3f(δ0 = 0.03 mm) / 3f(δ0 = 0.08 mm), disk 2\n(displacement; > 1 = paper, Fig. 18)", 1.0, "above"),
+              ("misalignment", "3f(δ = 2 mm) / 3f(δ = 0.5 mm), disk 2\n(displacement; > 1 = paper, Fig. 19)", 1.0, "above"),
+              ("tilt", "Σ3f–5f tilt ignored / with tilt, disk 2\n(y velocity; ≤ 0.7 = paper, Fig. 16)", sens.MARKEDLY, "below")]
+    fig, axes = plt.subplots(1, 3, figsize=(14, 0.3 * len(names) + 2.0), sharey=True)
+    cmap = plt.get_cmap("plasma")
+    speeds = np.array(sens.SPEEDS_RPM)
+    for ax, (f, lab, thr, side) in zip(axes, panels):
+        allr = []
+        for i, n in enumerate(names):
+            t = tabs[n]
+            r, per = per_speed_ratios(t)[f]
+            for k, (x, ok, rpm) in enumerate(zip(r, per, t.speeds_rpm)):
+                if not np.isfinite(x) or x <= 0:
+                    continue
+                col = cmap((rpm - speeds.min()) / max(np.ptp(speeds), 1.0) * 0.85)
+                dy = (k - len(t.speeds_rpm) / 2) * 0.08
+                ax.scatter([x], [i + dy], s=20, marker="o", facecolors=col if ok else "none", edgecolors=col,
+                           linewidths=1.0, zorder=3)
+                allr.append(x)
         ax.set_xscale("log")
+        lo = min(min(allr, default=thr) / 1.5, thr / 2)
+        hi = max(max(allr, default=thr) * 1.5, thr * 2)
         ax.axvline(thr, color="k", lw=0.8)
-        lo, hi = ax.get_xlim()
-        lo, hi = min(lo, thr / 2), max(hi, thr * 2)
         if side == "above":
             ax.axvspan(thr, hi, color="tab:green", alpha=0.08)
         else:
@@ -132,19 +162,36 @@ def figure(tabs: dict, variants, prefix: Path) -> list:
         ax.set_xlim(lo, hi)
         ax.set_xlabel(lab + "  (–)", fontsize=8)
         ax.grid(True, axis="x", which="both", alpha=0.3)
-    axes[0].set_yticks(y)
+    axes[0].set_yticks(np.arange(len(names)))
     axes[0].set_yticklabels(names, fontsize=7)
     axes[0].invert_yaxis()
-    axes[0].legend(fontsize=7, loc="lower right")
-    fig.suptitle("Sensitivity of the paper's §5 findings to the unstated inputs (Table 4 rotor, median over "
-                 "9 000–18 000 rpm speeds with periodic steady states)", fontsize=9)
+    for rpm in speeds:
+        col = cmap((rpm - speeds.min()) / max(np.ptp(speeds), 1.0) * 0.85)
+        axes[2].scatter([], [], s=20, color=col, label=f"{rpm:.0f} rpm")
+    axes[2].scatter([], [], s=20, facecolors="none", edgecolors="k", label="not all periodic")
+    axes[2].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    fig.suptitle("Sensitivity of Dai et al. (2025) §5 findings to the inputs Table 4 does not give "
+                 "(Table 4 rotor; green: the paper's side)", fontsize=9)
     fig.tight_layout()
     return save(fig, prefix)
 
 
-def _cell(f_per, f_all, ratio_txt):
+def _regimes(t) -> str:
+    """Base-case regime per speed (speeds ascending): '–' no contact (stick or slip), 'I' contact part of
+    the time (impacts), 'C' contact throughout; '*' appended when not periodic."""
+    letters = []
+    cf = np.asarray(t.contact_fraction)[t.cases.index("base")] if t.contact_fraction is not None else None
+    for k in range(len(t.speeds_rpm)):
+        c = cf[k] if cf is not None else math.nan
+        L = "C" if c >= 1 else "I" if c > 0 else "–"
+        letters.append(L + ("" if t.ok("base")[k] else "*"))
+    return " ".join(letters)
+
+
+def _cell(f_per, f_all, f_coll, ratio_txt):
     mark = "**holds**" if f_per.holds else "no"
-    return f"{mark} {f_per.n_pass}/{f_per.n_compared} (all pts {f_all.n_pass}/{f_all.n_compared}); {ratio_txt}"
+    return (f"{mark} {f_per.n_pass}/{f_per.n_compared} (collision {f_coll.n_pass}/{f_coll.n_compared}; "
+            f"all pts {f_all.n_pass}/{f_all.n_compared}); {ratio_txt}")
 
 
 def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") -> str:
@@ -164,7 +211,9 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
          "(tol 1e-4, ≤ 1 500 revolutions), spectra over 16 whole revolutions.",
          "* A finding is checked at a speed only where every compared case is periodic; it **holds** for a variant "
          f"when it holds at ≥ {sens.HOLD_FRACTION:.0%} of those speeds (and at least 2). 'all pts' repeats the check "
-         "including non-periodic points (their 16-revolution amplitudes are not on exact bins).",
+         "including non-periodic points (their 16-revolution amplitudes are not on exact bins); 'collision' only at "
+         "the periodic speeds where the reference case collides (the paper attributes all three findings to the "
+         "collision between bearing and support).",
          "* Clearance (Fig. 18): 2f and 3f of the y **displacement** strictly decrease 0.03 → 0.05 → 0.08 mm at "
          "disk 2 and the 3# bearing support. Misalignment (Fig. 19): 1f within 5 % and 2f, 3f strictly increase "
          "0.5 → 1 → 2 mm at disk 1, disk 2 and the support (displacement). Tilt (Fig. 16 vs 12): Σ3f–5f of the y "
@@ -172,7 +221,9 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
          "quantity (CSV).",
          "* Ratios in the table: medians over the compared speeds — clearance 3f(0.03)/3f(0.08) at disk 2 "
          "(> 1 is the paper's direction), misalignment 3f(2)/3f(0.5) at disk 2 (> 1), tilt Σ3–5f off/on at disk 2 "
-         "(≤ 0.7).", ""]
+         "(≤ 0.7).",
+         "* 'base regime by speed': the reference case at each speed (ascending): '–' no contact (support stuck or "
+         "slipping), 'I' contact part of the time (collisions), 'C' contact throughout; '*' not periodic.", ""]
     if code:
         L += [f"Code: {code}.", ""]
     if timing:
@@ -194,20 +245,22 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
           "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×0.5, ×2, ×5 | only the product μ·preload enters; "
           "μ 0.1–0.5, nut preload 1–15 kN |", ""]
     L += ["## Findings × variants", "",
-          "| variant | clearance (Fig. 18, displacement) | misalignment (Fig. 19, displacement) | tilt (Fig. 16, velocity) "
-          "| periodic speeds (base / all 6 cases) |", "|---|---|---|---|---|"]
+          "| variant | base regime by speed | clearance (Fig. 18, displacement) | misalignment (Fig. 19, displacement) | tilt (Fig. 16, velocity) "
+          "| periodic speeds (base / all 6 cases) |", "|---|---|---|---|---|---|"]
     verdicts = {}
     for v in variants:
         if v.name not in tabs:
             continue
         t = tabs[v.name]
         per, allp = sens.evaluate(t, require_periodic=True), sens.evaluate(t, require_periodic=False)
+        coll = sens.evaluate(t, require_contact=True)
         kr = key_ratios(t)
         verdicts[v.name] = per
         n6 = int(np.all(np.asarray(t.periodic), axis=0).sum())
-        L.append(f"| {v.name} | {_cell(per['clearance_q'], allp['clearance_q'], '3f ratio ' + _fmt(kr['clear_3f_disk2']))} "
-                 f"| {_cell(per['misalignment_q'], allp['misalignment_q'], '3f ratio ' + _fmt(kr['mis_3f_disk2']) + ', 1f spread ' + _fmt(100 * kr['mis_1f_spread_max'], 2) + ' %')} "
-                 f"| {_cell(per['tilt_v'], allp['tilt_v'], 'off/on ' + _fmt(kr['tilt_disk2']))} "
+        part = "" if len(t.speeds_rpm) == len(sens.SPEEDS_RPM) else f" (partial: {len(t.speeds_rpm)} speeds)"
+        L.append(f"| {v.name}{part} | {_regimes(t)} | {_cell(per['clearance_q'], allp['clearance_q'], coll['clearance_q'], '3f ratio ' + _fmt(kr['clear_3f_disk2']))} "
+                 f"| {_cell(per['misalignment_q'], allp['misalignment_q'], coll['misalignment_q'], '3f ratio ' + _fmt(kr['mis_3f_disk2']) + ', 1f spread ' + _fmt(100 * kr['mis_1f_spread_max'], 2) + ' %')} "
+                 f"| {_cell(per['tilt_v'], allp['tilt_v'], coll['tilt_v'], 'off/on ' + _fmt(kr['tilt_disk2']))} "
                  f"| {int(t.ok('base').sum())}/{len(t.speeds_rpm)} / {n6}/{len(t.speeds_rpm)} |")
     L += [""]
     return "\n".join(L), verdicts

@@ -375,23 +375,27 @@ def _verdict(name, quantity, rows) -> Finding:
     return Finding(name, quantity, bool(n >= 2 and k >= HOLD_FRACTION * n - 1e-12), k, n, tuple(rows))
 
 
-def _mask(table, cases, require_periodic):
+def _mask(table, cases, require_periodic, require_contact=False):
     m = np.ones(len(table.speeds_rpm), bool)
     if require_periodic:
         for c in cases:
             m &= table.ok(c)
+    if require_contact:
+        if table.contact_fraction is None:
+            raise InputError("require_contact: the table has no contact fractions")
+        m &= np.asarray(table.contact_fraction)[table.cases.index("base")] > 0
     return m
 
 
 def clearance_finding(table: AmplitudeTable, quantity: str = "q", *, require_periodic: bool = True,
-                      locations=("disk2.y", "s.y"), orders=(2, 3)) -> Finding:
+                      require_contact: bool = False, locations=("disk2.y", "s.y"), orders=(2, 3)) -> Finding:
     """Dai 2025 §5.3.1: at high speed 2f and 3f decrease as δ0 grows (0.03 → 0.05 → 0.08 mm).
 
     Per speed: strictly ``A(0.03) > A(0.05) > A(0.08)`` for every order in ``orders`` at every
     location in ``locations`` (disk 2 and the support, where the paper's harmonics are)."""
     cases = ("clear0.03", "base", "clear0.08")
     A = [table.amp(quantity, c) for c in cases]
-    m = _mask(table, cases, require_periodic)
+    m = _mask(table, cases, require_periodic, require_contact)
     rows = []
     for s in np.flatnonzero(m):
         nums, good = {}, True
@@ -406,12 +410,12 @@ def clearance_finding(table: AmplitudeTable, quantity: str = "q", *, require_per
 
 
 def misalignment_finding(table: AmplitudeTable, quantity: str = "q", *, require_periodic: bool = True,
-                         locations=LOCATIONS, spread: float = ONE_F_SPREAD) -> Finding:
+                         require_contact: bool = False, locations=LOCATIONS, spread: float = ONE_F_SPREAD) -> Finding:
     """Dai 2025 §5.3.2: as δ grows (0.5 → 1 → 2 mm) 1f stays essentially unchanged (spread
     ≤ ``spread``) while 2f and 3f increase (strictly), at every location."""
     cases = ("mis0.5", "base", "mis2")
     A = [table.amp(quantity, c) for c in cases]
-    m = _mask(table, cases, require_periodic)
+    m = _mask(table, cases, require_periodic, require_contact)
     rows = []
     for s in np.flatnonzero(m):
         nums, good = {}, True
@@ -432,7 +436,7 @@ def misalignment_finding(table: AmplitudeTable, quantity: str = "q", *, require_
 
 
 def tilt_finding(table: AmplitudeTable, quantity: str = "v", *, require_periodic: bool = True,
-                 locations=("disk2.y", "s.y"), markedly: float = MARKEDLY) -> Finding:
+                 require_contact: bool = False, locations=("disk2.y", "s.y"), markedly: float = MARKEDLY) -> Finding:
     """Dai 2025 §5.2: ignoring the tilt markedly lowers the harmonics: Σ 3f–5f without tilt
     ≤ ``markedly`` × with tilt at every location in ``locations`` (y velocity by default, as the
     paper's Figs. 12/16)."""
@@ -440,7 +444,7 @@ def tilt_finding(table: AmplitudeTable, quantity: str = "v", *, require_periodic
     A = [table.amp(quantity, c) for c in cases]
     if A[0].shape[1] < 5:
         raise InputError("tilt_finding: needs orders 1..5")
-    m = _mask(table, cases, require_periodic)
+    m = _mask(table, cases, require_periodic, require_contact)
     rows = []
     for s in np.flatnonzero(m):
         nums, good = {}, True
@@ -453,14 +457,17 @@ def tilt_finding(table: AmplitudeTable, quantity: str = "v", *, require_periodic
     return _verdict("tilt", quantity, rows)
 
 
-def evaluate(table: AmplitudeTable, *, require_periodic: bool = True) -> dict:
+def evaluate(table: AmplitudeTable, *, require_periodic: bool = True, require_contact: bool = False) -> dict:
     """All findings of one variant: ``{name: Finding}``; clearance and misalignment in displacement
-    (the paper's Figs. 18–19) and velocity, tilt in velocity (Figs. 12/16) and displacement."""
+    (the paper's Figs. 18–19) and velocity, tilt in velocity (Figs. 12/16) and displacement.
+    ``require_contact``: only speeds where the reference case collides (the paper attributes all
+    three findings to the collision between bearing and support)."""
     out = {}
+    kw = {"require_periodic": require_periodic, "require_contact": require_contact}
     for q in ("q", "v"):
-        out[f"clearance_{q}"] = clearance_finding(table, q, require_periodic=require_periodic)
-        out[f"misalignment_{q}"] = misalignment_finding(table, q, require_periodic=require_periodic)
-        out[f"tilt_{q}"] = tilt_finding(table, q, require_periodic=require_periodic)
+        out[f"clearance_{q}"] = clearance_finding(table, q, **kw)
+        out[f"misalignment_{q}"] = misalignment_finding(table, q, **kw)
+        out[f"tilt_{q}"] = tilt_finding(table, q, **kw)
     return out
 
 

@@ -221,3 +221,60 @@ def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(t
     assert (f.n_compared, f.n_pass) == (1, 0)
     two = [t.amp("q", c)[0, 1] for c in ("mis0.5", "base", "mis2")]
     assert np.all(two[0] < two[1]) and np.all(two[1] < two[2])
+
+
+def test_collision_only_check_keeps_speeds_where_the_reference_case_collides():
+    """The paper attributes the findings to the bearing–support collision (§5.3.1, §5.3.2, §5.2)."""
+    q, per = _table()
+    q[_ci("clear0.03"), :, 1:3, :] = 1.2
+    q[_ci("clear0.08"), :, 1:3, :] = 0.8
+    q[_ci("clear0.08"), 2, 1:3, :] = 1.0  # fails at the third speed
+    cf = np.zeros((len(sens.CASE_NAMES), 3))
+    cf[_ci("base"), 1:] = 0.45  # collides at the 2nd and 3rd speeds only
+    t = sens.AmplitudeTable(np.array([9000.0, 10500.0, 12000.0]), sens.CASE_NAMES, sens.LOCATIONS, q, q, per, cf)
+    assert sens.clearance_finding(t).holds  # 2 of 3 periodic speeds
+    f = sens.clearance_finding(t, require_contact=True)
+    assert (f.n_pass, f.n_compared, f.holds) == (1, 2, False)
+    with pytest.raises(InputError, match="contact"):
+        sens.clearance_finding(_mk(q, per), require_contact=True)
+
+
+def _fake_store(root, variant, clearance_trend: bool):
+    """A sweep store with synthetic points of one variant (the task params exactly as the study's)."""
+    from rotor.sweep import ResultStore
+
+    store = ResultStore(root)
+    C, L = len(sens.CASE_NAMES), len(sens.LOCATIONS)
+    for t in sens.study_tasks([variant]):
+        h = np.ones((C, 5, L)) * 1e-6
+        if clearance_trend:
+            h[_ci("clear0.03"), 1:3, :] = 1.2e-6
+            h[_ci("clear0.08"), 1:3, :] = 0.8e-6
+        arrays = {"harm_q": h, "harm_v": h * 1e3, "harm_u": np.zeros((C, 5, 4)), "periodic": np.ones(C, bool),
+                  "contact_fraction": np.full(C, 0.4), "cases": np.array(sens.CASE_NAMES),
+                  "locations": np.array(sens.LOCATIONS)}
+        info = {"cases": list(sens.CASE_NAMES), **{c: {"wall_s": 1.0} for c in sens.CASE_NAMES}}
+        store.save(t.key, t.params, arrays, info, run={"wall_s": 6.0})
+
+
+def test_cli_report_only_writes_the_published_files_from_stored_points(tmp_path):
+    """`ringcontact study sensitivity --report-only`: no computing, verdicts from the stored amplitudes."""
+    from reports.study_cli import main
+
+    _fake_store(tmp_path / "run", sens.Variant("base"), clearance_trend=True)
+    to = tmp_path / "pub"
+    assert main(["sensitivity", "--report-only", "--out", str(tmp_path / "run"), "--to", str(to),
+                 "--variants", "base"]) == 0
+    md = (to / "study-sensitivity.md").read_text()
+    row = [ln for ln in md.splitlines() if ln.startswith("| base |")][0]
+    n = len(sens.SPEEDS_RPM)
+    assert f"**holds** {n}/{n}" in row.split("|")[3]          # clearance: the synthetic trend
+    assert f"no 0/{n}" in row.split("|")[4]                    # misalignment: flat
+    assert "clearance**: holds for `base`" in md
+    csv = (to / "study-sensitivity.csv").read_text().splitlines()
+    assert csv[0].startswith("variant,factors,finding,quantity,holds_periodic")
+    assert len(csv) == 1 + 6  # 3 findings × 2 quantities
+    for ext in ("png", "svg"):
+        assert (to / f"study-sensitivity.{ext}").stat().st_size > 1000
+    assert main(["sensitivity", "--report-only", "--out", str(tmp_path / "run"), "--to", str(to),
+                 "--variants", "nonexistent"]) == 2
