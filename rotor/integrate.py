@@ -283,7 +283,10 @@ class NewmarkOptions:
     passes per step, and the stick test's weight of the start-of-step face force
     (``stick_mean_weight``: 0.5 = Coulomb bound on the step's friction impulse, the default;
     0 = on the end-of-step force, which lets the undamped trapezoidal multipliers ring and the
-    faces chatter, see :func:`rotor.constraints.face_mode_update`)."""
+    faces chatter, see :func:`rotor.constraints.face_mode_update`), and ``consistent_stick_onset``
+    (True: stick onsets tested on, and restarted from, the consistent multipliers and
+    acceleration; no low-speed stick trial right after a release; see :mod:`rotor.constraints`,
+    "Stick onset"; False: the former rule, which chatters at stops with the face force at μN)."""
 
     beta: float = 0.25
     gamma: float = 0.5
@@ -297,6 +300,7 @@ class NewmarkOptions:
     w_stick: float = 1e-5
     max_passes: int = 6
     stick_mean_weight: float = 0.5
+    consistent_stick_onset: bool = True
 
 
 # ---------------------------------------------------------------------------
@@ -521,6 +525,7 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
         tr.passes[i] = passes
 
     record(0, t0, 0, 0)
+    just_released = [False, False]
     bdt2 = beta * dt * dt
     gdt = gamma * dt
     for step in range(1, n_steps + 1):
@@ -618,13 +623,24 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
             v_new = v_pre + gdt * a_new
             changed = False
             new_modes = list(modes)
+            onset_trial = [modes[k] == cons.STICK and not stuck_at_start[k] for k in range(n_faces)]
+            if opts.consistent_stick_onset and any(onset_trial):
+                # a face trying stick (slipping at the start of the step) is tested on its holding force
+                # at the end of the step: the consistent multiplier, not the trapezoidal one; a stuck
+                # other face on its consistent multiplier too (the one the step will keep)
+                _, lam_c = initial_acceleration(system, t, q_pre + bdt2 * a_new, v_new, modes, opts)
+                jj = L.shape[0]
+                for k in stuck:
+                    lam_face_new[k] = lam_c[jj:jj + 2]
+                    jj += 2
             for k in range(n_faces):
                 wk = P[k] @ (B @ v_new)
                 if modes[k] == cons.STICK:
                     fk = -lam_face_new[k]
                 else:
                     fk = cons.slip_force(wk, mu_N, opts.w_reg)[0]
-                nm = cons.face_mode_update(modes[k], fk, wk, w_old[k], mu_N, opts.w_stick, tried_stick[k],
+                w_stick = 0.0 if just_released[k] else opts.w_stick
+                nm = cons.face_mode_update(modes[k], fk, wk, w_old[k], mu_N, w_stick, tried_stick[k],
                                            phi_old[k], opts.stick_mean_weight if stuck_at_start[k] else 0.0)
                 if nm != modes[k]:
                     changed = True
@@ -646,6 +662,18 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
         v = v_pre + gdt * a
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
             raise ConvergenceError(f"reference scheme: non-finite state at step {step}, t = {t:.6g} s; reduce dt_s = {dt:.3e} s")
+        if opts.consistent_stick_onset:
+            just_released = [stuck_at_start[k] and modes[k] == cons.SLIP for k in range(2)]
+            if any(modes[k] == cons.STICK and not stuck_at_start[k] for k in range(n_faces)):
+                # stick onset: restart from the consistent acceleration and multipliers (q, v kept)
+                a, lam = initial_acceleration(system, t, q, v, modes, opts)
+                lam_lock = lam[:L.shape[0]]
+                lam_face = np.zeros((2, 2))
+                jj = L.shape[0]
+                for k in range(n_faces):
+                    if modes[k] == cons.STICK:
+                        lam_face[k] = lam[jj:jj + 2]
+                        jj += 2
         u, w, fc, phi, _ = support_forces(system, q, v, modes, lam_face, opts)
         if step % record_every == 0:
             record(step // record_every, t, total_its, passes)

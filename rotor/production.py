@@ -21,7 +21,10 @@ same answer to the Newton tolerance. What makes it fast:
    (``benchmarks/bench_integrators.py``; the pure-Python reference runs at ≈ 70 steps/s).
 
 Same safeguards as the reference (see :mod:`rotor.integrate`): backtracking, stick fallback,
-least-residual acceptance counted in ``Trajectory.unconverged_steps``.
+least-residual acceptance counted in ``Trajectory.unconverged_steps``. Same stick-onset rule
+(:mod:`rotor.constraints`, "Stick onset"): the consistent multipliers and acceleration come from
+``M a = Q − D v − K p + Bᵀ g`` at fixed ``(p, v)`` with the stuck faces' relative acceleration
+zero, condensed like the step (``W_M = M⁻¹ Bᵀ``, ``S_M = B M⁻¹ Bᵀ``, :func:`_reproject`).
 
 A runtime check records the largest ``ω_c Δt`` met, with ``ω_c² = k_t (B M⁻¹ Bᵀ)_yy`` and
 ``k_t`` the current radial tangent stiffness of the law, so a too-large step is
@@ -91,6 +94,9 @@ class Prepared:
     s_yy: float
     dt: float
     a1: float
+    Minv: np.ndarray
+    WM: np.ndarray
+    SM: np.ndarray
 
 
 def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = None) -> Prepared:
@@ -121,8 +127,12 @@ def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = Non
     f = system.force
     static = T.T @ (f.static + system.K @ system.offset)
     a1 = float(system.coupling[2]) if system.coupling is not None else 0.0
+    # for the consistent acceleration after a stick onset (see _reproject): M⁻¹, W_M, S_M
+    Minv = np.linalg.inv(Mr)
+    WM = Minv @ Bt.T
+    SM = Bt @ WM
     return Prepared(T, Ainv, Dr, Kr, Bt, W, S, static, np.asarray(f.orders, float), f.cos @ T, f.sin @ T,
-                    float(f.omega_rad_s), P, float(mu_N), s_yy, float(dt), a1)
+                    float(f.omega_rad_s), P, float(mu_N), s_yy, float(dt), a1, Minv, WM, SM)
 
 
 NC = 6  # condensed coordinates: relative support (y, z, θy, θz) + coupling Δθ (y, z)
@@ -349,9 +359,67 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
 
 
 @njit(cache=False)  # takes the law kernel as an argument: see note on caching
+def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, params, w_reg, phi_face):
+    """Consistent acceleration at the end of a step in which a face stuck (the stick-onset
+    re-projection of :func:`rotor.integrate.initial_acceleration`): ``M a = Q − D v − K p + Bᵀ g``
+    with the stuck faces' relative acceleration zero, at fixed ``(p, v)``. Linear in the stuck
+    faces' forces (2 per face), which it writes into ``phi_face``. Returns ``a``."""
+    u = Bt @ p
+    w = Bt @ v
+    x = np.zeros(NC + 4)
+    freeze = np.zeros(2, dtype=np.bool_)
+    fdir = np.zeros((2, 2))
+    g = np.zeros(NC)
+    Jg = np.zeros((NC, NC))
+    phi = np.zeros((2, 2))
+    uu = np.zeros(NC)
+    ww = np.zeros(NC)
+    # forces at (u, w) with the stuck faces' forces zero (x[NC:] = 0; bdt2 = gdt = 0 keeps u, w)
+    _forces(x, u, w, 0.0, 0.0, P, modes, freeze, fdir, mu_N, a1, kernel, params, w_reg, g, Jg, phi, uu, ww)
+    a = Minv @ (Q - Dr @ v - Kr @ p) + WM @ g
+    alpha = Bt @ a
+    m = 0
+    idx = np.zeros(2, dtype=np.int64)
+    for k in range(2):
+        if modes[k] == 1:
+            idx[m] = k
+            m += 1
+    if m == 0:
+        return a
+    # Σ_j P_k S_M[:4,:4] P_jᵀ φ_j = −P_k α[:4] for the stuck faces k
+    A = np.zeros((4, 4))
+    b = np.zeros(4)
+    sol = np.zeros(4)
+    for ik in range(m):
+        k = idx[ik]
+        for rr in range(2):
+            b[2 * ik + rr] = -(P[k, rr, 0] * alpha[0] + P[k, rr, 1] * alpha[1] + P[k, rr, 2] * alpha[2]
+                               + P[k, rr, 3] * alpha[3])
+            for jk in range(m):
+                j = idx[jk]
+                for cc in range(2):
+                    sacc = 0.0
+                    for r in range(4):
+                        for c in range(4):
+                            sacc += P[k, rr, r] * SM[r, c] * P[j, cc, c]
+                    A[2 * ik + rr, 2 * jk + cc] = sacc
+    if not _small_solve(A, b, 2 * m, sol):
+        return a
+    gf = np.zeros(NC)
+    for ik in range(m):
+        k = idx[ik]
+        phi_face[k, 0] = sol[2 * ik]
+        phi_face[k, 1] = sol[2 * ik + 1]
+        for r in range(4):
+            gf[r] += P[k, 0, r] * sol[2 * ik] + P[k, 1, r] * sol[2 * ik + 1]
+    return a + WM @ gf
+
+
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
 def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
           Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, s_yy, a1,
           has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
+          onset_projection, Minv, WM, SM,
           rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
           status):
     nr = p.shape[0]
@@ -367,6 +435,8 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     phi_old = np.zeros((2, 2))
     tried = np.zeros(2, dtype=np.bool_)
     stuck0 = np.zeros(2, dtype=np.bool_)
+    just_released = np.zeros(2, dtype=np.bool_)
+    phi_c = np.zeros((2, 2))
     Q = np.empty(nr)
     for step in range(1, n_steps + 1):
         t = t0 + step * dt
@@ -383,6 +453,7 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         a_lin = Ainv @ rhs
         total_its = 0
         passes = 0
+        onset = False
         if has_support:
             alpha_lin = Bt @ a_lin
             u_pre = Bt @ p_pre
@@ -430,9 +501,29 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     continue
                 w_new = w_pre + gdt * alpha
                 changed = False
+                # a face trying stick in this step (slipping at its start) is tested on its holding
+                # force at the end of the step, the consistent multiplier (stick-onset re-projection),
+                # not on the trapezoidal one that carries the velocity jump (f_n+1 = 2 f̄ − f_n); the
+                # other face, if stuck, on its consistent multiplier too (the one the step will keep)
+                use_c = False
+                if onset_projection:
+                    for k in range(2):
+                        if modes[k] == 1 and not stuck0[k]:
+                            use_c = True
+                if use_c:
+                    a_try = a_lin + W @ g
+                    for k in range(2):
+                        phi_c[k, 0] = phi[k, 0]
+                        phi_c[k, 1] = phi[k, 1]
+                    _reproject(p_pre + bdt2 * a_try, v_pre + gdt * a_try, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes,
+                               mu_N, a1, kernel, params, w_reg, phi_c)
                 for k in range(2):
                     wk = P[k] @ w_new[:4]
-                    nm = _mode_update(modes[k], phi[k], wk, w_old[k], mu_N, w_stick, tried[k], phi_old[k],
+                    fk = phi[k]
+                    if use_c and modes[k] == 1:
+                        fk = phi_c[k]
+                    nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N, 0.0 if just_released[k] else w_stick,
+                                      tried[k], phi_old[k],
                                       stick_mean_weight if stuck0[k] else 0.0)
                     if nm != modes[k]:
                         changed = True
@@ -441,10 +532,10 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                             tried[k] = True
                             phi_face[k] = phi[k]
                         else:
-                            nrm = math.sqrt(phi[k, 0] ** 2 + phi[k, 1] ** 2)
+                            nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
                             freeze[k] = True
                             if nrm > 0:
-                                freeze_dir[k] = mu_N * phi[k] / nrm
+                                freeze_dir[k] = mu_N * fk / nrm
                             else:
                                 freeze_dir[k] = 0.0
                 if not changed or passes >= max_passes:
@@ -452,6 +543,10 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         phi_face[k] = phi[k]
                     break
             a = a_lin + W @ g
+            if onset_projection:
+                for k in range(2):
+                    if modes[k] == 1 and not stuck0[k]:
+                        onset = True
             # largest ω_c Δt met: radial tangent stiffness of the law at the new state
             u_new = u_pre + bdt2 * alpha
             w_new = w_pre + gdt * alpha
@@ -473,6 +568,14 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             status[0] = 2
             status[1] = step
             return step - 1, wdt_max
+        for k in range(2):
+            just_released[k] = onset_projection and modes[k] == 0 and stuck0[k]
+        if onset:
+            # a face stuck in this step: restart from the consistent acceleration (positions and
+            # velocities of the step kept), so the stuck multiplier does not ring
+            a = _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, params, w_reg, phi_face)
+            alpha = Bt @ a
+            status[3] += 1
         if step % record_every == 0:
             i = step // record_every
             rec_t[i] = t
@@ -555,14 +658,14 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     # without a support the kernel is never called; reuse the contact kernel's compiled loop
     kernel = sup.law.kernel if sup is not None else contact_kernel
     params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(N_PARAMS)
-    status = np.zeros(3, dtype=np.int64)
+    status = np.zeros(4, dtype=np.int64)
     try:
         done, wdt_max = _loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
                               pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin,
                               pre.omega_force, pre.P, pre.mu_N, pre.s_yy, pre.a1, sup is not None, kernel, params,
                               opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
-                              float(opts.stick_mean_weight),
-                              rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"],
+                              float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
+                              pre.Minv, pre.WM, pre.SM, rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"],
                               rec["face"], rec["modes"], rec["its"], rec["passes"], status)
     except OutsideDomainError as e:
         raise OutsideDomainError(

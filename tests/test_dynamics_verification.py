@@ -19,7 +19,7 @@ from dynamics_denhartog import DenHartog
 from dynamics_standin import friction_body
 from rotor import constraints as cons
 from rotor.energy import energy_balance
-from rotor.integrate import HarmonicForce, RotorSystem, simulate_reference
+from rotor.integrate import HarmonicForce, NewmarkOptions, RotorSystem, simulate_reference
 from rotor.production import simulate_production
 
 
@@ -61,13 +61,23 @@ def test_den_hartog_steady_state(F, P0, omega, regime):
     errs = np.array(errs)
     # at T/3200: amplitude within 0.1 % and stick time within 0.1 % of a half period
     assert errs[-1, 0] < 1e-3 and errs[-1, 1] < 1e-3, errs
-    # and the error falls with the step: stick/slip events make it first order, with the scatter
-    # of where an event falls inside a step, so fit the log-log slope over the four steps
-    for col in range(2):
-        e = errs[:, col]
-        if e.max() > 1e-6:
-            slope = np.polyfit(np.log(steps), np.log(np.maximum(e, 1e-12)), 1)[0]
-            assert slope < -0.7, (col, errs, slope)
+    if t_stick == 0.0:
+        # continuous slip: the error falls with the step (log-log slope over the four steps)
+        e = errs[:, 0]
+        slope = np.polyfit(np.log(steps), np.log(np.maximum(e, 1e-12)), 1)[0]
+        assert slope < -0.7, (errs, slope)
+    else:
+        # stick-slip: the stick time is quantised by the step, at most one step at each end of
+        # each stick phase (first order); measured 1.5e-3 .. 3.5e-4 against 5e-3 .. 6.3e-4
+        assert np.all(errs[:, 1] <= 2 * (dh.T / np.array(steps)) / (dh.T / 2)), errs
+        # the amplitude is within 0.1 % at every step (measured 2.3e-4 .. 3.3e-4; 2.5e-3 at T/400
+        # before the consistent stick onset) and its remaining error is the friction regularisation
+        # w_reg, not the step: with w_reg ten times smaller it falls below a quarter (measured 5.5x)
+        assert np.all(errs[:, 0] < 1e-3), errs
+        dt = dh.T / steps[0]
+        tr = simulate_production(s, dt, 40 * steps[0], check_step=False, options=NewmarkOptions(w_reg=1e-7))
+        amp, _ = _last_period_stats(tr, dh.T, dt)
+        assert abs(amp - X0) / X0 < 0.25 * errs[0, 0], (abs(amp - X0) / X0, errs)
 
 
 def test_den_hartog_reference_scheme_on_exact_orbit():
