@@ -143,12 +143,14 @@ def figure(tabs: dict, variants, prefix: Path) -> list:
         for i, n in enumerate(names):
             t = tabs[n]
             r, per = per_speed_ratios(t)[f]
+            coll = (np.asarray(t.contact_fraction)[t.cases.index("base")] > 0 if t.contact_fraction is not None
+                    else np.ones(len(r), bool))
             for k, (x, ok, rpm) in enumerate(zip(r, per, t.speeds_rpm)):
                 if not np.isfinite(x) or x <= 0:
                     continue
                 col = cmap((rpm - speeds.min()) / max(np.ptp(speeds), 1.0) * 0.85)
                 dy = (k - len(t.speeds_rpm) / 2) * 0.08
-                ax.scatter([x], [i + dy], s=20, marker="o", facecolors=col if ok else "none", edgecolors=col,
+                ax.scatter([x], [i + dy], s=20, marker="o" if coll[k] else "s", facecolors=col if ok else "none", edgecolors=col,
                            linewidths=1.0, zorder=3)
                 allr.append(x)
         ax.set_xscale("log")
@@ -169,6 +171,7 @@ def figure(tabs: dict, variants, prefix: Path) -> list:
         col = cmap((rpm - speeds.min()) / max(np.ptp(speeds), 1.0) * 0.85)
         axes[2].scatter([], [], s=20, color=col, label=f"{rpm:.0f} rpm")
     axes[2].scatter([], [], s=20, facecolors="none", edgecolors="k", label="not all periodic")
+    axes[2].scatter([], [], s=20, marker="s", color="k", label="reference case\ndoes not collide")
     axes[2].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.suptitle("Sensitivity of Dai et al. (2025) §5 findings to the inputs Table 4 does not give "
                  "(Table 4 rotor; green: the paper's side)", fontsize=9)
@@ -276,6 +279,11 @@ def publish(out, to, variants, *, extra: str = "", timing: dict | None = None, c
     rws = rows(tabs, variants)
     files = [write_csv_rows(to / "study-sensitivity.csv", rws)]
     text, _ = note(tabs, variants, timing=timing, code=code)
+    text += ("\n## Trends at each speed over all variants\n\nCounts over the variants (one-at-a-time and "
+             "combinations) of how often each piece of the paper's findings holds at disk 2, all points (periodic or "
+             "not), counting a variant only where every compared case collides at that speed (the paper's "
+             "mechanism). It separates what the unstated inputs change from what none of them changes.\n\n"
+             + trends_by_speed(tabs) + "\n")
     text += "\n## Conclusion (generated from the verdicts above)\n\n" + conclusion(tabs, variants) + "\n"
     if extra:
         text += "\n" + extra.strip() + "\n"
@@ -337,31 +345,76 @@ def conclusion(tabs: dict, variants) -> str:
     if not names:
         return "No finished variants."
     ev = {n: sens.evaluate(tabs[n]) for n in names}
-    kr = {n: key_ratios(tabs[n]) for n in names}
     key = {"clearance": "clearance_q", "misalignment": "misalignment_q", "tilt": "tilt_v"}
     L = []
     for f, k in key.items():
         ok = [n for n in names if ev[n][k].holds]
-        L.append(f"* **{f}**: holds for " + (", ".join(f"`{n}`" for n in ok) if ok else "**no variant**") + ".")
+        txt = []
+        for n in ok:
+            c = sens.evaluate(tabs[n], require_contact=True)[k]
+            txt.append(f"`{n}`" + ("" if c.n_compared else " (only at speeds where the bearing does not collide)"))
+        L.append(f"* **{f}**: holds for " + (", ".join(txt) if ok else "**no variant**") + ".")
     allok = [n for n in names if all(ev[n][k].holds for k in key.values())]
     L.append("* **All three at once**: " + (", ".join(f"`{n}`" for n in allok) if allok else
                                            "**no variant studied makes all three findings hold**") + ".")
-    if "base" in kr:
-        L.append("")
-        L.append("Which input moves each deciding ratio most (largest |log(ratio/base ratio)| over the one-at-a-time "
-                 "variants with a value; ratios are medians over the compared periodic speeds):")
-        byvar = {v.name: v for v in variants}
-        for f, (k, thr, side) in _DECIDING.items():
-            b = kr["base"][k]
-            best = None
-            for n in names:
-                v = byvar[n]
-                if n == "base" or len(v.factors) != 1 or not np.isfinite(kr[n][k]) or not np.isfinite(b) or b <= 0:
-                    continue
-                d = abs(math.log(max(kr[n][k], 1e-30) / b))
-                if best is None or d > best[0]:
-                    best = (d, n, kr[n][k])
-            if best:
-                L.append(f"* {f}: `{best[1]}` ({_fmt(b)} → {_fmt(best[2])}; the paper's side is "
-                         f"{'> ' if side == 'above' else '≤ '}{thr:g})")
+    L.append("")
+    L.append("Where each finding comes closest (periodic speeds where the reference case collides, the paper's "
+             "mechanism; passes/compared):")
+    for f, k in key.items():
+        coll = sorted(((sens.evaluate(tabs[n], require_contact=True)[k], n) for n in names),
+                      key=lambda x: (-(x[0].n_pass / x[0].n_compared if x[0].n_compared else 0), -x[0].n_compared))
+        top = [f"`{n}` {r.n_pass}/{r.n_compared}" for r, n in coll if r.n_pass > 0][:4]
+        L.append(f"* {f}: " + (", ".join(top) if top else "at no periodic collision speed of any variant") + ".")
+    if "base" in tabs:
+        flat = []
+        b = tabs["base"]
+        for n in names:
+            t = tabs[n]
+            if n == "base" or len(t.speeds_rpm) != len(b.speeds_rpm):
+                continue
+            m = t.ok("base") & b.ok("base")
+            if not m.any():
+                continue
+            x, y = t.amp("q", "base")[m, :3], b.amp("q", "base")[m, :3]
+            if float(np.max(np.abs(x - y) / np.maximum(y, 1e-12))) <= 0.02:
+                flat.append(n)
+        L.append("* No effect (reference-case 1f–3f within 2 % of the scene's at every speed where both are periodic): "
+                 + (", ".join(f"`{n}`" for n in flat) if flat else "none") + ".")
+    return "\n".join(L)
+
+
+def trends_by_speed(tabs: dict) -> str:
+    """Markdown table: per speed, over all variants (all points, periodic or not), in how many the
+    pieces of each finding go the paper's way, counting only variants whose compared cases all
+    collide at that speed (the paper's mechanism); disk 2, displacement (velocity for tilt)."""
+    speeds = sorted({float(s) for t in tabs.values() for s in t.speeds_rpm})
+    L = ["| speed (rpm) | variants with collision in all compared cases | 2f falls with δ0 (paper) | 3f falls with δ0 "
+         "(paper) | 2f rises with δ (paper) | 3f rises with δ (paper) | Σ3f–5f ≥ 30 % lower without tilt (paper) |",
+         "|---|---|---|---|---|---|---|"]
+    for s in speeds:
+        cnt = {k: [0, 0] for k in ("c2", "c3", "m2", "m3", "t")}
+        n_coll = 0
+        for t in tabs.values():
+            if s not in list(t.speeds_rpm) or t.contact_fraction is None:
+                continue
+            k = list(t.speeds_rpm).index(s)
+            cf = {c: float(np.asarray(t.contact_fraction)[t.cases.index(c), k]) for c in t.cases}
+            j = t.locations.index("disk2.y")
+            A = {c: t.amp("q", c)[k, :, j] for c in t.cases}
+            V = {c: t.amp("v", c)[k, :, j] for c in t.cases}
+            if all(cf[c] > 0 for c in ("clear0.03", "base", "clear0.08")):
+                for h, key in ((2, "c2"), (3, "c3")):
+                    a = [A[c][h - 1] for c in ("clear0.03", "base", "clear0.08")]
+                    cnt[key][0] += a[0] > a[1] > a[2]
+                    cnt[key][1] += 1
+            if all(cf[c] > 0 for c in ("mis0.5", "base", "mis2")):
+                for h, key in ((2, "m2"), (3, "m3")):
+                    a = [A[c][h - 1] for c in ("mis0.5", "base", "mis2")]
+                    cnt[key][0] += a[0] < a[1] < a[2]
+                    cnt[key][1] += 1
+            if all(cf[c] > 0 for c in ("base", "notilt")):
+                cnt["t"][0] += V["notilt"][2:5].sum() <= sens.MARKEDLY * V["base"][2:5].sum()
+                cnt["t"][1] += 1
+            n_coll += all(cf[c] > 0 for c in t.cases)
+        L.append(f"| {s:.0f} | {n_coll}/{len(tabs)} | " + " | ".join(f"{a}/{b}" for a, b in cnt.values()) + " |")
     return "\n".join(L)
