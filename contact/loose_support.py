@@ -363,8 +363,10 @@ def loose_support_jacobian(params: LooseSupportParams, y_m, z_m, theta_y_rad=0.0
         ``(Fy, Fz, My, Mz)`` (N, N, N·m, N·m).
     jacobian : ndarray, shape (..., 4, 8)
         ``∂(Fy, Fz, My, Mz) / ∂(y, z, θy, θz, vy, vz, ωy, ωz)`` in SI units.
-        At the non-smooth points of the model (first contact, the edge-selection switch,
-        the damping clip, zero face velocity) it is a one-sided or mean value.
+        At the non-smooth points of the model (first contact, the damping clip, zero face
+        velocity, and the edge-selection switch when ``edge_transition_m = 0``) it is a
+        one-sided or mean value; with ``edge_transition_m > 0`` it includes the derivatives of
+        the smooth edge weights.
     """
     inputs = (y_m, z_m, theta_y_rad, theta_z_rad, vy_m_s, vz_m_s, omega_y_rad_s, omega_z_rad_s)
     shape, F, J, _, _, _ = _run(params, inputs, True, False, on_outside)

@@ -37,9 +37,9 @@ tenths of a µm), where the rigid-ring model of Eqs. 8–19 cannot tell which ed
 first anyway. The regularisation therefore adds no error the model does not already have.
 *Numerical bound.* The width must let an implicit step find a root where the edges cross.
 Measured on the 14 hard-case runs of issue 7 (Table 4 rotor, 10 revolutions at 10 500 rpm,
-Δt = T/256, 7 cases × 2 starts; ``benchmarks/bench_integrators.py`` section 4): steps kept at
-the least residual 203 with the sharp rule, 1 each at ε_e = 10 nm and 30 nm, none from 50 nm up
-to 1 µm; the 15 steady-state 1X–5X amplitudes at 10 500 rpm (T/256, T/512, T/1024) are
+Δt = T/256, 7 cases × 2 starts, former stick-onset rule; ``benchmarks/bench_integrators.py``
+section 4 has the current table): steps kept at the least residual 203 with the sharp rule,
+1 each at ε_e = 10 nm and 30 nm, none from 50 nm up to 1 µm; the 15 steady-state 1X–5X amplitudes at 10 500 rpm (T/256, T/512, T/1024) are
 bit-for-bit those of the sharp rule for ε_e <= 0.5 µm (the steady orbit never enters the
 bands), while 1 µm moves them by 1 % (a different path into the stuck position). 0.2 µm
 sits 4× above the lower and 2.5× below the upper measured limit. It is an absolute length:
