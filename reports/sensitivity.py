@@ -357,6 +357,13 @@ def conclusion(tabs: dict, variants) -> str:
     allok = [n for n in names if all(ev[n][k].holds for k in key.values())]
     L.append("* **All three at once**: " + (", ".join(f"`{n}`" for n in allok) if allok else
                                            "**no variant studied makes all three findings hold**") + ".")
+    _, tot = _trends({n: tabs[n] for n in names})
+    if tot["c3"][1]:
+        L.append("")
+        L.append(f"Over every variant and speed where all compared cases collide (all points, disk 2): 2f fell with "
+                 f"δ0 in {tot['c2'][0]}/{tot['c2'][1]} and 3f in {tot['c3'][0]}/{tot['c3'][1]}; 2f rose with δ in "
+                 f"{tot['m2'][0]}/{tot['m2'][1]} and 3f in {tot['m3'][0]}/{tot['m3'][1]}; Σ3f–5f was ≥ 30 % lower "
+                 f"without tilt in {tot['t'][0]}/{tot['t'][1]}.")
     L.append("")
     L.append("Where each finding comes closest (periodic speeds where the reference case collides, the paper's "
              "mechanism; passes/compared):")
@@ -384,10 +391,15 @@ def conclusion(tabs: dict, variants) -> str:
 
 
 def trends_by_speed(tabs: dict) -> str:
+    return _trends(tabs)[0]
+
+
+def _trends(tabs: dict):
     """Markdown table: per speed, over all variants (all points, periodic or not), in how many the
     pieces of each finding go the paper's way, counting only variants whose compared cases all
     collide at that speed (the paper's mechanism); disk 2, displacement (velocity for tilt)."""
     speeds = sorted({float(s) for t in tabs.values() for s in t.speeds_rpm})
+    tot = {k: [0, 0] for k in ("c2", "c3", "m2", "m3", "t")}
     L = ["| speed (rpm) | variants with collision in all compared cases | 2f falls with δ0 (paper) | 3f falls with δ0 "
          "(paper) | 2f rises with δ (paper) | 3f rises with δ (paper) | Σ3f–5f ≥ 30 % lower without tilt (paper) |",
          "|---|---|---|---|---|---|---|"]
@@ -417,4 +429,7 @@ def trends_by_speed(tabs: dict) -> str:
                 cnt["t"][1] += 1
             n_coll += all(cf[c] > 0 for c in t.cases)
         L.append(f"| {s:.0f} | {n_coll}/{len(tabs)} | " + " | ".join(f"{a}/{b}" for a, b in cnt.values()) + " |")
-    return "\n".join(L)
+        for key, (a, b) in cnt.items():
+            tot[key][0] += a
+            tot[key][1] += b
+    return "\n".join(L), tot
