@@ -98,6 +98,33 @@ def rows(tabs: dict, variants) -> list:
     return out
 
 
+POINT_LOCATIONS = (("disk2.y", "disk2"), ("s.y", "support"))
+
+
+def point_rows(tabs: dict, variants) -> tuple[list, list]:
+    """Header and rows of every (variant, speed, case): periodic, contact fraction, and the 1f–5f
+    amplitudes at disk 2 and the support, displacement (µm) and y velocity (mm/s)."""
+    header = ["variant", "speed_rpm", "case", "periodic", "contact_fraction"]
+    for _, lab in POINT_LOCATIONS:
+        header += [f"{lab}_{h}f_um" for h in sens.ORDERS] + [f"{lab}_{h}f_mm_s" for h in sens.ORDERS]
+    out = []
+    for v in variants:
+        t = tabs.get(v.name)
+        if t is None:
+            continue
+        for k, rpm in enumerate(t.speeds_rpm):
+            for c in t.cases:
+                ci = t.cases.index(c)
+                row = [v.name, float(rpm), c, bool(t.periodic[ci, k]),
+                       float(np.asarray(t.contact_fraction)[ci, k]) if t.contact_fraction is not None else math.nan]
+                for loc, _ in POINT_LOCATIONS:
+                    j = t.locations.index(loc)
+                    row += [float(x) * 1e6 for x in t.amp("q", c)[k, :, j]]
+                    row += [float(x) * 1e3 for x in t.amp("v", c)[k, :, j]]
+                out.append(row)
+    return header, out
+
+
 def write_csv_rows(path: Path, rws: list) -> Path:
     if not rws:
         raise InputError("sensitivity report: no finished variants to report")
@@ -236,17 +263,22 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
           "| k_s,θ, c_s,θ support tilt stiffness/damping (1.5e5 N m/rad, 15 N m s/rad) | ×0.01, ×0.1, ×10, ×100 | "
           "k_s b²: b = 10 mm … 1 m; a squirrel cage or bearing housing frame spans 20–300 mm axially (×0.04–×9); the "
           "extremes bracket a near-pinned and a near-clamped housing |",
-          "| J_s support tilt inertia (1.9 kg m²) | ×0.1, ×0.3, ×3 | 100 kg with radius of gyration 44–240 mm |",
+          "| J_s support tilt inertia (1.9 kg m²) | ×0.1, ×3 | 100 kg with a radius of gyration of 44–240 mm |",
           "| a0 transition-shaft angular stiffness (5e6 N m/rad) | ×0.01 … ×100 | spline/curvic joints: from a loose "
           "spline (5e4) to solid-shaft-like (5e8) |",
-          "| a1 cubic stiffness (1.25e12 N m/rad³) | ×0, ×0.1, ×10, ×100 | linear joint … hardening at 0.2 mrad |",
-          "| k_s, c_s support to ground (= k3, c3: 1.5e7 N/m, 1.5e3 N s/m) | ×0.1, ×10 | aero-engine support "
-          "stiffness 1e6–1e8 N/m |",
+          "| a1 cubic stiffness (1.25e12 N m/rad³) | ×0, ×10, ×100 | from a linear joint to one whose stiffness "
+          "doubles at 0.2 mrad |",
+          "| k_s, c_s support to ground (= k3, c3: 1.5e7 N/m, 1.5e3 N s/m) | ×0.1, ×3, ×10 | aero-engine support "
+          "stiffness 1e6–1e8 N/m (squirrel cage to stiff casing frame) |",
           "| m_sp transition-shaft mass (9 kg) | ×0.3, ×3 | 3–27 kg sleeve; 2X force ∝ m_sp L |",
-          "| c_c collision factor (100 s/m, Table 4 '100 s/N' read as s/m) | ×0.001 … ×10 | Hunt–Crossley-type "
-          "factors of steel are O(0.1–1) s/m; 100 is the paper's number in another unit reading |",
-          "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×0.5, ×2, ×5 | only the product μ·preload enters; "
-          "μ 0.1–0.5, nut preload 1–15 kN |", ""]
+          "| c_c collision factor (100 s/m, Table 4 '100 s/N' read as s/m) | ×0.01, ×0.1, ×10 | a Hunt–Crossley "
+          "(1975) factor for steel on steel is ~0.1–0.5 s/m (restitution 0.8–0.95 at 0.1–1 m/s, e ≈ 1 − 2αv/3); "
+          "×0.01 brings 100 s/m to 1 s/m, ×10 brackets the other side |",
+          "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×5 (preload 1 and 25 kN) | only the product "
+          "μ·preload enters; μ 0.1–0.5 and a nut preload of 1–15 kN give ×0.07–×5 |",
+          "| combinations | see the table | the one-at-a-time variants that brought a finding to the paper's side at "
+          "a collision speed, or kept the bearing colliding over the whole range (`rotor.sensitivity.combinations`) |",
+          ""]
     L += ["## Findings × variants", "",
           "| variant | base regime by speed | clearance (Fig. 18, displacement) | misalignment (Fig. 19, displacement) | tilt (Fig. 16, velocity) "
           "| periodic speeds (base / all 6 cases) |", "|---|---|---|---|---|---|"]
@@ -278,6 +310,7 @@ def publish(out, to, variants, *, extra: str = "", timing: dict | None = None, c
     tabs = tables(out, variants, scene=scene)
     rws = rows(tabs, variants)
     files = [write_csv_rows(to / "study-sensitivity.csv", rws)]
+    files.append(write_csv(to / "study-sensitivity-points.csv", *point_rows(tabs, variants)))
     text, _ = note(tabs, variants, timing=timing, code=code)
     text += ("\n## Trends at each speed over all variants\n\nCounts over the variants (one-at-a-time and "
              "combinations) of how often each piece of the paper's findings holds at disk 2, all points (periodic or "
@@ -289,12 +322,14 @@ def publish(out, to, variants, *, extra: str = "", timing: dict | None = None, c
         text += "\n" + extra.strip() + "\n"
     files += figure(tabs, variants, to / "study-sensitivity")
     text += "\nFiles: `study-sensitivity.csv` (every variant × finding × quantity, verdicts and ratios), " \
-            "`study-sensitivity.png/.svg` (the deciding ratios per variant).\n"
+            "`study-sensitivity-points.csv` (every variant × speed × case: periodic, contact fraction, 1f–5f at " \
+            "disk 2 and the support in µm and mm/s), `study-sensitivity.png/.svg` (the deciding ratios per " \
+            "variant and speed).\n"
     files.append(atomic_write_text(to / "study-sensitivity.md", text))
     return files
 
 
-def timing_text(out) -> dict:
+def timing_text(out, keys=None) -> dict:
     """Wall times of the study from its store: per (variant, speed) task and per steady state
     (inside a worker, from the point records) and of each sweep run (``timing.json``)."""
     import json
@@ -302,6 +337,8 @@ def timing_text(out) -> dict:
     store = ResultStore(out)
     walls, ss = [], []
     for k in store.keys():
+        if keys is not None and k not in keys:
+            continue
         try:
             rec = json.loads(store.json_path(k).read_text())
         except (OSError, ValueError):
@@ -321,7 +358,7 @@ def timing_text(out) -> dict:
     if not walls:
         return {}
     total = sum(r.get("wall_s", 0.0) for r in runs)
-    txt = (f"{len(walls)} (variant, speed) tasks of 6 steady states each; median {np.median(walls):.1f} s per task "
+    txt = (f"{len(walls)} (variant, speed) tasks of 6 steady states each (points of this study's variants); median {np.median(walls):.1f} s per task "
            f"inside a worker (sum {sum(walls) / 60:.1f} CPU-min), median {np.median(ss):.1f} s per steady state "
            f"(max {max(ss):.1f} s: a point that is not periodic runs the full 1 500 revolutions).")
     if runs:

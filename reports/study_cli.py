@@ -258,7 +258,7 @@ def _sensitivity(args) -> int:
         print(f"study sensitivity: {len(tasks)} tasks, {len(s.computed)} computed, {len(s.reused)} reused, "
               f"{len(s.failed)} failed, wall {wall:.1f} s")
         _timing(out, s, wall, args)
-    files = rep.publish(out, Path(args.to), variants, scene=args.scene, timing=rep.timing_text(out),
+    files = rep.publish(out, Path(args.to), variants, scene=args.scene, timing=rep.timing_text(out, {t.key for t in sens.study_tasks(variants, scene=args.scene)}),
                         code=str(code_revision()))
     for f in files:
         print(f"  wrote {f}")

@@ -221,6 +221,21 @@ def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(t
     assert (f.n_compared, f.n_pass) == (1, 0)
     two = [t.amp("q", c)[0, 1] for c in ("mis0.5", "base", "mis2")]
     assert np.all(two[0] < two[1]) and np.all(two[1] < two[2])
+    # the published study (reports/published/study-sensitivity-points.csv, computed on an earlier revision of
+    # the solver): same periodic flags, 1f-3f displacement at disk 2 and the support within 2 %
+    import csv
+    from pathlib import Path
+
+    pub = Path(__file__).resolve().parents[1] / "reports" / "published" / "study-sensitivity-points.csv"
+    rows = {r["case"]: r for r in csv.DictReader(pub.open()) if r["variant"] == "base" and float(r["speed_rpm"]) == 10500}
+    assert set(rows) == set(sens.CASE_NAMES)
+    for c in sens.CASE_NAMES:
+        r = rows[c]
+        assert (r["periodic"] == "True") == bool(t.ok(c)[0]), c
+        for loc, lab in (("disk2.y", "disk2"), ("s.y", "support")):
+            j = t.locations.index(loc)
+            for h in (1, 2, 3):
+                assert t.amp("q", c)[0, h - 1, j] * 1e6 == pytest.approx(float(r[f"{lab}_{h}f_um"]), rel=0.02), (c, lab, h)
 
 
 def test_collision_only_check_keeps_speeds_where_the_reference_case_collides():
@@ -274,6 +289,10 @@ def test_cli_report_only_writes_the_published_files_from_stored_points(tmp_path)
     csv = (to / "study-sensitivity.csv").read_text().splitlines()
     assert csv[0].startswith("variant,factors,finding,quantity,holds_periodic")
     assert len(csv) == 1 + 6  # 3 findings × 2 quantities
+    pts = (to / "study-sensitivity-points.csv").read_text().splitlines()
+    assert len(pts) == 1 + n * len(sens.CASE_NAMES)
+    row = dict(zip(pts[0].split(","), [r for r in pts if ",clear0.03," in r][0].split(",")))
+    assert float(row["disk2_2f_um"]) == pytest.approx(1.2) and float(row["disk2_2f_mm_s"]) == pytest.approx(1.2)
     for ext in ("png", "svg"):
         assert (to / f"study-sensitivity.{ext}").stat().st_size > 1000
     assert main(["sensitivity", "--report-only", "--out", str(tmp_path / "run"), "--to", str(to),
