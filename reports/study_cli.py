@@ -258,11 +258,29 @@ def _sensitivity(args) -> int:
         print(f"study sensitivity: {len(tasks)} tasks, {len(s.computed)} computed, {len(s.reused)} reused, "
               f"{len(s.failed)} failed, wall {wall:.1f} s")
         _timing(out, s, wall, args)
-    files = rep.publish(out, Path(args.to), variants, scene=args.scene, timing=rep.timing_text(out, {t.key for t in sens.study_tasks(variants, scene=args.scene)}),
-                        code=str(code_revision()))
+    # the hand-written reading of the published numbers lives in reports/notes/ and is appended, so the
+    # published file stays regenerable by this command alone
+    reading = Path(__file__).resolve().parent / "notes" / "study-sensitivity-reading.md"
+    files = rep.publish(out, Path(args.to), variants, scene=args.scene,
+                        timing=rep.timing_text(out, {t.key for t in sens.study_tasks(variants, scene=args.scene)}),
+                        code=_points_code(out, code_revision()),
+                        extra=reading.read_text(encoding="utf-8") if reading.exists() else "")
     for f in files:
         print(f"  wrote {f}")
     return 0
+
+
+def _points_code(out: Path, current: dict) -> str:
+    """Which code computed the points in ``out`` (its sweep.json), else the current revision."""
+    try:
+        info = json.loads((out / "sweep.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        info = {}
+    commit = info.get("git_commit") or info.get("code_snapshot")
+    if not commit or commit == "unknown":
+        commit = info.get("code_snapshot") or current.get("git_commit", "unknown")
+    dirty = info.get("git_dirty", current.get("git_dirty", False))
+    return f"points computed at commit {str(commit)[:12]}{' (with uncommitted changes)' if dirty else ''}"
 
 
 def _timing(out: Path, s, wall: float, args) -> None:
