@@ -132,6 +132,7 @@ def main(argv=None) -> int:
     strict = next((n for n in STEPS[:-1] if rel[n].max() < 0.01), None)
     strict_c = next((n for n in STEPS[:-1] if rel_c[n].max() < 0.01), None)
     row_of = {r[0]: r for r in rows}
+    side = former_rules_side_by_side(system, model, 512, point)
 
     # 2. agreement and speed at T/256 over one revolution of the transient with impacts
     dt = T / 256
@@ -334,6 +335,13 @@ def main(argv=None) -> int:
         lines.append(f"- **Wall time of the whole point from rest at T/{chosen} (Δt = {T / chosen:.3e} s): "
                      f"{cr[3]:.2f} s** ({cr[2]} revolutions; target ≤ 5 s; compilation {compile_s:.1f} s once per "
                      "process, excluded).")
+    lines.append(f"- Side by side in this run at T/512, alternating (median of {len(side['current'][0])}): current rules "
+                 f"{statistics.median(side['current'][0]):.2f} s ({side['current'][1]} revolutions), former rules "
+                 f"(sharp edge rule, former stick onset; section 4) {statistics.median(side['former'][0]):.2f} s "
+                 f"({side['former'][1]} revolutions): per revolution the current rules cost "
+                 f"{statistics.median(side['current'][0]) / side['current'][1] / (statistics.median(side['former'][0]) / side['former'][1]):.2f}× "
+                 "the former; the number of revolutions the detector needs depends on the path into the stuck "
+                 "position.")
     lines.append("")
     lines += ["## 2. Agreement and speed (one revolution of the start-up transient, Δt = T/256)", "",
               f"Window: steps 700–956 from rest at q = 0 (the misalignment offset acts as a sudden load and "
@@ -344,7 +352,7 @@ def main(argv=None) -> int:
               f"max |q_ref − q_prod| = {diff:.2e} (m or rad) against a dynamic amplitude of {dyn:.2e}.",
               f"- steps per second: reference {sps_ref:.0f}, production {sps_prod:.0f} (median of 5) → "
               f"**production {sps_prod / sps_ref:.0f}× faster** at the same step, hence equal accuracy (section 3).",
-              f"- Newton steps accepted at the least residual (discontinuous one-edge selection of the law): "
+              f"- Newton steps accepted at the least residual (Newton not converged, least-residual iterate kept): "
               f"reference {tr_ref.unconverged_steps}, production {tr_prod.unconverged_steps} of 256.", "",
               "## 3. Error vs step and cost", "",
               "Relative state error after one revolution against a T/2048 production run from the same start "
@@ -361,6 +369,36 @@ def main(argv=None) -> int:
     atomic_write_text(OUT / "perf-integrators.md", "\n".join(lines))
     print("\n".join(lines))
     return 0
+
+
+def former_rules_side_by_side(system, model, nper, point, repeats=REPEATS):
+    """Whole steady point at T/nper with the current and the former rules (edge transition 0 and
+    consistent_stick_onset False), alternating in one process: wall times and revolutions.
+
+    ``rotor.study.steady_state`` takes no integrator options, so the former stick onset is set
+    by swapping the default ``NewmarkOptions`` that ``rotor.production`` builds (benchmark only)."""
+    import functools
+    from unittest import mock
+
+    import rotor.production as rp
+    from rotor.integrate import NewmarkOptions
+
+    eps = _with_edge(system, 0.0)
+    _with_edge(system, eps)
+    out = {"current": ([], 0), "former": ([], 0)}
+    for _ in range(repeats):
+        for name in ("current", "former"):
+            if name == "former":
+                _with_edge(system, 0.0)
+                with mock.patch.object(rp, "NewmarkOptions",
+                                       functools.partial(NewmarkOptions, consistent_stick_onset=False)):
+                    res, wall, _, _ = point(nper)
+                _with_edge(system, eps)
+            else:
+                res, wall, _, _ = point(nper)
+            out[name][0].append(wall)
+            out[name] = (out[name][0], res.transient_revs + res.revolutions)
+    return out
 
 
 HARD = (("clearance 0.001 mm", dict(clearance_m=1e-6)), ("clearance 1 mm", dict(clearance_m=1e-3)),

@@ -45,10 +45,13 @@ Safeguards not in the paper (identical in both schemes, so they still agree)
   law: first touch, damping clip, edge switch).
 * If Newton does not converge with a face slipping (the regularised direction
   ``w/√(|w|²+w_reg²)`` is very stiff near ``w = 0``), that face is tried in stick.
-* The law's one-edge selection (contact-laws.md §8, Q8) is discontinuous where the two edge
-  penetrations cross; there an implicit step can have no exact root. After the fallbacks, the
-  least-residual iterate is accepted and counted in ``Trajectory.unconverged_steps``
-  (typically 0–1 % of the steps; reported by the benchmark and the ``simulate`` job).
+* The paper's sharp one-edge selection (contact-laws.md §8, Q8) is discontinuous where the two
+  edge penetrations cross; there an implicit step can have no exact root. The contact layer
+  regularises it by default (``LooseSupportParams.edge_transition_m``, :mod:`contact.tilt`), which
+  removed every such step of the hard cases. If Newton still fails after the fallbacks, the
+  least-residual iterate is accepted and counted in ``Trajectory.unconverged_steps`` (0 on the
+  hard cases of ``benchmarks/bench_integrators.py`` section 4; 0–1 % of the steps with the sharp
+  rule; reported by the benchmark and the ``simulate`` job).
 * Initial modes: a face asked to start stuck whose holding force exceeds ``μN`` starts slipping
   (:func:`initial_state`).
 
@@ -599,8 +602,8 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
                     freeze = [None, None]
                     continue
                 if np.all(np.isfinite(z)):
-                    # no exact root (discontinuous one-edge selection of the law): keep the
-                    # least-residual iterate and count the step, as rotor.production does
+                    # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
+                    # = 0): keep the least-residual iterate and count the step, as rotor.production does
                     tr.unconverged_steps += 1
                     ok = True
             if not ok:

@@ -487,8 +487,8 @@ def _loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         freeze[0] = False
                         freeze[1] = False
                         continue
-                    # no exact root (the one-edge selection of the law is discontinuous where
-                    # the two edge penetrations cross): keep the least-residual iterate, count it
+                    # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
+                    # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
                     status[2] += 1
                     alpha = alpha_new
                     for k in range(2):
