@@ -464,6 +464,18 @@ def _check_inputs(system: RotorSystem, dt: float, n_steps: int, q0, v0):
 # ---------------------------------------------------------------------------
 
 
+def _split_multipliers(lam, n_lock: int, modes, n_faces: int):
+    """``(lock multipliers, (2, 2) face multipliers)`` from the stacked vector: the lock rows first,
+    then two per stuck face in face order (slipping faces carry none: zero rows)."""
+    lam_face = np.zeros((2, 2))
+    j = n_lock
+    for k in range(n_faces):
+        if modes[k] == cons.STICK:
+            lam_face[k] = lam[j:j + 2]
+            j += 2
+    return lam[:n_lock], lam_face
+
+
 def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0=None, *, t0: float = 0.0,
                        modes0=(cons.STICK, cons.STICK), options: NewmarkOptions | None = None,
                        record_every: int = 1, check_step: bool = True) -> Trajectory:
@@ -504,13 +516,7 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
 
     a, lam, modes = initial_state(system, t0, q0, v0, modes, opts)
     q, v = q0, v0
-    lam_lock = lam[:L.shape[0]]
-    lam_face = np.zeros((2, 2))
-    j = L.shape[0]
-    for k in range(n_faces):
-        if modes[k] == cons.STICK:
-            lam_face[k] = lam[j:j + 2]
-            j += 2
+    lam_lock, lam_face = _split_multipliers(lam, L.shape[0], modes, n_faces)
 
     n_rec = n_steps // record_every + 1
     tr = _allocate(n_rec, n)
@@ -670,13 +676,7 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
             if any(modes[k] == cons.STICK and not stuck_at_start[k] for k in range(n_faces)):
                 # stick onset: restart from the consistent acceleration and multipliers (q, v kept)
                 a, lam = initial_acceleration(system, t, q, v, modes, opts)
-                lam_lock = lam[:L.shape[0]]
-                lam_face = np.zeros((2, 2))
-                jj = L.shape[0]
-                for k in range(n_faces):
-                    if modes[k] == cons.STICK:
-                        lam_face[k] = lam[jj:jj + 2]
-                        jj += 2
+                lam_lock, lam_face = _split_multipliers(lam, L.shape[0], modes, n_faces)
         u, w, fc, phi, _ = support_forces(system, q, v, modes, lam_face, opts)
         if step % record_every == 0:
             record(step // record_every, t, total_its, passes)
