@@ -43,8 +43,10 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--scheme", choices=("production", "reference"), default="production",
                    help="production (fast, default) or the paper's reference scheme (slow)")
     p.add_argument("--dofs", default=DEFAULT_DOFS, help=f"comma-separated DOF names (default {DEFAULT_DOFS})")
-    p.add_argument("--law", default="conformal", choices=("conformal", "pereira"),
-                   help="radial contact law of contact.loose_support (default: the paper's conformal law)")
+    p.add_argument("--law", default="conformal", metavar="LAW",
+                   help="radial contact law: conformal (default, the paper's law as published), pereira, or "
+                        "calibrated:<name>, a law fitted to a FEM scene (contact/calibrated/<name>.json; its "
+                        "clearance and ring width are the scene's)")
     p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
     p.add_argument("--mu", type=float, default=None, help="end-face friction coefficient (default: scene)")
     p.add_argument("--preload-n", type=float, default=None, help="nut preload per face (N, default: scene)")
@@ -88,8 +90,13 @@ def _run(args) -> int:
     if args.misalignment_mm is not None:
         check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True, upper=50.0)
         kw["misalignment_m"] = args.misalignment_mm * 1e-3
-    system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
-                               preload_N=args.preload_n, **kw)
+    clearance_m = kw.pop("clearance_m", None)
+    law, validity_m = _law(args, scene, clearance_m)
+    if law is not None:
+        system = system_from_model(model, scene, omega, law=law, mu=args.mu, preload_N=args.preload_n, **kw)
+    else:
+        system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
+                                   preload_N=args.preload_n, clearance_m=clearance_m, **kw)
     names = [s.strip() for s in args.dofs.split(",") if s.strip()]
     idx = [model.dof_index(n) for n in names]
     T = 2 * math.pi / omega
@@ -155,10 +162,44 @@ def _run(args) -> int:
                "max_r1_mm": float(r1.max() * 1e3), "max_r2_mm": float(r2.max() * 1e3),
                "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
-               "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max, **extra}
+               "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
+               **validity_summary(float(max(r1.max(), r2.max()) - d0), validity_m), **extra}
     atomic_write_text(out / "simulate-summary.json", json.dumps(summary, indent=2) + "\n")
     print(json.dumps(summary, indent=2))
+    if summary.get("beyond_law_validity"):
+        print(f"ringcontact simulate: warning: the largest edge penetration {summary['max_edge_penetration_mm']:.4g} mm "
+              f"exceeds the calibrated law's validity range ({summary['law_validity_max_penetration_mm']:.4g} mm): "
+              "the law was extrapolated", file=sys.stderr)
     return 0
+
+
+def _law(args, scene, clearance_m):
+    """``(SupportLaw or None, validity max penetration in m or None)`` for ``--law``.
+
+    ``calibrated:<name>`` loads the stored fit (contact.calibrate) with the scene's collision factor;
+    None means an analytic law of contact.loose_support chosen by name in ``system_from_model``.
+    """
+    if args.law in ("conformal", "pereira"):
+        return None, None
+    if not args.law.startswith("calibrated:"):
+        raise InputError(f"law = {args.law!r}: must be conformal, pereira or calibrated:<name>")
+    from contact.calibrate import load_calibrated
+    from rotor.integrate import support_law_from_params
+
+    cal = load_calibrated(args.law.split(":", 1)[1])
+    over = {"c_c_s_per_m": scene.loose_support.collision_factor_s_m, "tilt_ignored": bool(args.tilt_ignored)}
+    if clearance_m is not None:
+        over["clearance_m"] = clearance_m      # refused unless it is the calibration's own
+    return support_law_from_params(cal.loose_support_params(**over)), float(cal.validity_penetration_m[1])
+
+
+def validity_summary(max_edge_penetration_m: float, validity_max_m: float | None) -> dict:
+    """Summary fields on how deep the edges went, and whether a calibrated law left its fitted range."""
+    out = {"max_edge_penetration_mm": max(max_edge_penetration_m, 0.0) * 1e3}
+    if validity_max_m is not None:
+        out["law_validity_max_penetration_mm"] = validity_max_m * 1e3
+        out["beyond_law_validity"] = bool(max_edge_penetration_m > validity_max_m)
+    return out
 
 
 if __name__ == "__main__":

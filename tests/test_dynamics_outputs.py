@@ -149,3 +149,31 @@ def test_simulate_steady_record_is_the_detected_steady_state(tmp_path, table4):
         assert np.allclose(amps[name], expect, rtol=0, atol=1e-6)  # summary rounded to 1e-6 mm/s
     P = q[::64][:, idx]
     assert np.abs(np.diff(P, axis=0)).max() <= 1e-4 * np.ptp(q[:, idx], axis=0).max()
+
+
+def test_simulate_with_a_calibrated_law_and_its_validity_flag(tmp_path, capsys):
+    """`--law calibrated:<name>`: the rotor runs on the law fitted to the clamped FEM scene (contact/
+    calibrated/clamped-foundation.json), the summary says how deep the edges went against the fitted
+    range; a clearance other than the calibration's is refused, naming the parameter."""
+    from reports.cli import main
+    from rotor.dynamics_cli import validity_summary
+
+    out = tmp_path / "cal"
+    rc = main(["simulate", "--speed-rpm", "10500", "--revolutions", "2", "--law", "calibrated:clamped-foundation",
+               "--misalignment-mm", "3", "--out", str(out)])
+    assert rc == 0
+    s = json.loads((out / "simulate-summary.json").read_text())
+    assert s["law"] == "clamped-foundation" and s["clearance_mm"] == pytest.approx(0.05)
+    assert s["law_validity_max_penetration_mm"] == pytest.approx(0.05)          # the fitted Δr range (FEM data)
+    assert s["max_edge_penetration_mm"] == pytest.approx(max(s["max_r1_mm"], s["max_r2_mm"], 0.05) - 0.05, abs=1e-12)
+    assert s["beyond_law_validity"] is (s["max_edge_penetration_mm"] > 0.05)
+    capsys.readouterr()
+    assert main(["simulate", "--speed-rpm", "10500", "--law", "calibrated:clamped-foundation",
+                 "--clearance-mm", "0.03", "--out", str(out)]) == 2
+    assert "clearance_m = 3e-05 m" in capsys.readouterr().err
+    assert main(["simulate", "--speed-rpm", "10500", "--law", "hertz", "--out", str(out)]) == 2
+    assert "law = 'hertz'" in capsys.readouterr().err
+    # the flag itself: beyond the range → True, within → False, analytic laws carry no range
+    assert validity_summary(6e-5, 5e-5)["beyond_law_validity"] is True
+    assert validity_summary(1e-6, 5e-5)["beyond_law_validity"] is False
+    assert validity_summary(-1e-6, None) == {"max_edge_penetration_mm": 0.0}
