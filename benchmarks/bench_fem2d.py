@@ -5,7 +5,7 @@ force error over the three points against P2 at h = 0.5 mm (whose own Richardson
 ~1e-5, see fem_reference/data). Wall time of one point from scratch = mesh + assembly +
 factorisation (median of REPEATS) + one contact solve (median over points and repeats).
 Settings: P1/P2 with the whole bore at size h, and "P2 graded" = the reference's per-point mesh
-family (size h only on the possible contact arc, fem_reference.sweep.spec_for).
+family (size h only on the possible contact arc, fem_reference.plane.sweep.spec_for).
 
 Then every committed reference point (all scenes and penetrations of the default sweep) from
 scratch: all its mesh levels built, factorised and solved, plus the Richardson estimate.
@@ -28,8 +28,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from contact.files import atomic_write_bytes, atomic_write_text  # noqa: E402
-from fem_reference.mesh import MeshSpec  # noqa: E402
-from fem_reference.model import ContactModel  # noqa: E402
+from fem_reference.plane.mesh import MeshSpec  # noqa: E402
+from fem_reference.plane.solve import ContactModel  # noqa: E402
 from fem_reference.scenes import clamped  # noqa: E402
 
 POINTS_M = (0.002e-3, 0.01e-3, 0.05e-3)
@@ -57,7 +57,7 @@ def measure(order: int, h: float, repeats: int = REPEATS):
 
 def measure_graded(h: float, repeats: int = REPEATS):
     """The reference's mesh family: one mesh per point, graded toward that point's possible arc."""
-    from fem_reference.sweep import arc_zone_rad, spec_for
+    from fem_reference.plane.sweep import arc_zone_rad, spec_for
 
     scene = clamped()
     builds, solves, forces, ndofs = [], [], [], []
@@ -88,7 +88,7 @@ def main() -> int:
               f"build {r['build_s']:.2f} s + solve {r['solve_s']:.2f} s", flush=True)
     # every committed reference point from scratch: all its levels built + solved + Richardson
     from fem_reference.scenes import by_name
-    from fem_reference.sweep import DEFAULT_PENETRATIONS_MM, DEFAULT_SCENES, Levels, reference_point
+    from fem_reference.plane.sweep import DEFAULT_PENETRATIONS_MM, DEFAULT_SCENES, Levels, reference_point
 
     scratch = []
     t_all = time.perf_counter()

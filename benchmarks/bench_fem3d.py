@@ -33,9 +33,9 @@ POINTS = [  # (penetration mm, tilt arcmin)
 def child(level_name: str) -> None:
     """Build one level cold, solve the benchmark points, print JSON."""
     from contact.units import ARCMIN, MM
-    from fem_reference.geometry3d import RigidMotion, RingPair3D
-    from fem_reference.mesh3d import LEVELS, MeshLevel3D
-    from fem_reference.solve3d import build_compliance, solve_point
+    from fem_reference.solid.geometry import RigidMotion, RingPair3D
+    from fem_reference.solid.mesh import LEVELS, MeshLevel3D
+    from fem_reference.solid.solve import build_compliance, solve_point
 
     geom = RingPair3D()
     lv = LEVELS[level_name] if level_name in LEVELS else MeshLevel3D(**json.loads(level_name))
@@ -65,8 +65,8 @@ def solver_comparison(repeats: int) -> list[dict]:
     from skfem import Basis, ElementHex1, ElementVector, asm
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 
-    from fem_reference.geometry3d import RingPair3D
-    from fem_reference.mesh3d import LEVELS, build_meshes
+    from fem_reference.solid.geometry import RingPair3D
+    from fem_reference.solid.mesh import LEVELS, build_meshes
 
     geom = RingPair3D()
     b, _ = build_meshes(geom, LEVELS["L2"])
@@ -153,7 +153,7 @@ def main(argv=None) -> int:
         child(args.child)
         return 0
     from contact.units import MM
-    from fem_reference.sweep3d import richardson3
+    from fem_reference.solid.sweep import richardson3
 
     levels = [run_level(n) for n in ("L0", "L1", "L2")]
     extras = [run_level(e) for e in args.extra]

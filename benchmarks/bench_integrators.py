@@ -2,7 +2,7 @@
 
 Writes ``reports/published/perf-integrators.md`` (+ ``.csv``, ``.png``, ``-agreement.png``):
 
-1. One steady-state point at 10 500 rpm with :func:`rotor.study.steady_state` (the studies'
+1. One steady-state point at 10 500 rpm with :func:`rotor.studies.steady_state.steady_state` (the studies'
    Poincaré detector, tol 1e-4 with the projected tail of the decay), then 64 revolutions;
    1X–5X velocity amplitudes at exact DFT bins of y at disk 1, disk 2 and the support, for
    steps T/128 … T/2048 (T = one revolution), each run from rest, and again with every step
@@ -35,18 +35,18 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from contact.files import atomic_write_bytes, atomic_write_text  # noqa: E402
-from rotor.integrate import simulate_reference, system_from_model  # noqa: E402
-from rotor.model import assemble  # noqa: E402
-from rotor.production import prepare, simulate_production  # noqa: E402
-from rotor.scene import load_scene  # noqa: E402
-from rotor.study import SteadyStateOptions  # noqa: E402
-from rotor.study import harmonic_amplitudes  # noqa: E402
-from rotor.study import steady_state as study_steady_state  # noqa: E402
+from rotor.dynamics.reference import simulate_reference, system_from_model  # noqa: E402
+from rotor.model.assembly import assemble  # noqa: E402
+from rotor.dynamics.production import prepare, simulate_production  # noqa: E402
+from rotor.model.scene import load_scene  # noqa: E402
+from rotor.studies.steady_state import SteadyStateOptions  # noqa: E402
+from rotor.studies.steady_state import harmonic_amplitudes  # noqa: E402
+from rotor.studies.steady_state import steady_state as study_steady_state  # noqa: E402
 
 OUT = ROOT / "reports" / "published"
 RPM = 10500.0
 NAMES = ("disk1.y", "disk2.y", "s.y")
-DECIM = 64     # samples/rev of rotor.study's default record, to show its aliasing
+DECIM = 64     # samples/rev of rotor.studies.steady_state's default record, to show its aliasing
 REPEATS = 3    # repeated whole points (median wall time) for the steps up to T/512
 STEPS = (128, 256, 512, 1024, 2048)
 
@@ -85,7 +85,7 @@ def main(argv=None) -> int:
     compile_s = cold - (time.perf_counter() - t0)
     simulate_production(system, T / 256, 64, q0=system.offset, check_step=False)
 
-    # 1. steady state at several steps, with rotor.study's detector (Poincaré sampling of the
+    # 1. steady state at several steps, with rotor.studies.steady_state's detector (Poincaré sampling of the
     #    displacements of disk1/disk2/5/s, relative change < 1e-4 of the peak-to-peak amplitude
     #    with the geometric tail of the decay, subharmonic periods), then 64 revolutions
     def point(nper, q0=None, v0=None):
@@ -151,7 +151,7 @@ def main(argv=None) -> int:
     dyn = np.abs(tr_prod.q - system.offset).max()
     diff = np.abs(tr_ref.q - tr_prod.q).max()
     diff2 = np.linalg.norm(tr_ref.q - tr_prod.q, axis=1).max() / np.linalg.norm(tr_prod.q - system.offset, axis=1).max()
-    from rotor import constraints as cons
+    from rotor.dynamics import constraints as cons
     r1, r2 = cons.edge_offsets(tr_prod.u, system.support.width_m)
     pen_max = max(r1.max(), r2.max()) - system.support.law.clearance_m
     contact_frac = float(np.mean((r1 > system.support.law.clearance_m) | (r2 > system.support.law.clearance_m)))
@@ -253,7 +253,7 @@ def main(argv=None) -> int:
         "",
         "## 1. One steady-state point (transient decayed, then 64 revolutions)",
         "",
-        "`rotor.study.steady_state` (the studies' detector): start from the misalignment offset at rest; "
+        "`rotor.studies.steady_state.steady_state` (the studies' detector): start from the misalignment offset at rest; "
         "integrate in chunks; once per revolution sample the lateral displacements of disk1, disk2, station 5 and "
         "the support (Poincaré section); steady with period m when |P_k − P_k−m| stays below 1e-4 of the "
         "peak-to-peak amplitude over the window *and* the geometric tail of the decay leaves less than 1e-4; "
@@ -276,7 +276,7 @@ def main(argv=None) -> int:
                      + ", ".join(f"{x:.3f}" for x in mu_) + " |")
     lines += ["", "1X–5X velocity amplitudes (mm/s), each run from rest, every step recorded; the largest relative "
               "change of the 15 when the step is halved (next row block), and the same from the record decimated "
-              f"to {DECIM} samples/rev (rotor.study's default record):", "",
+              f"to {DECIM} samples/rev (rotor.studies.steady_state's default record):", "",
               "| step | location | 1X | 2X | 3X | 4X | 5X | 5X/1X | max rel. change vs half step (harmonic) | "
               f"same, {DECIM} samples/rev |",
               "|---|---|---|---|---|---|---|---|---|---|"]
@@ -375,13 +375,13 @@ def former_rules_side_by_side(system, model, nper, point, repeats=REPEATS):
     """Whole steady point at T/nper with the current and the former rules (edge transition 0 and
     consistent_stick_onset False), alternating in one process: wall times and revolutions.
 
-    ``rotor.study.steady_state`` takes no integrator options, so the former stick onset is set
-    by swapping the default ``NewmarkOptions`` that ``rotor.production`` builds (benchmark only)."""
+    ``rotor.studies.steady_state.steady_state`` takes no integrator options, so the former stick onset is set
+    by swapping the default ``NewmarkOptions`` that ``rotor.dynamics.production`` builds (benchmark only)."""
     import functools
     from unittest import mock
 
-    import rotor.production as rp
-    from rotor.integrate import NewmarkOptions
+    import rotor.dynamics.production as rp
+    from rotor.dynamics.reference import NewmarkOptions
 
     eps = _with_edge(system, 0.0)
     _with_edge(system, eps)
@@ -428,11 +428,11 @@ def _hard_counts(system, dt, n, q0, opts):
 
 def hard_cases(model, scene) -> list:
     """Section 4: chatter runs and least-residual steps of the hard cases, 10 revolutions at T/256
-    (and T/512), from the centred support at rest (q = Δq_m, as tests/test_dynamics_constraints.py) and
+    (and T/512), from the centred support at rest (q = Δq_m, as tests/rotor/dynamics/test_dynamics_constraints.py) and
     from q = 0, with the current rules and with either fix undone; then the change of the 10 500 rpm
     steady-state amplitudes that each fix causes."""
     from contact.tilt import EDGE_TRANSITION_M
-    from rotor.integrate import NewmarkOptions
+    from rotor.dynamics.reference import NewmarkOptions
 
     omega = RPM * 2 * math.pi / 60
     T = 2 * math.pi / omega
@@ -449,7 +449,7 @@ def hard_cases(model, scene) -> list:
            "Each cell: chatter runs / least-residual steps. The two fixes: the edge transition of the law "
            "(a regularisation of Dai et al. 2025 Eqs. 18–19, `LooseSupportParams.edge_transition_m`, "
            "contact/tilt.py) and the consistent stick onset (`NewmarkOptions.consistent_stick_onset`, "
-           "rotor/constraints.py).", ""]
+           "rotor/dynamics/constraints.py).", ""]
     totals = {}
     for nper, vs in ((256, variants), (512, (variants[0], variants[3]))):
         dt = T / nper

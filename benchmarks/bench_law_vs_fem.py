@@ -116,8 +116,8 @@ def time_laws(methods, repeats: int):
 
 def time_fem(ref_by_pen: dict, repeats: int):
     from fem_reference.scenes import by_name
-    from fem_reference.sweep import SOLVER_TOL, spec_for
-    from fem_reference.model import ContactModel
+    from fem_reference.plane.sweep import SOLVER_TOL, spec_for
+    from fem_reference.plane.solve import ContactModel
 
     scene = by_name(SCENE)
     rows = []

@@ -52,7 +52,7 @@ branch and keeps the paper's tilt rule.
 Example::
 
     from contact.calibrate import load_calibrated
-    from rotor.integrate import support_law_from_params
+    from rotor.dynamics.reference import support_law_from_params
     law = load_calibrated("clamped")                  # -> "clamped-foundation"
     params = law.loose_support_params(c_c_s_per_m=100.0, mu=0.3, preload_N=5000.0)
     support_law = support_law_from_params(params)     # pass as system_from_model(..., law=support_law)
@@ -603,8 +603,8 @@ class CalibratedSupportParams(LooseSupportParams):
 def scene_geometry(dataset: ReferenceDataset, scene: str) -> SceneGeometry:
     """Geometry of ``scene`` from the dataset metadata.
 
-    2D datasets (``fem_reference.sweep``) hold ``metadata.scenes[scene].rings``; 3D datasets
-    (``fem_reference.sweep3d``) one ``metadata.geometry`` for all scenes (then ``plane = "3d"``).
+    2D datasets (``fem_reference.plane.sweep``) hold ``metadata.scenes[scene].rings``; 3D datasets
+    (``fem_reference.solid.sweep``) one ``metadata.geometry`` for all scenes (then ``plane = "3d"``).
     """
     g = dataset.metadata.get("geometry")
     if isinstance(g, dict) and "bearing_outer_radius_m" in g:

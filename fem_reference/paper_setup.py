@@ -29,10 +29,10 @@ import numpy as np
 
 from contact.errors import ConvergenceError
 from contact.files import atomic_write_bytes, atomic_write_text
-from fem_reference.elasticity import body_mean_weights, circle_mean_weights
-from fem_reference.geometry import table1_rings
-from fem_reference.mesh import BEARING, SUPPORT, MeshSpec
-from fem_reference.model import ContactModel
+from fem_reference.plane.elasticity import body_mean_weights, circle_mean_weights
+from fem_reference.plane.geometry import table1_rings
+from fem_reference.plane.mesh import BEARING, SUPPORT, MeshSpec
+from fem_reference.plane.solve import ContactModel
 from fem_reference.scenes import Scene
 
 PAPER_DR_MM = np.array([0.01, 0.02, 0.03, 0.04, 0.05])

@@ -28,7 +28,7 @@ from dataclasses import asdict, dataclass
 
 from contact.errors import InputError
 from contact.units import MM
-from fem_reference.geometry import RingPair, table1_rings
+from fem_reference.plane.geometry import RingPair, table1_rings
 
 BEARING_DRIVES = {
     "rigid-inner": "bearing inner surface moved rigidly by t along +y (u_x = 0, u_y = t)",

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from contact.errors import InputError, OutsideDomainError
-from fem_reference.geometry import Material
+from fem_reference.plane.geometry import Material
 
 
 def composite_modulus(bearing: Material, support: Material, plane: str) -> float:
@@ -73,10 +73,10 @@ def lame_fem(h_contact_m: float = 2e-3, order: int = 2, plane: str = "strain",
     The bearing ring is meshed too (inner surface clamped, unloaded), so this runs the very same
     mesh, assembly and Dirichlet code as the contact scenes.
     """
-    from fem_reference.elasticity import (ElasticSystem, circle_dofs, pressure_load, stiffness,
+    from fem_reference.plane.elasticity import (ElasticSystem, circle_dofs, pressure_load, stiffness,
                                           symmetry_dofs, vector_basis)
-    from fem_reference.geometry import table1_rings
-    from fem_reference.mesh import MeshSpec, build_mesh
+    from fem_reference.plane.geometry import table1_rings
+    from fem_reference.plane.mesh import MeshSpec, build_mesh
 
     rings = table1_rings()
     rm = build_mesh(rings, MeshSpec(h_contact_m=h_contact_m, order=order))
@@ -87,7 +87,7 @@ def lame_fem(h_contact_m: float = 2e-3, order: int = 2, plane: str = "strain",
     system = ElasticSystem.build(K, fixed)
     f = pressure_load(rm, basis, rings.bore_radius_m, pressure_pa)
     # the bearing's outer circle is a free boundary too; pressure only on the support bore
-    from fem_reference.mesh import SUPPORT, facets_on_circle
+    from fem_reference.plane.mesh import SUPPORT, facets_on_circle
 
     u = system.solve(f)
     facets = facets_on_circle(rm.mesh, rings.bore_radius_m, element_mask=rm.body == SUPPORT)
@@ -109,8 +109,8 @@ def persson_plate_study(plate_ratios=(5.0, 10.0, 20.0, 40.0, 80.0, 160.0), penet
     *angle* relation converges as the plate grows; the load vs *penetration* does not (the rigid
     approach of an infinite plate is log-divergent, compliance ≈ c0 + c1 ln(R_o/R_b)).
     """
-    from fem_reference.mesh import MeshSpec
-    from fem_reference.model import ContactModel
+    from fem_reference.plane.mesh import MeshSpec
+    from fem_reference.plane.solve import ContactModel
     from fem_reference.scenes import persson
 
     rows = []

@@ -1,10 +1,10 @@
 """Report of the sensitivity study (``ringcontact study sensitivity``): findings × variants.
 
-Reads a finished (or partly finished) sweep directory of :mod:`rotor.sensitivity` tasks and writes
+Reads a finished (or partly finished) sweep directory of :mod:`rotor.studies.sensitivity` tasks and writes
 ``study-sensitivity.csv`` (one row per variant × finding × quantity), ``study-sensitivity.md``
 (the table, the ranges and why they are plausible, the conclusion) and
 ``study-sensitivity.png/.svg`` (the deciding ratio of each finding per variant). Nothing here
-computes dynamics. Findings: Dai et al. 2025 §5.2, §5.3.1, §5.3.2 (see :mod:`rotor.sensitivity`).
+computes dynamics. Findings: Dai et al. 2025 §5.2, §5.3.1, §5.3.2 (see :mod:`rotor.studies.sensitivity`).
 """
 from __future__ import annotations
 
@@ -15,8 +15,8 @@ import numpy as np
 
 from contact.errors import InputError
 from reports.studies import save, write_csv, _plt
-from rotor import sensitivity as sens
-from rotor.sweep import ResultStore, load_sweep
+from rotor.studies import sensitivity as sens
+from sweep.store import ResultStore, load_sweep
 
 
 def tables(out, variants, *, scene: str = "paper-table4", speeds_rpm=sens.SPEEDS_RPM, options=None) -> dict:
@@ -228,16 +228,16 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
     """Markdown report: method, ranges, the findings × variants table, the conclusion."""
     L = ["# Sensitivity of the paper's Section 5 findings to the inputs Table 4 does not give", "",
          "Dai et al. 2025 (Actuators 14:422) §5 states three findings our Table 4 rotor does not reproduce with the "
-         "scene's documented assumptions (issue 8, xfail tests in `tests/test_study_paper.py`). This study asks whether "
+         "scene's documented assumptions (issue 8, xfail tests in `tests/rotor/studies/test_study_paper.py`). This study asks whether "
          "a plausible reading of the unstated inputs (`[ASSUMED]` in `rotor/scenes/paper-table4.toml`) makes them hold. "
-         "Regenerate: `ringcontact study sensitivity --out <dir>` (resumable; `rotor/sensitivity.py`, "
+         "Regenerate: `ringcontact study sensitivity --out <dir>` (resumable; `rotor/studies/sensitivity.py`, "
          "`reports/sensitivity.py`).", "",
          "## Method", "",
          f"* Speeds {', '.join(f'{s:.0f}' for s in sens.SPEEDS_RPM)} rpm: the paper's 'high speed' range of §5.3.1 "
          "(9 000–18 000 rpm) in even steps, including its point B (10 500 rpm).",
          "* At each speed and variant: the reference case (δ0 = 0.05 mm, δ = 1 mm, tilt on) from rest, then "
          "δ0 = 0.03 and 0.08 mm, δ = 0.5 and 2 mm, and tilt ignored, each **continued** from the reference end state "
-         "(one branch of solutions, as the tests do). Steady state by the Poincaré detector of `rotor.study` "
+         "(one branch of solutions, as the tests do). Steady state by the Poincaré detector of `rotor.studies.steady_state` "
          "(tol 1e-4, ≤ 1 500 revolutions), spectra over 16 whole revolutions.",
          "* A finding is checked at a speed only where every compared case is periodic; it **holds** for a variant "
          f"when it holds at ≥ {sens.HOLD_FRACTION:.0%} of those speeds (and at least 2). 'all pts' repeats the check "
@@ -277,7 +277,7 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
           "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×5 (preload 1 and 25 kN) | only the product "
           "μ·preload enters; μ 0.1–0.5 and a nut preload of 1–15 kN give ×0.07–×5 |",
           "| combinations | see the table | the one-at-a-time variants that brought a finding to the paper's side at "
-          "a collision speed, or kept the bearing colliding over the whole range (`rotor.sensitivity.combinations`) |",
+          "a collision speed, or kept the bearing colliding over the whole range (`rotor.studies.sensitivity.combinations`) |",
           ""]
     L += ["## Findings × variants", "",
           "| variant | base regime by speed | clearance (Fig. 18, displacement) | misalignment (Fig. 19, displacement) | tilt (Fig. 16, velocity) "

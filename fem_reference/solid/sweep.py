@@ -1,0 +1,376 @@
+"""3D reference points with error estimates, executor-based resumable sweeps, the 3D dataset.
+
+A reference point (penetration at the mid-plane, tilt) is solved on the three mesh levels of
+:data:`fem_reference.solid.mesh.LEVELS`; the finest value is reported with the observed order and an
+error estimate from generalised Richardson extrapolation for unequal refinement ratios
+(Richardson 1911; Celik et al. 2008, J. Fluids Eng. 130:078001, the "GCI" procedure), with the
+representative size ``h = N_dofs^(-1/3)``:
+
+* monotone contracting sequence: order ``p`` from ``(f1-f2)/(f2-f3) = r32^p (r21^p - 1)/(r32^p - 1)``
+  (solved by bisection), error of the finest ``|f2 - f3|/(r32^p - 1)`` with ``p`` clipped to [0.5, 2]
+  (trilinear elements: an observed order above 2 is a pre-asymptotic accident and is not credited);
+* otherwise (oscillating, or not yet asymptotic): order reported as ``None`` and the error
+  estimate is the last change ``|f2 - f3|`` (conservative for a contracting sequence).
+
+Compute layout: the expensive part of a mesh level (assembly, factorisation, contact compliance,
+see solve3d) depends only on the mesh and the scene, so it is built once per level, cached on
+disk (``RINGCONTACT_CACHE`` or ``~/.cache/ringcontact/fem3d``) and shared by every point. Points
+are independent tasks submitted to a :class:`concurrent.futures.Executor` (a process pool
+locally; a ``dask.distributed.Client`` is such an executor too). Each finished point is written
+at once (atomically) under the cache, so an interrupted sweep resumes where it stopped.
+"""
+from __future__ import annotations
+
+import concurrent.futures as cf
+import hashlib
+import json
+import math
+import os
+import platform
+import time
+from datetime import datetime, timezone
+from pathlib import Path
+
+import numpy as np
+
+from contact.dataset import read_dataset, write_dataset
+from contact.errors import ConvergenceError, InputError
+from contact.files import atomic_write_text
+from contact.units import ARCMIN, MM
+from fem_reference.solid.geometry import RigidMotion, RingPair3D
+from fem_reference.solid.mesh import DEFAULT_LEVELS, LEVELS, MeshLevel3D
+from fem_reference.solid.solve import (SCENES, ContactCompliance, build_compliance, load_compliance,
+                                   save_compliance, solve_point)
+from fem_reference.plane.sweep import Progress, code_revision, package_versions
+
+DATA_DIR = Path(__file__).resolve().parents[1] / "data" / "3d"
+DATASET_PATH = DATA_DIR / "fem3d-reference.json"
+DEFAULT_TILTS_ARCMIN = (0.0, 0.5, 1.0, 2.0, 30.0)
+DEFAULT_PENETRATIONS_MM = (0.005, 0.01, 0.02, 0.03, 0.04, 0.05)
+CODE_VERSION = "fem3d-1"
+MIN_ACTIVE_LINES = 3          # axial node lines in contact needed for a reference point      # bump when the compliance computation changes (invalidates the cache)
+
+COLUMNS = {
+    "scene": "-", "penetration_m": "m", "offset_m": "m", "tilt_rad": "rad",
+    "force_n": "N", "force_error_rel": "-", "force_observed_order": "-", "force_extrapolated_n": "N",
+    "force_levels_n": "N",
+    "moment_nm": "N*m", "moment_error_rel": "-", "moment_observed_order": "-", "moment_extrapolated_nm": "N*m",
+    "moment_levels_nm": "N*m",
+    "width_m": "m", "width_levels_m": "m", "width_law_m": "m", "contact_x_min_m": "m", "contact_x_max_m": "m",
+    "load_centre_x_m": "m", "edges_loaded": "-", "sides": "-", "force_minus_y_side_n": "N",
+    "half_angle_rad": "rad", "peak_pressure_pa": "Pa",
+    "pressure_phi_rad": "rad", "pressure_x_m": "m", "pressure_map_pa": "Pa",
+    "ndofs": "-", "ndofs_levels": "-", "n_pairs": "-", "n_active": "-", "iterations": "-", "lcp_method": "-",
+    "wall_s": "s", "wall_levels_s": "s", "levels": "-", "element_order": "-",
+}
+
+
+# ----------------------------------------------------------------------------------------------
+# Richardson with unequal ratios
+
+def richardson3(values, ndofs) -> dict:
+    """Observed order and error estimate of the finest of three values (coarse -> fine).
+
+    Parameters
+    ----------
+    values : sequence of 3 floats
+    ndofs : sequence of 3 ints
+        DOFs of each level; ``h = ndofs^(-1/3)``.
+
+    Returns
+    -------
+    dict with ``value``, ``order`` (None if not monotone), ``error_abs``, ``extrapolated``.
+    """
+    f1, f2, f3 = (float(v) for v in values)
+    h1, h2, h3 = (float(n) ** (-1.0 / 3.0) for n in ndofs)
+    r21, r32 = h1 / h2, h2 / h3
+    d1, d2 = f1 - f2, f2 - f3
+    if d2 == 0.0:
+        return {"value": f3, "order": None, "error_abs": 0.0, "extrapolated": f3}
+    if d1 * d2 > 0 and abs(d1) > abs(d2):
+        target = d1 / d2
+
+        def ratio(p):
+            return r32 ** p * (r21 ** p - 1.0) / (r32 ** p - 1.0)
+
+        lo, hi = 1e-3, 12.0
+        if ratio(lo) < target < ratio(hi):
+            for _ in range(80):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if ratio(mid) < target else (lo, mid)
+            p = 0.5 * (lo + hi)
+        else:
+            p = hi if target >= ratio(hi) else lo
+        pc = min(max(p, 0.5), 2.0)
+        err = abs(d2) / (r32 ** pc - 1.0)
+        return {"value": f3, "order": p, "error_abs": err, "extrapolated": f3 - math.copysign(err, d2)}
+    return {"value": f3, "order": None, "error_abs": abs(d2), "extrapolated": f3}
+
+
+# ----------------------------------------------------------------------------------------------
+# compliance cache
+
+def cache_dir() -> Path:
+    """Where mesh-level compliances and finished sweep points are kept."""
+    root = os.environ.get("RINGCONTACT_CACHE")
+    return Path(root) if root else Path.home() / ".cache" / "ringcontact" / "fem3d"
+
+
+def _key(obj) -> str:
+    return hashlib.sha256(json.dumps(obj, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def compliance_path(geom: RingPair3D, level: MeshLevel3D, scene: str, cache: Path | None = None) -> Path:
+    cache = cache_dir() if cache is None else Path(cache)
+    k = _key({"v": CODE_VERSION, "geom": geom.as_dict(), "level": level.as_dict(), "scene": scene})
+    return cache / f"compliance-{scene}-{level.name}-{k}.npz"
+
+
+def get_compliance(geom: RingPair3D, level: MeshLevel3D, scene: str = "clamped", cache: Path | None = None,
+                   use_cache: bool = True) -> ContactCompliance:
+    """The compliance of one level: from the cache if there, else built (and cached)."""
+    path = compliance_path(geom, level, scene, cache)
+    if use_cache and path.exists():
+        return load_compliance(path)
+    comp = build_compliance(geom, level, scene)
+    if use_cache:
+        save_compliance(comp, path)
+    return comp
+
+
+def _build_task(geom: RingPair3D, level: MeshLevel3D, scene: str, cache: str) -> tuple[str, float]:
+    comp = build_compliance(geom, level, scene)
+    path = compliance_path(geom, level, scene, Path(cache))
+    save_compliance(comp, path)
+    return str(path), comp.build_s
+
+
+_LOADED: dict[str, ContactCompliance] = {}
+
+
+def _load_cached(path: str) -> ContactCompliance:
+    if path not in _LOADED:
+        if len(_LOADED) > 6:          # a worker keeps at most a few levels in memory
+            _LOADED.clear()
+        _LOADED[path] = load_compliance(path)
+    return _LOADED[path]
+
+
+# ----------------------------------------------------------------------------------------------
+# one reference point
+
+def reference_point(comps: list[ContactCompliance], penetration_m: float, tilt_rad: float) -> dict:
+    """Solve one (penetration, tilt) on every level; the finest is reported with its error estimate.
+
+    Raises
+    ------
+    ConvergenceError
+        If any level fails (message names the level), or a level resolves the contact patch by
+        fewer than ``MIN_ACTIVE_LINES`` axial node lines (e.g. edge-only contact with width << l0
+        on a mesh not refined toward the edges): a number from such a mesh is not a reference.
+    """
+    geom = comps[-1].geom
+    motion = RigidMotion.from_penetration(geom, penetration_m, tilt_rad)
+    sols = []
+    for c in comps:
+        try:
+            sols.append(solve_point(c, motion))
+        except ConvergenceError as exc:
+            raise ConvergenceError(f"level {c.level.name} ({c.n_dofs} DOFs): {exc}") from exc
+    for c, s in zip(comps, sols):
+        if 0 < s.n_active_lines < MIN_ACTIVE_LINES:
+            h_edge = float(c.x_grid[1] - c.x_grid[0])
+            raise ConvergenceError(
+                f"contact patch not resolved on level {c.level.name}: {s.n_active_lines} axial node line(s) in "
+                f"contact (width about {s.contact_width_m * 1e3:.2f} mm, law {s.contact_width_law_m * 1e3:.2f} mm; "
+                f"edge element {h_edge * 1e3:.2f} mm; need >= {MIN_ACTIVE_LINES} lines): refine toward the ring "
+                f"edges (MeshLevel3D.axial_ratio / n_axial) for penetration {penetration_m * 1e3:g} mm, "
+                f"tilt {tilt_rad / ARCMIN:g} arcmin")
+    fine = sols[-1]
+    nd = [c.n_dofs for c in comps]
+    rf = richardson3([s.force_n for s in sols], nd)
+    rm = richardson3([s.moment_z_nm for s in sols], nd)
+    rows = np.flatnonzero(fine.pressure_pa.max(axis=1) > 0)
+    keep = np.arange(0, 0) if rows.size == 0 else np.unique(np.concatenate(
+        [rows, np.clip(rows + 1, 0, len(fine.phi_grid) - 1), np.clip(rows - 1, 0, len(fine.phi_grid) - 1)]))
+    force = fine.force_n
+    moment_rel = (rm["error_abs"] / abs(rm["value"])) if (tilt_rad != 0 and rm["value"] != 0) else None
+    return {
+        "scene": comps[-1].scene, "penetration_m": float(penetration_m), "offset_m": motion.translation_m,
+        "tilt_rad": float(tilt_rad),
+        "force_n": force, "force_error_rel": rf["error_abs"] / abs(force) if force else 0.0,
+        "force_observed_order": rf["order"], "force_extrapolated_n": rf["extrapolated"],
+        "force_levels_n": [s.force_n for s in sols],
+        "moment_nm": fine.moment_z_nm, "moment_error_rel": moment_rel, "moment_observed_order": rm["order"],
+        "moment_extrapolated_nm": rm["extrapolated"], "moment_levels_nm": [s.moment_z_nm for s in sols],
+        "width_m": fine.contact_width_m, "width_levels_m": [s.contact_width_m for s in sols],
+        "width_law_m": fine.contact_width_law_m, "contact_x_min_m": fine.contact_x_min_m,
+        "contact_x_max_m": fine.contact_x_max_m, "load_centre_x_m": fine.load_centre_x_m,
+        "edges_loaded": fine.edges_loaded, "sides": fine.sides, "force_minus_y_side_n": fine.force_minus_y_side_n,
+        "half_angle_rad": fine.contact_half_angle_rad, "peak_pressure_pa": fine.peak_pressure_pa,
+        "pressure_phi_rad": fine.phi_grid[keep], "pressure_x_m": fine.x_grid,
+        "pressure_map_pa": [[float(f"{v:.6g}") for v in row] for row in fine.pressure_pa[keep]],
+        "ndofs": fine.n_dofs, "ndofs_levels": nd, "n_pairs": fine.n_pairs, "n_active": fine.n_active,
+        "iterations": fine.iterations, "lcp_method": fine.lcp_method,
+        "wall_s": fine.solve_s, "wall_levels_s": sum(s.solve_s for s in sols),
+        "levels": [c.level.name for c in comps], "element_order": comps[-1].level.order,
+    }
+
+
+def _point_task(paths: list[str], penetration_m: float, tilt_rad: float) -> dict:
+    return reference_point([_load_cached(p) for p in paths], penetration_m, tilt_rad)
+
+
+# ----------------------------------------------------------------------------------------------
+# sweep
+
+def _point_file(points_dir: Path, penetration_m: float, tilt_rad: float) -> Path:
+    return points_dir / f"pen{penetration_m * 1e9:.0f}nm-tilt{tilt_rad * 1e9:.0f}nrad.json"
+
+
+def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, scene: str = "clamped",
+              geom: RingPair3D | None = None, workers: int = 2, executor: cf.Executor | None = None,
+              cache: Path | None = None, progress: bool | None = None, resume: bool = True
+              ) -> tuple[dict, list[dict]]:
+    """Solve every (tilt, penetration) through an executor; returns (metadata, points).
+
+    Parameters
+    ----------
+    tilts_rad, penetrations_m : sequences of float
+        Defaults :data:`DEFAULT_TILTS_ARCMIN` and :data:`DEFAULT_PENETRATIONS_MM` in SI.
+    level_names : three keys of :data:`~fem_reference.solid.mesh.LEVELS` or MeshLevel3D (coarse -> fine).
+    workers : int
+        Processes of the local pool (ignored if ``executor`` is given).
+    executor : concurrent.futures.Executor, optional
+        e.g. a ``dask.distributed.Client``; must see the same cache directory.
+    resume : bool
+        Reuse finished points kept under the cache from an interrupted run of the same sweep.
+    """
+    if tilts_rad is None:
+        tilts_rad = [t * ARCMIN for t in DEFAULT_TILTS_ARCMIN]
+    if penetrations_m is None:
+        penetrations_m = [p * MM for p in DEFAULT_PENETRATIONS_MM]
+    if len(level_names) != 3:
+        raise InputError(f"level_names = {level_names!r}: need exactly three mesh levels (coarse to fine)")
+    unknown = [n for n in level_names if not isinstance(n, MeshLevel3D) and n not in LEVELS]
+    if unknown:
+        raise InputError(f"mesh levels {unknown} unknown: choose from {sorted(LEVELS)}")
+    if scene not in SCENES:
+        raise InputError(f"scene = {scene!r}: must be one of {sorted(SCENES)}")
+    geom = geom or RingPair3D()
+    cache = cache_dir() if cache is None else Path(cache)
+    levels = [n if isinstance(n, MeshLevel3D) else LEVELS[n] for n in level_names]
+    t0 = time.perf_counter()
+    own = executor is None
+    ex = cf.ProcessPoolExecutor(max_workers=workers) if own else executor
+    builds = {}
+    try:
+        paths = [compliance_path(geom, lv, scene, cache) for lv in levels]
+        todo = {ex.submit(_build_task, geom, lv, scene, str(cache)): lv.name
+                for lv, p in zip(levels, paths) if not p.exists()}
+        for fut in cf.as_completed(todo):
+            _, build_s = fut.result()
+            builds[todo[fut]] = build_s
+        for lv, p in zip(levels, paths):
+            if lv.name not in builds:
+                builds[lv.name] = load_compliance(p).build_s
+        sweep_key = _key({"v": CODE_VERSION, "paths": [p.name for p in paths]})
+        points_dir = cache / "points" / sweep_key
+        points_dir.mkdir(parents=True, exist_ok=True)
+        grid = [(float(t), float(d)) for t in tilts_rad for d in penetrations_m]
+        results: dict[tuple[float, float], dict] = {}
+        futs = {}
+        bar = Progress(len(grid), "fem3d sweep", progress)
+        for t, d in grid:
+            f = _point_file(points_dir, d, t)
+            if resume and f.exists():
+                results[(t, d)] = json.loads(f.read_text())
+                bar.step(f"kept {t / ARCMIN:g}' {d * 1e3:g} mm")
+            else:
+                futs[ex.submit(_point_task, [str(p) for p in paths], d, t)] = (t, d)
+        for fut in cf.as_completed(futs):
+            t, d = futs[fut]
+            row = fut.result()
+            atomic_write_text(_point_file(points_dir, d, t), json.dumps(_jsonable(row)))
+            results[(t, d)] = json.loads(json.dumps(_jsonable(row)))
+            bar.step(f"{t / ARCMIN:g}' {d * 1e3:g} mm")
+    finally:
+        if own:
+            ex.shutdown(wait=True, cancel_futures=True)
+    points = [results[k] for k in grid]
+    meta = {
+        "title": "3D tilted ring-in-ring FEM reference (scikit-fem hexahedra, frictionless node-to-node contact)",
+        "created_utc": datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "code_revision": code_revision(),
+        "package_versions": package_versions(),
+        "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count()},
+        "scenes": {scene: SCENES[scene]},
+        "geometry": geom.as_dict(),
+        "mesh": {"levels": [lv.as_dict() for lv in levels], "ndofs_levels": points[0]["ndofs_levels"] if points else [],
+                 "model": "half model z >= 0 (plane of load direction y and axis x), u_z = 0 on z = 0; "
+                          "mapped structured hexahedra, exact node pairing across the clearance"},
+        "solver": {"method": "rigid motion split off (strain-free); per-level SuperLU factor (COLAMD) and "
+                             "contact compliance G = B K^-1 B^T formed once; LCP g0 + G lam >= 0 solved exactly "
+                             "by primal-dual active set (NNLS fallback); complementarity verified on all pairs",
+                   "gap": "exact tilted cylinders (geometry3d.rigid_gap_m), elastic part linearised radially"},
+        "sweep": {"tilts_rad": [float(t) for t in tilts_rad], "penetrations_m": [float(d) for d in penetrations_m],
+                  "workers": workers if own else "external executor"},
+        "definitions": {
+            "penetration_m": "mid-plane penetration Delta r = r - delta0 (r = bearing translation along +y)",
+            "tilt_rad": "tilt theta about +z through the ring centre: a point at axial x moves by r + theta*x",
+            "force_n": "load = minus the y-force of the contact on the bearing, full ring",
+            "moment_nm": "moment about +z through the ring centre of the contact force on the bearing, full "
+                         "ring (contact-laws.md sec. 1: M_z = x F_y; negative for a positive tilt)",
+            "width_m": "axial extent of contact on the +y side; open ends from p^2 extrapolated to zero on phi = 0",
+            "width_law_m": "Dai et al. 2025 Eq. 11: min(Delta r_edge/|theta|, l0)",
+            "sides": "'+y', '-y' or 'both' (two-point contact on opposite generatrices)",
+            "edges_loaded": "ring edges (x = +-l0/2) that carry load: 'none', '+x', '-x', 'both'",
+            "pressure_map_pa": "nodal contact force / tributary area on the support bore, rows = pressure_phi_rad "
+                               "(loaded rows only), columns = pressure_x_m",
+            "force_error_rel": "Richardson (unequal ratios, h = N^-1/3) estimate of the finest level's error",
+            "wall_s": "contact solve of the finest level on a ready compliance (s)",
+            "wall_levels_s": "contact solves of all three levels (s), compliances excluded (see timings)",
+        },
+        "timings": {"total_s": time.perf_counter() - t0, "compliance_build_s": builds},
+    }
+    return meta, points
+
+
+def _jsonable(row: dict) -> dict:
+    out = {}
+    for k, v in row.items():
+        if isinstance(v, np.ndarray):
+            v = v.tolist()
+        elif isinstance(v, (np.floating, np.integer)):
+            v = v.item()
+        out[k] = v
+    return out
+
+
+def regenerate(path=DATASET_PATH, **kw) -> Path:
+    """Run the sweep and write the dataset (atomically) to ``path``."""
+    meta, points = run_sweep(**kw)
+    return write_dataset(path, meta, COLUMNS, points)
+
+
+def check_against_committed(path=DATASET_PATH, n_points: int = 3, use_cache: bool = False) -> list[dict]:
+    """Recompute ``n_points`` committed points (compliances rebuilt unless ``use_cache``);
+    returns rows with committed and new force and moment and their relative differences."""
+    ds = read_dataset(path)
+    geom = RingPair3D(**ds.metadata["geometry"])
+    levels = [MeshLevel3D(**lv) for lv in ds.metadata["mesh"]["levels"]]
+    scene = ds.points[0]["scene"]
+    comps = [get_compliance(geom, lv, scene, use_cache=use_cache) for lv in levels]
+    idx = np.unique(np.linspace(0, len(ds.points) - 1, n_points).round().astype(int))
+    rows = []
+    for i in idx:
+        old = ds.points[i]
+        new = reference_point(comps, old["penetration_m"], old["tilt_rad"])
+        rows.append({
+            "penetration_m": old["penetration_m"], "tilt_rad": old["tilt_rad"],
+            "committed_force_n": old["force_n"], "new_force_n": new["force_n"],
+            "force_diff_rel": new["force_n"] / old["force_n"] - 1 if old["force_n"] else new["force_n"],
+            "committed_moment_nm": old["moment_nm"], "new_moment_nm": new["moment_nm"],
+            "moment_diff_rel": (new["moment_nm"] / old["moment_nm"] - 1) if old["moment_nm"] and old["tilt_rad"] else 0.0,
+            "force_error_estimate_rel": old["force_error_rel"]})
+    return rows

@@ -1,0 +1,59 @@
+"""The ``ringcontact`` console command: one entry point, one sub-command per job.
+
+Each job lives in the module of the layer that owns it and exposes
+``main(argv: list[str]) -> int`` with its own ``argparse`` parser. The table
+below is the only place jobs are registered; modules are imported only when
+their job runs, so ``ringcontact --help`` stays instant.
+"""
+from __future__ import annotations
+
+import importlib
+import sys
+
+from contact.errors import RingContactError
+
+# job name -> (module, one-line help). Keep sorted by data-flow layer.
+JOBS: dict[str, tuple[str, str]] = {
+    "law": ("reports.cli.law", "evaluate an analytic contact law at given penetrations/tilts (table or --json)"),
+    "rotor": ("reports.cli.rotor", "rotor linear analyses: modes, campbell, critical-speeds, unbalance (table or --json)"),
+    "simulate": ("reports.cli.simulate", "time histories of the loose-support rotor at one speed (CSV/NPZ + summary)"),
+    "fem-point": ("reports.cli.fem:point_main", "solve one 2D FEM contact point (penetration in mm; --json)"),
+    "fem-sweep": ("reports.cli.fem:sweep_main", "regenerate the committed 2D FEM reference dataset (with progress)"),
+    "fem-check": ("reports.cli.fem:check_main", "recompute a few committed 2D FEM points, report differences"),
+    "fem-report": ("reports.fem2d", "write reports/published/fem2d-reference.* from the committed 2D dataset"),
+    "fem-paper": ("fem_reference.paper_setup", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
+    "fem-vtu": ("reports.cli.fem:vtu_main", "export a solved 2D FEM point to VTU for ParaView"),
+    "fem3d": ("reports.cli.fem3d", "3D tilted-ring FEM reference: point | sweep | check (mm, arcmin; --json)"),
+    "calibrate": ("contact.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
+    "study": ("reports.cli.study", "steady-state sweeps, cascades, test rig, run-up, regime map (resumable, parallel)"),
+    "report": ("reports.cli.report", "build the committed reports/ from the committed datasets (the main job)"),
+}
+
+
+def _usage() -> str:
+    width = max(len(k) for k in JOBS)
+    lines = ["usage: ringcontact JOB [options]   (ringcontact JOB --help for a job's options)", "", "jobs:"]
+    lines += [f"  {name:<{width}}  {help_}" for name, (_, help_) in JOBS.items()]
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or argv[0] in {"-h", "--help", "help"}:
+        print(_usage())
+        return 0
+    job, rest = argv[0], argv[1:]
+    if job not in JOBS:
+        print(f"ringcontact: unknown job {job!r}\n\n{_usage()}", file=sys.stderr)
+        return 2
+    module_name, _, func_name = JOBS[job][0].partition(":")
+    entry = getattr(importlib.import_module(module_name), func_name or "main")
+    try:
+        return int(entry(rest) or 0)
+    except RingContactError as exc:  # safety net: every job reports suite errors the same way
+        print(f"ringcontact {job}: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

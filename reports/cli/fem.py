@@ -1,0 +1,143 @@
+"""Console jobs of the 2D FEM reference (registered in reports/cli.py).
+
+    ringcontact fem-point 0.01 [--scene clamped] [--h-mm 1] [--order 2] [--json]
+    ringcontact fem-sweep [--out PATH]            regenerate the committed dataset (progress on a TTY)
+    ringcontact fem-check [--points 3]            recompute a few committed points, print differences
+    ringcontact fem-vtu 0.01 out.vtu [--scene clamped]   deformed rings + pressure + stresses for ParaView
+
+Engineer units at this edge only (mm, kN, degrees, MPa); everything inside is SI.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+import numpy as np
+
+from contact.errors import RingContactError
+from contact.units import MM
+
+
+def _point_parser(prog: str, help_: str) -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog=prog, description=help_)
+    ap.add_argument("penetration_mm", type=float, help="penetration Δr = r − δ0 [mm]")
+    ap.add_argument("--scene", default="clamped", help="clamped | clamped-stress | persson-<ratio> | paper-…")
+    ap.add_argument("--h-mm", type=float, default=None,
+                    help="contact element size [mm]; default: Richardson over 4, 2, 1 mm (+0.5 if needed)")
+    ap.add_argument("--order", type=int, default=2, choices=(1, 2), help="element order")
+    return ap
+
+
+def point_main(argv: list[str]) -> int:
+    """``fem-point``: solve one point and print it (or JSON with --json)."""
+    ap = _point_parser("ringcontact fem-point", "solve one 2D contact point")
+    ap.add_argument("--json", action="store_true", help="print the full point record as JSON (SI units)")
+    args = ap.parse_args(argv)
+    from fem_reference.plane.solve import ContactModel
+    from fem_reference.scenes import by_name
+    from fem_reference.plane.sweep import Levels, arc_zone_rad, reference_point, spec_for
+
+    try:
+        scene = by_name(args.scene)
+        if args.h_mm is None:
+            rec = reference_point(Levels(scene, order=args.order), args.penetration_mm * MM)
+        else:
+            # one level of the reference's mesh family (graded toward this point's possible arc)
+            zone = arc_zone_rad(scene.rings, args.penetration_mm * MM)
+            m = ContactModel.build(scene, spec_for(scene, args.h_mm * MM, args.order, zone))
+            s = m.solve(args.penetration_mm * MM)
+            rec = {"scene": scene.name, "plane": scene.plane, "penetration_m": args.penetration_mm * MM,
+                   "force_n": s.force_n, "force_error_rel": None, "half_angle_rad": s.half_angle_rad,
+                   "peak_pressure_pa": s.peak_pressure_pa, "ndofs": s.ndofs, "iterations": s.iterations,
+                   "wall_s": s.wall_s, "h_contact_m": args.h_mm * MM, "element_order": args.order,
+                   "arc_phi_rad": s.arc_phi_rad.tolist(), "arc_pressure_pa": s.arc_pressure_pa.tolist()}
+    except RingContactError as exc:
+        print(f"fem-point: {exc}", file=sys.stderr)
+        return 2
+    if args.json:
+        print(json.dumps({k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in rec.items()}, indent=1))
+        return 0
+    err = rec.get("force_error_rel")
+    print(f"scene            {rec['scene']} (plane {rec['plane']})")
+    print(f"penetration      {rec['penetration_m'] / MM:.5g} mm")
+    print(f"force            {rec['force_n'] / 1e3:.4f} kN" + (f"  (est. error {err:.1e})" if err is not None else ""))
+    print(f"half-angle       {np.degrees(rec['half_angle_rad']):.3f} deg")
+    print(f"peak pressure    {rec['peak_pressure_pa'] / 1e6:.2f} MPa")
+    print(f"mesh             h = {rec['h_contact_m'] / MM:g} mm, P{rec['element_order']}, {rec['ndofs']} DOFs")
+    print(f"solver           {rec['iterations']} active-set iterations, {rec['wall_s']:.2f} s")
+    if "h_levels_m" in rec:
+        print(f"levels           {', '.join(f'{h / MM:g}' for h in rec['h_levels_m'])} mm (Richardson), "
+              f"{rec['wall_levels_s']:.2f} s for the whole point from scratch")
+    if rec["peak_pressure_pa"] > 2e9:
+        print(f"note: peak pressure {rec['peak_pressure_pa'] / 1e9:.1f} GPa is beyond the yield of bearing steel; "
+              "this is the linear-elastic answer only")
+    return 0
+
+
+def sweep_main(argv: list[str]) -> int:
+    """``fem-sweep``: regenerate the committed dataset."""
+    from fem_reference.plane.sweep import DATASET_PATH, regenerate
+
+    ap = argparse.ArgumentParser(prog="ringcontact fem-sweep", description="regenerate the 2D FEM reference dataset")
+    ap.add_argument("--out", default=str(DATASET_PATH), help="output JSON (default: the committed copy)")
+    args = ap.parse_args(argv)
+    try:
+        path = regenerate(args.out)
+    except RingContactError as exc:
+        print(f"fem-sweep: {exc}", file=sys.stderr)
+        return 2
+    print(f"wrote {path}")
+    return 0
+
+
+def check_main(argv: list[str]) -> int:
+    """``fem-check``: recompute a few committed points and report the differences."""
+    from fem_reference.plane.sweep import DATASET_PATH, check_against_committed
+
+    ap = argparse.ArgumentParser(prog="ringcontact fem-check", description="recompute committed points, compare")
+    ap.add_argument("--path", default=str(DATASET_PATH))
+    ap.add_argument("--points", type=int, default=3, help="points per scene")
+    ap.add_argument("--scene", action="append", help="only this scene (repeatable)")
+    ap.add_argument("--tol", type=float, default=1e-6, help="relative difference that counts as a change")
+    args = ap.parse_args(argv)
+    try:
+        rows = check_against_committed(args.path, args.points, args.scene)
+    except RingContactError as exc:
+        print(f"fem-check: {exc}", file=sys.stderr)
+        return 2
+    worst = 0.0
+    print(f"{'scene':<16}{'Δr mm':>9}{'committed kN':>15}{'new kN':>15}{'diff':>11}{'est.err':>10}")
+    for r in rows:
+        worst = max(worst, abs(r["diff_rel"]))
+        print(f"{r['scene']:<16}{r['penetration_m'] / MM:>9.4f}{r['committed_force_n'] / 1e3:>15.4f}"
+              f"{r['new_force_n'] / 1e3:>15.4f}{r['diff_rel']:>11.2e}{r['error_estimate_rel']:>10.1e}")
+    print(f"largest difference {worst:.2e} ({'OK' if worst <= args.tol else 'CHANGED'} at tol {args.tol:g})")
+    return 0 if worst <= args.tol else 1
+
+
+def vtu_main(argv: list[str]) -> int:
+    """``fem-vtu``: write one solved point as VTU."""
+    from fem_reference.plane.export import write_vtu
+    from fem_reference.plane.solve import ContactModel
+    from fem_reference.scenes import by_name
+    from fem_reference.plane.sweep import spec_for
+
+    ap = _point_parser("ringcontact fem-vtu", "export a solved point to VTU (ParaView)")
+    ap.add_argument("out", help="output .vtu file")
+    ap.add_argument("--scale", type=float, default=1.0, help="displacement magnification stored as 'warp' [-]")
+    args = ap.parse_args(argv)
+    try:
+        scene = by_name(args.scene)
+        m = ContactModel.build(scene, spec_for(scene, (args.h_mm or 2.0) * MM, args.order))
+        s = m.solve(args.penetration_mm * MM)
+        path = write_vtu(args.out, m, s, warp_scale=args.scale)
+    except RingContactError as exc:
+        print(f"fem-vtu: {exc}", file=sys.stderr)
+        return 2
+    print(f"wrote {path} ({s.force_n / 1e3:.3f} kN)")
+    return 0
+
+
+def main(argv: list[str]) -> int:  # pragma: no cover - dispatch helper
+    return point_main(argv)

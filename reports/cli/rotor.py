@@ -1,0 +1,222 @@
+"""``ringcontact rotor``: linear analyses of a rotor scene from the command line.
+
+Sub-commands (each takes a scene file path or a bundled scene name)::
+
+    ringcontact rotor scenes                                   # list bundled scenes
+    ringcontact rotor modes SCENE [--speed-rpm 0] [--modes 8] [--json]
+    ringcontact rotor campbell SCENE [--max-rpm R] [--points N] [--plot PREFIX] [--json]
+    ringcontact rotor critical-speeds SCENE [--max-rpm R] [--orders 1 2] [--json]
+    ringcontact rotor unbalance SCENE [--max-rpm R] [--points N] [--nodes disk1 disk2] [--plot PREFIX] [--json]
+    ringcontact rotor report [--out reports/published]        # regenerate reports/published/rotor-*
+
+Frequencies are printed in Hz, speeds in rpm, amplitudes in µm; ``--json`` prints the same
+numbers as JSON (keys carry the unit). ``--elements N`` overrides the elements per shaft.
+The loose support is locked (bearing and support move together) unless ``--open-support``.
+Errors (bad scene file, bad option) print one line and exit with status 2.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+import numpy as np
+
+from contact.errors import RingContactError
+
+RPM = 30 / math.pi
+
+
+def _load(args):
+    from rotor.model.assembly import assemble
+    from rotor.model.scene import load_scene
+    scene = load_scene(args.scene)
+    return scene, assemble(scene, elements_per_segment=args.elements)
+
+
+def _max_speed(args, scene) -> float:
+    if args.max_rpm is None:
+        return scene.analysis.max_speed_rad_s
+    if not (args.max_rpm > 0 and math.isfinite(args.max_rpm)):
+        raise_input(f"--max-rpm = {args.max_rpm} rpm: must be > 0")
+    return args.max_rpm / RPM
+
+
+def raise_input(msg):
+    from contact.errors import InputError
+    raise InputError(msg)
+
+
+def _emit(args, data: dict, table: str) -> None:
+    print(json.dumps(data, indent=2, ensure_ascii=False) if args.json else table)
+
+
+def cmd_scenes(args) -> int:
+    from rotor.model.scene import bundled_scenes, load_scene
+    rows = []
+    for name in bundled_scenes():
+        s = load_scene(name)
+        rows.append({"name": name, "title": s.title})
+    _emit(args, {"scenes": rows}, "\n".join(f"{r['name']:<28} {r['title']}" for r in rows))
+    return 0
+
+
+def cmd_modes(args) -> int:
+    from rotor.linear.modes import modes
+    scene, model = _load(args)
+    if not math.isfinite(args.speed_rpm) or args.speed_rpm < 0:
+        raise_input(f"--speed-rpm = {args.speed_rpm} rpm: must be finite and >= 0")
+    res = modes(model, args.speed_rpm / RPM, n_modes=args.modes or scene.analysis.modes,
+                lock_loose_support=not args.open_support,
+                damped=args.damped)
+    rows = [{"mode": j + 1, "frequency_hz": float(f), "frequency_rpm": float(f * 60), "whirl": w,
+             "forward_fraction": float(r), "damping_ratio": float(z) if args.damped else 0.0}
+            for j, (f, w, r, z) in enumerate(zip(res.frequency_hz, res.whirl, res.forward_fraction, res.damping_ratio))]
+    lines = [f"{scene.title}", f"modes at {args.speed_rpm:g} rpm ({'damped' if args.damped else 'undamped'}, "
+             f"loose support {'open' if args.open_support else 'locked'}, {model.n_dofs} DOFs)",
+             f"{'mode':>4} {'freq (Hz)':>11} {'freq (rpm)':>11} {'whirl':>9} {'fwd frac':>8} {'zeta':>7}"]
+    lines += [f"{r['mode']:>4} {r['frequency_hz']:>11.3f} {r['frequency_rpm']:>11.1f} {r['whirl']:>9} "
+              f"{r['forward_fraction']:>8.3f} {r['damping_ratio']:>7.4f}" for r in rows]
+    _emit(args, {"scene": scene.name, "speed_rpm": args.speed_rpm, "dofs": model.n_dofs, "modes": rows},
+          "\n".join(lines))
+    return 0
+
+
+def cmd_campbell(args) -> int:
+    from rotor.linear.modes import campbell, critical_speeds
+    scene, model = _load(args)
+    wmax = _max_speed(args, scene)
+    speeds = np.linspace(0.0, wmax, args.points or scene.analysis.speed_points)
+    n_modes = args.modes or scene.analysis.modes
+    camp = campbell(model, speeds, n_modes=n_modes, lock_loose_support=not args.open_support)
+    if args.plot:
+        from reports.rotor_plots import campbell_figure, save
+        crit = critical_speeds(model, wmax, n_modes=n_modes + 4, lock_loose_support=not args.open_support)
+        for p in save(campbell_figure(camp, f"Campbell diagram: {scene.title}", crit), args.plot):
+            print(f"wrote {p}", file=sys.stderr)
+    data = {"scene": scene.name, "speed_rpm": (speeds * RPM).tolist(),
+            "frequency_hz": [[None if not np.isfinite(v) else float(v) for v in row] for row in camp.frequency_hz],
+            "whirl": [list(w) for w in camp.whirl]}
+    head = f"{'speed (rpm)':>11} " + " ".join(f"{'mode ' + str(j + 1) + ' (Hz)':>16}" for j in range(n_modes))
+    lines = [scene.title, head]
+    for i, w in enumerate(speeds):
+        cells = [f"{camp.frequency_hz[i, j]:>10.3f} {camp.whirl[i][j][:3]:>5}" for j in range(n_modes)]
+        lines.append(f"{w * RPM:>11.1f} " + " ".join(cells))
+    _emit(args, data, "\n".join(lines))
+    return 0
+
+
+def cmd_critical(args) -> int:
+    from rotor.linear.modes import critical_speeds
+    scene, model = _load(args)
+    wmax = _max_speed(args, scene)
+    crit = critical_speeds(model, wmax, orders=tuple(args.orders), n_modes=(args.modes or scene.analysis.modes) + 4,
+                           lock_loose_support=not args.open_support)
+    rows = [{"order": c.order, "speed_rpm": c.speed_rpm, "frequency_hz": c.frequency_hz, "whirl": c.whirl,
+             "branch": c.branch + 1} for c in crit]
+    lines = [scene.title, f"critical speeds up to {wmax * RPM:.0f} rpm (undamped whirl frequency = order x speed)",
+             f"{'order':>5} {'speed (rpm)':>12} {'freq (Hz)':>10} {'whirl':>9} {'branch':>6}"]
+    lines += [f"{r['order']:>4}X {r['speed_rpm']:>12.1f} {r['frequency_hz']:>10.3f} {r['whirl']:>9} {r['branch']:>6}"
+              for r in rows]
+    _emit(args, {"scene": scene.name, "max_speed_rpm": wmax * RPM, "critical_speeds": rows}, "\n".join(lines))
+    return 0
+
+
+def cmd_unbalance(args) -> int:
+    from rotor.linear.unbalance import forced_response
+    scene, model = _load(args)
+    wmax = _max_speed(args, scene)
+    speeds = np.linspace(wmax / (args.points or scene.analysis.speed_points), wmax,
+                         args.points or scene.analysis.speed_points)
+    nodes = args.nodes or [d.name for d in scene.disks] or [scene.stations[0].name]
+    for n in nodes:
+        model.node_of(n)
+    resp = forced_response(model, speeds, order=args.order, lock_loose_support=not args.open_support)
+    if args.plot:
+        from reports.rotor_plots import response_figure, save
+        what = "unbalance" if args.order == 1 else "misalignment"
+        for p in save(response_figure(model, resp, nodes, f"Linear {what} response ({args.order}X): {scene.title}"),
+                      args.plot):
+            print(f"wrote {p}", file=sys.stderr)
+    table = {n: resp.orbit(model, n)[0] * 1e6 for n in nodes}
+    data = {"scene": scene.name, "order": args.order, "speed_rpm": (speeds * RPM).tolist(),
+            "semi_major_um": {n: v.tolist() for n, v in table.items()}}
+    lines = [scene.title, f"{args.order}X orbit semi-major axis (µm)",
+             f"{'speed (rpm)':>11} " + " ".join(f"{n:>12}" for n in nodes)]
+    lines += [f"{w * RPM:>11.1f} " + " ".join(f"{table[n][i]:>12.4g}" for n in nodes) for i, w in enumerate(speeds)]
+    _emit(args, data, "\n".join(lines))
+    return 0
+
+
+def cmd_report(args) -> int:
+    from reports.rotor_linear import build_reports
+    for p in build_reports(args.out):
+        print(f"wrote {p}", file=sys.stderr)
+    return 0
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="ringcontact rotor", description="Linear analyses of a rotor scene "
+                                "(natural frequencies, Campbell diagram, critical speeds, unbalance response).")
+    sub = p.add_subparsers(dest="cmd", required=True)
+
+    def common(sp, speed_range=True):
+        sp.add_argument("scene", help="scene file (.toml) or bundled scene name (see 'ringcontact rotor scenes')")
+        sp.add_argument("--elements", type=int, default=None, help="elements per shaft segment (override)")
+        sp.add_argument("--open-support", action="store_true",
+                        help="leave the loose-support bearing and support unconnected (default: locked together)")
+        sp.add_argument("--modes", type=int, default=None, help="number of modes")
+        sp.add_argument("--json", action="store_true", help="print JSON instead of a table")
+        if speed_range:
+            sp.add_argument("--max-rpm", type=float, default=None, help="top speed (rpm); default from the scene")
+
+    sp = sub.add_parser("scenes", help="list bundled scenes")
+    sp.add_argument("--json", action="store_true")
+    sp.set_defaults(func=cmd_scenes)
+    sp = sub.add_parser("modes", help="natural (whirl) frequencies and whirl direction at one speed")
+    common(sp, speed_range=False)
+    sp.add_argument("--speed-rpm", type=float, default=0.0, help="rotor speed (rpm), default 0")
+    sp.add_argument("--damped", action="store_true", help="include viscous damping (damped frequencies)")
+    sp.set_defaults(func=cmd_modes)
+    sp = sub.add_parser("campbell", help="whirl frequencies over a speed range")
+    common(sp)
+    sp.add_argument("--points", type=int, default=None, help="number of speeds")
+    sp.add_argument("--plot", default=None, help="write PREFIX.png and PREFIX.svg")
+    sp.set_defaults(func=cmd_campbell)
+    sp = sub.add_parser("critical-speeds", help="intersections of whirl frequencies with 1X, 2X ...")
+    common(sp)
+    sp.add_argument("--orders", type=int, nargs="+", default=[1, 2], help="excitation orders (default 1 2)")
+    sp.set_defaults(func=cmd_critical)
+    sp = sub.add_parser("unbalance", help="linear steady-state unbalance (1X) or misalignment (2X) response")
+    common(sp)
+    sp.add_argument("--points", type=int, default=None, help="number of speeds")
+    sp.add_argument("--nodes", nargs="+", default=None, help="nodes or element names (default: the disks)")
+    sp.add_argument("--order", type=int, default=1, choices=(1, 2), help="1: unbalance, 2: misalignment")
+    sp.add_argument("--plot", default=None, help="write PREFIX.png and PREFIX.svg")
+    sp.set_defaults(func=cmd_unbalance)
+    sp = sub.add_parser("report", help="regenerate reports/published/rotor-* (figures and tables)")
+    sp.add_argument("--out", default="reports/published", help="output directory")
+    sp.set_defaults(func=cmd_report)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    for name in ("modes", "points", "elements"):
+        v = getattr(args, name, None)
+        if v is not None and v < 1:
+            print(f"ringcontact rotor: error: --{name} = {v}: must be >= 1", file=sys.stderr)
+            return 2
+    try:
+        return args.func(args)
+    except RingContactError as exc:
+        print(f"ringcontact rotor: error: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # output piped into head & co.
+        sys.stderr.close()
+        return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,206 @@
+"""``ringcontact simulate``: time histories of a loose-support rotor at one speed.
+
+Example::
+
+    ringcontact simulate --scene paper-table4 --speed-rpm 10500 --revolutions 20 --out runs/b
+
+or, for one steady-state point (transient detected and discarded, then 64 kept revolutions)::
+
+    ringcontact simulate --speed-rpm 10500 --steady --revolutions 64 --out runs/b
+
+writes ``runs/b/simulate.csv`` (time, named DOFs, relative edge offsets r1/r2, relative tilts,
+stick/slip of each end face, contact flags), ``runs/b/simulate.npz`` (full state) and
+``runs/b/simulate-summary.json``; every file is written atomically. Engineer units at the edge
+(``_rpm``, ``_mm``, ``_n``), SI inside.
+"""
+from __future__ import annotations
+
+import argparse
+import io
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from contact.errors import InputError, RingContactError
+from contact.files import atomic_write_bytes, atomic_write_text
+from contact.units import check_positive
+from rotor.dynamics import constraints as cons
+
+DEFAULT_DOFS = "disk1.y,disk1.z,disk2.y,disk2.z,5.y,5.z,s.y,s.z"
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
+    p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
+    p.add_argument("--speed-rpm", type=float, required=True, help="spin speed (rpm)")
+    p.add_argument("--revolutions", type=float, default=20.0, help="duration in revolutions (default 20)")
+    p.add_argument("--steps-per-rev", type=int, default=256, help="time steps per revolution (default 256)")
+    p.add_argument("--record-per-rev", type=int, default=64, help="recorded samples per revolution (default 64)")
+    p.add_argument("--scheme", choices=("production", "reference"), default="production",
+                   help="production (fast, default) or the paper's reference scheme (slow)")
+    p.add_argument("--dofs", default=DEFAULT_DOFS, help=f"comma-separated DOF names (default {DEFAULT_DOFS})")
+    p.add_argument("--law", default="conformal", metavar="LAW",
+                   help="radial contact law: conformal (default, the paper's law as published), pereira, or "
+                        "calibrated:<name>, a law fitted to a FEM scene (contact/calibrated/<name>.json; its "
+                        "clearance and ring width are the scene's)")
+    p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
+    p.add_argument("--mu", type=float, default=None, help="end-face friction coefficient (default: scene)")
+    p.add_argument("--preload-n", type=float, default=None, help="nut preload per face (N, default: scene)")
+    p.add_argument("--clearance-mm", type=float, default=None, help="radial clearance (mm, default: scene)")
+    p.add_argument("--misalignment-mm", type=float, default=None, help="misalignment δ (mm, default: scene)")
+    p.add_argument("--steady", action="store_true",
+                   help="run to steady state first (rotor.studies.steady_state.steady_state: displacement Poincaré samples "
+                        "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
+                        "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
+                        "amplitudes of --dofs in the summary")
+    p.add_argument("--out", default="simulate-out", help="output directory")
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        return _run(args)
+    except RingContactError as e:
+        print(f"ringcontact simulate: {type(e).__name__}: {e}", file=sys.stderr)
+        return 2
+
+
+def _run(args) -> int:
+    from rotor.dynamics.reference import simulate_reference, system_from_model
+    from rotor.model.assembly import assemble
+    from rotor.dynamics.production import simulate_production
+    from rotor.model.scene import load_scene
+
+    check_positive("speed_rpm", args.speed_rpm, "rpm", upper=1e5)
+    check_positive("revolutions", args.revolutions, "rev", upper=1e6)
+    check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e6)
+    check_positive("record_per_rev", args.record_per_rev, "samples", upper=args.steps_per_rev)
+    scene = load_scene(args.scene)
+    model = assemble(scene)
+    omega = args.speed_rpm * 2 * math.pi / 60
+    kw = {}
+    if args.clearance_mm is not None:
+        check_positive("clearance_mm", args.clearance_mm, "mm", upper=10.0)
+        kw["clearance_m"] = args.clearance_mm * 1e-3
+    if args.misalignment_mm is not None:
+        check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True, upper=50.0)
+        kw["misalignment_m"] = args.misalignment_mm * 1e-3
+    clearance_m = kw.pop("clearance_m", None)
+    law, validity_m = _law(args, scene, clearance_m)
+    if law is not None:
+        system = system_from_model(model, scene, omega, law=law, mu=args.mu, preload_N=args.preload_n, **kw)
+    else:
+        system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
+                                   preload_N=args.preload_n, clearance_m=clearance_m, **kw)
+    names = [s.strip() for s in args.dofs.split(",") if s.strip()]
+    idx = [model.dof_index(n) for n in names]
+    T = 2 * math.pi / omega
+    dt = T / args.steps_per_rev
+    n_steps = int(round(args.revolutions * args.steps_per_rev))
+    rec = max(1, args.steps_per_rev // args.record_per_rev)
+    run = simulate_production if args.scheme == "production" else simulate_reference
+    t0 = time.perf_counter()
+    extra = {}
+    if args.steady:
+        from rotor.dynamics.reference import linear_initial_state
+        from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
+
+        keep = int(round(args.revolutions))
+        if args.scheme != "production" or keep < 1 or args.steps_per_rev % args.record_per_rev:
+            raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
+                             "dividing --steps-per-rev")
+        # detection by rotor.studies.steady_state (displacement Poincaré samples with the projected tail of the
+        # decay, subharmonic periods); its own record is one period only: the kept revolutions are
+        # integrated below from its end state so that every field of the trajectory is written
+        opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
+                                  spectrum_revs=1)
+        q_start, v_start = linear_initial_state(system, 0.0)
+        ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
+        conv = ss.convergence
+        period = conv.period if conv.converged else 1
+        keep = int(math.ceil(keep / period) * period)  # whole periods: exact DFT bins
+        dt = T / ss.steps_per_rev  # the detector may refine the step (contact step limit)
+        rec = ss.steps_per_rev // args.record_per_rev
+        n_steps = keep * ss.steps_per_rev
+        tr = simulate_production(system, dt, n_steps, q0=ss.q_end, v0=ss.v_end,
+                                 t0=(ss.transient_revs + ss.revolutions) * T,
+                                 modes0=tuple(int(m) for m in ss.modes[-1]), record_every=rec, check_step=False)
+        amps = np.abs(harmonic_amplitudes(tr.v[:-1, idx] - tr.v[:-1, idx].mean(axis=0), keep))
+        extra = {"transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
+                 "period_revs": int(conv.period), "poincare_change": float(conv.change),
+                 "poincare_remaining": float(conv.remaining), "record_revs": keep,
+                 "velocity_amplitudes_mm_s_1X_to_5X": {n: [round(float(a) * 1e3, 6) for a in amps[:, j]]
+                                                       for j, n in enumerate(names)}}
+    else:
+        tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
+    wall = time.perf_counter() - t0
+    r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
+    d0 = system.support.law.clearance_m
+    cols = {"t_s": tr.t}
+    for n, i in zip(names, idx):
+        cols[f"{n}_m" if n.split(".")[-1] in ("y", "z") else f"{n}_rad"] = tr.q[:, i]
+    cols.update({"r1_m": r1, "r2_m": r2, "tilt_y_rad": tr.u[:, 2], "tilt_z_rad": tr.u[:, 3],
+                 "stick_right": tr.modes[:, 0], "stick_left": tr.modes[:, 1],
+                 "contact_edge1": (r1 > d0).astype(int), "contact_edge2": (r2 > d0).astype(int)})
+    out = Path(args.out)
+    buf = io.StringIO()
+    buf.write(",".join(cols) + "\n")
+    np.savetxt(buf, np.column_stack(list(cols.values())), delimiter=",", fmt="%.9g")
+    atomic_write_text(out / "simulate.csv", buf.getvalue())
+    b = io.BytesIO()
+    np.savez_compressed(b, t=tr.t, q=tr.q, v=tr.v, u=tr.u, w=tr.w, f_contact=tr.f_contact, face_force=tr.face_force,
+                        modes=tr.modes, dof_names=np.array(system.dof_names))
+    atomic_write_bytes(out / "simulate.npz", b.getvalue())
+    summary = {"scene": scene.name, "speed_rpm": args.speed_rpm, "revolutions": args.revolutions,
+               "scheme": tr.scheme, "dt_s": dt, "steps": n_steps, "wall_s": round(wall, 3),
+               "law": system.support.law.name, "clearance_mm": d0 * 1e3,
+               "max_r1_mm": float(r1.max() * 1e3), "max_r2_mm": float(r2.max() * 1e3),
+               "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
+               "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
+               "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
+               **validity_summary(float(max(r1.max(), r2.max()) - d0), validity_m), **extra}
+    atomic_write_text(out / "simulate-summary.json", json.dumps(summary, indent=2) + "\n")
+    print(json.dumps(summary, indent=2))
+    if summary.get("beyond_law_validity"):
+        print(f"ringcontact simulate: warning: the largest edge penetration {summary['max_edge_penetration_mm']:.4g} mm "
+              f"exceeds the calibrated law's validity range ({summary['law_validity_max_penetration_mm']:.4g} mm): "
+              "the law was extrapolated", file=sys.stderr)
+    return 0
+
+
+def _law(args, scene, clearance_m):
+    """``(SupportLaw or None, validity max penetration in m or None)`` for ``--law``.
+
+    ``calibrated:<name>`` loads the stored fit (contact.calibrate) with the scene's collision factor;
+    None means an analytic law of contact.loose_support chosen by name in ``system_from_model``.
+    """
+    if args.law in ("conformal", "pereira"):
+        return None, None
+    if not args.law.startswith("calibrated:"):
+        raise InputError(f"law = {args.law!r}: must be conformal, pereira or calibrated:<name>")
+    from contact.calibrate import load_calibrated
+    from rotor.dynamics.reference import support_law_from_params
+
+    cal = load_calibrated(args.law.split(":", 1)[1])
+    over = {"c_c_s_per_m": scene.loose_support.collision_factor_s_m, "tilt_ignored": bool(args.tilt_ignored)}
+    if clearance_m is not None:
+        over["clearance_m"] = clearance_m      # refused unless it is the calibration's own
+    return support_law_from_params(cal.loose_support_params(**over)), float(cal.validity_penetration_m[1])
+
+
+def validity_summary(max_edge_penetration_m: float, validity_max_m: float | None) -> dict:
+    """Summary fields on how deep the edges went, and whether a calibrated law left its fitted range."""
+    out = {"max_edge_penetration_mm": max(max_edge_penetration_m, 0.0) * 1e3}
+    if validity_max_m is not None:
+        out["law_validity_max_penetration_mm"] = validity_max_m * 1e3
+        out["beyond_law_validity"] = bool(max_edge_penetration_m > validity_max_m)
+    return out
+
+
+if __name__ == "__main__":
+    sys.exit(main())

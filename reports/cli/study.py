@@ -1,0 +1,303 @@
+"""``ringcontact study``: the paper's Section 5/6 studies and what goes past them.
+
+Sub-studies (each resumable: points already in ``--out`` are reused, corrupt ones recomputed)::
+
+    ringcontact study cascade  --out runs/fig12                      # Fig. 12: 61 speeds 0–18 000 rpm
+    ringcontact study cascade  --tilt-ignored --out runs/fig16       # Fig. 16
+    ringcontact study point    --speed-rpm 10500 --out runs/pointB   # Figs. 13–15 at one speed
+    ringcontact study params   --out runs/fig18-19                   # Figs. 18–19: clearances, misalignments
+    ringcontact study testrig  --out runs/testrig                    # Table 5 rig, Figs. 27–28 trends
+    ringcontact study runup    --out runs/runup                      # run-up with time–frequency cascade
+    ringcontact study map      --out runs/map                        # stick/slip/impact over (speed, clearance)
+    ringcontact study publish  --cascade runs/fig12 --notilt runs/fig16 …   # study-* into reports/published
+    ringcontact study sensitivity --out runs/sensitivity             # §5 findings vs the unstated inputs (slow)
+
+Engineer units at the edge (``_rpm``, ``_mm``); results in SI (see sweep.store for the file
+layout). Figures (PNG + SVG) go to ``--figures`` (default: ``<out>/figures``).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+# one BLAS thread per process (before numpy loads; the sweep's workers inherit it): the matrices
+# are a few dozen wide and threaded BLAS on 2 shared cores only adds contention
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+from contact.errors import RingContactError
+from contact.units import check_positive
+
+
+def _common(p: argparse.ArgumentParser, out: str):
+    p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
+    p.add_argument("--out", default=out, help=f"result directory (default {out})")
+    p.add_argument("--figures", default=None, help="figure directory (default <out>/figures)")
+    p.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+    p.add_argument("--steps-per-rev", type=int, default=256, help="minimum time steps per revolution (default 256)")
+    p.add_argument("--max-revs", type=int, default=1500, help="transient cap in revolutions (default 1500)")
+    p.add_argument("--no-progress", action="store_true", help="no progress line")
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="ringcontact study", description=__doc__.split("\n\n")[0])
+    sub = p.add_subparsers(dest="study", required=True)
+    c = sub.add_parser("cascade", help="steady-state spectrum cascade over speed (Figs. 12, 16, 17)")
+    _common(c, "runs/cascade")
+    c.add_argument("--rpm-max", type=float, default=18000.0, help="highest speed (rpm, default 18000)")
+    c.add_argument("--rpm-min", type=float, default=0.0, help="lowest speed (rpm, default 0)")
+    c.add_argument("--points", type=int, default=61, help="number of speeds (default 61)")
+    c.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (Fig. 16)")
+    c.add_argument("--clearance-mm", type=float, default=None, help="radial clearance (mm, default: scene)")
+    c.add_argument("--misalignment-mm", type=float, default=None, help="misalignment δ (mm, default: scene)")
+    pt = sub.add_parser("point", help="orbits, deflection, time histories, spectra, r1/r2 at one speed (Figs. 13-15)")
+    _common(pt, "runs/point")
+    pt.add_argument("--speed-rpm", type=float, action="append", help="speed (rpm), repeatable (default 4500 and 10500)")
+    pr = sub.add_parser("params", help="1X/2X/3X vs speed for several clearances and misalignments (Figs. 18-19)")
+    _common(pr, "runs/params")
+    pr.add_argument("--rpm-max", type=float, default=18000.0)
+    pr.add_argument("--points", type=int, default=31, help="speeds per curve (default 31)")
+    pr.add_argument("--clearances-mm", default="0.03,0.08", help="comma list besides the scene's (mm)")
+    pr.add_argument("--misalignments-mm", default="0.5,2", help="comma list besides the scene's (mm)")
+    tr = sub.add_parser("testrig", help="Table 5 test rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/3 mm")
+    _common(tr, "runs/testrig")
+    tr.set_defaults(scene="paper-table5-testrig")
+    ru = sub.add_parser("runup", help="run-up/run-down with time-varying speed and a time-frequency cascade")
+    _common(ru, "runs/runup")
+    ru.add_argument("--rpm-start", type=float, default=600.0)
+    ru.add_argument("--rpm-end", type=float, default=18000.0)
+    ru.add_argument("--duration-s", type=float, default=20.0)
+    ru.add_argument("--down", action="store_true", help="run down: from the higher of the two speeds to the lower")
+    mp = sub.add_parser("map", help="where the support sticks, slips and impacts over (speed, clearance)")
+    _common(mp, "runs/map")
+    mp.add_argument("--rpm-max", type=float, default=18000.0)
+    mp.add_argument("--points", type=int, default=13, help="speeds (default 13)")
+    mp.add_argument("--clearances-mm", default="0.01,0.02,0.05,0.1,0.2", help="comma list (mm)")
+    se = sub.add_parser("sensitivity", help="do the paper's Section 5 findings hold for plausible values of the "
+                                            "inputs Table 4 does not give? (slow: ~30 min with 2 workers)")
+    se.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
+    se.add_argument("--out", default="runs/sensitivity", help="result directory (default runs/sensitivity)")
+    se.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+    se.add_argument("--variants", default=None, help="comma list of variant names (default: all; see rotor.studies.sensitivity)")
+    se.add_argument("--report-only", action="store_true", help="no computing: report what is in --out")
+    se.add_argument("--to", default=str(Path(__file__).resolve().parents[1] / "published"),
+                    help="where study-sensitivity.{md,csv,png,svg} go (default reports/published)")
+    se.add_argument("--no-progress", action="store_true", help="no progress line")
+    pb = sub.add_parser("publish", help="figures + notes of finished study directories into reports/published (study-*)")
+    for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup"):
+        pb.add_argument(f"--{k}", default=None, help=f"directory of a finished '{k}' study")
+    pb.add_argument("--to", default=str(Path(__file__).resolve().parents[1] / "published"), help="output directory")
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        return _run(args)
+    except RingContactError as e:
+        print(f"ringcontact study: {type(e).__name__}: {e}", file=sys.stderr)
+        return 2
+
+
+def _floats(text: str, name: str, unit: str) -> list[float]:
+    try:
+        vals = [float(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        from contact.errors import InputError
+        raise InputError(f"{name} = {text!r}: expected a comma-separated list of numbers ({unit})") from None
+    for v in vals:
+        check_positive(name, v, unit)
+    return vals
+
+
+def _options(args) -> dict:
+    check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e5)
+    check_positive("max_revs", args.max_revs, "rev", upper=1e6)
+    return {"steps_per_rev": int(args.steps_per_rev), "max_revs": int(args.max_revs)}
+
+
+def _sweep(tasks, out: Path, args, description: dict):
+    from sweep.store import run_sweep
+    from rotor.studies.steady_state import _scene_model
+
+    sc, _ = _scene_model(args.scene)
+    import dataclasses
+    manifest = {"study": args.study, "description": description, "scene_name": sc.name,
+                "scene": dataclasses.asdict(sc)}
+    t0 = time.perf_counter()
+    s = run_sweep(tasks, out, max_workers=args.workers, manifest=manifest,
+                  progress=False if args.no_progress else None)
+    wall = time.perf_counter() - t0
+    print(f"study {args.study}: {len(tasks)} points, {len(s.computed)} computed, {len(s.reused)} reused, "
+          f"{len(s.recomputed)} recomputed, {len(s.failed)} failed, wall {wall:.1f} s")
+    for k, e in s.failed.items():
+        print(f"  FAILED {k}: {e}", file=sys.stderr)
+    return s, wall
+
+
+def _run(args) -> int:
+    from rotor.studies.steady_state import sweep_tasks
+
+    if args.study == "publish":
+        from reports import studies
+        runs = {k: getattr(args, k) for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup")
+                if getattr(args, k)}
+        for f in studies.publish(runs, Path(args.to)):
+            print(f"  wrote {f}")
+        return 0
+    if args.study == "sensitivity":
+        return _sensitivity(args)
+    out = Path(args.out)
+    figs = Path(args.figures) if args.figures else out / "figures"
+    opts = _options(args)
+    if args.workers < 1:
+        from contact.errors import InputError
+        raise InputError(f"workers = {args.workers}: must be >= 1")
+    if args.study == "cascade":
+        check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
+        speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
+        kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts}
+        if args.clearance_mm is not None:
+            kw["clearance_m"] = check_positive("clearance_mm", args.clearance_mm, "mm", upper=10) * 1e-3
+        if args.misalignment_mm is not None:
+            kw["misalignment_m"] = check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True,
+                                                  upper=50) * 1e-3
+        tasks = sweep_tasks(args.scene, speeds, **kw)
+        s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **kw})
+        _timing(out, s, wall, args)
+        from reports import studies
+        files = studies.cascade_figures(out, figs, tasks=tasks)
+    elif args.study == "point":
+        speeds = args.speed_rpm or [4500.0, 10500.0]
+        tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8)
+        _sweep(tasks, out, args, {"speeds_rpm": speeds})
+        from reports import studies
+        files = studies.point_figures(out, figs, tasks=tasks)
+    elif args.study == "params":
+        speeds = np.linspace(0.0, args.rpm_max, int(args.points))
+        # the scene's own clearance/misalignment is one shared 'base' curve of both figures
+        tasks = sweep_tasks(args.scene, speeds, prefix="base-rpm", options=opts)
+        for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
+            tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
+        for d in _floats(args.misalignments_mm, "misalignments_mm", "mm"):
+            tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", misalignment_m=d * 1e-3, options=opts)
+        _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
+                                  "misalignments_mm": args.misalignments_mm})
+        from reports import studies
+        files = studies.params_figures(out, figs, tasks=tasks)
+    elif args.study == "testrig":
+        tasks = []
+        for rpm in (3600.0, 5500.0):
+            for c in (0.01, 0.05):
+                tasks += sweep_tasks(args.scene, [rpm], prefix=f"c{c:g}mm-d1mm-rpm", clearance_m=c * 1e-3,
+                                     misalignment_m=1e-3, options=opts, history_revs=8)
+            tasks += sweep_tasks(args.scene, [rpm], prefix="c0.05mm-d3mm-rpm", clearance_m=0.05e-3,
+                                 misalignment_m=3e-3, options=opts, history_revs=8)
+        _sweep(tasks, out, args, {"speeds_rpm": [3600, 5500], "clearances_mm": [0.01, 0.05],
+                                  "misalignments_mm": [1, 3]})
+        from reports import studies
+        files = studies.testrig_figures(out, figs, tasks=tasks)
+    elif args.study == "map":
+        speeds = np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points))
+        tasks = []
+        for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
+            tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
+        _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm})
+        from reports import studies
+        files = studies.map_figures(out, figs, tasks=tasks)
+    elif args.study == "runup":
+        from rotor.studies.runup import RunupSpec, run_runup
+
+        a, b = args.rpm_start, args.rpm_end
+        if args.down and a < b:
+            a, b = b, a
+        spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
+                         steps_per_rev=int(args.steps_per_rev))
+        info = run_runup(spec, out)
+        print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")
+        from reports import studies
+        files = studies.runup_figures(out, figs)
+    else:  # pragma: no cover - argparse guards this
+        return 2
+    for f in files:
+        print(f"  wrote {f}")
+    return 0
+
+
+def _sensitivity(args) -> int:
+    """Run (resumably) and report the sensitivity study of :mod:`rotor.studies.sensitivity`."""
+    from contact.errors import InputError
+    from reports import sensitivity as rep
+    from rotor.studies import sensitivity as sens
+    from sweep.store import code_revision, run_sweep
+
+    variants = sens.study_variants()
+    if args.variants:
+        want = [w.strip() for w in args.variants.split(",") if w.strip()]
+        known = {v.name: v for v in variants}
+        bad = [w for w in want if w not in known]
+        if bad:
+            raise InputError(f"variants: unknown {bad}; known: {', '.join(known)}")
+        variants = [known[w] for w in want]
+    out = Path(args.out)
+    if not args.report_only:
+        if args.workers < 1:
+            raise InputError(f"workers = {args.workers}: must be >= 1")
+        tasks = sens.study_tasks(variants, scene=args.scene)
+        t0 = time.perf_counter()
+        s = run_sweep(tasks, out, max_workers=args.workers, progress=False if args.no_progress else None,
+                      manifest={"study": "sensitivity", "variants": {v.name: v.factors for v in variants},
+                                "speeds_rpm": list(sens.SPEEDS_RPM)})
+        wall = time.perf_counter() - t0
+        print(f"study sensitivity: {len(tasks)} tasks, {len(s.computed)} computed, {len(s.reused)} reused, "
+              f"{len(s.failed)} failed, wall {wall:.1f} s")
+        _timing(out, s, wall, args)
+    # the hand-written reading of the published numbers lives in reports/notes/ and is appended, so the
+    # published file stays regenerable by this command alone
+    reading = Path(__file__).resolve().parents[1] / "notes" / "study-sensitivity-reading.md"
+    files = rep.publish(out, Path(args.to), variants, scene=args.scene,
+                        timing=rep.timing_text(out, {t.key for t in sens.study_tasks(variants, scene=args.scene)}),
+                        code=_points_code(out, code_revision()),
+                        extra=reading.read_text(encoding="utf-8") if reading.exists() else "")
+    for f in files:
+        print(f"  wrote {f}")
+    return 0
+
+
+def _points_code(out: Path, current: dict) -> str:
+    """Which code computed the points in ``out`` (its sweep.json), else the current revision."""
+    try:
+        info = json.loads((out / "sweep.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        info = {}
+    commit = info.get("git_commit") or info.get("code_snapshot")
+    if not commit or commit == "unknown":
+        commit = info.get("code_snapshot") or current.get("git_commit", "unknown")
+    dirty = info.get("git_dirty", current.get("git_dirty", False))
+    return f"points computed at commit {str(commit)[:12]}{' (with uncommitted changes)' if dirty else ''}"
+
+
+def _timing(out: Path, s, wall: float, args) -> None:
+    """Append the wall time of this sweep run (points computed, per-point times) to ``timing.json``."""
+    import os
+
+    from contact.files import atomic_write_text
+
+    p = out / "timing.json"
+    runs = json.loads(p.read_text()) if p.exists() else []
+    pw = sorted(s.point_wall_s.values())
+    runs.append({"workers": args.workers, "computed": len(s.computed), "reused": len(s.reused),
+                 "wall_s": round(wall, 2), "point_wall_s_median": round(float(np.median(pw)), 3) if pw else None,
+                 "point_wall_s_sum": round(float(sum(pw)), 2), "load_avg_end": os.getloadavg(),
+                 "finished_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())})
+    atomic_write_text(p, json.dumps(runs, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,422 @@
+"""Build the committed rotor reports ``reports/published/rotor-*.md`` (+ PNG/SVG figures).
+
+``ringcontact rotor report [--out DIR]`` runs everything here: mesh convergence (beams against
+closed forms, the paper's rotors against a fine mesh), the Table 4 rotor's Campbell diagram,
+critical speeds and unbalance response, and the Table 5 test rig against the paper's critical
+speeds with a sensitivity study of the inputs the paper does not give.
+"""
+from __future__ import annotations
+
+import math
+import platform
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from contact.files import atomic_write_text
+from reports import rotor_plots as plots
+from rotor.linear.modes import campbell, critical_speeds, modes
+from rotor.model.assembly import assemble
+from rotor.model.scene import Scene, load_scene, loads_scene
+from rotor.linear.unbalance import forced_response
+
+RPM = 30 / math.pi
+PAPER_TESTRIG_RPM = (3319.0, 5184.0)   # Dai et al. 2025, Section 6.1 / Figure 21
+
+
+# --------------------------------------------------------------------------------------------
+# helpers
+# --------------------------------------------------------------------------------------------
+def _distinct_rest_frequencies(model, count):
+    f = modes(model, 0.0, n_modes=2 * count).frequency_hz
+    return f[0::2][:count]
+
+
+def energy_shares(model, shape) -> dict[str, float]:
+    """Kinetic-energy share of each disk and of the support node in a mode shape (sums ≤ 1)."""
+    total = float(np.real(shape.conj() @ model.M @ shape))
+    out = {}
+    parts = [(d.name, d.station) for d in model.scene.disks] + [(sp.name + " (support)", sp.name)
+                                                                 for sp in model.scene.supports]
+    for label, node in parts:
+        idx = list(model.node_dofs(node))
+        sub = shape[idx]
+        out[label] = float(np.real(sub.conj() @ model.M[np.ix_(idx, idx)] @ sub)) / total
+    return out
+
+
+def forward_criticals(scene: Scene, count: int = 2, max_rpm: float | None = None, elements: int | None = None):
+    """The lowest ``count`` forward 1X critical speeds as ``(rpm, dominant part, energy shares, Modes, index)``."""
+    model = assemble(scene, elements_per_segment=elements)
+    wmax = (max_rpm / RPM) if max_rpm else scene.analysis.max_speed_rad_s
+    crit = critical_speeds(model, wmax, orders=(1,), families=("forward",), n_points=31, n_modes=12)
+    out = []
+    for c in crit[:count]:
+        m = modes(model, c.speed_rad_s, n_modes=12)
+        j = int(np.argmin(np.abs(m.frequency_hz - c.frequency_hz) + 1e9 * (np.array(m.whirl) != "forward")))
+        shares = energy_shares(model, m.shapes[:, j])
+        out.append((c.speed_rpm, max(shares, key=shares.get), shares, m, j))
+    return out
+
+
+def identified_criticals(scene: Scene, max_rpm: float = 20000.0):
+    """Forward 1X critical speeds of the modes localized at disk 2 and at disk 1 (the paper's
+    Figure 21 identifies its first two critical speeds this way): ``{"disk2": entry, "disk1": entry}``
+    with the first critical speed whose kinetic energy is dominated by that disk."""
+    found = {}
+    for entry in forward_criticals(scene, 8, max_rpm=max_rpm):
+        sh = entry[2]
+        key = "disk1" if sh["disk1"] > sh["disk2"] else "disk2"
+        if key not in found:
+            found[key] = entry
+    return found
+
+
+def _beam_text(n_el, bc, L=1.0, D=100.0, d=60.0):
+    bnd = "" if bc == "free" else "".join(
+        f'[[boundaries]]\nstation = "{s}"\nfixed = ["y", "z"]\n' for s in ("A", "B"))
+    return f"""schema = "ringcontact.rotor-scene/1"
+name = "beam"
+title = "uniform beam"
+[[materials]]
+name = "steel"
+density_kg_m3 = 7800
+youngs_modulus_gpa = 200
+poisson_ratio = 0.3
+[[stations]]
+name = "A"
+x_mm = 0
+[[stations]]
+name = "B"
+x_mm = {L * 1e3}
+[[shafts]]
+from = "A"
+to = "B"
+outer_diameter_mm = {D}
+inner_diameter_mm = {d}
+material = "steel"
+elements = {n_el}
+{bnd}"""
+
+
+def _pinned_exact(kind):
+    E, nu, rho, L, D, d = 200e9, 0.3, 7800.0, 1.0, 0.1, 0.06
+    from rotor.model.elements import cowper_shear_coefficient
+    A, I = math.pi / 4 * (D * D - d * d), math.pi / 64 * (D ** 4 - d ** 4)
+    kga = cowper_shear_coefficient(D, d, nu) * E / (2 * (1 + nu)) * A
+    out = []
+    for n in (1, 2, 3, 4):
+        k = n * math.pi / L
+        if kind == "eb":
+            w = k * k * math.sqrt(E * I / (rho * A))
+        else:
+            a = rho * A * rho * I
+            b = kga * k * k * rho * I + rho * A * E * I * k * k + rho * A * kga
+            c = kga * E * I * k ** 4
+            w = math.sqrt((b - math.sqrt(b * b - 4 * a * c)) / (2 * a))
+        out.append(w / (2 * math.pi))
+    return np.array(out)
+
+
+def _table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def _stamp():
+    return (f"Generated by `ringcontact rotor report` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
+            f"Python {platform.python_version()}, numpy {np.__version__}.")
+
+
+# --------------------------------------------------------------------------------------------
+# mesh convergence
+# --------------------------------------------------------------------------------------------
+def mesh_report(out: Path) -> list[Path]:
+    lines = ["# Rotor mesh convergence", "", _stamp(), "",
+             "## Uniform beams against closed forms",
+             "",
+             "Pinned–pinned hollow steel beam, L = 1 m, D/d = 100/60 mm (L/D = 10), first four bending modes. "
+             "Euler–Bernoulli: ω_n = (nπ/L)²√(EI/ρA). Timoshenko: lower root of "
+             "ρAρI ω⁴ − (κGAk²ρI + ρA EI k² + ρA κGA) ω² + κGA EI k⁴ = 0 (k = nπ/L), Cowper κ. "
+             "Entries are relative errors of the finite-element frequency.", ""]
+    rows = []
+    for n in (2, 4, 8, 16, 32, 48, 64):
+        sc = loads_scene(_beam_text(n, "pinned"))
+        eb = _distinct_rest_frequencies(assemble(sc, shear=False, rotary_inertia=False), 4) / _pinned_exact("eb") - 1
+        ti = _distinct_rest_frequencies(assemble(sc), 4) / _pinned_exact("timo") - 1
+        rows.append([n] + [f"{e:.2e}" for e in eb] + [f"{e:.2e}" for e in ti])
+    lines.append(_table(["elements", "EB 1", "EB 2", "EB 3", "EB 4", "Timo 1", "Timo 2", "Timo 3", "Timo 4"], rows))
+    lines += ["",
+              "The Euler–Bernoulli element converges as h⁴ (16 elements: all four modes within 0.1 %). The "
+              "Timoshenko element (exact static shape functions, constant shear strain per element) converges "
+              "as h² once shear matters: for this thick beam 48 elements bring mode 4 within 0.1 %. In a rotor "
+              "the disks and bearings dominate the low modes, so far fewer elements are needed (below).", ""]
+
+    figs = []
+    one_element = {}
+    for name, count in (("paper-table4", 6), ("paper-table5-testrig", 6)):
+        scene = load_scene(name)
+        ref_n = 32
+        ref = _distinct_rest_frequencies(assemble(scene, elements_per_segment=ref_n), count)
+        lines += [f"## `{name}`: natural frequencies at rest against {ref_n} elements per segment", "",
+                  f"Loose support locked. Reference ({ref_n} elements/segment), Hz: "
+                  + ", ".join(f"{f:.3f}" for f in ref) + ".", ""]
+        rows = []
+        need = {}
+        for n in (1, 2, 3, 4, 6, 8, 16):
+            f = _distinct_rest_frequencies(assemble(scene, elements_per_segment=n), count)
+            err = np.abs(f / ref - 1)
+            if n == 1:
+                one_element[name] = err
+            rows.append([n] + [f"{e:.1e}" for e in err])
+            for k in (2, 4, 6):
+                if k not in need and np.all(err[:k] < 1e-3):
+                    need[k] = n
+        lines.append(_table(["elements/segment"] + [f"mode {k + 1}" for k in range(count)], rows))
+        lines += ["", "Elements per segment needed for 0.1 % on the first modes: "
+                  + ", ".join(f"first {k}: {need.get(k, '>16')}" for k in (2, 4, 6)) + ".", ""]
+    e1 = one_element["paper-table4"]
+    lines += [f"The paper uses one element per shaft segment (Figure 9). For the Table 4 rotor that is within "
+              f"{100 * e1[:4].max():.1f} % on the first four modes but {100 * e1[4]:.0f} % off on mode 5; the "
+              f"bundled Table 4 scene keeps one element (the paper's model, and the DOF layout of Eq. 30 that "
+              f"the integrator uses) and `--elements N` refines it. The test-rig scene uses 2–6 elements per "
+              f"segment (12 elements in all)."]
+    p = out / "rotor-mesh.md"
+    atomic_write_text(p, "\n".join(lines) + "\n")
+    return [p] + figs
+
+
+# --------------------------------------------------------------------------------------------
+# Table 4 rotor
+# --------------------------------------------------------------------------------------------
+def _table4_assumptions(scene: Scene):
+    sp, cp, d1 = scene.supports[0], scene.couplings[0], scene.disks[0]
+    return [
+        ["support stiffness / damping to ground k_s, c_s", f"{sp.stiffness_n_m:.3g} N/m, {sp.damping_n_s_m:.3g} N·s/m",
+         "Table 4's 3# bearing k3, c3: the bearing node is merged with node 5, so k3 can only act from the support to ground"],
+        ["support inertia J_s", f"{sp.inertia_kg_m2:.3g} kg·m²", "100 kg steel annulus, bore 220 mm, OD 500 mm"],
+        ["support tilt stiffness / damping k_sθ, c_sθ",
+         f"{sp.angular_stiffness_n_m_rad:.3g} N·m/rad, {sp.angular_damping_n_m_s_rad:.3g} N·m·s/rad",
+         "k_s b², c_s b² with b = 0.1 m (two radial springs k_s/2 at ±100 mm)"],
+        ["transition spring a0", f"{cp.a0_n_m_rad:.3g} N·m/rad", "a bit softer than 150 mm of the adjoining turbine shaft (EI/l = 7.2e6 N·m/rad)"],
+        ["transition spring a1", f"{cp.a1_n_m_rad3:.3g} N·m/rad³", "k_c,θ doubles at 2 mrad (3× the misalignment tilt)"],
+        ["transition-shaft mass m_sp, lever L", f"{cp.shaft_mass_kg:.3g} kg, {cp.lever_m * 1e3:.3g} mm",
+         "steel sleeve D140/d100 mm, 150 mm long; L = half its length"],
+        ["disk skew τ, phase φ", f"{d1.skew_rad * 1e3:.3g} mrad, {math.degrees(d1.skew_phase_rad):.3g}°",
+         "not given; 1X attributed to unbalance in the paper"],
+        ["collision factor c_c", f"{scene.loose_support.collision_factor_s_m:.3g} s/m", "Table 4's 100 \"s/N\" read as s/m"],
+    ]
+
+
+def table4_report(out: Path) -> list[Path]:
+    scene = load_scene("paper-table4")
+    model = assemble(scene)
+    wmax = scene.analysis.max_speed_rad_s
+    speeds = np.linspace(0, wmax, scene.analysis.speed_points)
+    camp = campbell(model, speeds, n_modes=10)
+    crit = critical_speeds(model, wmax, n_modes=14)
+    files = plots.save(plots.campbell_figure(camp, "Campbell diagram, Table 4 rotor (loose support locked)", crit),
+                       out / "rotor-table4-campbell")
+    resp = forced_response(model, np.linspace(wmax / 300, wmax, 300))
+    files += plots.save(plots.response_figure(model, resp, ["disk1", "disk2", "5"],
+                                              "Linear unbalance response (1X), Table 4 rotor"),
+                        out / "rotor-table4-unbalance")
+    rest = modes(model, 0.0, n_modes=12)
+    fwd = [c for c in crit if c.whirl == "forward" and c.order == 1]
+    lines = ["# Table 4 rotor (aero-engine low-pressure rotor): linear analyses", "", _stamp(), "",
+             "Scene `paper-table4` (Dai et al. 2025, Table 4; unspecified inputs documented in the scene file). "
+             "One element per shaft segment as in the paper (28 DOFs); loose support locked "
+             "(bearing and support move together); transition shaft linearised at a0; undamped whirl "
+             "frequencies.", "",
+             "## Natural frequencies at rest", "",
+             _table(["mode", "frequency (Hz)", "frequency (rpm)"],
+                    [[k + 1, f"{f:.2f}", f"{f * 60:.0f}"] for k, f in enumerate(rest.frequency_hz[0::2])]),
+             "", "## Critical speeds up to 18 000 rpm", "",
+             _table(["order", "speed (rpm)", "whirl frequency (Hz)", "whirl"],
+                    [[f"{c.order}X", f"{c.speed_rpm:.0f}", f"{c.frequency_hz:.2f}", c.whirl] for c in crit]), "",
+             "Forward 1X critical speeds with the kinetic-energy shares of the disks and the support node: "
+             + "; ".join(f"{e[0]:.0f} rpm ({', '.join(f'{k} {v:.0%}' for k, v in e[2].items())})"
+                         for e in forward_criticals(scene, len(fwd), max_rpm=wmax * RPM)) + ". "
+             "The paper shows no Campbell diagram for this rotor; its response cascades (Figure 12) pick "
+             "4500 rpm (point A, \"localized vibration on the front end of the rotor, with significant "
+             "lateral displacement at disk 1\") and 10 500 rpm (point B, \"significant bending deformation\") "
+             "as speeds of high response. They lie just above the 2nd forward critical speed here, which is "
+             "indeed dominated by disk 1, and the 3rd. The nonlinear loose support (clearance, stick–slip), "
+             "and the assumed support tilt stiffness and a0, move these values.", "",
+             "## Inputs the paper does not give (defaults of the scene, reasons in `rotor/scenes/paper-table4.toml`)",
+             "", _table(["input", "value", "reason (short)"], _table4_assumptions(scene)), "",
+             "![Campbell diagram](rotor-table4-campbell.png)", "",
+             "![Unbalance response](rotor-table4-unbalance.png)", ""]
+    p = out / "rotor-table4.md"
+    atomic_write_text(p, "\n".join(lines) + "\n")
+    return [p] + files
+
+
+# --------------------------------------------------------------------------------------------
+# Table 5 test rig
+# --------------------------------------------------------------------------------------------
+def _scale_shafts(scene, idx, factor):
+    shafts = list(scene.shafts)
+    for i in idx:
+        s = shafts[i]
+        shafts[i] = replace(s, outer_diameter_m=s.outer_diameter_m * factor, inner_diameter_m=s.inner_diameter_m * factor)
+    return replace(scene, shafts=tuple(shafts))
+
+
+def _move_station(scene, name, factor_from_left):
+    st = list(scene.stations)
+    i = [s.name for s in st].index(name)
+    left = st[i - 1].x_m
+    st[i] = replace(st[i], x_m=left + (st[i].x_m - left) * factor_from_left)
+    return replace(scene, stations=tuple(st))
+
+
+def _support(scene, **kw):
+    return replace(scene, supports=(replace(scene.supports[0], **kw),) + scene.supports[1:])
+
+
+TESTRIG_INPUTS = {
+    # label: function(scene, factor) -> scene
+    "front shaft diameter (30 mm, assumed)": lambda s, f: _scale_shafts(s, (0, 1), f),
+    "slender shaft diameter (20 mm, assumed)": lambda s, f: _scale_shafts(s, (2, 3), f),
+    "disk 2 distance from 3b (750 mm, assumed)": lambda s, f: _move_station(s, "4", f),
+    "disk 1 distance from bearing 1 (100 mm, assumed)": lambda s, f: _move_station(s, "2", f),
+    "Young's modulus (206 GPa, assumed)": lambda s, f: replace(s, shafts=tuple(
+        replace(sh, material=replace(sh.material, youngs_modulus_pa=sh.material.youngs_modulus_pa * f))
+        for sh in s.shafts)),
+    "transition a0 (2e4 N·m/rad, assumed)": lambda s, f: replace(s, couplings=(
+        replace(s.couplings[0], a0_n_m_rad=s.couplings[0].a0_n_m_rad * f),)),
+    "frame tilt stiffness k_sθ (2e4 N·m/rad, assumed)": lambda s, f: _support(
+        s, angular_stiffness_n_m_rad=s.supports[0].angular_stiffness_n_m_rad * f),
+    "frame inertia J_s (0.06 kg·m², assumed)": lambda s, f: _support(s, inertia_kg_m2=s.supports[0].inertia_kg_m2 * f),
+    "frame mass m_s (15 kg, Table 5)": lambda s, f: _support(s, mass_kg=s.supports[0].mass_kg * f),
+    "frame stiffness k_s = k3 (2e6 N/m, Table 5)": lambda s, f: _support(s, stiffness_n_m=s.supports[0].stiffness_n_m * f),
+}
+
+
+SCAN_DIAMETERS_MM = (15.0, 20.0, 25.0, 30.0, 35.0)
+SCAN_POSITIONS = (0.5, 0.75, 0.88)
+
+
+def _rpm_pair(found):
+    return np.array([found[k][0] if k in found else np.nan for k in ("disk2", "disk1")])
+
+
+def testrig_report(out: Path) -> list[Path]:
+    scene = load_scene("paper-table5-testrig")
+    model = assemble(scene)
+    paper = np.array(PAPER_TESTRIG_RPM)
+    a_found = identified_criticals(scene)
+    a_rpm = _rpm_pair(a_found)
+    # reading B: the 15 kg frame does not move with the rotor (k3 acts from node 5 to ground)
+    scene_b = _support(scene, mass_kg=1e-3, inertia_kg_m2=1e-6)
+    b_found = identified_criticals(scene_b)
+    b_rpm = _rpm_pair(b_found)
+
+    # one-parameter fit under reading B: front-shaft diameter for the disk-1 mode
+    def miss(logf):
+        found = identified_criticals(_scale_shafts(scene_b, (0, 1), math.exp(logf)))
+        return math.log(found["disk1"][0] / paper[1])
+
+    from scipy.optimize import brentq
+    logf = brentq(miss, math.log(0.3), math.log(1.5), xtol=1e-5)
+    f_front = math.exp(logf)
+    c_found = identified_criticals(_scale_shafts(scene_b, (0, 1), f_front))
+    c_rpm = _rpm_pair(c_found)
+
+    scan = []
+    for dia in SCAN_DIAMETERS_MM:
+        for pos in SCAN_POSITIONS:
+            sc = _move_station(_scale_shafts(scene, (2, 3), dia / 20.0), "4", pos * 850 / 750)
+            found = identified_criticals(sc)
+            if "disk2" in found:
+                scan.append(found["disk2"][0])
+    scan_max = max(scan)
+
+    sens = {}
+    for label, fn in TESTRIG_INPUTS.items():
+        hi = _rpm_pair(identified_criticals(fn(scene, 1.05)))
+        lo = _rpm_pair(identified_criticals(fn(scene, 1 / 1.05)))
+        sens[label] = (np.log(hi) - np.log(lo)) / (2 * math.log(1.05))
+
+    def top(k):
+        order = sorted(sens, key=lambda lab: -abs(sens[lab][k]))[:3]
+        return ", ".join(f"{lab} {sens[lab][k]:+.2f}" for lab in order)
+
+    all_a = forward_criticals(scene, 4, max_rpm=20000)
+    wmax = scene.analysis.max_speed_rad_s
+    camp = campbell(model, np.linspace(0, wmax, scene.analysis.speed_points), n_modes=8)
+    crit = critical_speeds(model, wmax, n_modes=12)
+    files = plots.save(plots.campbell_figure(camp, "Campbell diagram, Table 5 test rig (scene as bundled)", crit),
+                       out / "rotor-testrig-campbell")
+    files += plots.save(plots.mode_shape_figure(
+        model, [(f"{e[0]:.0f} rpm, {e[1]}", e[3], e[4]) for e in all_a[:3]],
+        "Test rig: forward modes at the first 1X critical speeds (cf. paper Figure 21)"),
+        out / "rotor-testrig-modes")
+
+    def shares(e):
+        return ", ".join(f"{k} {v:.0%}" for k, v in e[2].items())
+
+    rows = [["1: localized at disk 2", f"{paper[0]:.0f}", f"{a_rpm[0]:.0f} ({a_rpm[0] / paper[0] - 1:+.1%})",
+             f"{b_rpm[0]:.0f} ({b_rpm[0] / paper[0] - 1:+.1%})", f"{c_rpm[0]:.0f} ({c_rpm[0] / paper[0] - 1:+.1%})"],
+            ["2: localized at disk 1", f"{paper[1]:.0f}", f"{a_rpm[1]:.0f} ({a_rpm[1] / paper[1] - 1:+.1%})",
+             f"{b_rpm[1]:.0f} ({b_rpm[1] / paper[1] - 1:+.1%})", f"{c_rpm[1]:.0f} (fitted)"]]
+    lines = ["# Table 5 test rig: critical speeds against the paper", "", _stamp(), "",
+             "Scene `paper-table5-testrig`. Table 5 of Dai et al. (2025) gives masses, disk inertias, bearing "
+             "spacings (200 and 850 mm), support stiffnesses and the loose-support data, but not the shaft "
+             "diameters, the disk positions, the material, the transition-shaft stiffness or the frame's "
+             "angular properties. The scene's values for those are a-priori engineering guesses (documented "
+             "in the file), chosen before any comparison with the paper. All results: loose support locked "
+             "(bearing and frame move together), undamped, forward whirl, 1X.", "",
+             "The paper (Section 6.1, Figure 21) reports the first two critical speeds, 3319 rpm as a "
+             "localized vibration of disk 2 and 5184 rpm as a localized vibration of disk 1. Modes are "
+             "matched here by the same criterion: the first forward critical speed in which disk 2 carries "
+             "more kinetic energy than disk 1 (resp. the reverse).", "",
+             _table(["paper mode", "paper (rpm)", "A: scene as bundled", "B: frame mass not moving",
+                     f"C: B + front shaft {30 * f_front:.1f} mm"], rows), "",
+             "* **A** is the bundled scene: the 15 kg 3# frame is the support node of the loose support "
+             "(paper Eq. 52) on k_s = k3 = 2e6 N/m, and moves with the bearing when locked.",
+             "* **B** reads k3 as a spring from the rotor to ground with the frame mass left out (m_s → 0). "
+             "With every other a-priori value unchanged, the disk-2 mode lands on the paper's value. With the "
+             "frame moving (A), disk 2 and the frame bounce together on k3 (√(k3/(m2 + m_b + m_s))/2π = "
+             "46.8 Hz = 2810 rpm if the shaft did not help); a scan of the slender-shaft diameter "
+             f"({', '.join(f'{d:.0f}' for d in SCAN_DIAMETERS_MM)} mm) and of the disk-2 position "
+             f"({', '.join(f'{100 * x:.0f}' for x in SCAN_POSITIONS)} % of the 3b–5 span) gives at most "
+             f"{scan_max:.0f} rpm for the disk-2 mode in case A. The paper's 3319 rpm therefore suggests that "
+             "its finite-element model did not carry the 15 kg frame on k3.",
+             f"* **C** additionally fits the one input that controls the disk-1 mode, the front-shaft diameter "
+             f"(30 mm → {30 * f_front:.1f} mm), to the paper's 5184 rpm; the disk-2 mode, not fitted, stays "
+             f"at {c_rpm[0]:.0f} rpm. A fit, not a prediction: it shows that plausible laboratory dimensions "
+             f"reproduce both published values, not that these are the rig's dimensions.", "",
+             "Forward 1X critical speeds of scene A up to 20 000 rpm, with kinetic-energy shares: "
+             + "; ".join(f"{e[0]:.0f} rpm ({shares(e)})" for e in all_a) + ". The frame-rocking mode of "
+             "scene A (dominated by the support node) has no counterpart in the paper's list, again "
+             "suggesting a stiffer or non-participating frame in the paper's model.", "",
+             "## Which unspecified inputs drive the difference", "",
+             "Logarithmic sensitivity d ln(n_c) / d ln(p) of the two identified critical speeds of scene A "
+             "(central differences, ±5 %): 0.5 means +10 % in the input gives +5 % in the critical speed.", "",
+             _table(["input (scene value)", "disk-2 mode", "disk-1 mode"],
+                    [[k, f"{v[0]:+.3f}", f"{v[1]:+.3f}"] for k, v in sens.items()]), "",
+             f"Largest local sensitivities: disk-2 mode: {top(0)}; disk-1 mode: {top(1)}. "
+             "Beyond these local numbers, the disk-2 mode depends decisively on whether the 3# frame moves "
+             "(case B). The disk-1 mode has small local sensitivities at the a-priori "
+             "30 mm front shaft because that shaft is much stiffer than the bearings (k1 = k2 = 4e6 N/m): "
+             "the mode is then close to the rigid-shaft limit √((k1+k2)/m1)/2π = 150 Hz = 9000 rpm, lowered "
+             "by the coupling to the rest of the rotor. Only a front shaft about as compliant as its bearings "
+             "brings it down to the paper's 5184 rpm (case C), so the front-shaft diameter is the input that "
+             "explains that difference, although its local sensitivity at 30 mm is small. The transition "
+             "stiffness a0, the frame inertia J_s and the disk-1 position matter little for both modes.", "",
+             "![Campbell diagram](rotor-testrig-campbell.png)", "",
+             "![Mode shapes](rotor-testrig-modes.png)", ""]
+    p = out / "rotor-testrig.md"
+    atomic_write_text(p, "\n".join(lines) + "\n")
+    return [p] + files
+
+
+def build_reports(out_dir: str | Path = "reports/published") -> list[Path]:
+    """Regenerate every rotor report under ``out_dir``; returns the files written."""
+    out = Path(out_dir)
+    return mesh_report(out) + table4_report(out) + testrig_report(out)

@@ -1,0 +1,1 @@
+"""Linear rotor analyses: modes, Campbell diagram, critical speeds, unbalance response."""

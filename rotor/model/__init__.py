@@ -1,0 +1,1 @@
+"""Rotor model: elements, scenes (TOML), assembly of the global matrices."""

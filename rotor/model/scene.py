@@ -1,0 +1,583 @@
+"""Rotor scenes: TOML files in engineer units, loaded into frozen dataclasses in SI units.
+
+A scene file names every quantity with its unit (``x_mm``, ``stiffness_n_per_m``,
+``unbalance_g_mm``); :func:`load_scene` converts to SI and validates ranges. Any bad field
+(missing, negative, inner diameter ≥ outer, unknown unit, unknown name) raises one
+:class:`~contact.errors.InputError` naming the file, the table entry, the field, its value
+and unit. An unreadable or non-TOML file raises :class:`~contact.errors.DatasetError`.
+
+File layout (see ``rotor/scenes/*.toml`` for complete examples)::
+
+    schema = "ringcontact.rotor-scene/1"
+    name = "..."            # short id
+    title = "..."           # one line
+    source = "..."          # where the numbers come from
+    [[materials]]  name, density_kg_m3, youngs_modulus_gpa, poisson_ratio
+    [[stations]]   name, x_mm                          # one rotor node each, in DOF order
+    [[shafts]]     from, to, outer_diameter_mm, inner_diameter_mm, material, elements
+    [[disks]]      name, station, mass_kg, polar_inertia_kg_m2, diametral_inertia_kg_m2,
+                   unbalance_g_mm, unbalance_phase_deg, skew_mrad, skew_phase_deg
+    [[point_masses]] name, station, mass_kg, diametral_inertia_kg_m2
+    [[bearings]]   name, station, stiffness_n_per_m, damping_n_s_per_m,
+                   angular_stiffness_n_m_per_rad, angular_damping_n_m_s_per_rad
+    [[supports]]   name, station, mass_kg, inertia_kg_m2, stiffness_n_per_m, damping_n_s_per_m,
+                   angular_stiffness_n_m_per_rad, angular_damping_n_m_s_per_rad
+    [[couplings]]  name, node_a, node_b, a0_n_m_per_rad, a1_n_m_per_rad3, equal_lateral,
+                   shaft_mass_kg (m_sp), lever_mm (L)
+    [[boundaries]] station, fixed = ["y", "z", ...]
+    [loose_support]  bearing_station, support, clearance_mm, ring_width_mm, ...
+    [misalignment]   coupling, bearing_station, offset_mm
+    [analysis]       max_speed_rpm, speed_points, modes
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+from contact.errors import DatasetError, InputError
+
+SCENE_DIR = Path(__file__).resolve().parents[1] / "scenes"
+SCHEMA = "ringcontact.rotor-scene/1"
+DOF_LABELS = ("y", "z", "θy", "θz")
+_DOF_INPUT = {"y": "y", "z": "z", "θy": "θy", "θz": "θz", "theta_y": "θy", "theta_z": "θz"}
+
+
+# --------------------------------------------------------------------------------------------
+# dataclasses (SI units)
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Material:
+    name: str
+    density_kg_m3: float
+    youngs_modulus_pa: float
+    poisson_ratio: float
+
+
+@dataclass(frozen=True)
+class Station:
+    """A named rotor node at axial position ``x_m``; the order of stations is the DOF order."""
+    name: str
+    x_m: float
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """Uniform hollow shaft segment between two stations, cut into ``elements`` Timoshenko elements."""
+    start: str
+    end: str
+    outer_diameter_m: float
+    inner_diameter_m: float
+    material: Material
+    elements: int = 1
+
+
+@dataclass(frozen=True)
+class Disk:
+    """Rigid disk (Dai et al. 2025, Eqs. 39–40): unbalance ``m·e`` and principal-axis skew ``τ``."""
+    name: str
+    station: str
+    mass_kg: float
+    polar_inertia_kg_m2: float
+    diametral_inertia_kg_m2: float
+    unbalance_kg_m: float = 0.0
+    unbalance_phase_rad: float = 0.0
+    skew_rad: float = 0.0
+    skew_phase_rad: float = 0.0
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """Non-rotating lumped mass moving with a station (e.g. the 3# bearing mass ``m_b``)."""
+    name: str
+    station: str
+    mass_kg: float
+    diametral_inertia_kg_m2: float = 0.0
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """Isotropic linear bearing from a station to ground."""
+    name: str
+    station: str
+    stiffness_n_m: float
+    damping_n_s_m: float = 0.0
+    angular_stiffness_n_m_rad: float = 0.0
+    angular_damping_n_m_s_rad: float = 0.0
+
+
+@dataclass(frozen=True)
+class SupportNode:
+    """Extra node of the loose support (Dai et al. 2025, Eq. 52), tied to ground only.
+
+    The support sits at the axial position of ``station``; its contact with the bearing is
+    not part of the linear model.
+    """
+    name: str
+    station: str
+    mass_kg: float
+    inertia_kg_m2: float
+    stiffness_n_m: float
+    damping_n_s_m: float
+    angular_stiffness_n_m_rad: float
+    angular_damping_n_m_s_rad: float
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """Transition shaft between two coincident stations (Dai et al. 2025, Eqs. 31–32, 34).
+
+    Angular spring ``k_c,θ = a0 + a1 θ²`` on the relative rotation, optional equal lateral
+    displacement constraint, and the transition-shaft mass ``m_sp`` and lever ``L`` that set the
+    2X misalignment excitation.
+    """
+    name: str
+    node_a: str
+    node_b: str
+    a0_n_m_rad: float
+    a1_n_m_rad3: float
+    equal_lateral: bool = True
+    shaft_mass_kg: float = 0.0
+    lever_m: float = 0.0
+
+
+@dataclass(frozen=True)
+class Boundary:
+    station: str
+    fixed: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class LooseSupport:
+    """Parameters of the bearing-in-support clearance (used by the nonlinear integrator)."""
+    bearing_station: str
+    support: str
+    clearance_m: float
+    ring_width_m: float
+    bearing_modulus_pa: float
+    bearing_poisson: float
+    support_modulus_pa: float
+    support_poisson: float
+    collision_factor_s_m: float
+    friction_coefficient: float
+    preload_n: float
+
+
+@dataclass(frozen=True)
+class Misalignment:
+    """Offset ``δ`` (in +y) of ``bearing_station`` relative to the bearings of the other rotor
+    part; the part beyond ``coupling.node_b`` rotates rigidly about ``node_b`` (Eq. 33)."""
+    coupling: str
+    bearing_station: str
+    offset_m: float
+
+
+@dataclass(frozen=True)
+class Analysis:
+    max_speed_rad_s: float = 2000 * math.pi / 30
+    speed_points: int = 61
+    modes: int = 8
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    title: str
+    source: str
+    materials: tuple[Material, ...]
+    stations: tuple[Station, ...]
+    shafts: tuple[Shaft, ...]
+    disks: tuple[Disk, ...] = ()
+    point_masses: tuple[PointMass, ...] = ()
+    bearings: tuple[Bearing, ...] = ()
+    supports: tuple[SupportNode, ...] = ()
+    couplings: tuple[Coupling, ...] = ()
+    boundaries: tuple[Boundary, ...] = ()
+    loose_support: LooseSupport | None = None
+    misalignment: Misalignment | None = None
+    analysis: Analysis = field(default_factory=Analysis)
+    path: str = ""
+
+    def station(self, name: str) -> Station:
+        for s in self.stations:
+            if s.name == name:
+                return s
+        raise InputError(f"scene {self.name!r}: no station named {name!r}")
+
+
+# --------------------------------------------------------------------------------------------
+# field specifications: name -> (base, unit, converter, check, default)
+# --------------------------------------------------------------------------------------------
+_REQ = object()  # marker: field is required
+
+
+def _num(scale: float = 1.0):
+    return lambda v: float(v) * scale
+
+
+_ID = _num()
+_MM = _num(1e-3)
+_GPA = _num(1e9)
+_DEG = _num(math.pi / 180)
+_MRAD = _num(1e-3)
+_GMM = _num(1e-6)        # g·mm -> kg·m
+_RPM = _num(math.pi / 30)
+
+
+def _text(v):
+    if not isinstance(v, str) or not v.strip():
+        raise TypeError("must be a non-empty string")
+    return v
+
+
+def _int(v):
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise TypeError("must be an integer")
+    return v
+
+
+def _bool(v):
+    if not isinstance(v, bool):
+        raise TypeError("must be true or false")
+    return v
+
+
+def _dofs(v):
+    if not isinstance(v, list) or not v:
+        raise TypeError("must be a non-empty list of 'y', 'z', 'theta_y', 'theta_z'")
+    out = []
+    for item in v:
+        if item not in _DOF_INPUT:
+            raise TypeError(f"unknown DOF {item!r} (use 'y', 'z', 'theta_y', 'theta_z')")
+        out.append(_DOF_INPUT[item])
+    return tuple(out)
+
+
+# checks on the SI value
+def _pos(v):
+    return v > 0
+
+
+def _nonneg(v):
+    return v >= 0
+
+
+def _any(v):
+    return True
+
+
+def _nu(v):
+    return -1 < v < 0.5
+
+
+def _unit_interval(v):
+    return 0 <= v <= 1
+
+
+_CHECK_TEXT = {_pos: "must be > 0", _nonneg: "must be >= 0", _nu: "must be in (-1, 0.5)",
+               _unit_interval: "must be in [0, 1]", _any: ""}
+
+# (toml key, python attribute, unit shown in messages, converter, check, default)
+Spec = tuple[str, str, str, Callable[[Any], Any], Callable[[Any], bool], Any]
+
+_MATERIAL: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("density_kg_m3", "density_kg_m3", "kg/m^3", _ID, _nonneg, _REQ),
+    ("youngs_modulus_gpa", "youngs_modulus_pa", "GPa", _GPA, _pos, _REQ),
+    ("poisson_ratio", "poisson_ratio", "", _ID, _nu, _REQ),
+]
+_STATION: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("x_mm", "x_m", "mm", _MM, _any, _REQ),
+]
+_SHAFT: list[Spec] = [
+    ("from", "start", "", _text, _any, _REQ),
+    ("to", "end", "", _text, _any, _REQ),
+    ("outer_diameter_mm", "outer_diameter_m", "mm", _MM, _pos, _REQ),
+    ("inner_diameter_mm", "inner_diameter_m", "mm", _MM, _nonneg, 0.0),
+    ("material", "material", "", _text, _any, _REQ),
+    ("elements", "elements", "", _int, _pos, 1),
+]
+_DISK: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("station", "station", "", _text, _any, _REQ),
+    ("mass_kg", "mass_kg", "kg", _ID, _nonneg, _REQ),
+    ("polar_inertia_kg_m2", "polar_inertia_kg_m2", "kg·m^2", _ID, _nonneg, _REQ),
+    ("diametral_inertia_kg_m2", "diametral_inertia_kg_m2", "kg·m^2", _ID, _nonneg, _REQ),
+    ("unbalance_g_mm", "unbalance_kg_m", "g·mm", _GMM, _nonneg, 0.0),
+    ("unbalance_phase_deg", "unbalance_phase_rad", "deg", _DEG, _any, 0.0),
+    ("skew_mrad", "skew_rad", "mrad", _MRAD, _any, 0.0),
+    ("skew_phase_deg", "skew_phase_rad", "deg", _DEG, _any, 0.0),
+]
+_POINT_MASS: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("station", "station", "", _text, _any, _REQ),
+    ("mass_kg", "mass_kg", "kg", _ID, _nonneg, _REQ),
+    ("diametral_inertia_kg_m2", "diametral_inertia_kg_m2", "kg·m^2", _ID, _nonneg, 0.0),
+]
+_BEARING: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("station", "station", "", _text, _any, _REQ),
+    ("stiffness_n_per_m", "stiffness_n_m", "N/m", _ID, _nonneg, _REQ),
+    ("damping_n_s_per_m", "damping_n_s_m", "N·s/m", _ID, _nonneg, 0.0),
+    ("angular_stiffness_n_m_per_rad", "angular_stiffness_n_m_rad", "N·m/rad", _ID, _nonneg, 0.0),
+    ("angular_damping_n_m_s_per_rad", "angular_damping_n_m_s_rad", "N·m·s/rad", _ID, _nonneg, 0.0),
+]
+_SUPPORT: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("station", "station", "", _text, _any, _REQ),
+    ("mass_kg", "mass_kg", "kg", _ID, _pos, _REQ),
+    ("inertia_kg_m2", "inertia_kg_m2", "kg·m^2", _ID, _pos, _REQ),
+    ("stiffness_n_per_m", "stiffness_n_m", "N/m", _ID, _nonneg, _REQ),
+    ("damping_n_s_per_m", "damping_n_s_m", "N·s/m", _ID, _nonneg, _REQ),
+    ("angular_stiffness_n_m_per_rad", "angular_stiffness_n_m_rad", "N·m/rad", _ID, _nonneg, _REQ),
+    ("angular_damping_n_m_s_per_rad", "angular_damping_n_m_s_rad", "N·m·s/rad", _ID, _nonneg, _REQ),
+]
+_COUPLING: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("node_a", "node_a", "", _text, _any, _REQ),
+    ("node_b", "node_b", "", _text, _any, _REQ),
+    ("a0_n_m_per_rad", "a0_n_m_rad", "N·m/rad", _ID, _nonneg, _REQ),
+    ("a1_n_m_per_rad3", "a1_n_m_rad3", "N·m/rad^3", _ID, _nonneg, 0.0),
+    ("equal_lateral", "equal_lateral", "", _bool, _any, True),
+    ("shaft_mass_kg", "shaft_mass_kg", "kg", _ID, _nonneg, 0.0),
+    ("lever_mm", "lever_m", "mm", _MM, _nonneg, 0.0),
+]
+_BOUNDARY: list[Spec] = [
+    ("station", "station", "", _text, _any, _REQ),
+    ("fixed", "fixed", "", _dofs, _any, _REQ),
+]
+_LOOSE: list[Spec] = [
+    ("bearing_station", "bearing_station", "", _text, _any, _REQ),
+    ("support", "support", "", _text, _any, _REQ),
+    ("clearance_mm", "clearance_m", "mm", _MM, _pos, _REQ),
+    ("ring_width_mm", "ring_width_m", "mm", _MM, _pos, _REQ),
+    ("bearing_modulus_gpa", "bearing_modulus_pa", "GPa", _GPA, _pos, _REQ),
+    ("bearing_poisson_ratio", "bearing_poisson", "", _ID, _nu, _REQ),
+    ("support_modulus_gpa", "support_modulus_pa", "GPa", _GPA, _pos, _REQ),
+    ("support_poisson_ratio", "support_poisson", "", _ID, _nu, _REQ),
+    ("collision_factor_s_per_m", "collision_factor_s_m", "s/m", _ID, _nonneg, 0.0),
+    ("friction_coefficient", "friction_coefficient", "", _ID, _nonneg, 0.0),
+    ("preload_n", "preload_n", "N", _ID, _nonneg, 0.0),
+]
+_MISALIGN: list[Spec] = [
+    ("coupling", "coupling", "", _text, _any, _REQ),
+    ("bearing_station", "bearing_station", "", _text, _any, _REQ),
+    ("offset_mm", "offset_m", "mm", _MM, _any, _REQ),
+]
+_ANALYSIS: list[Spec] = [
+    ("max_speed_rpm", "max_speed_rad_s", "rpm", _RPM, _pos, Analysis.max_speed_rad_s),
+    ("speed_points", "speed_points", "", _int, _pos, Analysis.speed_points),
+    ("modes", "modes", "", _int, _pos, Analysis.modes),
+]
+
+_UNIT_TOKENS = {"mm", "kg", "gpa", "n", "g", "deg", "mrad", "rpm", "s"}
+
+
+def _bases(specs: list[Spec]) -> dict[str, str]:
+    """Map each field's base name (its key cut at the first unit token) to the full key."""
+    out = {}
+    for key, _, unit, *_ in specs:
+        if not unit:
+            continue
+        tokens = key.split("_")
+        for i, tok in enumerate(tokens):
+            if i > 0 and tok in _UNIT_TOKENS:
+                out["_".join(tokens[:i])] = key
+                break
+    return out
+
+
+def _parse_table(raw: Any, specs: list[Spec], where: str, cls):
+    if not isinstance(raw, dict):
+        raise InputError(f"{where}: must be a table, got {type(raw).__name__}")
+    known = {s[0] for s in specs}
+    bases = _bases(specs)
+    for key in raw:
+        if key in known:
+            continue
+        for base, good in sorted(bases.items(), key=lambda kv: -len(kv[0])):
+            if key.startswith(base + "_"):
+                raise InputError(f"{where}.{key}: unknown unit {key[len(base) + 1:]!r} for {base!r}; "
+                                 f"write it as {good!r}")
+        raise InputError(f"{where}.{key}: unknown field; allowed fields are {', '.join(sorted(known))}")
+    kwargs = {}
+    for key, attr, unit, conv, check, default in specs:
+        if key not in raw:
+            if default is _REQ:
+                raise InputError(f"{where}: missing field {key!r}" + (f" ({unit})" if unit else ""))
+            kwargs[attr] = default
+            continue
+        value = raw[key]
+        try:
+            if conv not in (_text, _int, _bool, _dofs) and (isinstance(value, bool) or not isinstance(value, (int, float))):
+                raise TypeError("must be a number")
+            si = conv(value)
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"{where}.{key} = {value!r}: {exc}") from None
+        shown = f"{value:g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else repr(value)
+        if isinstance(si, float) and not math.isfinite(si):
+            raise InputError(f"{where}.{key} = {shown} {unit}: must be finite")
+        if not check(si):
+            raise InputError(f"{where}.{key} = {shown} {unit}".rstrip() + f": {_CHECK_TEXT[check]}")
+        kwargs[attr] = si
+    return kwargs
+
+
+def _list(doc: dict, key: str, where: str) -> list:
+    raw = doc.get(key, [])
+    if not isinstance(raw, list):
+        raise InputError(f"{where}: [[{key}]] must be an array of tables")
+    return raw
+
+
+def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
+    """Validate a parsed TOML document and build a :class:`Scene` (SI units)."""
+    allowed = {"schema", "name", "title", "source", "materials", "stations", "shafts", "disks", "point_masses",
+               "bearings", "supports", "couplings", "boundaries", "loose_support", "misalignment", "analysis",
+               "notes", "assumptions"}
+    for key in doc:
+        if key not in allowed:
+            raise InputError(f"{origin}: unknown top-level field {key!r}; allowed are {', '.join(sorted(allowed))}")
+    if doc.get("schema") != SCHEMA:
+        raise InputError(f"{origin}: schema = {doc.get('schema')!r}: must be {SCHEMA!r}")
+    for key in ("name", "title"):
+        if not isinstance(doc.get(key), str) or not doc[key].strip():
+            raise InputError(f"{origin}: missing field {key!r} (text)")
+    source = doc.get("source", "")
+
+    materials = {}
+    for i, raw in enumerate(_list(doc, "materials", origin)):
+        kw = _parse_table(raw, _MATERIAL, f"{origin}: materials[{i}]", Material)
+        if kw["name"] in materials:
+            raise InputError(f"{origin}: materials[{i}].name = {kw['name']!r}: duplicate")
+        materials[kw["name"]] = Material(**kw)
+
+    stations: list[Station] = []
+    for i, raw in enumerate(_list(doc, "stations", origin)):
+        st = Station(**_parse_table(raw, _STATION, f"{origin}: stations[{i}]", Station))
+        if any(s.name == st.name for s in stations):
+            raise InputError(f"{origin}: stations[{i}].name = {st.name!r}: duplicate")
+        stations.append(st)
+    if not stations:
+        raise InputError(f"{origin}: missing [[stations]] (at least two)")
+    names = {s.name: s for s in stations}
+
+    def need_station(where, field_, value):
+        if value not in names:
+            raise InputError(f"{where}.{field_} = {value!r}: no such station (have {', '.join(names)})")
+
+    shafts = []
+    for i, raw in enumerate(_list(doc, "shafts", origin)):
+        where = f"{origin}: shafts[{i}]"
+        kw = _parse_table(raw, _SHAFT, where, Shaft)
+        need_station(where, "from", kw["start"])
+        need_station(where, "to", kw["end"])
+        length_mm = (names[kw["end"]].x_m - names[kw["start"]].x_m) * 1e3
+        if length_mm <= 0:
+            raise InputError(f"{where}: length = x({kw['end']}) - x({kw['start']}) = {length_mm:g} mm: must be > 0 "
+                             f"(stations in increasing x)")
+        if kw["inner_diameter_m"] >= kw["outer_diameter_m"]:
+            raise InputError(f"{where}.inner_diameter_mm = {kw['inner_diameter_m'] * 1e3:g} mm: must be < "
+                             f"outer_diameter_mm = {kw['outer_diameter_m'] * 1e3:g} mm")
+        if kw["material"] not in materials:
+            raise InputError(f"{where}.material = {kw['material']!r}: no such material (have {', '.join(materials)})")
+        kw["material"] = materials[kw["material"]]
+        shafts.append(Shaft(**kw))
+
+    def entries(key, specs, cls, station_fields=("station",)):
+        out = []
+        for i, raw in enumerate(_list(doc, key, origin)):
+            where = f"{origin}: {key}[{i}]"
+            kw = _parse_table(raw, specs, where, cls)
+            for f in station_fields:
+                need_station(where, f, kw[f])
+            out.append(cls(**kw))
+        return tuple(out)
+
+    disks = entries("disks", _DISK, Disk)
+    point_masses = entries("point_masses", _POINT_MASS, PointMass)
+    bearings = entries("bearings", _BEARING, Bearing)
+    supports = entries("supports", _SUPPORT, SupportNode)
+    for sp in supports:
+        if sp.name in names:
+            raise InputError(f"{origin}: supports name {sp.name!r} clashes with a station name")
+    couplings = entries("couplings", _COUPLING, Coupling, ("node_a", "node_b"))
+    for i, c in enumerate(couplings):
+        if abs(names[c.node_a].x_m - names[c.node_b].x_m) > 1e-12:
+            raise InputError(f"{origin}: couplings[{i}]: node_a {c.node_a!r} and node_b {c.node_b!r} must be at the "
+                             f"same x_mm")
+    boundaries = entries("boundaries", _BOUNDARY, Boundary)
+
+    loose = None
+    if "loose_support" in doc:
+        where = f"{origin}: loose_support"
+        kw = _parse_table(doc["loose_support"], _LOOSE, where, LooseSupport)
+        need_station(where, "bearing_station", kw["bearing_station"])
+        if kw["support"] not in {s.name for s in supports}:
+            raise InputError(f"{where}.support = {kw['support']!r}: no such [[supports]] entry")
+        loose = LooseSupport(**kw)
+    mis = None
+    if "misalignment" in doc:
+        where = f"{origin}: misalignment"
+        kw = _parse_table(doc["misalignment"], _MISALIGN, where, Misalignment)
+        need_station(where, "bearing_station", kw["bearing_station"])
+        if kw["coupling"] not in {c.name for c in couplings}:
+            raise InputError(f"{where}.coupling = {kw['coupling']!r}: no such [[couplings]] entry")
+        mis = Misalignment(**kw)
+    analysis = Analysis(**_parse_table(doc.get("analysis", {}), _ANALYSIS, f"{origin}: analysis", Analysis))
+
+    all_names = [s.name for s in stations] + [s.name for s in supports]
+    for group in (disks, point_masses, bearings):
+        for e in group:
+            if e.name in all_names:
+                raise InputError(f"{origin}: element name {e.name!r} clashes with a node name")
+    return Scene(name=doc["name"], title=doc["title"], source=source, materials=tuple(materials.values()),
+                 stations=tuple(stations), shafts=tuple(shafts), disks=disks, point_masses=point_masses,
+                 bearings=bearings, supports=supports, couplings=couplings, boundaries=boundaries,
+                 loose_support=loose, misalignment=mis, analysis=analysis, path=origin)
+
+
+def scene_path(path_or_name: str | Path) -> Path:
+    """Resolve a file path, or a bare name of a bundled scene (``"paper-table4"``)."""
+    p = Path(path_or_name)
+    if p.suffix == ".toml" or p.exists() or p.parent != Path("."):
+        return p
+    return SCENE_DIR / f"{path_or_name}.toml"
+
+
+def bundled_scenes() -> list[str]:
+    """Names of the scenes shipped in ``rotor/scenes``."""
+    return sorted(p.stem for p in SCENE_DIR.glob("*.toml"))
+
+
+def load_scene(path_or_name: str | Path) -> Scene:
+    """Read, validate and convert a scene file (or a bundled scene name) to SI.
+
+    Raises
+    ------
+    DatasetError : the file is missing, unreadable or not valid TOML.
+    InputError : a field is missing, out of range, has an unknown unit or name.
+    """
+    path = scene_path(path_or_name)
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        hint = f" (bundled scenes: {', '.join(bundled_scenes())})" if path.parent == SCENE_DIR else ""
+        raise DatasetError(f"scene file {str(path)!r}: cannot read: {exc.strerror or exc}{hint}") from None
+    try:
+        doc = tomllib.loads(data.decode("utf-8"))
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise DatasetError(f"scene file {str(path)!r}: not valid TOML: {exc}") from None
+    return parse_scene(doc, origin=path.name)
+
+
+def loads_scene(text: str, origin: str = "<string>") -> Scene:
+    """Parse a scene from TOML text (tests, scripting)."""
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DatasetError(f"scene {origin}: not valid TOML: {exc}") from None
+    return parse_scene(doc, origin=origin)

@@ -1,0 +1,1 @@
+"""Resumable sweeps of independent tasks: checksummed result store, executors, progress, provenance."""
