@@ -13,10 +13,11 @@ are factorised **once per mesh** (SuperLU) and the contact compliance (Delassus)
     G = B_b K_b^-1 B_b^T + B_s K_s^-1 B_s^T
 
 of the radial node-to-node pairs on the two contact surfaces is formed once per mesh. (B picks
-the radial displacement of a contact node; the meshes pair nodes exactly, see mesh3d.)
+the radial displacement of a contact node; the meshes pair nodes exactly, see
+:mod:`fem_reference.solid.mesh`.)
 A load point (r, theta) then only changes the rigid gap ``g0`` (computed from the true tilted
-cylinders, geometry3d.rigid_gap_m) and the contact problem is the linear complementarity
-problem
+cylinders, :func:`fem_reference.solid.geometry.rigid_gap_m`) and the contact problem is the
+linear complementarity problem
 
     g = g0 + G lam >= 0,   lam >= 0,   lam . g = 0
 
@@ -145,35 +146,38 @@ def _dof_points(nodes: np.ndarray, order: int) -> np.ndarray:
     return out
 
 
-def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
-                  phi_grid: np.ndarray, x_grid: np.ndarray, chunk: int = 256,
-                  use_mirrors: bool = True, fix_end_faces_axially: bool = False) -> RingOperator:
-    """Assemble, condense and factorise one ring; form ``B K^-1 B^T`` on the contact grid.
+def _facets_where(mesh, vertex_ok: np.ndarray) -> np.ndarray:
+    """Facets whose every vertex satisfies the predicate ``vertex_ok`` (bool per mesh vertex).
 
-    The held surface (radius ``ring.held_radius_m``) is fixed (w = 0); the symmetry plane z = 0
-    (phi = 0 and phi = pi) has u_z = 0. ``B`` maps displacements to the outward radial
-    displacement at each contact DOF point, ordered like ``phi_grid x x_grid`` (phi-major).
+    Facet mid-points of a faceted cylinder lie inside the circle, so the test is on the
+    vertices, which lie on it exactly.
     """
+    return np.flatnonzero(np.all(vertex_ok[mesh.facets], axis=0))
+
+
+def _fixed_dofs(ring: RingMesh, basis: Basis, rtol: float, vr: np.ndarray,
+                fix_end_faces_axially: bool) -> np.ndarray:
+    """DOFs held at zero: all components on the held surface, u_z on the symmetry plane z = 0
+    and, if asked, u_x on both end faces (``vr``: radius of each mesh vertex)."""
     mesh = ring.mesh
-    basis = Basis(mesh, _element(order), intorder=_intorder(order))
-    lam, mu = lame_parameters(young_pa, poisson)
-    K = asm(linear_elasticity(lam, mu), basis).tocsr()
-    rtol = 1e-9 * ring.contact_radius_m
-    vr = np.hypot(mesh.p[1], mesh.p[2])
-
-    def facets_where(vertex_ok: np.ndarray) -> np.ndarray:
-        # facets whose every vertex satisfies the predicate (facet mid-points of a faceted
-        # cylinder lie inside the circle, so test vertices, which lie on it exactly)
-        return np.flatnonzero(np.all(vertex_ok[mesh.facets], axis=0))
-
-    held = facets_where(np.abs(vr - ring.held_radius_m) < rtol)
-    sym = facets_where(np.abs(mesh.p[2]) < rtol)
+    held = _facets_where(mesh, np.abs(vr - ring.held_radius_m) < rtol)
+    sym = _facets_where(mesh, np.abs(mesh.p[2]) < rtol)
     fixed = np.union1d(basis.get_dofs(held).all(), basis.get_dofs(sym).all("u^3"))
     if fix_end_faces_axially:
         half = np.max(np.abs(mesh.p[0]))
-        ends = facets_where(np.abs(np.abs(mesh.p[0]) - half) < rtol)
+        ends = _facets_where(mesh, np.abs(np.abs(mesh.p[0]) - half) < rtol)
         fixed = np.union1d(fixed, basis.get_dofs(ends).all("u^1"))
-    surf = facets_where(np.abs(vr - ring.contact_radius_m) < rtol)
+    return fixed
+
+
+def _contact_dofs(ring: RingMesh, basis: Basis, rtol: float, vr: np.ndarray, phi_grid: np.ndarray,
+                  x_grid: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The y- and z-DOFs of the contact surface, paired by location and ordered phi-major like
+    ``phi_grid x x_grid``, with the polar angle (in [0, 2 pi)) and axial position of each pair.
+
+    Raises ConvergenceError if the DOF points do not match the grid (mesh pairing broken).
+    """
+    surf = _facets_where(ring.mesh, np.abs(vr - ring.contact_radius_m) < rtol)
     dview = basis.get_dofs(surf)
     dy = np.sort(dview.all("u^2"))
     dz = np.sort(dview.all("u^3"))
@@ -196,31 +200,58 @@ def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
     if (np.max(np.abs(phi - want_phi)) > 1e-9 or np.max(np.abs(xs - want_x)) > 1e-9 * ring.contact_radius_m
             or np.max(np.abs(loc[:, dz] - loc[:, dy])) > 1e-12):
         raise ConvergenceError("contact DOF points do not match the (phi, x) grid: mesh pairing broken")
-    if use_mirrors and (np.max(np.abs(phi_grid + phi_grid[::-1] - math.pi)) > 1e-12
-                        or np.max(np.abs(x_grid + x_grid[::-1])) > 1e-12 * ring.contact_radius_m):
-        raise InputError("use_mirrors needs a contact grid symmetric about phi = pi/2 and x = 0")
+    return dy, dz, phi, xs
+
+
+def _radial_selection(dy: np.ndarray, dz: np.ndarray, phi: np.ndarray, n_c: int, n_dofs: int) -> sp.csr_matrix:
+    """``B`` (n_c x n_dofs): the outward radial displacement ``u_y cos(phi) + u_z sin(phi)`` of
+    each contact pair."""
     rows = np.concatenate([np.arange(n_c), np.arange(n_c)])
     cols = np.concatenate([dy, dz])
     vals = np.concatenate([np.cos(phi), np.sin(phi)])
-    B = sp.csr_matrix((vals, (rows, cols)), shape=(n_c, basis.N))
-    free = np.setdiff1d(np.arange(basis.N), fixed)
-    Kff = K[free][:, free].tocsc()
-    Bf = B[:, free].tocsc()
-    t0 = time.perf_counter()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n_c, n_dofs))
+
+
+def _factorise(Kff: sp.csc_matrix):
+    """Sparse LU of the condensed (SPD) stiffness."""
     # SuperLU with COLAMD ordering and symmetric mode (no pivoting on the SPD matrix). The
     # compliance is dominated by many-right-hand-side solves; side by side on the L2 bearing ring
     # COLAMD was the fastest of COLAMD / MMD(A'+A) / reverse Cuthill-McKee in 3 of 4 interleaved
     # comparisons (MMD has the least fill, but was slower per solve; benchmarks/bench_fem3d.py).
-    lu = spla.splu(Kff, permc_spec="COLAMD", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-    t1 = time.perf_counter()
+    return spla.splu(Kff, permc_spec="COLAMD", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+
+
+def _quadrant_columns(nphi: int, nx: int) -> np.ndarray:
+    """Pair indices of the quadrant phi <= pi/2, x >= 0 of the phi-major (nphi, nx) grid."""
+    ii, jj = np.meshgrid(np.arange(nphi), np.arange(nx), indexing="ij")
+    in_q = (ii <= (nphi - 1) // 2) & (jj >= nx // 2)
+    return np.flatnonzero(in_q.ravel())
+
+
+def _mirror_fill(Gq: np.ndarray, cols: np.ndarray, nphi: int, nx: int) -> np.ndarray:
+    """The full (n_c, n_c) compliance from its quadrant columns ``Gq`` (columns ``cols``), by
+    the mirror symmetries about y = 0 (phi -> pi - phi) and x = 0."""
+    n_c = nphi * nx
+    G = np.empty((n_c, n_c))
+    pos = -np.ones(n_c, dtype=int)
+    pos[cols] = np.arange(len(cols))
+    flat = np.arange(n_c).reshape(nphi, nx)
+    for perm in (flat, flat[::-1, :], flat[:, ::-1], flat[::-1, ::-1]):
+        perm = perm.ravel()              # perm[k] = image of pair k under the mirror
+        target = np.flatnonzero(pos[perm] >= 0)
+        G[:, target] = Gq[perm][:, pos[perm[target]]]
+    return G
+
+
+def _grid_compliance(lu, Bf: sp.csc_matrix, nphi: int, nx: int, use_mirrors: bool, chunk: int) -> np.ndarray:
+    """``Bf K^-1 Bf^T`` (not yet symmetrised) by solves in blocks of ``chunk`` right-hand sides;
+    with ``use_mirrors`` only the quadrant columns are solved for."""
+    n_c = nphi * nx
     BT = Bf.T.tocsc()
-    nphi, nx = len(phi_grid), len(x_grid)
     if use_mirrors:
         # Columns of the quadrant phi <= pi/2, x >= 0 only; the rest follow from the mirror
         # symmetries of rings, supports and mesh about y = 0 (phi -> pi - phi) and x = 0.
-        ii, jj = np.meshgrid(np.arange(nphi), np.arange(nx), indexing="ij")
-        in_q = (ii <= (nphi - 1) // 2) & (jj >= nx // 2)
-        cols = np.flatnonzero(in_q.ravel())
+        cols = _quadrant_columns(nphi, nx)
     else:
         cols = np.arange(n_c)
     Gq = np.empty((n_c, len(cols)))
@@ -228,17 +259,37 @@ def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
         e = min(s + chunk, len(cols))
         X = lu.solve(BT[:, cols[s:e]].toarray())
         Gq[:, s:e] = Bf @ X
-    if use_mirrors:
-        G = np.empty((n_c, n_c))
-        pos = -np.ones(n_c, dtype=int)
-        pos[cols] = np.arange(len(cols))
-        flat = np.arange(n_c).reshape(nphi, nx)
-        for perm in (flat, flat[::-1, :], flat[:, ::-1], flat[::-1, ::-1]):
-            perm = perm.ravel()              # perm[k] = image of pair k under the mirror
-            target = np.flatnonzero(pos[perm] >= 0)
-            G[:, target] = Gq[perm][:, pos[perm[target]]]
-    else:
-        G = Gq
+    return _mirror_fill(Gq, cols, nphi, nx) if use_mirrors else Gq
+
+
+def ring_operator(ring: RingMesh, young_pa: float, poisson: float, order: int,
+                  phi_grid: np.ndarray, x_grid: np.ndarray, chunk: int = 256,
+                  use_mirrors: bool = True, fix_end_faces_axially: bool = False) -> RingOperator:
+    """Assemble, condense and factorise one ring; form ``B K^-1 B^T`` on the contact grid.
+
+    The held surface (radius ``ring.held_radius_m``) is fixed (w = 0); the symmetry plane z = 0
+    (phi = 0 and phi = pi) has u_z = 0. ``B`` maps displacements to the outward radial
+    displacement at each contact DOF point, ordered like ``phi_grid x x_grid`` (phi-major).
+    """
+    mesh = ring.mesh
+    basis = Basis(mesh, _element(order), intorder=_intorder(order))
+    lam, mu = lame_parameters(young_pa, poisson)
+    K = asm(linear_elasticity(lam, mu), basis).tocsr()
+    rtol = 1e-9 * ring.contact_radius_m
+    vr = np.hypot(mesh.p[1], mesh.p[2])
+    fixed = _fixed_dofs(ring, basis, rtol, vr, fix_end_faces_axially)
+    dy, dz, phi, xs = _contact_dofs(ring, basis, rtol, vr, phi_grid, x_grid)
+    if use_mirrors and (np.max(np.abs(phi_grid + phi_grid[::-1] - math.pi)) > 1e-12
+                        or np.max(np.abs(x_grid + x_grid[::-1])) > 1e-12 * ring.contact_radius_m):
+        raise InputError("use_mirrors needs a contact grid symmetric about phi = pi/2 and x = 0")
+    B = _radial_selection(dy, dz, phi, len(phi_grid) * len(x_grid), basis.N)
+    free = np.setdiff1d(np.arange(basis.N), fixed)
+    Kff = K[free][:, free].tocsc()
+    Bf = B[:, free].tocsc()
+    t0 = time.perf_counter()
+    lu = _factorise(Kff)
+    t1 = time.perf_counter()
+    G = _grid_compliance(lu, Bf, len(phi_grid), len(x_grid), use_mirrors, chunk)
     t2 = time.perf_counter()
     G = 0.5 * (G + G.T)
     return RingOperator(basis.N, phi, xs, G, t1 - t0, t2 - t1)
