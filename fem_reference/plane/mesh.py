@@ -116,22 +116,8 @@ def _half_annulus(geo, r_in: float, r_out: float, h: float) -> int:
     return geo.addPlaneSurface([loop])
 
 
-def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
-    """Mesh both half annuli with gmsh and return a scikit-fem mesh with element bodies.
-
-    Raises
-    ------
-    InputError
-        If the contact size cannot resolve the clearance geometry (``h_contact_m`` larger
-        than the thinner ring's thickness).
-    """
-    import gmsh
-
-    t_b = rings.outer_radius_m - rings.inner_radius_m
-    t_s = rings.support_outer_radius_m - rings.bore_radius_m
-    if spec.h_contact_m > min(t_b, t_s):
-        raise InputError(f"h_contact_m = {spec.h_contact_m:g} m: must be <= the thinner ring's "
-                         f"thickness {min(t_b, t_s):g} m (mesh too coarse)")
+def _size_field(rings: RingPair, spec: MeshSpec) -> str:
+    """The gmsh MathEval expression of the element size over the plane (m)."""
     R_c = 0.5 * (rings.outer_radius_m + rings.bore_radius_m)
     hc, L = spec.h_contact_m, spec.grading_length_m
     rho = "sqrt(x*x+y*y)"
@@ -149,7 +135,18 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
         # a small driven core (solid pin): resolve it proportionally to h as well
         c = min(1.0, 0.2 * r_core / 2e-3)
         terms.append(f"{hc!r}*({c!r}+abs({rho}-{r_core!r})/{L!r})")
-    expr = "min(" + ", ".join(terms) + ")"
+    return "min(" + ", ".join(terms) + ")"
+
+
+def _gmsh_triangles(rings: RingPair, spec: MeshSpec, size_expr: str):
+    """Run gmsh on both half annuli with the size field ``size_expr``.
+
+    Returns gmsh's node tags and coordinates (flat, 3 per node), and per body (bearing, then
+    support) the triangles' node tags and the body code of each triangle.
+    """
+    import gmsh
+
+    hc = spec.h_contact_m
     with _GMSH_LOCK:
         gmsh.initialize(readConfigFiles=False)
         try:
@@ -160,7 +157,7 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
             s_s = _half_annulus(geo, rings.bore_radius_m, rings.support_outer_radius_m, hc)
             geo.synchronize()
             f = gmsh.model.mesh.field.add("MathEval")
-            gmsh.model.mesh.field.setString(f, "F", expr)
+            gmsh.model.mesh.field.setString(f, "F", size_expr)
             gmsh.model.mesh.field.setAsBackgroundMesh(f)
             for name in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature",
                          "Mesh.MeshSizeExtendFromBoundary"):
@@ -181,6 +178,12 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
                 body.append(np.full(len(ntags), b, dtype=np.int8))
         finally:
             gmsh.finalize()
+    return tags, coords, conn, body
+
+
+def _skfem_mesh(tags, coords, conn: list[np.ndarray], order: int):
+    """``MeshTri1``/``MeshTri2`` from gmsh's arrays: only the nodes used by triangles, numbered
+    compactly, every triangle counter-clockwise."""
     tags = np.asarray(tags, dtype=np.int64)
     xy = np.asarray(coords).reshape(-1, 3)[:, :2]
     conn = np.vstack(conn)
@@ -197,21 +200,42 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
     a = p[:, t[1]] - p[:, t[0]]
     b = p[:, t[2]] - p[:, t[0]]
     neg = a[0] * b[1] - a[1] * b[0] < 0
-    if spec.order == 1:
+    if order == 1:
         t[:, neg] = t[[0, 2, 1]][:, neg]
-        mesh = MeshTri1(np.ascontiguousarray(p), np.ascontiguousarray(t))
-    else:
-        t[:, neg] = t[[0, 2, 1, 5, 4, 3]][:, neg]
-        mesh = MeshTri2(np.ascontiguousarray(p), np.ascontiguousarray(t))
-    body = np.concatenate(body)
-    named = {
+        return MeshTri1(np.ascontiguousarray(p), np.ascontiguousarray(t))
+    t[:, neg] = t[[0, 2, 1, 5, 4, 3]][:, neg]
+    return MeshTri2(np.ascontiguousarray(p), np.ascontiguousarray(t))
+
+
+def _named_boundaries(mesh, rings: RingPair, body: np.ndarray) -> dict[str, np.ndarray]:
+    """The named boundary facets (``mesh.boundaries``), found by radius and body."""
+    return {
         "bearing_inner": facets_on_circle(mesh, rings.inner_radius_m, element_mask=body == BEARING),
         "bearing_outer": facets_on_circle(mesh, rings.outer_radius_m, element_mask=body == BEARING),
         "support_bore": facets_on_circle(mesh, rings.bore_radius_m, element_mask=body == SUPPORT),
         "support_outer": facets_on_circle(mesh, rings.support_outer_radius_m, element_mask=body == SUPPORT),
         "symmetry": facets_on_symmetry_line(mesh),
     }
-    mesh = mesh.with_boundaries(named)
+
+
+def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
+    """Mesh both half annuli with gmsh and return a scikit-fem mesh with element bodies.
+
+    Raises
+    ------
+    InputError
+        If the contact size cannot resolve the clearance geometry (``h_contact_m`` larger
+        than the thinner ring's thickness).
+    """
+    t_b = rings.outer_radius_m - rings.inner_radius_m
+    t_s = rings.support_outer_radius_m - rings.bore_radius_m
+    if spec.h_contact_m > min(t_b, t_s):
+        raise InputError(f"h_contact_m = {spec.h_contact_m:g} m: must be <= the thinner ring's "
+                         f"thickness {min(t_b, t_s):g} m (mesh too coarse)")
+    tags, coords, conn, body = _gmsh_triangles(rings, spec, _size_field(rings, spec))
+    mesh = _skfem_mesh(tags, coords, conn, spec.order)
+    body = np.concatenate(body)
+    mesh = mesh.with_boundaries(_named_boundaries(mesh, rings, body))
     return RingMesh(mesh=mesh, body=body, rings=rings, spec=spec)
 
 
