@@ -133,19 +133,13 @@ def _section(shaft) -> el.Section:
                       m.poisson_ratio)
 
 
-def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bool = True,
-             rotary_inertia: bool = True, gyroscopic: bool = True) -> RotorModel:
-    """Assemble M, C, G, K, K_c, B of a scene.
+def _node_layout(scene: Scene, elements_per_segment: int | None):
+    """Every node in DOF order with its axial position, and the shaft elements.
 
-    Parameters
-    ----------
-    scene : loaded scene (:func:`rotor.model.scene.load_scene`).
-    elements_per_segment : if given, overrides every shaft's ``elements`` (mesh studies).
-    shear, rotary_inertia, gyroscopic : element options (Euler–Bernoulli: both False).
+    Returns ``names``, ``xs`` (m): the stations in file order, then the support nodes, then the
+    interior nodes of subdivided shafts; ``shaft_nodes``: the node chain of each shaft;
+    ``shaft_pieces``: ``(node_i, node_j, length_m, section)`` of each shaft element.
     """
-    if elements_per_segment is not None and (int(elements_per_segment) != elements_per_segment
-                                             or elements_per_segment < 1):
-        raise InputError(f"elements_per_segment = {elements_per_segment!r}: must be an integer >= 1")
     names = [s.name for s in scene.stations] + [s.name for s in scene.supports]
     xs = [s.x_m for s in scene.stations] + [scene.station(s.station).x_m for s in scene.supports]
     shaft_nodes = []
@@ -164,7 +158,12 @@ def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bo
         sec = _section(sh)
         for a, b in zip(chain[:-1], chain[1:]):
             shaft_pieces.append((a, b, (x1 - x0) / n_el, sec))
-    node_pos = {n: i for i, n in enumerate(names)}
+    return names, xs, shaft_nodes, shaft_pieces
+
+
+def _full_matrices(scene: Scene, names: list[str], node_pos: dict[str, int], shaft_pieces, *, shear: bool,
+                   rotary_inertia: bool, gyroscopic: bool):
+    """M, C, G, K, K_c over all DOFs (none removed yet) and the element aliases (name -> node)."""
     nfull = 4 * len(names)
     M = np.zeros((nfull, nfull))
     C = np.zeros_like(M)
@@ -202,18 +201,23 @@ def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bo
     for cp in scene.couplings:
         add(el.node_spring(0.0, 0.0, cp.a0_n_m_rad), cp.node_a, cp.node_b, target_K=Kc)
         aliases[cp.name] = cp.node_a
+    return M, C, G, K, Kc, aliases
 
-    # boundary conditions: remove fixed DOFs
-    fixed = np.zeros(nfull, bool)
+
+def _free_dofs(scene: Scene, names: list[str], node_pos: dict[str, int]):
+    """Boundary conditions: indices of the retained (free) DOFs and their ``"node.dof"`` names."""
+    fixed = np.zeros(4 * len(names), bool)
     for bc in scene.boundaries:
         for d in bc.fixed:
             fixed[4 * node_pos[bc.station] + DOFS.index(d)] = True
     keep = np.flatnonzero(~fixed)
     full_names = [f"{n}.{d}" for n in names for d in DOFS]
     dof_names = tuple(full_names[i] for i in keep)
-    index = {nm: i for i, nm in enumerate(dof_names)}
-    sub = np.ix_(keep, keep)
+    return keep, dof_names
 
+
+def _coupling_constraints(scene: Scene, index: dict[str, int], n_dofs: int):
+    """DOFs of each coupling and the rows ``B`` (with names) of its equal-lateral constraint."""
     rows, cnames, cdofs = [], [], []
     for cp in scene.couplings:
         a = tuple(index.get(f"{cp.node_a}.{d}", -1) for d in DOFS)
@@ -224,11 +228,35 @@ def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bo
             for j, d in enumerate(("y", "z")):
                 if a[j] < 0 or b[j] < 0:
                     continue
-                row = np.zeros(len(keep))
+                row = np.zeros(n_dofs)
                 row[a[j]], row[b[j]] = 1.0, -1.0
                 rows.append(row)
                 cnames.append(f"{cp.name}: {cp.node_a}.{d} - {cp.node_b}.{d} = 0")
-    B = np.array(rows) if rows else np.zeros((0, len(keep)))
+    B = np.array(rows) if rows else np.zeros((0, n_dofs))
+    return B, cnames, cdofs
+
+
+def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bool = True,
+             rotary_inertia: bool = True, gyroscopic: bool = True) -> RotorModel:
+    """Assemble M, C, G, K, K_c, B of a scene.
+
+    Parameters
+    ----------
+    scene : loaded scene (:func:`rotor.model.scene.load_scene`).
+    elements_per_segment : if given, overrides every shaft's ``elements`` (mesh studies).
+    shear, rotary_inertia, gyroscopic : element options (Euler–Bernoulli: both False).
+    """
+    if elements_per_segment is not None and (int(elements_per_segment) != elements_per_segment
+                                             or elements_per_segment < 1):
+        raise InputError(f"elements_per_segment = {elements_per_segment!r}: must be an integer >= 1")
+    names, xs, shaft_nodes, shaft_pieces = _node_layout(scene, elements_per_segment)
+    node_pos = {n: i for i, n in enumerate(names)}
+    M, C, G, K, Kc, aliases = _full_matrices(scene, names, node_pos, shaft_pieces, shear=shear,
+                                             rotary_inertia=rotary_inertia, gyroscopic=gyroscopic)
+    keep, dof_names = _free_dofs(scene, names, node_pos)
+    index = {nm: i for i, nm in enumerate(dof_names)}
+    sub = np.ix_(keep, keep)
+    B, cnames, cdofs = _coupling_constraints(scene, index, len(keep))
 
     loose = None
     if scene.loose_support is not None:
