@@ -433,8 +433,8 @@ def _list(doc: dict, key: str, where: str) -> list:
     return raw
 
 
-def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
-    """Validate a parsed TOML document and build a :class:`Scene` (SI units)."""
+def _check_header(doc: dict, origin: str) -> None:
+    """Only known top-level fields, the right schema, and a name and a title."""
     allowed = {"schema", "name", "title", "source", "materials", "stations", "shafts", "disks", "point_masses",
                "bearings", "supports", "couplings", "boundaries", "loose_support", "misalignment", "analysis",
                "notes", "assumptions"}
@@ -446,35 +446,31 @@ def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
     for key in ("name", "title"):
         if not isinstance(doc.get(key), str) or not doc[key].strip():
             raise InputError(f"{origin}: missing field {key!r} (text)")
-    source = doc.get("source", "")
 
-    materials = {}
-    for i, raw in enumerate(_list(doc, "materials", origin)):
-        kw = _parse_table(raw, _MATERIAL, f"{origin}: materials[{i}]", Material)
-        if kw["name"] in materials:
-            raise InputError(f"{origin}: materials[{i}].name = {kw['name']!r}: duplicate")
-        materials[kw["name"]] = Material(**kw)
 
-    stations: list[Station] = []
-    for i, raw in enumerate(_list(doc, "stations", origin)):
-        st = Station(**_parse_table(raw, _STATION, f"{origin}: stations[{i}]", Station))
-        if any(s.name == st.name for s in stations):
-            raise InputError(f"{origin}: stations[{i}].name = {st.name!r}: duplicate")
-        stations.append(st)
-    if not stations:
-        raise InputError(f"{origin}: missing [[stations]] (at least two)")
-    names = {s.name: s for s in stations}
+def _parse_named(doc: dict, origin: str, key: str, specs: list[Spec], cls) -> dict:
+    """The ``[[key]]`` array of tables as ``{name: cls instance}`` in file order; names unique."""
+    out = {}
+    for i, raw in enumerate(_list(doc, key, origin)):
+        kw = _parse_table(raw, specs, f"{origin}: {key}[{i}]", cls)
+        if kw["name"] in out:
+            raise InputError(f"{origin}: {key}[{i}].name = {kw['name']!r}: duplicate")
+        out[kw["name"]] = cls(**kw)
+    return out
 
-    def need_station(where, field_, value):
-        if value not in names:
-            raise InputError(f"{where}.{field_} = {value!r}: no such station (have {', '.join(names)})")
 
+def _need_station(names: dict[str, Station], where: str, field_: str, value) -> None:
+    if value not in names:
+        raise InputError(f"{where}.{field_} = {value!r}: no such station (have {', '.join(names)})")
+
+
+def _parse_shafts(doc: dict, origin: str, names: dict[str, Station], materials: dict[str, Material]) -> list[Shaft]:
     shafts = []
     for i, raw in enumerate(_list(doc, "shafts", origin)):
         where = f"{origin}: shafts[{i}]"
         kw = _parse_table(raw, _SHAFT, where, Shaft)
-        need_station(where, "from", kw["start"])
-        need_station(where, "to", kw["end"])
+        _need_station(names, where, "from", kw["start"])
+        _need_station(names, where, "to", kw["end"])
         length_mm = (names[kw["end"]].x_m - names[kw["start"]].x_m) * 1e3
         if length_mm <= 0:
             raise InputError(f"{where}: length = x({kw['end']}) - x({kw['start']}) = {length_mm:g} mm: must be > 0 "
@@ -486,49 +482,64 @@ def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
             raise InputError(f"{where}.material = {kw['material']!r}: no such material (have {', '.join(materials)})")
         kw["material"] = materials[kw["material"]]
         shafts.append(Shaft(**kw))
+    return shafts
 
-    def entries(key, specs, cls, station_fields=("station",)):
-        out = []
-        for i, raw in enumerate(_list(doc, key, origin)):
-            where = f"{origin}: {key}[{i}]"
-            kw = _parse_table(raw, specs, where, cls)
-            for f in station_fields:
-                need_station(where, f, kw[f])
-            out.append(cls(**kw))
-        return tuple(out)
 
-    disks = entries("disks", _DISK, Disk)
-    point_masses = entries("point_masses", _POINT_MASS, PointMass)
-    bearings = entries("bearings", _BEARING, Bearing)
-    supports = entries("supports", _SUPPORT, SupportNode)
+def _parse_entries(doc: dict, origin: str, names: dict[str, Station], key: str, specs: list[Spec], cls,
+                   station_fields=("station",)) -> tuple:
+    """The ``[[key]]`` array of tables as ``cls`` instances; ``station_fields`` must name stations."""
+    out = []
+    for i, raw in enumerate(_list(doc, key, origin)):
+        where = f"{origin}: {key}[{i}]"
+        kw = _parse_table(raw, specs, where, cls)
+        for f in station_fields:
+            _need_station(names, where, f, kw[f])
+        out.append(cls(**kw))
+    return tuple(out)
+
+
+def _parse_linked_table(doc: dict, origin: str, names: dict[str, Station], key: str, specs: list[Spec], cls,
+                        link: str, entries: tuple, entries_key: str):
+    """The optional ``[key]`` table as ``cls`` (None if absent): its ``bearing_station`` must
+    name a station and its field ``link`` one of ``entries`` (the ``[[entries_key]]`` array)."""
+    if key not in doc:
+        return None
+    where = f"{origin}: {key}"
+    kw = _parse_table(doc[key], specs, where, cls)
+    _need_station(names, where, "bearing_station", kw["bearing_station"])
+    if kw[link] not in {e.name for e in entries}:
+        raise InputError(f"{where}.{link} = {kw[link]!r}: no such [[{entries_key}]] entry")
+    return cls(**kw)
+
+
+def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
+    """Validate a parsed TOML document and build a :class:`Scene` (SI units)."""
+    _check_header(doc, origin)
+    source = doc.get("source", "")
+    materials = _parse_named(doc, origin, "materials", _MATERIAL, Material)
+    names = _parse_named(doc, origin, "stations", _STATION, Station)
+    if not names:
+        raise InputError(f"{origin}: missing [[stations]] (at least two)")
+    stations = list(names.values())
+    shafts = _parse_shafts(doc, origin, names, materials)
+    disks = _parse_entries(doc, origin, names, "disks", _DISK, Disk)
+    point_masses = _parse_entries(doc, origin, names, "point_masses", _POINT_MASS, PointMass)
+    bearings = _parse_entries(doc, origin, names, "bearings", _BEARING, Bearing)
+    supports = _parse_entries(doc, origin, names, "supports", _SUPPORT, SupportNode)
     for sp in supports:
         if sp.name in names:
             raise InputError(f"{origin}: supports name {sp.name!r} clashes with a station name")
-    couplings = entries("couplings", _COUPLING, Coupling, ("node_a", "node_b"))
+    couplings = _parse_entries(doc, origin, names, "couplings", _COUPLING, Coupling, ("node_a", "node_b"))
     for i, c in enumerate(couplings):
         if abs(names[c.node_a].x_m - names[c.node_b].x_m) > 1e-12:
             raise InputError(f"{origin}: couplings[{i}]: node_a {c.node_a!r} and node_b {c.node_b!r} must be at the "
                              f"same x_mm")
-    boundaries = entries("boundaries", _BOUNDARY, Boundary)
-
-    loose = None
-    if "loose_support" in doc:
-        where = f"{origin}: loose_support"
-        kw = _parse_table(doc["loose_support"], _LOOSE, where, LooseSupport)
-        need_station(where, "bearing_station", kw["bearing_station"])
-        if kw["support"] not in {s.name for s in supports}:
-            raise InputError(f"{where}.support = {kw['support']!r}: no such [[supports]] entry")
-        loose = LooseSupport(**kw)
-    mis = None
-    if "misalignment" in doc:
-        where = f"{origin}: misalignment"
-        kw = _parse_table(doc["misalignment"], _MISALIGN, where, Misalignment)
-        need_station(where, "bearing_station", kw["bearing_station"])
-        if kw["coupling"] not in {c.name for c in couplings}:
-            raise InputError(f"{where}.coupling = {kw['coupling']!r}: no such [[couplings]] entry")
-        mis = Misalignment(**kw)
+    boundaries = _parse_entries(doc, origin, names, "boundaries", _BOUNDARY, Boundary)
+    loose = _parse_linked_table(doc, origin, names, "loose_support", _LOOSE, LooseSupport, "support", supports,
+                                "supports")
+    mis = _parse_linked_table(doc, origin, names, "misalignment", _MISALIGN, Misalignment, "coupling", couplings,
+                              "couplings")
     analysis = Analysis(**_parse_table(doc.get("analysis", {}), _ANALYSIS, f"{origin}: analysis", Analysis))
-
     all_names = [s.name for s in stations] + [s.name for s in supports]
     for group in (disks, point_masses, bearings):
         for e in group:
