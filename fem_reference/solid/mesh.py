@@ -11,8 +11,8 @@ Why not gmsh here: the 2D reference meshes with gmsh; for the 3D rings a gmsh tr
 extrusion gives the same structured hexes, but a mapped tensor mesh gives the node pairing and
 the grading (optionally toward the generatrices phi = 0 and phi = pi, toward the ring edges
 x = +-l0/2 and toward the contact surfaces) directly, with no prism/orphan-node risk
-(fem-notes.md, gmsh facts). The rings' curvature enters the gap exactly (geometry3d), never
-through the faceted surface.
+(fem-notes.md, gmsh facts). The rings' curvature enters the gap exactly
+(:mod:`fem_reference.solid.geometry`), never through the faceted surface.
 
 Mesh levels are named and nested in spirit: each level halves the element size of the previous
 one in the contact-relevant directions (phi and x), so Richardson extrapolation applies.
@@ -164,12 +164,13 @@ def build_meshes(geom: RingPair3D, level: MeshLevel3D) -> tuple[RingMesh, RingMe
 
 # Mesh levels of the committed reference: every element count grows by about sqrt(2) per level
 # (phi, x and radial), so the effective size ratio is (DOFs ratio)^(1/3) ~ 1.4 (Richardson with
-# unequal ratios, sweep3d.richardson3). Radial layers are generous because trilinear hexahedra
-# are too stiff with few layers (measured: 3 -> 6 layers lowers the force by 0.7 %, halving the
-# phi or x size changes it by < 0.2 %). Grading: x toward the ring edges (ratio 3), radially toward
-# the contact surfaces (ratio 3); phi uniform: the contact-arc edges sweep 20-80 deg over the sweep,
-# and grading toward the loaded generatrix (phi = 0, where the pressure is smooth) coarsened them -
-# measured: the largest moment error estimate fell from 2.6 % (phi ratio 2) to 1.1 % (uniform).
+# unequal ratios, fem_reference.solid.sweep.richardson3). Radial layers are generous because
+# trilinear hexahedra are too stiff with few layers (measured: 3 -> 6 layers lowers the force by
+# 0.7 %, halving the phi or x size changes it by < 0.2 %). Grading: x toward the ring edges (ratio
+# 3), radially toward the contact surfaces (ratio 3); phi uniform: the contact-arc edges sweep
+# 20-80 deg over the sweep, and grading toward the loaded generatrix (phi = 0, where the pressure
+# is smooth) coarsened them - measured: the largest moment error estimate fell from 2.6 % (phi
+# ratio 2) to 1.1 % (uniform).
 LEVELS: dict[str, MeshLevel3D] = {
     "L0": MeshLevel3D("L0", n_phi=24, n_axial=8, n_radial=4, phi_ratio=1.0, axial_ratio=3.0),
     "L1": MeshLevel3D("L1", n_phi=34, n_axial=12, n_radial=6, phi_ratio=1.0, axial_ratio=3.0),

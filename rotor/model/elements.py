@@ -1,7 +1,7 @@
 """Finite elements of the rotor: Timoshenko shaft, rigid disk, linear bearing, support node.
 
-Sign convention (the one place it is defined; tested in ``tests/test_rotor_elements.py``)
--------------------------------------------------------------------------------------------
+Sign convention (the one place it is defined; tested in ``tests/rotor/linear/test_rotor_closed_forms.py``)
+----------------------------------------------------------------------------------------------------------
 The shaft axis is ``x``; the rotor spins at ``Ω > 0`` about ``+x``. Every node carries four
 degrees of freedom in the order ``(y, z, θy, θz)``: two lateral displacements (m) and two
 small rotations of the cross-section about the ``y`` and ``z`` axes (rad, right-hand rule).
