@@ -49,7 +49,7 @@ def _call(func, params):
     return arrays, info, time.perf_counter() - t0
 
 
-def _as_executor(executor):
+def as_executor(executor):
     """A ``dask.distributed.Client`` exposes a concurrent.futures executor via ``get_executor``."""
     if executor is not None and not isinstance(executor, cf.Executor) and hasattr(executor, "get_executor"):
         return executor.get_executor()
@@ -144,7 +144,7 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
         summary.wall_s = time.perf_counter() - t_start
         return summary
     own = executor is None
-    ex = cf.ProcessPoolExecutor(max_workers=max_workers) if own else _as_executor(executor)
+    ex = cf.ProcessPoolExecutor(max_workers=max_workers) if own else as_executor(executor)
     futures = {}
     try:
         for t in todo:
