@@ -16,7 +16,7 @@ import numpy as np
 from contact.errors import InputError
 from reports.studies import save, write_csv, _plt
 from rotor.studies import sensitivity as sens
-from sweep.store import ResultStore, load_sweep
+from sweep import ResultStore, load_sweep
 
 
 def tables(out, variants, *, scene: str = "paper-table4", speeds_rpm=sens.SPEEDS_RPM, options=None) -> dict:

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from contact.files import atomic_write_bytes, atomic_write_text
-from sweep.store import load_sweep
+from sweep import load_sweep
 
 LOCATIONS = (("disk1.y", "disk 1"), ("disk2.y", "disk 2"), ("s.y", "3# bearing (support)"))
 

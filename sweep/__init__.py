@@ -1,1 +1,21 @@
-"""Resumable sweeps of independent tasks: checksummed result store, executors, progress, provenance."""
+"""Resumable sweeps of independent tasks: checksummed result store, executors, progress, provenance.
+
+One machinery for every sweep of the suite (rotor studies, 2D and 3D FEM reference datasets):
+
+- :mod:`sweep.tasks`: :class:`Task` (key, picklable function, JSON parameters), :class:`PointResult`;
+- :mod:`sweep.store`: :class:`ResultStore` (one checksummed NPZ + JSON per point), :func:`load_sweep`;
+- :mod:`sweep.run`: :func:`run_sweep` over a :class:`concurrent.futures.Executor` (default a local
+  process pool), resuming from the store;
+- :mod:`sweep.progress`: :class:`Progress` (count, rate, time left on a terminal; quiet under CI
+  or when piped);
+- :mod:`sweep.provenance`: :func:`code_revision`, :func:`package_versions`, :func:`environment`.
+"""
+from sweep.progress import Progress
+from sweep.provenance import code_revision, environment, machine, package_versions, revision_label, utc_stamp
+from sweep.run import SweepSummary, as_executor, run_sweep
+from sweep.store import FORMAT, ResultStore, load_sweep
+from sweep.tasks import PointResult, Task
+
+__all__ = ["FORMAT", "PointResult", "Progress", "ResultStore", "SweepSummary", "Task", "as_executor",
+           "code_revision", "environment", "load_sweep", "machine", "package_versions", "revision_label",
+           "run_sweep", "utc_stamp"]

@@ -1,11 +1,4 @@
-"""Parallel, resumable sweeps of independent points with self-describing results on disk.
-
-A sweep is a list of :class:`Task` (a key, a picklable top-level function, JSON parameters).
-:func:`run_sweep` submits the tasks that have no valid result yet to a
-:class:`concurrent.futures.Executor` — a local process pool by default; for a cluster pass a
-``dask.distributed.Client`` (optional dependency, not required here): its
-``get_executor()`` is such an executor, so no other code changes — and stores every finished
-point as soon as it arrives.
+"""Resumable, checksummed result store: one NPZ + one JSON per finished point.
 
 Result store layout (:class:`ResultStore`)::
 
@@ -20,103 +13,25 @@ field names). Both files are written atomically (:mod:`contact.files`), the NPZ 
 JSON last: the JSON is the completion mark. A point counts as done only if its JSON parses,
 its own checksum matches, its parameters equal the task's, and the NPZ's SHA-256 matches; a
 truncated or altered file is reported and recomputed, never read.
+
+Used by the rotor studies (:mod:`rotor.studies`) and the 2D/3D FEM reference sweeps.
 """
 from __future__ import annotations
 
-import concurrent.futures as cf
 import dataclasses
-import datetime as _dt
 import hashlib
 import io
 import json
-import math
 import os
-import platform
-import re
-import subprocess
-import sys
-import time
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
-from contact.errors import DatasetError, InputError
+from contact.errors import DatasetError
 from contact.files import atomic_write_bytes, atomic_write_text
+from sweep.tasks import PointResult, Task
 
 FORMAT = "ringcontact.sweep-point/1"
-_KEY = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]{0,120}$")
-
-
-@dataclass(frozen=True)
-class Task:
-    """One independent point of a sweep.
-
-    Attributes
-    ----------
-    key : str
-        Unique, file-safe name (letters, digits, ``_ . + -``), e.g. ``rpm10500``.
-    func : callable
-        Top-level (picklable) function ``func(**params) -> (arrays: dict[str, ndarray], info: dict)``;
-        ``info`` must be JSON-serialisable.
-    params : dict
-        JSON-serialisable keyword arguments, units in the names (``speed_rpm``, ``clearance_m``).
-    """
-
-    key: str
-    func: Callable
-    params: dict = field(default_factory=dict)
-
-    def __post_init__(self):
-        if not _KEY.match(self.key):
-            raise InputError(f"task key {self.key!r}: use letters, digits, '_', '.', '+', '-' (max 121 chars)")
-        try:
-            json.dumps(self.params, sort_keys=True)
-        except TypeError as e:
-            raise InputError(f"task {self.key}: params are not JSON-serialisable ({e})") from None
-
-
-@dataclass
-class PointResult:
-    """A stored point: its arrays (read from NPZ) and its JSON record."""
-
-    key: str
-    arrays: dict
-    record: dict
-
-    @property
-    def info(self) -> dict:
-        return self.record.get("info", {})
-
-    @property
-    def params(self) -> dict:
-        return self.record.get("params", {})
-
-
-def code_revision(path: str | os.PathLike | None = None) -> dict:
-    """Git commit of the source tree and whether it had uncommitted changes (``dirty``)."""
-    root = Path(path) if path is not None else Path(__file__).resolve().parents[1]
-    try:
-        rev = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True, text=True,
-                             timeout=10).stdout.strip()
-        st = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
-                            capture_output=True, text=True, timeout=10).stdout
-        return {"git_commit": rev or "unknown", "git_dirty": bool(st.strip())}
-    except (OSError, subprocess.SubprocessError):
-        return {"git_commit": "unknown", "git_dirty": None}
-
-
-def environment() -> dict:
-    """Python, numpy, scipy, numba versions and the machine (for the sweep record)."""
-    env = {"python": platform.python_version(), "numpy": np.__version__, "machine": platform.machine(),
-           "cpu_count": os.cpu_count()}
-    for mod in ("scipy", "numba"):
-        try:
-            env[mod] = __import__(mod).__version__
-        except ImportError:
-            env[mod] = None
-    return env
 
 
 def _sha256(data: bytes) -> str:
@@ -222,155 +137,6 @@ class ResultStore:
 
     def keys(self) -> list[str]:
         return sorted(p.stem for p in self.points.glob("*.json")) if self.points.exists() else []
-
-
-class Progress:
-    """Count, rate and time left on one terminal line; silent under CI or when not a terminal.
-
-    ``enabled=None`` decides from the stream (``isatty``) and the ``CI`` environment variable.
-    """
-
-    def __init__(self, total: int, *, label: str = "sweep", stream=None, enabled: bool | None = None):
-        self.total = int(total)
-        self.label = label
-        self.stream = stream if stream is not None else sys.stderr
-        if enabled is None:
-            isatty = getattr(self.stream, "isatty", lambda: False)
-            enabled = bool(isatty()) and not os.environ.get("CI")
-        self.enabled = enabled
-        self.done = 0
-        self.t0 = time.monotonic()
-
-    def update(self, n: int = 1, note: str = "") -> None:
-        self.done += n
-        if not self.enabled:
-            return
-        el = time.monotonic() - self.t0
-        rate = self.done / el if el > 0 else 0.0
-        left = (self.total - self.done) / rate if rate > 0 else math.inf
-        eta = f"{int(left // 60)}m{int(left % 60):02d}s" if math.isfinite(left) else "?"
-        self.stream.write(f"\r{self.label}: {self.done}/{self.total}  {rate:.2f} pt/s  ~{eta} left  {note[:40]:40s}")
-        self.stream.flush()
-
-    def close(self) -> None:
-        if self.enabled:
-            self.stream.write("\n")
-            self.stream.flush()
-
-
-@dataclass
-class SweepSummary:
-    """What :func:`run_sweep` did: keys computed, reused, recomputed after corruption, failed."""
-
-    computed: list = field(default_factory=list)
-    reused: list = field(default_factory=list)
-    recomputed: dict = field(default_factory=dict)
-    failed: dict = field(default_factory=dict)
-    wall_s: float = 0.0
-    point_wall_s: dict = field(default_factory=dict)
-
-
-def _call(func, params):
-    t0 = time.perf_counter()
-    arrays, info = func(**params)
-    return arrays, info, time.perf_counter() - t0
-
-
-def _as_executor(executor):
-    """A ``dask.distributed.Client`` exposes a concurrent.futures executor via ``get_executor``."""
-    if executor is not None and not isinstance(executor, cf.Executor) and hasattr(executor, "get_executor"):
-        return executor.get_executor()
-    return executor
-
-
-def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, executor=None, max_workers: int = 2,
-              manifest: dict | None = None, progress: Progress | bool | None = None,
-              log: Callable[[str], None] | None = None) -> SweepSummary:
-    """Compute every task without a valid stored result, storing each as it finishes.
-
-    Parameters
-    ----------
-    tasks : list of Task (unique keys)
-    store : ResultStore or its directory
-    executor : concurrent.futures.Executor, dask.distributed.Client, or None
-        None: a local :class:`~concurrent.futures.ProcessPoolExecutor` with ``max_workers``
-        processes, shut down at the end. A given executor is used and left open.
-    manifest : dict, optional
-        Sweep description written to ``sweep.json`` with the code revision and environment.
-    progress : Progress, True/False, or None (auto: on a terminal, not under CI)
-    log : callable for one-line messages (default: stderr)
-
-    Returns
-    -------
-    SweepSummary. Failed tasks are listed with their error, not raised; an interruption
-    (KeyboardInterrupt) cancels pending tasks and re-raises: finished points stay on disk,
-    and the next call resumes with the rest.
-    """
-    store = store if isinstance(store, ResultStore) else ResultStore(store)
-    keys = [t.key for t in tasks]
-    if len(set(keys)) != len(keys):
-        dup = sorted({k for k in keys if keys.count(k) > 1})
-        raise InputError(f"tasks: duplicate keys {dup[:5]}")
-    say = log if log is not None else (lambda m: print(m, file=sys.stderr))
-    t_start = time.perf_counter()
-    summary = SweepSummary()
-    man = {"created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-           **code_revision(), "environment": environment(),
-           "tasks": {t.key: {"func": f"{t.func.__module__}.{t.func.__qualname__}", "params": t.params} for t in tasks}}
-    man.update(manifest or {})
-    store.write_manifest(man)
-    todo = []
-    for t in tasks:
-        status, why = store.check(t.key, t.params)
-        if status == "done":
-            summary.reused.append(t.key)
-            continue
-        if status in ("corrupt", "stale"):
-            summary.recomputed[t.key] = why
-            say(f"sweep: {t.key}: {status} ({why}); recomputing")
-        todo.append(t)
-    if isinstance(progress, Progress):
-        prog = progress
-    else:
-        prog = Progress(len(todo), enabled=(None if progress is None else bool(progress)))
-    if not todo:
-        summary.wall_s = time.perf_counter() - t_start
-        return summary
-    own = executor is None
-    ex = cf.ProcessPoolExecutor(max_workers=max_workers) if own else _as_executor(executor)
-    run_info = {**code_revision(), "host": platform.node()}
-    futures = {}
-    try:
-        for t in todo:
-            futures[ex.submit(_call, t.func, t.params)] = t
-        for fut in cf.as_completed(futures):
-            t = futures[fut]
-            try:
-                arrays, info, wall = fut.result()
-            except Exception as e:  # a failing point must not lose the others
-                summary.failed[t.key] = f"{type(e).__name__}: {e}"
-                say(f"sweep: {t.key} failed: {type(e).__name__}: {e}")
-                prog.update(note=f"{t.key} FAILED")
-                continue
-            store.save(t.key, t.params, arrays, info,
-                       run={**run_info, "wall_s": round(wall, 4),
-                            "finished_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")})
-            summary.computed.append(t.key)
-            summary.point_wall_s[t.key] = wall
-            prog.update(note=t.key)
-    except BaseException:
-        for f in futures:
-            f.cancel()
-        if own:
-            ex.shutdown(wait=False, cancel_futures=True)
-            own = False
-        raise
-    finally:
-        prog.close()
-        if own:
-            ex.shutdown(wait=True)
-    summary.wall_s = time.perf_counter() - t_start
-    return summary
 
 
 def load_sweep(store: ResultStore | str | os.PathLike, tasks: list[Task] | None = None) -> dict[str, PointResult]:

@@ -20,17 +20,20 @@ refinement); the finest value is reported together with the observed order and a
 Measured (dataset of 2026-11-22, 2 shared cores): every committed point ≤ 0.1 % estimated error
 in ≤ 3 s from scratch (all its levels meshed, factorised and solved); see
 ``reports/published/fem2d-reference.md``.
+
+Sweep: one :class:`sweep.Task` per scene (its mesh levels are reused along the scene's
+penetrations), run by :func:`sweep.run_sweep` (one worker process by default, so every point is
+timed alone as before) into a :class:`sweep.ResultStore`: a temporary one, or a directory given
+by the caller, which then resumes an interrupted sweep scene by scene.
 """
 from __future__ import annotations
 
 import math
 import os
-import platform
-import subprocess
-import sys
+import re
+import tempfile
 import time
 from dataclasses import dataclass
-from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
@@ -41,6 +44,7 @@ from fem_reference.plane.contact_solver import ArcNotResolvedError
 from fem_reference.plane.mesh import MeshSpec
 from fem_reference.plane.solve import ContactModel
 from fem_reference.scenes import Scene, by_name
+from sweep import ResultStore, Task, code_revision, machine, package_versions, revision_label, run_sweep, utc_stamp
 
 DATA_DIR = Path(__file__).resolve().parents[1] / "data"
 DATASET_PATH = DATA_DIR / "fem2d-reference.json"
@@ -52,6 +56,9 @@ TARGET_ERROR_REL = 1e-3
 MAX_DOFS_EXTRA_LEVEL = 80_000                     # no extra level beyond this size (plate scenes)
 DEFAULT_ORDER = 2
 SOLVER_TOL = 1e-10
+# provenance of the dataset: the packages recorded, the sources whose changes mark the revision dirty
+PACKAGES = {"numpy": "numpy", "scipy": "scipy", "scikit-fem": "skfem", "gmsh": "gmsh", "meshio": "meshio"}
+SOURCES = ("fem_reference", "contact/dataset.py", "sweep")
 
 COLUMNS = {
     "scene": "-", "plane": "-", "penetration_m": "m", "offset_m": "m", "tilt_rad": "rad",
@@ -275,76 +282,77 @@ def reference_point(levels: Levels, penetration_m: float, target_rel: float = TA
     }
 
 
-class Progress:
-    """Count, rate and time left on a terminal (stderr); silent when not a TTY or under CI."""
+def scene_task(scene: str, penetrations_m: list[float], levels_m: list[float], order: int) -> tuple[dict, dict]:
+    """All points of one scene as a :class:`sweep.Task` function: ``({}, {"points": [...], "build": {...}})``.
 
-    def __init__(self, total: int, label: str, enabled: bool | None = None):
-        self.total, self.label, self.done, self.t0 = total, label, 0, time.perf_counter()
-        if enabled is None:
-            enabled = sys.stderr.isatty() and not os.environ.get("CI")
-        self.enabled = enabled
-
-    def step(self, note: str = "") -> None:
-        self.done += 1
-        if not self.enabled:
-            return
-        dt = time.perf_counter() - self.t0
-        rate = self.done / dt if dt > 0 else 0.0
-        left = (self.total - self.done) / rate if rate > 0 else 0.0
-        sys.stderr.write(f"\r{self.label}: {self.done}/{self.total}  {rate:.2f} pt/s  ~{left:.0f} s left  {note:<30}")
-        if self.done == self.total:
-            sys.stderr.write("\n")
-        sys.stderr.flush()
+    The scene's mesh levels are built once (:class:`Levels`) and reused along its penetrations.
+    """
+    levels = Levels(by_name(scene), tuple(levels_m), order)
+    points = [reference_point(levels, dr) for dr in penetrations_m]
+    log = levels.build_log
+    build = {"total_s": sum(b[2] for b in log), "meshes_built": len(log), "largest_ndofs": max(b[1] for b in log)}
+    return {}, {"points": points, "build": build}
 
 
-def package_versions() -> dict:
-    import gmsh
-    import meshio
-    import scipy
-    import skfem
-
-    return {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
-            "scikit-fem": skfem.__version__, "gmsh": gmsh.__version__, "meshio": meshio.__version__}
+def _scene_key(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.+-]", "_", name)
 
 
-def code_revision() -> str:
-    """``git describe``-like revision of the repository, '+dirty' if fem_reference has changes."""
-    root = Path(__file__).resolve().parents[2]
-    try:
-        rev = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True, text=True,
-                             timeout=10).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--", "fem_reference", "contact/dataset.py"],
-                               cwd=root, capture_output=True, text=True, timeout=10).stdout.strip()
-    except (OSError, subprocess.SubprocessError):
-        return "unknown"
-    return (rev or "unknown") + ("+dirty" if dirty else "")
+def _row(info: dict) -> dict:
+    """A stored point as a dataset row, fields in :data:`COLUMNS` order."""
+    rank = {k: i for i, k in enumerate(COLUMNS)}
+    return {k: info[k] for k in sorted(info, key=lambda k: rank.get(k, len(rank)))}
 
 
-def run_sweep(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFAULT_LEVELS_M,
-              order: int = DEFAULT_ORDER, progress: bool | None = None) -> tuple[dict, list[dict]]:
-    """Solve every (scene, penetration); returns (metadata, points)."""
+def _run_scenes(tasks: list[Task], store, workers: int, executor, progress) -> list[dict]:
+    """Run the scene tasks into ``store`` (a temporary directory if None); their stored infos in order."""
+    with tempfile.TemporaryDirectory(prefix="fem2d-sweep-") as tmp:
+        st = ResultStore(tmp if store is None else store)
+        summary = run_sweep(tasks, st, executor=executor, max_workers=workers, progress=progress,
+                            label="fem sweep", manifest={"sweep": "fem2d"})
+        failed = [t.key for t in tasks if t.key in summary.errors]
+        if failed:
+            exc = summary.errors[failed[0]]
+            kept = "" if store is None else f"; finished scenes kept in {st.root}"
+            exc.add_note(f"fem sweep: scenes {failed} failed{kept}")
+            raise exc
+        return [st.load(t.key, t.params).info for t in tasks]
+
+
+def sweep_dataset(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFAULT_LEVELS_M,
+                  order: int = DEFAULT_ORDER, progress: bool | None = None, workers: int = 1, executor=None,
+                  store: str | os.PathLike | None = None) -> tuple[dict, list[dict]]:
+    """Solve every (scene, penetration); returns (metadata, points).
+
+    One task per scene through :func:`sweep.run_sweep`: ``workers`` local processes (default 1:
+    every point timed alone), or ``executor`` (it must run tasks in a process's main thread: gmsh
+    installs a signal handler, so a thread pool fails). ``store``: directory of a
+    :class:`sweep.ResultStore` keeping finished scenes, so a repeated call resumes (default: a
+    temporary one, nothing kept).
+    """
     if penetrations_m is None:
         penetrations_m = [v * 1e-3 for v in DEFAULT_PENETRATIONS_MM]
     t0 = time.perf_counter()
     load_start = round(os.getloadavg()[0], 2)
     scenes = [by_name(n) for n in scene_names]
-    bar = Progress(len(scenes) * len(penetrations_m), "fem sweep", progress)
-    points, builds = [], {}
-    for scene in scenes:
-        levels = Levels(scene, levels_m, order)
-        for dr in penetrations_m:
-            points.append(reference_point(levels, dr))
-            bar.step(f"{scene.name} {dr * 1e3:.4f} mm")
-        log = levels.build_log
-        builds[scene.name] = {"total_s": sum(b[2] for b in log), "meshes_built": len(log),
-                              "largest_ndofs": max(b[1] for b in log)}
-    meta = {
+    common = {"penetrations_m": [float(d) for d in penetrations_m], "levels_m": [float(h) for h in levels_m],
+              "order": int(order)}
+    tasks = [Task(_scene_key(sc.name), scene_task, {"scene": name, **common}) for name, sc in zip(scene_names, scenes)]
+    results = _run_scenes(tasks, store, workers, executor, progress)
+    points = [_row(p) for r in results for p in r["points"]]
+    builds = {sc.name: r["build"] for sc, r in zip(scenes, results)}
+    meta = _metadata(scenes, levels_m, order, load_start)
+    meta["timings"] = {"total_s": time.perf_counter() - t0, "build": builds}
+    return meta, points
+
+
+def _metadata(scenes: list[Scene], levels_m, order: int, load_start: float) -> dict:
+    return {
         "title": "2D ring-in-ring FEM reference (gmsh + scikit-fem, frictionless mortar contact)",
-        "created_utc": datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
-        "code_revision": code_revision(),
-        "package_versions": package_versions(),
-        "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
-                    "load_average_1min_at_start": load_start},
+        "created_utc": utc_stamp(),
+        "code_revision": revision_label(code_revision(scope=SOURCES, untracked=True)),
+        "package_versions": package_versions(PACKAGES),
+        "machine": {**machine(), "load_average_1min_at_start": load_start},
         "scenes": {s.name: s.to_dict() for s in scenes},
         "mesh": {"levels_h_contact_m": list(levels_m), "element_order": order,
                  "extra_levels": f"per point, three consecutive levels from the coarsest with >= {ARC_ELEMENTS_MIN} "
@@ -370,14 +378,12 @@ def run_sweep(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFAULT_
             "wall_levels_s": "wall time of the whole point from scratch: every mesh of all its levels built, "
                              "assembled, factorised and solved",
         },
-        "timings": {"total_s": time.perf_counter() - t0, "build": builds},
     }
-    return meta, points
 
 
 def regenerate(path=DATASET_PATH, **kw) -> Path:
     """Run the default sweep and write it (atomically) to ``path``."""
-    meta, points = run_sweep(**kw)
+    meta, points = sweep_dataset(**kw)
     return write_dataset(path, meta, COLUMNS, points)
 
 

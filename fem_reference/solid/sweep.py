@@ -15,9 +15,11 @@ representative size ``h = N_dofs^(-1/3)``:
 Compute layout: the expensive part of a mesh level (assembly, factorisation, contact compliance,
 see solve3d) depends only on the mesh and the scene, so it is built once per level, cached on
 disk (``RINGCONTACT_CACHE`` or ``~/.cache/ringcontact/fem3d``) and shared by every point. Points
-are independent tasks submitted to a :class:`concurrent.futures.Executor` (a process pool
-locally; a ``dask.distributed.Client`` is such an executor too). Each finished point is written
-at once (atomically) under the cache, so an interrupted sweep resumes where it stopped.
+are independent :class:`sweep.Task` run by :func:`sweep.run_sweep` on a
+:class:`concurrent.futures.Executor` (a process pool locally; a ``dask.distributed.Client`` is
+such an executor too). Each finished point is kept at once in a checksummed
+:class:`sweep.ResultStore` under the cache (``sweeps/<key of the mesh levels>``), so an
+interrupted sweep resumes where it stopped.
 """
 from __future__ import annotations
 
@@ -26,29 +28,30 @@ import hashlib
 import json
 import math
 import os
-import platform
 import time
-from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
 
 from contact.dataset import read_dataset, write_dataset
 from contact.errors import ConvergenceError, InputError
-from contact.files import atomic_write_text
 from contact.units import ARCMIN, MM
 from fem_reference.solid.geometry import RigidMotion, RingPair3D
 from fem_reference.solid.mesh import DEFAULT_LEVELS, LEVELS, MeshLevel3D
 from fem_reference.solid.solve import (SCENES, ContactCompliance, build_compliance, load_compliance,
-                                   save_compliance, solve_point)
-from fem_reference.plane.sweep import Progress, code_revision, package_versions
+                                       save_compliance, solve_point)
+from sweep import (ResultStore, Task, as_executor, code_revision, machine, package_versions, revision_label,
+                   run_sweep, utc_stamp)
 
 DATA_DIR = Path(__file__).resolve().parents[1] / "data" / "3d"
 DATASET_PATH = DATA_DIR / "fem3d-reference.json"
 DEFAULT_TILTS_ARCMIN = (0.0, 0.5, 1.0, 2.0, 30.0)
 DEFAULT_PENETRATIONS_MM = (0.005, 0.01, 0.02, 0.03, 0.04, 0.05)
-CODE_VERSION = "fem3d-1"
-MIN_ACTIVE_LINES = 3          # axial node lines in contact needed for a reference point      # bump when the compliance computation changes (invalidates the cache)
+CODE_VERSION = "fem3d-1"      # bump when the compliance computation changes (invalidates the cache)
+MIN_ACTIVE_LINES = 3          # axial node lines in contact needed for a reference point
+# provenance of the dataset: the packages recorded, the sources whose changes mark the revision dirty
+PACKAGES = {"numpy": "numpy", "scipy": "scipy", "scikit-fem": "skfem", "gmsh": "gmsh", "meshio": "meshio"}
+SOURCES = ("fem_reference", "contact/dataset.py", "sweep")
 
 COLUMNS = {
     "scene": "-", "penetration_m": "m", "offset_m": "m", "tilt_rad": "rad",
@@ -217,21 +220,60 @@ def reference_point(comps: list[ContactCompliance], penetration_m: float, tilt_r
     }
 
 
-def _point_task(paths: list[str], penetration_m: float, tilt_rad: float) -> dict:
-    return reference_point([_load_cached(p) for p in paths], penetration_m, tilt_rad)
+def point_task(paths: list[str], penetration_m: float, tilt_rad: float) -> tuple[dict, dict]:
+    """One sweep point as a :class:`sweep.Task` function: no arrays, the dataset row as JSON ``info``."""
+    return {}, _jsonable(reference_point([_load_cached(p) for p in paths], penetration_m, tilt_rad))
 
 
 # ----------------------------------------------------------------------------------------------
 # sweep
 
-def _point_file(points_dir: Path, penetration_m: float, tilt_rad: float) -> Path:
-    return points_dir / f"pen{penetration_m * 1e9:.0f}nm-tilt{tilt_rad * 1e9:.0f}nrad.json"
+def _point_key(penetration_m: float, tilt_rad: float) -> str:
+    return f"pen{penetration_m * 1e9:.0f}nm-tilt{tilt_rad * 1e9:.0f}nrad"
 
 
-def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, scene: str = "clamped",
-              geom: RingPair3D | None = None, workers: int = 2, executor: cf.Executor | None = None,
-              cache: Path | None = None, progress: bool | None = None, resume: bool = True
-              ) -> tuple[dict, list[dict]]:
+def point_store(paths: list[Path], cache: Path | None = None) -> ResultStore:
+    """The store of finished points of one set of mesh levels (their compliance files) under the cache."""
+    cache = cache_dir() if cache is None else Path(cache)
+    return ResultStore(cache / "sweeps" / _key({"v": CODE_VERSION, "paths": [Path(p).name for p in paths]}))
+
+
+def _mesh_levels(level_names) -> list[MeshLevel3D]:
+    if len(level_names) != 3:
+        raise InputError(f"level_names = {level_names!r}: need exactly three mesh levels (coarse to fine)")
+    unknown = [n for n in level_names if not isinstance(n, MeshLevel3D) and n not in LEVELS]
+    if unknown:
+        raise InputError(f"mesh levels {unknown} unknown: choose from {sorted(LEVELS)}")
+    return [n if isinstance(n, MeshLevel3D) else LEVELS[n] for n in level_names]
+
+
+def _compliances(ex, geom: RingPair3D, levels: list[MeshLevel3D], scene: str, cache: Path):
+    """Build (through ``ex``) the levels not cached yet; returns (paths, build seconds per level)."""
+    paths = [compliance_path(geom, lv, scene, cache) for lv in levels]
+    todo = {ex.submit(_build_task, geom, lv, scene, str(cache)): lv.name
+            for lv, p in zip(levels, paths) if not p.exists()}
+    builds = {}
+    for fut in cf.as_completed(todo):
+        builds[todo[fut]] = fut.result()[1]
+    for lv, p in zip(levels, paths):
+        if lv.name not in builds:
+            builds[lv.name] = load_compliance(p).build_s
+    return paths, builds
+
+
+def _failed(summary, tasks: list[Task], store: ResultStore) -> Exception:
+    """The first failed point's own exception, noting how many failed and where the rest is kept."""
+    keys = [t.key for t in tasks if t.key in summary.errors]
+    exc = summary.errors[keys[0]]
+    exc.add_note(f"fem3d sweep: {len(keys)} of {len(tasks)} points failed ({', '.join(keys[:5])}); "
+                 f"finished points are kept in {store.root}")
+    return exc
+
+
+def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, scene: str = "clamped",
+                  geom: RingPair3D | None = None, workers: int = 2, executor: cf.Executor | None = None,
+                  cache: Path | None = None, progress: bool | None = None, resume: bool = True
+                  ) -> tuple[dict, list[dict]]:
     """Solve every (tilt, penetration) through an executor; returns (metadata, points).
 
     Parameters
@@ -244,66 +286,57 @@ def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, s
     executor : concurrent.futures.Executor, optional
         e.g. a ``dask.distributed.Client``; must see the same cache directory.
     resume : bool
-        Reuse finished points kept under the cache from an interrupted run of the same sweep.
+        Reuse finished points kept in the store under the cache (:func:`point_store`) from an
+        interrupted run of the same sweep.
+
+    Raises the first failed point's exception once every other point is computed and kept.
     """
     if tilts_rad is None:
         tilts_rad = [t * ARCMIN for t in DEFAULT_TILTS_ARCMIN]
     if penetrations_m is None:
         penetrations_m = [p * MM for p in DEFAULT_PENETRATIONS_MM]
-    if len(level_names) != 3:
-        raise InputError(f"level_names = {level_names!r}: need exactly three mesh levels (coarse to fine)")
-    unknown = [n for n in level_names if not isinstance(n, MeshLevel3D) and n not in LEVELS]
-    if unknown:
-        raise InputError(f"mesh levels {unknown} unknown: choose from {sorted(LEVELS)}")
+    levels = _mesh_levels(level_names)
     if scene not in SCENES:
         raise InputError(f"scene = {scene!r}: must be one of {sorted(SCENES)}")
     geom = geom or RingPair3D()
     cache = cache_dir() if cache is None else Path(cache)
-    levels = [n if isinstance(n, MeshLevel3D) else LEVELS[n] for n in level_names]
     t0 = time.perf_counter()
     own = executor is None
-    ex = cf.ProcessPoolExecutor(max_workers=workers) if own else executor
-    builds = {}
+    ex = cf.ProcessPoolExecutor(max_workers=workers) if own else as_executor(executor)
     try:
-        paths = [compliance_path(geom, lv, scene, cache) for lv in levels]
-        todo = {ex.submit(_build_task, geom, lv, scene, str(cache)): lv.name
-                for lv, p in zip(levels, paths) if not p.exists()}
-        for fut in cf.as_completed(todo):
-            _, build_s = fut.result()
-            builds[todo[fut]] = build_s
-        for lv, p in zip(levels, paths):
-            if lv.name not in builds:
-                builds[lv.name] = load_compliance(p).build_s
-        sweep_key = _key({"v": CODE_VERSION, "paths": [p.name for p in paths]})
-        points_dir = cache / "points" / sweep_key
-        points_dir.mkdir(parents=True, exist_ok=True)
-        grid = [(float(t), float(d)) for t in tilts_rad for d in penetrations_m]
-        results: dict[tuple[float, float], dict] = {}
-        futs = {}
-        bar = Progress(len(grid), "fem3d sweep", progress)
-        for t, d in grid:
-            f = _point_file(points_dir, d, t)
-            if resume and f.exists():
-                results[(t, d)] = json.loads(f.read_text())
-                bar.step(f"kept {t / ARCMIN:g}' {d * 1e3:g} mm")
-            else:
-                futs[ex.submit(_point_task, [str(p) for p in paths], d, t)] = (t, d)
-        for fut in cf.as_completed(futs):
-            t, d = futs[fut]
-            row = fut.result()
-            atomic_write_text(_point_file(points_dir, d, t), json.dumps(_jsonable(row)))
-            results[(t, d)] = json.loads(json.dumps(_jsonable(row)))
-            bar.step(f"{t / ARCMIN:g}' {d * 1e3:g} mm")
+        paths, builds = _compliances(ex, geom, levels, scene, cache)
+        store = point_store(paths, cache)
+        tasks = [Task(_point_key(float(d), float(t)), point_task,
+                      {"paths": [str(p) for p in paths], "penetration_m": float(d), "tilt_rad": float(t)})
+                 for t in tilts_rad for d in penetrations_m]
+        summary = run_sweep(tasks, store, executor=ex, progress=progress, label="fem3d sweep", resume=resume,
+                            manifest={"sweep": "fem3d", "scene": scene, "geometry": geom.as_dict(),
+                                      "levels": [lv.as_dict() for lv in levels]})
     finally:
         if own:
             ex.shutdown(wait=True, cancel_futures=True)
-    points = [results[k] for k in grid]
-    meta = {
+    if summary.failed:
+        raise _failed(summary, tasks, store)
+    points = [_row(store.load(t.key, t.params).info) for t in tasks]
+    meta = _metadata(geom, scene, levels, points, tilts_rad, penetrations_m, workers if own else "external executor")
+    meta["timings"] = {"total_s": time.perf_counter() - t0, "compliance_build_s": builds}
+    return meta, points
+
+
+def _row(info: dict) -> dict:
+    """A stored point as a dataset row, fields in :data:`COLUMNS` order."""
+    rank = {k: i for i, k in enumerate(COLUMNS)}
+    return {k: info[k] for k in sorted(info, key=lambda k: rank.get(k, len(rank)))}
+
+
+def _metadata(geom: RingPair3D, scene: str, levels: list[MeshLevel3D], points: list[dict], tilts_rad,
+              penetrations_m, workers) -> dict:
+    return {
         "title": "3D tilted ring-in-ring FEM reference (scikit-fem hexahedra, frictionless node-to-node contact)",
-        "created_utc": datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
-        "code_revision": code_revision(),
-        "package_versions": package_versions(),
-        "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count()},
+        "created_utc": utc_stamp(),
+        "code_revision": revision_label(code_revision(scope=SOURCES, untracked=True)),
+        "package_versions": package_versions(PACKAGES),
+        "machine": machine(),
         "scenes": {scene: SCENES[scene]},
         "geometry": geom.as_dict(),
         "mesh": {"levels": [lv.as_dict() for lv in levels], "ndofs_levels": points[0]["ndofs_levels"] if points else [],
@@ -314,7 +347,7 @@ def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, s
                              "by primal-dual active set (NNLS fallback); complementarity verified on all pairs",
                    "gap": "exact tilted cylinders (geometry3d.rigid_gap_m), elastic part linearised radially"},
         "sweep": {"tilts_rad": [float(t) for t in tilts_rad], "penetrations_m": [float(d) for d in penetrations_m],
-                  "workers": workers if own else "external executor"},
+                  "workers": workers},
         "definitions": {
             "penetration_m": "mid-plane penetration Delta r = r - delta0 (r = bearing translation along +y)",
             "tilt_rad": "tilt theta about +z through the ring centre: a point at axial x moves by r + theta*x",
@@ -331,9 +364,7 @@ def run_sweep(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, s
             "wall_s": "contact solve of the finest level on a ready compliance (s)",
             "wall_levels_s": "contact solves of all three levels (s), compliances excluded (see timings)",
         },
-        "timings": {"total_s": time.perf_counter() - t0, "compliance_build_s": builds},
     }
-    return meta, points
 
 
 def _jsonable(row: dict) -> dict:
@@ -349,7 +380,7 @@ def _jsonable(row: dict) -> dict:
 
 def regenerate(path=DATASET_PATH, **kw) -> Path:
     """Run the sweep and write the dataset (atomically) to ``path``."""
-    meta, points = run_sweep(**kw)
+    meta, points = sweep_dataset(**kw)
     return write_dataset(path, meta, COLUMNS, points)
 
 

@@ -123,7 +123,7 @@ def _options(args) -> dict:
 
 
 def _sweep(tasks, out: Path, args, description: dict):
-    from sweep.store import run_sweep
+    from sweep import run_sweep
     from rotor.studies.steady_state import _scene_model
 
     sc, _ = _scene_model(args.scene)
@@ -235,7 +235,7 @@ def _sensitivity(args) -> int:
     from contact.errors import InputError
     from reports import sensitivity as rep
     from rotor.studies import sensitivity as sens
-    from sweep.store import code_revision, run_sweep
+    from sweep import code_revision, run_sweep
 
     variants = sens.study_variants()
     if args.variants:

@@ -151,7 +151,7 @@ def _runup_task(**params):
 
 def run_runup(spec: RunupSpec, out) -> dict:
     """Simulate (unless a verified result with the same spec is in ``out``) and store as point ``runup``."""
-    from sweep.store import ResultStore, Task, run_sweep
+    from sweep import ResultStore, Task, run_sweep
 
     params = dataclasses.asdict(spec)
     task = Task("runup", _runup_task, params)
@@ -166,7 +166,7 @@ def run_runup(spec: RunupSpec, out) -> dict:
 
 def load_runup(out) -> dict:
     """The stored run-up as a dict of arrays plus ``clearance_m``."""
-    from sweep.store import ResultStore
+    from sweep import ResultStore
 
     p = ResultStore(out).load("runup")
     d = dict(p.arrays)

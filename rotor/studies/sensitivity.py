@@ -14,7 +14,7 @@ This module builds scene *variants* — the loaded scene with named inputs repla
 (:func:`apply_overrides`, :func:`dataclasses.replace`, re-assembled by :func:`rotor.model.assembly.assemble`)
 — computes, for one variant at one speed, the steady state of the reference case (δ0 = 0.05 mm,
 δ = 1 mm, tilt on) and of the five neighbouring cases continued from it (:func:`run_variant_point`,
-a picklable :class:`sweep.store.Task` function), and evaluates the three findings on the
+a picklable :class:`sweep.Task` function), and evaluates the three findings on the
 resulting amplitude tables (:func:`clearance_finding`, :func:`misalignment_finding`,
 :func:`tilt_finding`). Nothing here edits a scene file.
 
@@ -268,12 +268,12 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
 
 
 def variant_tasks(scene: str, variant: Variant, speeds_rpm, *, options: dict | None = None) -> list:
-    """One :class:`sweep.store.Task` of :func:`run_variant_point` per speed for ``variant``.
+    """One :class:`sweep.Task` of :func:`run_variant_point` per speed for ``variant``.
 
     Keys ``<variant>-rpm<speed>``; params hold the absolute overrides (resolved from the factors
     against the scene), so a stored point says exactly what it was computed with."""
     from rotor.model.scene import load_scene
-    from sweep.store import Task
+    from sweep import Task
 
     ov = scaled_overrides(load_scene(scene), variant.factors) if variant.factors else {}
     return [Task(f"{variant.name}-rpm{float(s):.0f}", run_variant_point,
@@ -328,7 +328,7 @@ class AmplitudeTable:
 
 
 def table_from_points(points) -> AmplitudeTable:
-    """Amplitude table of one variant from stored sweep points (:class:`sweep.store.PointResult`)."""
+    """Amplitude table of one variant from stored sweep points (:class:`sweep.PointResult`)."""
     pts = sorted(points, key=lambda p: p.params["speed_rpm"])
     if not pts:
         raise InputError("table_from_points: no points")
@@ -509,7 +509,7 @@ def one_at_a_time() -> list:
 
 
 def study_tasks(variants, *, scene: str = "paper-table4", speeds_rpm=SPEEDS_RPM, options=None) -> list:
-    """All :class:`sweep.store.Task` of a list of variants (variant-major order: the first
+    """All :class:`sweep.Task` of a list of variants (variant-major order: the first
     variants finish first, so an interrupted study has whole variants on disk)."""
     names = [v.name for v in variants]
     if len(set(names)) != len(names):

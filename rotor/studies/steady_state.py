@@ -423,7 +423,7 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
 
 
 # ---------------------------------------------------------------------------
-# one sweep point as a picklable task function (sweep.store.Task)
+# one sweep point as a picklable task function (sweep.Task)
 # ---------------------------------------------------------------------------
 
 _MODEL_CACHE: dict = {}
@@ -458,7 +458,7 @@ def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = No
 def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, misalignment_m: float | None = None,
               tilt_ignored: bool = False, mu: float | None = None, preload_n: float | None = None,
               options: dict | None = None, max_order: float = 6.0, history_revs: int = 4):
-    """Steady state of one operating point, as ``(arrays, info)`` for :func:`sweep.store.run_sweep`.
+    """Steady state of one operating point, as ``(arrays, info)`` for :func:`sweep.run_sweep`.
 
     Arrays (SI): ``channels`` names; ``harm_q`` (5, c) complex displacement amplitudes of 1X–5X (m),
     ``harm_v`` (5, c) velocity (m/s), ``harm_u`` (5, 4) relative support motion (m, rad);
@@ -504,10 +504,10 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
 
 
 def sweep_tasks(scene: str, speeds_rpm, *, prefix: str = "rpm", **overrides) -> list:
-    """One :class:`sweep.store.Task` of :func:`run_point` per speed (rpm), same overrides for all.
+    """One :class:`sweep.Task` of :func:`run_point` per speed (rpm), same overrides for all.
 
     Keys are ``<prefix><speed>`` with the speed to 0.1 rpm (``rpm10500.0``)."""
-    from sweep.store import Task
+    from sweep import Task
 
     out = []
     for s in speeds_rpm:

@@ -1,6 +1,7 @@
 """Reference dataset format (contact/dataset.py) and the committed 2D FEM sweep (issue 3)."""
 from __future__ import annotations
 
+import concurrent.futures as cf
 import json
 import math
 
@@ -9,8 +10,9 @@ import pytest
 
 from contact.dataset import read_dataset, write_dataset
 from contact.errors import DatasetError
-from fem_reference.plane.sweep import COLUMNS, DATASET_PATH, Levels, reference_point, richardson
+from fem_reference.plane.sweep import COLUMNS, DATASET_PATH, Levels, reference_point, richardson, sweep_dataset
 from fem_reference.scenes import by_name
+from sweep import ResultStore
 
 META = {"title": "t", "created_utc": "2026-11-22T00:00:00Z", "code_revision": "x", "package_versions": {}}
 COLS = {"scene": "-", "penetration_m": "m", "force_n": "N", "arc_pressure_pa": "Pa"}
@@ -110,3 +112,26 @@ def test_recomputed_point_matches_committed_copy(committed):
     new = reference_point(Levels(by_name("clamped")), 1e-5)
     assert new["force_n"] == pytest.approx(old["force_n"], rel=1e-7)
     assert new["half_angle_rad"] == pytest.approx(old["half_angle_rad"], rel=1e-6)
+
+
+class _Refuse(cf.Executor):
+    def submit(self, *a, **k):
+        raise AssertionError("a kept scene was recomputed")
+
+
+def test_sweep_runs_scenes_through_the_shared_store_and_resumes(tmp_path, capsys):
+    # one sweep.Task per scene into a sweep.ResultStore; the second call computes nothing. The
+    # default local process pool: gmsh installs a signal handler, so no thread executor here
+    kw = dict(scene_names=["clamped"], penetrations_m=[5e-5], levels_m=(4e-3, 2e-3, 1e-3), store=tmp_path)
+    meta, pts = sweep_dataset(progress=True, **kw)
+    assert "fem sweep: 1/1" in capsys.readouterr().err           # the shared progress line (sweep.Progress)
+    st = ResultStore(tmp_path)
+    assert st.keys() == ["clamped"] and st.check("clamped")[0] == "done"
+    assert st.load("clamped").info["points"][0]["force_n"] == pts[0]["force_n"]
+    assert list(pts[0]) == list(COLUMNS) and meta["timings"]["build"]["clamped"]["meshes_built"] >= 3
+    direct = reference_point(Levels(by_name("clamped"), (4e-3, 2e-3, 1e-3)), 5e-5)
+    assert pts[0]["force_n"] == direct["force_n"] and pts[0]["arc_pressure_pa"] == direct["arc_pressure_pa"].tolist()
+    meta2, pts2 = sweep_dataset(executor=_Refuse(), progress=False, **kw)
+    assert pts2 == pts
+    write_dataset(tmp_path / "d.json", meta2, COLUMNS, pts2)        # a valid dataset
+    assert read_dataset(tmp_path / "d.json").column("force_n").tolist() == [pts[0]["force_n"]]

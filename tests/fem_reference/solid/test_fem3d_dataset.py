@@ -1,4 +1,4 @@
-"""The committed 3D dataset (issue 4 acceptance) and the resumable executor sweep."""
+"""The committed 3D dataset (issue 4 acceptance) and the resumable executor sweep (sweep.run_sweep)."""
 from __future__ import annotations
 
 import concurrent.futures as cf
@@ -10,7 +10,8 @@ import pytest
 from contact.dataset import read_dataset
 from contact.units import ARCMIN, MM
 from fem_reference.solid.mesh import MeshLevel3D
-from fem_reference.solid.sweep import COLUMNS, DATASET_PATH, richardson3, run_sweep
+from fem_reference.solid.sweep import COLUMNS, DATASET_PATH, point_store, richardson3, sweep_dataset
+from sweep import ResultStore
 
 TINY = [MeshLevel3D("t0", 8, 4, 2), MeshLevel3D("t1", 12, 6, 2), MeshLevel3D("t2", 16, 8, 2)]
 
@@ -82,10 +83,42 @@ def test_sweep_resumes_from_kept_points(tmp_path: Path):
     kw = dict(tilts_rad=[0.0, 2 * ARCMIN], penetrations_m=[0.01 * MM], level_names=TINY, cache=tmp_path,
               progress=False)
     with cf.ThreadPoolExecutor(1) as ex:
-        meta, pts = run_sweep(executor=ex, **kw)
+        meta, pts = sweep_dataset(executor=ex, **kw)
     assert len(pts) == 2 and pts[1]["moment_nm"] < 0
-    meta2, pts2 = run_sweep(executor=_Refuse(), **kw)     # everything from the kept files
-    assert [p["force_n"] for p in pts2] == [p["force_n"] for p in pts]
+    assert list(pts[0]) == [k for k in COLUMNS if k in pts[0]]          # rows in column order
+    meta2, pts2 = sweep_dataset(executor=_Refuse(), **kw)     # everything from the kept points
+    assert pts2 == pts
+
+
+def test_sweep_keeps_points_in_the_shared_store(tmp_path: Path):
+    # the 3D sweep's points live in a sweep.ResultStore (checksummed NPZ + JSON per point): a
+    # damaged point is recomputed alone, the other one is reused
+    kw = dict(tilts_rad=[0.0, 2 * ARCMIN], penetrations_m=[0.01 * MM], level_names=TINY, cache=tmp_path,
+              progress=False)
+    with cf.ThreadPoolExecutor(1) as ex:
+        meta, pts = sweep_dataset(executor=ex, **kw)
+    roots = list((tmp_path / "sweeps").iterdir())
+    assert len(roots) == 1
+    store = ResultStore(roots[0])
+    assert store.keys() == ["pen10000nm-tilt0nrad", "pen10000nm-tilt581776nrad"]
+    assert store.read_manifest()["sweep"] == "fem3d"
+    rec = store.load("pen10000nm-tilt0nrad")
+    assert rec.info["force_n"] == pts[0]["force_n"] and rec.params["tilt_rad"] == 0.0
+    store.json_path("pen10000nm-tilt0nrad").write_text("{}")             # damaged
+    submitted = []
+
+    class _Count(cf.ThreadPoolExecutor):
+        def submit(self, fn, *a, **k):
+            submitted.append(a[1] if len(a) > 1 else None)
+            return super().submit(fn, *a, **k)
+
+    with _Count(1) as ex:
+        meta2, pts2 = sweep_dataset(executor=ex, **kw)
+    assert len(submitted) == 1 and submitted[0]["tilt_rad"] == 0.0        # only the damaged point
+    assert pts2[1] == pts[1] and pts2[0]["force_n"] == pts[0]["force_n"]
+    with _Count(1) as ex:
+        sweep_dataset(executor=ex, resume=False, **kw)                   # --fresh: all again
+    assert len(submitted) == 3
 
 
 @pytest.mark.slow

@@ -204,7 +204,7 @@ def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(t
     """The reference variant at 10 500 rpm (the paper's point B), all six cases, via run_sweep with two
     processes; resumable (a second call reuses it) and its findings as the xfail tests of
     tests/rotor/studies/test_study_paper.py state them: tilt off changes Σ3f–5f by a few percent only, 2f rises with δ."""
-    from sweep.store import run_sweep
+    from sweep import run_sweep
     from reports.sensitivity import tables
 
     v = [sens.Variant("base")]
@@ -256,7 +256,7 @@ def test_collision_only_check_keeps_speeds_where_the_reference_case_collides():
 
 def _fake_store(root, variant, clearance_trend: bool):
     """A sweep store with synthetic points of one variant (the task params exactly as the study's)."""
-    from sweep.store import ResultStore
+    from sweep import ResultStore
 
     store = ResultStore(root)
     C, L = len(sens.CASE_NAMES), len(sens.LOCATIONS)

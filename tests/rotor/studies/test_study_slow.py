@@ -14,7 +14,7 @@ pytestmark = pytest.mark.slow
 def test_figure12_cascade_61_speeds_two_processes(tmp_path):
     from reports.studies import harmonic_table, load_points
     from rotor.studies.steady_state import sweep_tasks
-    from sweep.store import run_sweep
+    from sweep import run_sweep
 
     speeds = np.linspace(0, 18000, 61)
     tasks = sweep_tasks("paper-table4", speeds)

@@ -1,0 +1,90 @@
+"""Where a result came from: code revision, package versions, machine, time stamp.
+
+Every sweep record (:mod:`sweep.store` manifests and point records, the FEM reference
+datasets' metadata) is stamped with these, so a number on disk says which code and which
+libraries computed it.
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import importlib
+import os
+import platform
+import subprocess
+from pathlib import Path
+from typing import Mapping, Sequence
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def code_revision(path: str | os.PathLike | None = None, *, scope: Sequence[str] | None = None,
+                  untracked: bool = False) -> dict:
+    """Git commit of the source tree and whether it had uncommitted changes.
+
+    Parameters
+    ----------
+    path : directory inside the repository (default: the suite's root)
+    scope : paths (relative to the repository) whose changes count as ``dirty``; default all
+    untracked : count untracked files under ``scope`` as changes too
+
+    Returns
+    -------
+    ``{"git_commit": sha or "unknown", "git_dirty": bool, or None when git is unavailable}``
+    """
+    root = Path(path) if path is not None else ROOT
+    status = ["git", "status", "--porcelain"] + ([] if untracked else ["--untracked-files=no"])
+    if scope:
+        status += ["--", *scope]
+    try:
+        rev = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True, text=True,
+                             timeout=10).stdout.strip()
+        st = subprocess.run(status, cwd=root, capture_output=True, text=True, timeout=10).stdout
+        return {"git_commit": rev or "unknown", "git_dirty": bool(st.strip())}
+    except (OSError, subprocess.SubprocessError):
+        return {"git_commit": "unknown", "git_dirty": None}
+
+
+def revision_label(revision: Mapping) -> str:
+    """One string for a :func:`code_revision`: the commit, ``+dirty`` if it had changes."""
+    return str(revision.get("git_commit") or "unknown") + ("+dirty" if revision.get("git_dirty") else "")
+
+
+def package_versions(modules: Mapping[str, str] | Sequence[str] = ("numpy", "scipy"), *,
+                     required: bool = True) -> dict:
+    """Python and package versions, e.g. ``{"python": "3.11.7", "numpy": "1.26.4", ...}``.
+
+    ``modules`` maps the name to record to the module to import (``{"scikit-fem": "skfem"}``),
+    or lists modules recorded under their own names. A missing module raises ImportError when
+    ``required``, else it is recorded as None.
+    """
+    pairs = modules.items() if isinstance(modules, Mapping) else ((m, m) for m in modules)
+    out: dict = {"python": platform.python_version()}
+    for name, module in pairs:
+        try:
+            out[name] = importlib.import_module(module).__version__
+        except ImportError:
+            if required:
+                raise
+            out[name] = None
+    return out
+
+
+def environment() -> dict:
+    """Python, numpy, scipy, numba versions and the machine (for the rotor sweep record)."""
+    import numpy as np
+
+    env = {"python": platform.python_version(), "numpy": np.__version__, "machine": platform.machine(),
+           "cpu_count": os.cpu_count()}
+    versions = package_versions(("scipy", "numba"), required=False)
+    env.update({k: versions[k] for k in ("scipy", "numba")})
+    return env
+
+
+def machine() -> dict:
+    """The platform string and CPU count (for dataset metadata)."""
+    return {"platform": platform.platform(), "cpu_count": os.cpu_count()}
+
+
+def utc_stamp() -> str:
+    """Now in UTC, ``YYYY-MM-DDTHH:MM:SSZ``."""
+    return _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
