@@ -360,7 +360,7 @@ def table3() -> dict:
     rows, laws_, lines, all_ok, summary = [], [], [], True, []
     for path in paths:
         ds = read_dataset(path)
-        info = cal._dataset_info(path, ds)
+        info = cal.dataset_provenance(path, ds)
         for scene in ds.scenes():
             try:
                 law, fits = cal.calibrate_scene(ds, scene, info)
@@ -544,7 +544,7 @@ def make_figure(tables: list[dict]):
 
 def compute(dataset_path=cal.DATASET_2D) -> tuple[list[dict], dict]:
     ds = read_dataset(dataset_path)
-    info = cal._dataset_info(Path(dataset_path), ds)
+    info = cal.dataset_provenance(Path(dataset_path), ds)
     tables = []
     for scene in ds.scenes():
         try:
