@@ -1,9 +1,10 @@
 """The ``ringcontact`` console command: one entry point, one sub-command per job.
 
-Each job lives in the module of the layer that owns it and exposes
-``main(argv: list[str]) -> int`` with its own ``argparse`` parser. The table
-below is the only place jobs are registered; modules are imported only when
-their job runs, so ``ringcontact --help`` stays instant.
+Every job's command line lives in a module of ``reports/cli/`` and exposes
+``main(argv: list[str]) -> int`` (or the named function of a ``"module:function"``
+entry) with its own ``argparse`` parser; the computing and the report writing stay in
+their own layers. The table below is the only place jobs are registered; modules are
+imported only when their job runs, so ``ringcontact --help`` stays instant.
 """
 from __future__ import annotations
 
