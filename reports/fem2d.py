@@ -11,7 +11,6 @@ Writes ``reports/published/fem2d-reference.{md,csv,png,svg}`` from
 """
 from __future__ import annotations
 
-import argparse
 import csv
 import io
 from pathlib import Path
@@ -21,7 +20,6 @@ import numpy as np
 from contact.dataset import read_dataset
 from contact.files import atomic_write_bytes, atomic_write_text
 from fem_reference.plane.geometry import STEEL
-from fem_reference.plane.sweep import DATASET_PATH
 from fem_reference.verify import composite_modulus, conformal_force, lame_fem
 
 OUT = Path(__file__).resolve().parent / "published"
@@ -42,14 +40,10 @@ def persson_rows(ds) -> list[dict]:
     return rows
 
 
-def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="ringcontact fem-report", description="report of the committed 2D FEM dataset")
-    ap.add_argument("--path", default=str(DATASET_PATH))
-    ap.add_argument("--out", default=str(OUT))
-    args = ap.parse_args(argv)
-    out = Path(args.out)
-    ds = read_dataset(args.path)
-    md = ds.metadata
+
+
+def _header_lines(md: dict) -> list[str]:
+    """Title, provenance of the dataset (creation, code, packages, sweep time, mesh, solver), definitions."""
     lines = ["# 2D FEM reference: ring in ring (committed dataset)", "",
              f"Dataset `fem_reference/data/fem2d-reference.json`, created {md['created_utc']}, code "
              f"{md['code_revision'][:12]}, packages {', '.join(f'{k} {v}' for k, v in md['package_versions'].items())}. "
@@ -58,6 +52,13 @@ def main(argv: list[str] | None = None) -> int:
              + ", ".join(f"{h * 1e3:g}" for h in md["mesh"]["levels_h_contact_m"])
              + f" mm, P{md['mesh']['element_order']}; {md['mesh']['extra_levels']}. Solver: {md['solver']['method']}.",
              "", "Definitions: " + "; ".join(f"`{k}`: {v}" for k, v in md["definitions"].items()) + ".", ""]
+    return lines
+
+
+def _scene_tables(ds) -> tuple[list[str], str]:
+    """One Markdown table per scene and the CSV of every point."""
+    md = ds.metadata
+    lines = []
     buf = io.StringIO()
     w = csv.writer(buf)
     w.writerow(["scene", "penetration_mm", "force_kN", "force_error_rel", "observed_order", "half_angle_deg",
@@ -86,8 +87,12 @@ def main(argv: list[str] | None = None) -> int:
                       f"≤ 0.1 %); wall time of a point from scratch (all its levels meshed, factorised, solved) "
                       f"median {np.median(walls):.2f} s, max {walls.max():.2f} s ({int((walls <= 3.0).sum())}/{len(walls)} "
                       "≤ 3 s).", ""]
-    atomic_write_text(out / "fem2d-reference.csv", buf.getvalue())
-    # Persson verification from the committed points
+    return lines, buf.getvalue()
+
+
+def _persson_section(ds) -> list[str]:
+    """Persson verification from the committed points: FE force against the law at the measured half-angle."""
+    lines = []
     pr = persson_rows(ds)
     if pr:
         lines += ["## Verification: Persson pin in a large plate vs the exact conformal law", "",
@@ -101,16 +106,20 @@ def main(argv: list[str] | None = None) -> int:
         if band:
             lines += ["", f"Within 10°–70°: largest |FE/law − 1| = {max(abs(r['ratio'] - 1) for r in band):.2%} "
                           f"over {len(band)} points (test: tests/fem_reference/plane/test_fem_solver.py, also at 70° with h = 1 mm).", ""]
-    # plate growth
+    return lines
+
+
+def _plate_growth_section() -> list[str]:
+    """The Persson scene as the plate grows (solved here, h = 1 mm, P2)."""
     from fem_reference.verify import persson_plate_study
 
     rows = persson_plate_study(h_contact_m=1e-3)
-    lines += ["## Persson scene as the plate grows (h = 1 mm, P2)", "",
-              "Load vs *measured angle* converges to the law as the plate grows; load vs *penetration* keeps "
-              "falling, about linearly in ln(R_o) in compliance (the infinite plate's rigid approach is log-divergent), "
-              "so the conformal law's Δr → ε mapping (rigid overlap) is a modelling choice, not a limit of the FE.", "",
-              "| R_o/R_b | Δr (mm) | FE force (kN) | measured ε (°) | rigid-overlap ε (°) | FE/law at measured ε | "
-              "Δr/F (µm/kN) |", "|---|---|---|---|---|---|---|"]
+    lines = ["## Persson scene as the plate grows (h = 1 mm, P2)", "",
+             "Load vs *measured angle* converges to the law as the plate grows; load vs *penetration* keeps "
+             "falling, about linearly in ln(R_o) in compliance (the infinite plate's rigid approach is log-divergent), "
+             "so the conformal law's Δr → ε mapping (rigid overlap) is a modelling choice, not a limit of the FE.", "",
+             "| R_o/R_b | Δr (mm) | FE force (kN) | measured ε (°) | rigid-overlap ε (°) | FE/law at measured ε | "
+             "Δr/F (µm/kN) |", "|---|---|---|---|---|---|---|"]
     for r in rows:
         er = np.degrees(np.arccos(0.05e-3 / (0.05e-3 + r["penetration_m"])))
         lines.append(f"| {r['plate_ratio']:g} | {r['penetration_m'] * 1e3:g} | {r['force_n'] / 1e3:.3f} | "
@@ -125,14 +134,22 @@ def main(argv: list[str] | None = None) -> int:
         lines.append(f"\nΔr = {d * 1e3:g} mm: compliance Δr/F vs ln(R_o/R_b): slope {c[0] * 1e9:.4f} µm/kN per "
                      f"unit ln, R² = {r2:.4f}.")
     lines.append("")
-    # Lamé
-    lines += ["## Verification: Lamé thick ring (support ring, outer surface clamped, bore pressurised)", "",
-              "| element | plane | h (mm) | FE u(a) (µm) | Lamé u(a) (µm) | error |", "|---|---|---|---|---|---|"]
+    return lines
+
+
+def _lame_section() -> list[str]:
+    """Lamé thick ring, P1/P2, plane strain/stress (solved here)."""
+    lines = ["## Verification: Lamé thick ring (support ring, outer surface clamped, bore pressurised)", "",
+             "| element | plane | h (mm) | FE u(a) (µm) | Lamé u(a) (µm) | error |", "|---|---|---|---|---|---|"]
     for order, h in ((1, 1e-3), (2, 2e-3)):
         for plane in ("strain", "stress"):
             fe, ex = lame_fem(h, order, plane)
             lines.append(f"| P{order} | {plane} | {h * 1e3:g} | {fe * 1e6:.5f} | {ex * 1e6:.5f} | {fe / ex - 1:+.1e} |")
-    # plot
+    return lines
+
+
+def _write_figure(ds, out: Path) -> None:
+    """``fem2d-reference.{png,svg}``: force and half-angle of every scene against the conformal law."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -161,8 +178,21 @@ def main(argv: list[str] | None = None) -> int:
         fig.savefig(b, format=ext, dpi=120, bbox_inches="tight", metadata={"Date": None} if ext == "svg" else None)
         atomic_write_bytes(out / f"fem2d-reference.{ext}", b.getvalue())
     plt.close(fig)
+
+
+def write_report(path, out) -> Path:
+    """Write ``fem2d-reference.{md,csv,png,svg}`` of the dataset at ``path`` into ``out``; return the Markdown file."""
+    out = Path(out)
+    ds = read_dataset(path)
+    lines = _header_lines(ds.metadata)
+    tables, csv_text = _scene_tables(ds)
+    lines += tables
+    atomic_write_text(out / "fem2d-reference.csv", csv_text)
+    lines += _persson_section(ds)
+    lines += _plate_growth_section()
+    lines += _lame_section()
+    _write_figure(ds, out)
     lines += ["", "![force and half-angle](fem2d-reference.png)", "",
               "See also `fem2d-benchmark.md` (speed vs error) and `fem2d-paper-setup.md` (the paper's FEM set-up)."]
     atomic_write_text(out / "fem2d-reference.md", "\n".join(lines) + "\n")
-    print(f"wrote {out / 'fem2d-reference.md'}")
-    return 0
+    return out / "fem2d-reference.md"

@@ -305,10 +305,9 @@ def _rpm_pair(found):
     return np.array([found[k][0] if k in found else np.nan for k in ("disk2", "disk1")])
 
 
-def testrig_report(out: Path) -> list[Path]:
-    scene = load_scene("paper-table5-testrig")
-    model = assemble(scene)
-    paper = np.array(PAPER_TESTRIG_RPM)
+def _testrig_readings(scene, paper) -> dict:
+    """Critical speeds of the disk-2 and disk-1 modes in readings A (as bundled), B (frame mass not moving) and
+    C (B with the front-shaft diameter fitted to the paper's disk-1 value); the front-shaft factor of C."""
     a_found = identified_criticals(scene)
     a_rpm = _rpm_pair(a_found)
     # reading B: the 15 kg frame does not move with the rotor (k3 acts from node 5 to ground)
@@ -326,7 +325,11 @@ def testrig_report(out: Path) -> list[Path]:
     f_front = math.exp(logf)
     c_found = identified_criticals(_scale_shafts(scene_b, (0, 1), f_front))
     c_rpm = _rpm_pair(c_found)
+    return {"a": a_rpm, "b": b_rpm, "c": c_rpm, "f_front": f_front}
 
+
+def _testrig_scan_max(scene) -> float:
+    """Highest disk-2 critical speed of reading A over plausible slender-shaft diameters and disk-2 positions."""
     scan = []
     for dia in SCAN_DIAMETERS_MM:
         for pos in SCAN_POSITIONS:
@@ -334,19 +337,21 @@ def testrig_report(out: Path) -> list[Path]:
             found = identified_criticals(sc)
             if "disk2" in found:
                 scan.append(found["disk2"][0])
-    scan_max = max(scan)
+    return max(scan)
 
+
+def _testrig_sensitivities(scene) -> dict:
+    """Logarithmic sensitivity of the (disk-2, disk-1) critical speeds to each unspecified input (±5 %)."""
     sens = {}
     for label, fn in TESTRIG_INPUTS.items():
         hi = _rpm_pair(identified_criticals(fn(scene, 1.05)))
         lo = _rpm_pair(identified_criticals(fn(scene, 1 / 1.05)))
         sens[label] = (np.log(hi) - np.log(lo)) / (2 * math.log(1.05))
+    return sens
 
-    def top(k):
-        order = sorted(sens, key=lambda lab: -abs(sens[lab][k]))[:3]
-        return ", ".join(f"{lab} {sens[lab][k]:+.2f}" for lab in order)
 
-    all_a = forward_criticals(scene, 4, max_rpm=20000)
+def _testrig_figures(scene, model, all_a, out: Path) -> list[Path]:
+    """Campbell diagram and forward mode shapes of the bundled scene."""
     wmax = scene.analysis.max_speed_rad_s
     camp = campbell(model, np.linspace(0, wmax, scene.analysis.speed_points), n_modes=8)
     crit = critical_speeds(model, wmax, n_modes=12)
@@ -356,6 +361,16 @@ def testrig_report(out: Path) -> list[Path]:
         model, [(f"{e[0]:.0f} rpm, {e[1]}", e[3], e[4]) for e in all_a[:3]],
         "Test rig: forward modes at the first 1X critical speeds (cf. paper Figure 21)"),
         out / "rotor-testrig-modes")
+    return files
+
+
+def _testrig_lines(paper, r: dict, scan_max: float, sens: dict, all_a) -> list[str]:
+    """The Markdown of ``rotor-testrig.md`` from the numbers above."""
+    a_rpm, b_rpm, c_rpm, f_front = r["a"], r["b"], r["c"], r["f_front"]
+
+    def top(k):
+        order = sorted(sens, key=lambda lab: -abs(sens[lab][k]))[:3]
+        return ", ".join(f"{lab} {sens[lab][k]:+.2f}" for lab in order)
 
     def shares(e):
         return ", ".join(f"{k} {v:.0%}" for k, v in e[2].items())
@@ -411,6 +426,19 @@ def testrig_report(out: Path) -> list[Path]:
              "stiffness a0, the frame inertia J_s and the disk-1 position matter little for both modes.", "",
              "![Campbell diagram](rotor-testrig-campbell.png)", "",
              "![Mode shapes](rotor-testrig-modes.png)", ""]
+    return lines
+
+
+def testrig_report(out: Path) -> list[Path]:
+    scene = load_scene("paper-table5-testrig")
+    model = assemble(scene)
+    paper = np.array(PAPER_TESTRIG_RPM)
+    readings = _testrig_readings(scene, paper)
+    scan_max = _testrig_scan_max(scene)
+    sens = _testrig_sensitivities(scene)
+    all_a = forward_criticals(scene, 4, max_rpm=20000)
+    files = _testrig_figures(scene, model, all_a, out)
+    lines = _testrig_lines(paper, readings, scan_max, sens, all_a)
     p = out / "rotor-testrig.md"
     atomic_write_text(p, "\n".join(lines) + "\n")
     return [p] + files

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from contact.errors import InputError
-from reports.studies import save, write_csv, _plt
+from reports.studies.common import pyplot, save, write_csv
 from rotor.studies import sensitivity as sens
 from sweep import ResultStore, load_sweep
 
@@ -157,7 +157,7 @@ def per_speed_ratios(table: sens.AmplitudeTable) -> dict:
 def figure(tabs: dict, variants, prefix: Path) -> list:
     """Deciding ratio of each finding per variant and speed at disk 2 (log scale); filled markers:
     every compared case periodic; the paper's side shaded."""
-    plt = _plt()
+    plt = pyplot()
     names = [v.name for v in variants if v.name in tabs]
     panels = [("clearance", "3f(δ0 = 0.03 mm) / 3f(δ0 = 0.08 mm), disk 2\n(displacement; > 1 = paper, Fig. 18)", 1.0, "above"),
               ("misalignment", "3f(δ = 2 mm) / 3f(δ = 0.5 mm), disk 2\n(displacement; > 1 = paper, Fig. 19)", 1.0, "above"),

@@ -1,9 +1,10 @@
 """The ``ringcontact`` console command: one entry point, one sub-command per job.
 
-Each job lives in the module of the layer that owns it and exposes
-``main(argv: list[str]) -> int`` with its own ``argparse`` parser. The table
-below is the only place jobs are registered; modules are imported only when
-their job runs, so ``ringcontact --help`` stays instant.
+Every job's command line lives in a module of ``reports/cli/`` and exposes
+``main(argv: list[str]) -> int`` (or the named function of a ``"module:function"``
+entry) with its own ``argparse`` parser; the computing and the report writing stay in
+their own layers. The table below is the only place jobs are registered; modules are
+imported only when their job runs, so ``ringcontact --help`` stays instant.
 """
 from __future__ import annotations
 
@@ -20,11 +21,11 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-point": ("reports.cli.fem:point_main", "solve one 2D FEM contact point (penetration in mm; --json)"),
     "fem-sweep": ("reports.cli.fem:sweep_main", "regenerate the committed 2D FEM reference dataset (with progress)"),
     "fem-check": ("reports.cli.fem:check_main", "recompute a few committed 2D FEM points, report differences"),
-    "fem-report": ("reports.fem2d", "write reports/published/fem2d-reference.* from the committed 2D dataset"),
-    "fem-paper": ("fem_reference.paper_setup", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
+    "fem-report": ("reports.cli.fem:report_main", "write reports/published/fem2d-reference.* from the committed 2D dataset"),
+    "fem-paper": ("reports.cli.fem:paper_main", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
     "fem-vtu": ("reports.cli.fem:vtu_main", "export a solved 2D FEM point to VTU for ParaView"),
     "fem3d": ("reports.cli.fem3d", "3D tilted-ring FEM reference: point | sweep | check (mm, arcmin; --json)"),
-    "calibrate": ("contact.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
+    "calibrate": ("reports.cli.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
     "study": ("reports.cli.study", "steady-state sweeps, cascades, test rig, run-up, regime map (resumable, parallel)"),
     "report": ("reports.cli.report", "build the committed reports/ from the committed datasets (the main job)"),
 }

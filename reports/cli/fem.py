@@ -1,8 +1,10 @@
-"""Console jobs of the 2D FEM reference (registered in reports/cli.py).
+"""Console jobs of the 2D FEM reference (registered in reports/cli/__init__.py).
 
     ringcontact fem-point 0.01 [--scene clamped] [--h-mm 1] [--order 2] [--json]
     ringcontact fem-sweep [--out PATH]            regenerate the committed dataset (progress on a TTY)
     ringcontact fem-check [--points 3]            recompute a few committed points, print differences
+    ringcontact fem-report [--path P] [--out D]   report of the committed dataset (reports.fem2d)
+    ringcontact fem-paper [--h-mm 2] [--out D]    the paper set-up study and its report (reports.fem2d_paper)
     ringcontact fem-vtu 0.01 out.vtu [--scene clamped]   deformed rings + pressure + stresses for ParaView
 
 Engineer units at this edge only (mm, kN, degrees, MPa); everything inside is SI.
@@ -12,6 +14,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -114,6 +117,35 @@ def check_main(argv: list[str]) -> int:
               f"{r['new_force_n'] / 1e3:>15.4f}{r['diff_rel']:>11.2e}{r['error_estimate_rel']:>10.1e}")
     print(f"largest difference {worst:.2e} ({'OK' if worst <= args.tol else 'CHANGED'} at tol {args.tol:g})")
     return 0 if worst <= args.tol else 1
+
+
+def report_main(argv: list[str] | None = None) -> int:
+    """``fem-report``: report of the committed 2D dataset and its verification (:mod:`reports.fem2d`)."""
+    from fem_reference.plane.sweep import DATASET_PATH
+    from reports.fem2d import OUT, write_report
+
+    ap = argparse.ArgumentParser(prog="ringcontact fem-report", description="report of the committed 2D FEM dataset")
+    ap.add_argument("--path", default=str(DATASET_PATH))
+    ap.add_argument("--out", default=str(OUT))
+    args = ap.parse_args(argv)
+    print(f"wrote {write_report(args.path, args.out)}")
+    return 0
+
+
+def paper_main(argv: list[str] | None = None) -> int:
+    """``fem-paper``: run the paper set-up study (:mod:`fem_reference.paper_setup`) and write its report."""
+    from fem_reference import paper_setup
+    from reports.fem2d_paper import REPORT_DIR, write_report
+
+    ap = argparse.ArgumentParser(prog="ringcontact fem-paper", description=paper_setup.__doc__.splitlines()[0])
+    ap.add_argument("--h-mm", type=float, default=2.0, help="contact element size [mm]")
+    ap.add_argument("--out", default=str(REPORT_DIR))
+    ap.add_argument("--quiet", action="store_true")
+    args = ap.parse_args(argv)
+    rows = paper_setup.run(args.h_mm * 1e-3, progress=(lambda *_: None) if args.quiet else print)
+    write_report(rows, Path(args.out))
+    print(f"wrote {Path(args.out) / 'fem2d-paper-setup.md'}")
+    return 0
 
 
 def vtu_main(argv: list[str]) -> int:

@@ -71,9 +71,50 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _run(args) -> int:
-    from rotor.dynamics.reference import simulate_reference, system_from_model
-    from rotor.model.assembly import assemble
     from rotor.dynamics.production import simulate_production
+    from rotor.dynamics.reference import simulate_reference
+
+    scene, model, system, validity_m = _system(args)
+    names = [s.strip() for s in args.dofs.split(",") if s.strip()]
+    idx = [model.dof_index(n) for n in names]
+    omega = args.speed_rpm * 2 * math.pi / 60
+    T = 2 * math.pi / omega
+    dt = T / args.steps_per_rev
+    n_steps = int(round(args.revolutions * args.steps_per_rev))
+    rec = max(1, args.steps_per_rev // args.record_per_rev)
+    run = simulate_production if args.scheme == "production" else simulate_reference
+    t0 = time.perf_counter()
+    extra = {}
+    if args.steady:
+        tr, dt, n_steps, extra = _steady_run(args, system, model, T, names, idx)
+    else:
+        tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
+    wall = time.perf_counter() - t0
+    r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
+    d0 = system.support.law.clearance_m
+    out = Path(args.out)
+    _write_trajectory(out, tr, system, names, idx, r1, r2, d0)
+    summary = {"scene": scene.name, "speed_rpm": args.speed_rpm, "revolutions": args.revolutions,
+               "scheme": tr.scheme, "dt_s": dt, "steps": n_steps, "wall_s": round(wall, 3),
+               "law": system.support.law.name, "clearance_mm": d0 * 1e3,
+               "max_r1_mm": float(r1.max() * 1e3), "max_r2_mm": float(r2.max() * 1e3),
+               "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
+               "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
+               "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
+               **validity_summary(float(max(r1.max(), r2.max()) - d0), validity_m), **extra}
+    atomic_write_text(out / "simulate-summary.json", json.dumps(summary, indent=2) + "\n")
+    print(json.dumps(summary, indent=2))
+    if summary.get("beyond_law_validity"):
+        print(f"ringcontact simulate: warning: the largest edge penetration {summary['max_edge_penetration_mm']:.4g} mm "
+              f"exceeds the calibrated law's validity range ({summary['law_validity_max_penetration_mm']:.4g} mm): "
+              "the law was extrapolated", file=sys.stderr)
+    return 0
+
+
+def _system(args):
+    """``(scene, model, system, validity max penetration in m or None)`` from the checked arguments."""
+    from rotor.dynamics.reference import system_from_model
+    from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
 
     check_positive("speed_rpm", args.speed_rpm, "rpm", upper=1e5)
@@ -97,57 +138,55 @@ def _run(args) -> int:
     else:
         system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
                                    preload_N=args.preload_n, clearance_m=clearance_m, **kw)
-    names = [s.strip() for s in args.dofs.split(",") if s.strip()]
-    idx = [model.dof_index(n) for n in names]
-    T = 2 * math.pi / omega
-    dt = T / args.steps_per_rev
-    n_steps = int(round(args.revolutions * args.steps_per_rev))
-    rec = max(1, args.steps_per_rev // args.record_per_rev)
-    run = simulate_production if args.scheme == "production" else simulate_reference
-    t0 = time.perf_counter()
-    extra = {}
-    if args.steady:
-        from rotor.dynamics.reference import linear_initial_state
-        from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
+    return scene, model, system, validity_m
 
-        keep = int(round(args.revolutions))
-        if args.scheme != "production" or keep < 1 or args.steps_per_rev % args.record_per_rev:
-            raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
-                             "dividing --steps-per-rev")
-        # detection by rotor.studies.steady_state (displacement Poincaré samples with the projected tail of the
-        # decay, subharmonic periods); its own record is one period only: the kept revolutions are
-        # integrated below from its end state so that every field of the trajectory is written
-        opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
-                                  spectrum_revs=1)
-        q_start, v_start = linear_initial_state(system, 0.0)
-        ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
-        conv = ss.convergence
-        period = conv.period if conv.converged else 1
-        keep = int(math.ceil(keep / period) * period)  # whole periods: exact DFT bins
-        dt = T / ss.steps_per_rev  # the detector may refine the step (contact step limit)
-        rec = ss.steps_per_rev // args.record_per_rev
-        n_steps = keep * ss.steps_per_rev
-        tr = simulate_production(system, dt, n_steps, q0=ss.q_end, v0=ss.v_end,
-                                 t0=(ss.transient_revs + ss.revolutions) * T,
-                                 modes0=tuple(int(m) for m in ss.modes[-1]), record_every=rec, check_step=False)
-        amps = np.abs(harmonic_amplitudes(tr.v[:-1, idx] - tr.v[:-1, idx].mean(axis=0), keep))
-        extra = {"transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
-                 "period_revs": int(conv.period), "poincare_change": float(conv.change),
-                 "poincare_remaining": float(conv.remaining), "record_revs": keep,
-                 "velocity_amplitudes_mm_s_1X_to_5X": {n: [round(float(a) * 1e3, 6) for a in amps[:, j]]
-                                                       for j, n in enumerate(names)}}
-    else:
-        tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
-    wall = time.perf_counter() - t0
-    r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
-    d0 = system.support.law.clearance_m
+
+def _steady_run(args, system, model, T: float, names: list[str], idx: list[int]):
+    """``--steady``: detect the steady state, then integrate the kept whole periods from its end state.
+
+    Returns ``(trajectory, dt, n_steps, summary fields)``.
+    """
+    from rotor.dynamics.production import simulate_production
+    from rotor.dynamics.reference import linear_initial_state
+    from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
+
+    keep = int(round(args.revolutions))
+    if args.scheme != "production" or keep < 1 or args.steps_per_rev % args.record_per_rev:
+        raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
+                         "dividing --steps-per-rev")
+    # detection by rotor.studies.steady_state (displacement Poincaré samples with the projected tail of the
+    # decay, subharmonic periods); its own record is one period only: the kept revolutions are
+    # integrated below from its end state so that every field of the trajectory is written
+    opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
+                              spectrum_revs=1)
+    q_start, v_start = linear_initial_state(system, 0.0)
+    ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
+    conv = ss.convergence
+    period = conv.period if conv.converged else 1
+    keep = int(math.ceil(keep / period) * period)  # whole periods: exact DFT bins
+    dt = T / ss.steps_per_rev  # the detector may refine the step (contact step limit)
+    rec = ss.steps_per_rev // args.record_per_rev
+    n_steps = keep * ss.steps_per_rev
+    tr = simulate_production(system, dt, n_steps, q0=ss.q_end, v0=ss.v_end,
+                             t0=(ss.transient_revs + ss.revolutions) * T,
+                             modes0=tuple(int(m) for m in ss.modes[-1]), record_every=rec, check_step=False)
+    amps = np.abs(harmonic_amplitudes(tr.v[:-1, idx] - tr.v[:-1, idx].mean(axis=0), keep))
+    extra = {"transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
+             "period_revs": int(conv.period), "poincare_change": float(conv.change),
+             "poincare_remaining": float(conv.remaining), "record_revs": keep,
+             "velocity_amplitudes_mm_s_1X_to_5X": {n: [round(float(a) * 1e3, 6) for a in amps[:, j]]
+                                                   for j, n in enumerate(names)}}
+    return tr, dt, n_steps, extra
+
+
+def _write_trajectory(out: Path, tr, system, names: list[str], idx: list[int], r1, r2, d0: float) -> None:
+    """``simulate.csv`` (time, the named DOFs, edge offsets, tilts, stick/slip, contact flags) and ``simulate.npz``."""
     cols = {"t_s": tr.t}
     for n, i in zip(names, idx):
         cols[f"{n}_m" if n.split(".")[-1] in ("y", "z") else f"{n}_rad"] = tr.q[:, i]
     cols.update({"r1_m": r1, "r2_m": r2, "tilt_y_rad": tr.u[:, 2], "tilt_z_rad": tr.u[:, 3],
                  "stick_right": tr.modes[:, 0], "stick_left": tr.modes[:, 1],
                  "contact_edge1": (r1 > d0).astype(int), "contact_edge2": (r2 > d0).astype(int)})
-    out = Path(args.out)
     buf = io.StringIO()
     buf.write(",".join(cols) + "\n")
     np.savetxt(buf, np.column_stack(list(cols.values())), delimiter=",", fmt="%.9g")
@@ -156,21 +195,6 @@ def _run(args) -> int:
     np.savez_compressed(b, t=tr.t, q=tr.q, v=tr.v, u=tr.u, w=tr.w, f_contact=tr.f_contact, face_force=tr.face_force,
                         modes=tr.modes, dof_names=np.array(system.dof_names))
     atomic_write_bytes(out / "simulate.npz", b.getvalue())
-    summary = {"scene": scene.name, "speed_rpm": args.speed_rpm, "revolutions": args.revolutions,
-               "scheme": tr.scheme, "dt_s": dt, "steps": n_steps, "wall_s": round(wall, 3),
-               "law": system.support.law.name, "clearance_mm": d0 * 1e3,
-               "max_r1_mm": float(r1.max() * 1e3), "max_r2_mm": float(r2.max() * 1e3),
-               "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
-               "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
-               "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
-               **validity_summary(float(max(r1.max(), r2.max()) - d0), validity_m), **extra}
-    atomic_write_text(out / "simulate-summary.json", json.dumps(summary, indent=2) + "\n")
-    print(json.dumps(summary, indent=2))
-    if summary.get("beyond_law_validity"):
-        print(f"ringcontact simulate: warning: the largest edge penetration {summary['max_edge_penetration_mm']:.4g} mm "
-              f"exceeds the calibrated law's validity range ({summary['law_validity_max_penetration_mm']:.4g} mm): "
-              "the law was extrapolated", file=sys.stderr)
-    return 0
 
 
 def _law(args, scene, clearance_m):

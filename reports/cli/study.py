@@ -142,15 +142,8 @@ def _sweep(tasks, out: Path, args, description: dict):
 
 
 def _run(args) -> int:
-    from rotor.studies.steady_state import sweep_tasks
-
     if args.study == "publish":
-        from reports import studies
-        runs = {k: getattr(args, k) for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup")
-                if getattr(args, k)}
-        for f in studies.publish(runs, Path(args.to)):
-            print(f"  wrote {f}")
-        return 0
+        return _publish(args)
     if args.study == "sensitivity":
         return _sensitivity(args)
     out = Path(args.out)
@@ -159,75 +152,120 @@ def _run(args) -> int:
     if args.workers < 1:
         from contact.errors import InputError
         raise InputError(f"workers = {args.workers}: must be >= 1")
-    if args.study == "cascade":
-        check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
-        speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
-        kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts}
-        if args.clearance_mm is not None:
-            kw["clearance_m"] = check_positive("clearance_mm", args.clearance_mm, "mm", upper=10) * 1e-3
-        if args.misalignment_mm is not None:
-            kw["misalignment_m"] = check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True,
-                                                  upper=50) * 1e-3
-        tasks = sweep_tasks(args.scene, speeds, **kw)
-        s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **kw})
-        _timing(out, s, wall, args)
-        from reports import studies
-        files = studies.cascade_figures(out, figs, tasks=tasks)
-    elif args.study == "point":
-        speeds = args.speed_rpm or [4500.0, 10500.0]
-        tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8)
-        _sweep(tasks, out, args, {"speeds_rpm": speeds})
-        from reports import studies
-        files = studies.point_figures(out, figs, tasks=tasks)
-    elif args.study == "params":
-        speeds = np.linspace(0.0, args.rpm_max, int(args.points))
-        # the scene's own clearance/misalignment is one shared 'base' curve of both figures
-        tasks = sweep_tasks(args.scene, speeds, prefix="base-rpm", options=opts)
-        for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
-            tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
-        for d in _floats(args.misalignments_mm, "misalignments_mm", "mm"):
-            tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", misalignment_m=d * 1e-3, options=opts)
-        _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
-                                  "misalignments_mm": args.misalignments_mm})
-        from reports import studies
-        files = studies.params_figures(out, figs, tasks=tasks)
-    elif args.study == "testrig":
-        tasks = []
-        for rpm in (3600.0, 5500.0):
-            for c in (0.01, 0.05):
-                tasks += sweep_tasks(args.scene, [rpm], prefix=f"c{c:g}mm-d1mm-rpm", clearance_m=c * 1e-3,
-                                     misalignment_m=1e-3, options=opts, history_revs=8)
-            tasks += sweep_tasks(args.scene, [rpm], prefix="c0.05mm-d3mm-rpm", clearance_m=0.05e-3,
-                                 misalignment_m=3e-3, options=opts, history_revs=8)
-        _sweep(tasks, out, args, {"speeds_rpm": [3600, 5500], "clearances_mm": [0.01, 0.05],
-                                  "misalignments_mm": [1, 3]})
-        from reports import studies
-        files = studies.testrig_figures(out, figs, tasks=tasks)
-    elif args.study == "map":
-        speeds = np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points))
-        tasks = []
-        for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
-            tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
-        _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm})
-        from reports import studies
-        files = studies.map_figures(out, figs, tasks=tasks)
-    elif args.study == "runup":
-        from rotor.studies.runup import RunupSpec, run_runup
-
-        a, b = args.rpm_start, args.rpm_end
-        if args.down and a < b:
-            a, b = b, a
-        spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
-                         steps_per_rev=int(args.steps_per_rev))
-        info = run_runup(spec, out)
-        print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")
-        from reports import studies
-        files = studies.runup_figures(out, figs)
-    else:  # pragma: no cover - argparse guards this
+    study = _STUDIES.get(args.study)
+    if study is None:  # pragma: no cover - argparse guards this
         return 2
-    for f in files:
+    for f in study(args, out, figs, opts):
         print(f"  wrote {f}")
     return 0
+
+
+def _publish(args) -> int:
+    """``study publish``: figures + notes of finished study directories into ``--to``."""
+    from reports.studies import publish
+
+    runs = {k: getattr(args, k) for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup")
+            if getattr(args, k)}
+    for f in publish(runs, Path(args.to)):
+        print(f"  wrote {f}")
+    return 0
+
+
+def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
+    """``study cascade``: steady state at each speed of a range (Figs. 12, 16, 17)."""
+    from reports.studies.cascade import cascade_figures
+    from rotor.studies.steady_state import sweep_tasks
+
+    check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
+    speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
+    kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts}
+    if args.clearance_mm is not None:
+        kw["clearance_m"] = check_positive("clearance_mm", args.clearance_mm, "mm", upper=10) * 1e-3
+    if args.misalignment_mm is not None:
+        kw["misalignment_m"] = check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True,
+                                              upper=50) * 1e-3
+    tasks = sweep_tasks(args.scene, speeds, **kw)
+    s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **kw})
+    _timing(out, s, wall, args)
+    return cascade_figures(out, figs, tasks=tasks)
+
+
+def _point(args, out: Path, figs: Path, opts: dict) -> list[Path]:
+    """``study point``: orbits, deflection, time histories, spectra at one or more speeds (Figs. 13-15)."""
+    from reports.studies.point import point_figures
+    from rotor.studies.steady_state import sweep_tasks
+
+    speeds = args.speed_rpm or [4500.0, 10500.0]
+    tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8)
+    _sweep(tasks, out, args, {"speeds_rpm": speeds})
+    return point_figures(out, figs, tasks=tasks)
+
+
+def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
+    """``study params``: 1X/2X/3X vs speed for several clearances and misalignments (Figs. 18-19)."""
+    from reports.studies.params import params_figures
+    from rotor.studies.steady_state import sweep_tasks
+
+    speeds = np.linspace(0.0, args.rpm_max, int(args.points))
+    # the scene's own clearance/misalignment is one shared 'base' curve of both figures
+    tasks = sweep_tasks(args.scene, speeds, prefix="base-rpm", options=opts)
+    for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
+    for d in _floats(args.misalignments_mm, "misalignments_mm", "mm"):
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", misalignment_m=d * 1e-3, options=opts)
+    _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
+                              "misalignments_mm": args.misalignments_mm})
+    return params_figures(out, figs, tasks=tasks)
+
+
+def _testrig(args, out: Path, figs: Path, opts: dict) -> list[Path]:
+    """``study testrig``: the Table 5 rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/3 mm."""
+    from reports.studies.testrig import testrig_figures
+    from rotor.studies.steady_state import sweep_tasks
+
+    tasks = []
+    for rpm in (3600.0, 5500.0):
+        for c in (0.01, 0.05):
+            tasks += sweep_tasks(args.scene, [rpm], prefix=f"c{c:g}mm-d1mm-rpm", clearance_m=c * 1e-3,
+                                 misalignment_m=1e-3, options=opts, history_revs=8)
+        tasks += sweep_tasks(args.scene, [rpm], prefix="c0.05mm-d3mm-rpm", clearance_m=0.05e-3,
+                             misalignment_m=3e-3, options=opts, history_revs=8)
+    _sweep(tasks, out, args, {"speeds_rpm": [3600, 5500], "clearances_mm": [0.01, 0.05],
+                              "misalignments_mm": [1, 3]})
+    return testrig_figures(out, figs, tasks=tasks)
+
+
+def _map(args, out: Path, figs: Path, opts: dict) -> list[Path]:
+    """``study map``: stick/slip/impact regime over (speed, clearance)."""
+    from reports.studies.regime_map import map_figures
+    from rotor.studies.steady_state import sweep_tasks
+
+    speeds = np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points))
+    tasks = []
+    for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
+    _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm})
+    return map_figures(out, figs, tasks=tasks)
+
+
+def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
+    """``study runup``: run-up (or run-down with --down) with a time-frequency cascade."""
+    from reports.studies.runup import runup_figures
+    from rotor.studies.runup import RunupSpec, run_runup
+
+    a, b = args.rpm_start, args.rpm_end
+    if args.down and a < b:
+        a, b = b, a
+    spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
+                     steps_per_rev=int(args.steps_per_rev))
+    info = run_runup(spec, out)
+    print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")
+    return runup_figures(out, figs)
+
+
+# sub-study -> function(args, out, figs, options) -> files written (publish and sensitivity have their own)
+_STUDIES = {"cascade": _cascade, "point": _point, "params": _params, "testrig": _testrig, "map": _map,
+            "runup": _runup}
 
 
 def _sensitivity(args) -> int:

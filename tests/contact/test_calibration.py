@@ -257,20 +257,6 @@ def test_implicit_family_is_refused_by_the_kernel_with_a_clear_error():
         law.loose_support_params()
 
 
-def test_calibrate_cli_check_and_errors(tmp_path, capsys):
-    assert cal.main(["--check"]) == 0
-    assert "up to date" in capsys.readouterr().out
-    assert cal.main(["--check", "--out", str(tmp_path)]) == 1          # nothing stored there: drift reported
-    assert "not found" in capsys.readouterr().out
-    assert cal.main(["--dataset", str(tmp_path / "missing.json")]) == 2
-    assert "cannot read reference dataset" in capsys.readouterr().err
-    # writing into a fresh directory gives the same files as the committed ones
-    assert cal.main(["--out", str(tmp_path)]) == 0
-    for name in cal.available():
-        assert (tmp_path / f"{name}.json").exists()
-    assert cal.check_calibrations(directory=tmp_path) == []
-
-
 @pytest.mark.parametrize("pen,tilt_arcmin", [(1e-5, 2.0), (2e-6, 2.0), (3e-5, 0.5), (5e-5, 30.0), (1e-6, 1.0)])
 def test_kernel_slice_integration_matches_the_numpy_tilted_law(pen, tilt_arcmin):
     # Law code 2 integrates a tilted patch slice by slice (Winkler, Johnson 1985 §4.3) in the compiled

@@ -1,0 +1,239 @@
+"""Fitting a calibrated law to a reference dataset: every family by least squares in log force,
+leave-one-out hold-out, selection of the fewest parameters the data justify.
+
+:func:`calibrate_scene` turns a scene of a dataset into a :class:`~contact.calibrate.law.CalibratedLaw`;
+:func:`calibrate_dataset` does it for every scene of a file.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from contact import laws
+from contact.calibrate.families import (FAMILIES, LINEAR_FAMILIES, PARAMETERS, SceneGeometry, _base_and_design,
+                                        _to_parameters, family_force)
+from contact.calibrate.law import CalibratedLaw
+from contact.dataset import ReferenceDataset, read_dataset
+from contact.errors import DatasetError, InputError
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+DATASET_2D = REPO_ROOT / "fem_reference" / "data" / "fem2d-reference.json"
+DATA_3D_DIR = REPO_ROOT / "fem_reference" / "data" / "3d"
+SELECTION_GAIN = 2.0          # a k+1-parameter family must at least halve the held-out RMS error
+
+
+@dataclass(frozen=True)
+class FamilyFit:
+    """Least-squares fit of one family to one scene.
+
+    parameters, parameter_std : dict
+        Physical values and 1σ standard deviations (units in :data:`PARAMETERS`).
+    fit_rel_err : ndarray
+        ``P_fit/P_FEM − 1`` at the fitted points (fit on all of them).
+    holdout_rel_err : ndarray
+        Leave-one-out ``P/P_FEM − 1``: each point predicted by a fit without it.
+    """
+
+    family: str
+    n_parameters: int
+    parameters: dict
+    parameter_std: dict
+    penetration_m: np.ndarray
+    force_fem_N: np.ndarray
+    fit_rel_err: np.ndarray
+    holdout_rel_err: np.ndarray
+
+    @property
+    def holdout_rms(self) -> float:
+        return float(np.sqrt(np.mean(self.holdout_rel_err ** 2)))
+
+    @property
+    def holdout_max(self) -> float:
+        return float(np.max(np.abs(self.holdout_rel_err)))
+
+
+def _lstsq(y: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    theta, *_ = np.linalg.lstsq(X, y, rcond=None)
+    n, k = X.shape
+    resid = y - X @ theta
+    s2 = float(resid @ resid) / (n - k) if n > k else 0.0
+    cov = s2 * np.linalg.inv(X.T @ X)
+    return theta, cov
+
+
+def fit_family(family: str, penetration_m, force_N, geo: SceneGeometry) -> FamilyFit:
+    """Fit ``family`` to FEM points (Δr > 0, force > 0) by linear least squares in log force.
+
+    Raises
+    ------
+    InputError
+        if fewer points than parameters + 2 (no hold-out possible) or a value is not positive.
+    """
+    if family not in PARAMETERS:
+        raise InputError(f"family = {family!r}: must be one of {', '.join(FAMILIES)}")
+    pen = np.asarray(penetration_m, dtype=float).ravel()
+    f = np.asarray(force_N, dtype=float).ravel()
+    k = len(PARAMETERS[family])
+    if pen.size != f.size or pen.size < k + 2:
+        raise InputError(f"fit_family({family}): need >= {k + 2} points of penetration and force, got {pen.size}")
+    laws.check_clearance(geo.clearance_m)
+    if np.any(pen <= 0) or np.any(f <= 0) or not np.all(np.isfinite(pen)) or not np.all(np.isfinite(f)):
+        raise InputError(f"fit_family({family}): penetration_m and force_N must be finite and > 0")
+    if family not in LINEAR_FAMILIES:
+        return _fit_nonlinear(family, pen, f, geo)
+    base, X = _base_and_design(family, pen, geo)
+    y = np.log(f) - base
+    theta, cov = _lstsq(y, X)
+    fit = np.exp(X @ theta - y) - 1.0
+    loo = np.empty(pen.size)
+    for i in range(pen.size):
+        keep = np.arange(pen.size) != i
+        th_i, _ = _lstsq(y[keep], X[keep])
+        loo[i] = math.exp(float(X[i] @ th_i - y[i])) - 1.0
+    values, std = _to_parameters(family, theta, cov)
+    return FamilyFit(family, k, values, std, pen, f, fit, loo)
+
+
+def _fit_nonlinear(family: str, pen: np.ndarray, f: np.ndarray, geo: SceneGeometry) -> FamilyFit:
+    """One-parameter nonlinear least squares in log force (``conformal-compliance``), same outputs as the linear path."""
+    from scipy.optimize import least_squares
+
+    name = PARAMETERS[family][0][0]
+    bounds = (0.0, 100.0)     # C >= 0: a finite body only adds compliance; keeps Δr(s) monotone
+
+    def resid(c, idx):
+        return np.log(family_force(family, {name: float(c[0])}, pen[idx], geo)) - np.log(f[idx])
+
+    def solve(idx, c0=None):
+        if c0 is None:     # coarse scan for the start (the residual is smooth and monotone in C per point)
+            grid = np.concatenate([[0.0], np.geomspace(0.01, bounds[1], 15)])
+            c0 = grid[int(np.argmin([np.sum(resid([g], idx) ** 2) for g in grid]))]
+        return least_squares(resid, [c0], args=(idx,), bounds=bounds, x_scale=[1.0], xtol=1e-12, ftol=1e-14, gtol=1e-14)
+
+    allidx = np.arange(pen.size)
+    r = solve(allidx)
+    n = pen.size
+    s2 = float(r.fun @ r.fun) / (n - 1)
+    J = r.jac
+    var = s2 / float(J[:, 0] @ J[:, 0]) if float(J[:, 0] @ J[:, 0]) > 0 else math.inf
+    c = float(r.x[0])
+    fit = np.exp(r.fun) - 1.0
+    loo = np.empty(n)
+    for i in range(n):
+        ri = solve(allidx[allidx != i], float(r.x[0]))
+        loo[i] = math.exp(float(resid(ri.x, np.array([i]))[0])) - 1.0
+    return FamilyFit(family, 1, {name: c}, {name: math.sqrt(var)}, pen, f, fit, loo)
+
+
+def select_family(fits: list[FamilyFit]) -> FamilyFit:
+    """Fewest parameters the data justify (package docstring): returns the chosen fit."""
+    best = None
+    for k in sorted({f.n_parameters for f in fits}):
+        cand = min((f for f in fits if f.n_parameters == k), key=lambda f: f.holdout_rms)
+        if best is None or cand.holdout_rms * SELECTION_GAIN <= best.holdout_rms:
+            best = cand
+    return best
+
+
+def scene_geometry(dataset: ReferenceDataset, scene: str) -> SceneGeometry:
+    """Geometry of ``scene`` from the dataset metadata.
+
+    2D datasets (``fem_reference.plane.sweep``) hold ``metadata.scenes[scene].rings``; 3D datasets
+    (``fem_reference.solid.sweep``) one ``metadata.geometry`` for all scenes (then ``plane = "3d"``).
+    """
+    g = dataset.metadata.get("geometry")
+    if isinstance(g, dict) and "bearing_outer_radius_m" in g:
+        try:
+            return SceneGeometry(
+                clearance_m=float(g["clearance_m"]), width_m=float(g["width_m"]), radius_m=float(g["bearing_outer_radius_m"]),
+                bearing_thickness_m=float(g["bearing_outer_radius_m"]) - float(g["bearing_inner_radius_m"]),
+                support_thickness_m=float(g["support_thickness_m"]),
+                bearing_E_Pa=float(g["young_bearing_pa"]), bearing_nu=float(g["poisson_bearing"]),
+                support_E_Pa=float(g["young_support_pa"]), support_nu=float(g["poisson_support"]), plane="3d")
+        except (KeyError, TypeError, ValueError) as exc:
+            raise DatasetError(f"3D dataset metadata 'geometry' is not usable ({exc!r})") from exc
+    try:
+        s = dataset.metadata["scenes"][scene]
+        r = s["rings"]
+        return SceneGeometry(
+            clearance_m=float(r["clearance_m"]), width_m=float(r["width_m"]), radius_m=float(r["outer_radius_m"]),
+            bearing_thickness_m=float(r["outer_radius_m"]) - float(r["inner_radius_m"]),
+            support_thickness_m=float(r["support_outer_radius_m"]) - float(r["outer_radius_m"]) - float(r["clearance_m"]),
+            bearing_E_Pa=float(r["bearing"]["youngs_modulus_pa"]), bearing_nu=float(r["bearing"]["poisson_ratio"]),
+            support_E_Pa=float(r["support"]["youngs_modulus_pa"]), support_nu=float(r["support"]["poisson_ratio"]),
+            plane=str(s["plane"]))
+    except (KeyError, TypeError, ValueError) as exc:
+        raise DatasetError(f"dataset metadata has no usable ring geometry for scene {scene!r} ({exc!r})") from exc
+
+
+def scene_points(dataset: ReferenceDataset, scene: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Penetration (m), force (N) and relative FEM error (–) of the zero-tilt points of a scene, sorted."""
+    pts = [p for p in dataset.select(scene=scene) if float(p.get("tilt_rad", 0.0)) == 0.0 and p["penetration_m"] > 0]
+    if not pts:
+        raise DatasetError(f"dataset has no zero-tilt points with penetration > 0 for scene {scene!r}")
+    pts.sort(key=lambda p: p["penetration_m"])
+    return (np.array([p["penetration_m"] for p in pts], dtype=float),
+            np.array([p["force_n"] for p in pts], dtype=float),
+            np.array([p.get("force_error_rel", 0.0) for p in pts], dtype=float))
+
+
+def dataset_provenance(path: Path, ds: ReferenceDataset) -> dict:
+    doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    try:
+        rel = str(Path(path).resolve().relative_to(REPO_ROOT))
+    except ValueError:
+        rel = str(path)
+    return {"path": rel, "points_sha256": doc["points_sha256"], "created_utc": ds.metadata.get("created_utc"),
+            "code_revision": ds.metadata.get("code_revision")}
+
+
+def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | None = None) -> tuple[CalibratedLaw, list[FamilyFit]]:
+    """Fit every family to a scene's zero-tilt points, select one, return it as a :class:`CalibratedLaw` and all fits.
+
+    The law's name is ``<scene>-<family>`` for 2D datasets and ``<scene>-3d-<family>`` for 3D ones.
+    """
+    geo = scene_geometry(dataset, scene)
+    pen, force, fem_err = scene_points(dataset, scene)
+    usable = [fam for fam in FAMILIES if len(PARAMETERS[fam]) + 2 <= pen.size]   # room for a hold-out
+    if not usable:
+        raise InputError(f"scene {scene!r}: {pen.size} zero-tilt points, need >= 3 to fit and hold out")
+    fits = [fit_family(fam, pen, force, geo) for fam in usable]
+    best = select_family(fits)
+    fit_doc = {
+        "method": "linear least squares in log force; 1-sigma from residual variance; hold-out = leave-one-out",
+        "selection_rule": f"fewest parameters; a k+1-parameter family replaces the best k-parameter one only if "
+                          f"it divides the leave-one-out RMS error by >= {SELECTION_GAIN:g}",
+        "penetration_m": pen.tolist(), "force_fem_n": force.tolist(), "fem_error_rel": fem_err.tolist(),
+        "fit_rel_err": best.fit_rel_err.tolist(), "holdout_rel_err": best.holdout_rel_err.tolist(),
+        "holdout_rms_rel": best.holdout_rms, "holdout_max_rel": best.holdout_max,
+        "families": [{"family": f.family, "n_parameters": f.n_parameters, "parameters": f.parameters,
+                      "holdout_rms_rel": f.holdout_rms, "holdout_max_rel": f.holdout_max} for f in fits],
+    }
+    if best.family == "foundation":
+        fit_doc["foundation_modulus_estimate_Pa_per_m"] = geo.foundation_modulus_estimate_Pa_per_m()
+    law = CalibratedLaw(
+        name=f"{scene}{'-3d' if geo.plane == '3d' else ''}-{best.family}", scene=scene, family=best.family, parameters=best.parameters,
+        parameter_std=best.parameter_std, parameter_units=dict(PARAMETERS[best.family]), geometry=geo,
+        validity_penetration_m=(float(pen.min()), float(pen.max())), dataset=dataset_info or {}, fit=fit_doc)
+    return law, fits
+
+
+def committed_datasets() -> list[Path]:
+    """The committed reference datasets to calibrate on: the 2D one and every 3D one present."""
+    return [DATASET_2D] + sorted(DATA_3D_DIR.glob("*.json")) if DATA_3D_DIR.is_dir() else [DATASET_2D]
+
+
+def calibrate_dataset(path=DATASET_2D) -> list[CalibratedLaw]:
+    """One calibrated law per scene (with zero-tilt points) of a dataset file."""
+    ds = read_dataset(path)
+    info = dataset_provenance(Path(path), ds)
+    out = []
+    for scene in ds.scenes():
+        pts = [p for p in ds.select(scene=scene) if float(p.get("tilt_rad", 0.0)) == 0.0 and p["penetration_m"] > 0]
+        if len(pts) >= 3:
+            out.append(calibrate_scene(ds, scene, info)[0])
+    return out

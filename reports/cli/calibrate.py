@@ -1,0 +1,43 @@
+"""``ringcontact calibrate [--check]``: fit and store one calibrated contact law per FEM scene.
+
+The fitting and the stored files are :mod:`contact.calibrate`; this is only the command line.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from contact.calibrate import CALIBRATED_DIR, check_calibrations, load_calibrated, write_calibrations
+from contact.errors import RingContactError
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``ringcontact calibrate``: fit and store the calibrated laws of the committed 2D dataset."""
+    p = argparse.ArgumentParser(prog="ringcontact calibrate",
+                                description="Fit one calibrated contact law per FEM scene and store it in contact/calibrated/.")
+    p.add_argument("--dataset", type=Path, action="append",
+                   help="reference dataset (repeatable; default: the committed 2D dataset and every 3D one)")
+    p.add_argument("--out", type=Path, default=CALIBRATED_DIR, help=f"directory of the JSON files (default {CALIBRATED_DIR})")
+    p.add_argument("--check", action="store_true", help="only compare the stored files with a fresh fit; exit 1 on drift")
+    args = p.parse_args(argv)
+    try:
+        if args.check:
+            problems = check_calibrations(args.dataset, args.out)
+            for msg in problems:
+                print(msg)
+            print("calibrations up to date" if not problems else f"{len(problems)} calibration(s) out of date")
+            return 1 if problems else 0
+        for f in write_calibrations(args.dataset, args.out):
+            law = load_calibrated(f.stem, args.out)
+            pars = ", ".join(f"{k} = {v:.6g} ± {law.parameter_std[k]:.2g} {law.parameter_units[k]}"
+                             for k, v in law.parameters.items())
+            print(f"{law.name}: {pars}; hold-out max {100 * law.fit['holdout_max_rel']:.3f} % -> {f}")
+    except RingContactError as exc:
+        print(f"ringcontact calibrate: error: {exc}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":   # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,66 @@
+"""Shared by the study reports: figure saving (PNG + SVG), CSV tables, a sweep's points, harmonic tables."""
+from __future__ import annotations
+
+import csv
+import io
+from pathlib import Path
+
+import numpy as np
+
+from contact.files import atomic_write_bytes, atomic_write_text
+from sweep import load_sweep
+
+
+LOCATIONS = (("disk1.y", "disk 1"), ("disk2.y", "disk 2"), ("s.y", "3# bearing (support)"))
+
+
+def pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    plt.rcParams["svg.hashsalt"] = "ringcontact"
+    return plt
+
+
+def save(fig, prefix: Path) -> list[Path]:
+    """Write ``prefix.png`` and ``prefix.svg`` atomically and close the figure."""
+    plt = pyplot()
+    out = []
+    for ext in ("png", "svg"):
+        buf = io.BytesIO()
+        fig.savefig(buf, format=ext, dpi=130 if ext == "png" else 110, bbox_inches="tight", metadata={"Date": None} if ext == "svg" else None)
+        out.append(atomic_write_bytes(f"{prefix}.{ext}", buf.getvalue()))
+    plt.close(fig)
+    return out
+
+
+def write_csv(path: Path, header: list[str], rows) -> Path:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    for r in rows:
+        w.writerow([f"{x:.6g}" if isinstance(x, (float, np.floating)) else x for x in r])
+    return atomic_write_text(path, buf.getvalue())
+
+
+def load_points(out, tasks=None) -> list:
+    """Verified points of a sweep in task order (missing/corrupt ones left out)."""
+    res = load_sweep(out, tasks)
+    keys = [t.key for t in tasks] if tasks is not None else sorted(res, key=lambda k: res[k].params.get("speed_rpm", 0))
+    return [res[k] for k in keys if k in res]
+
+
+def channel_column(p, name: str) -> int:
+    return list(p.arrays["channels"]).index(name)
+
+
+def harmonic_table(points, quantity: str = "v", channels=("disk1.y", "disk2.y", "s.y"), orders=(1, 2, 3, 4, 5)):
+    """``(speeds_rpm (P,), amps (P, len(channels), len(orders)))`` of |harmonic| amplitudes (SI)."""
+    rpm = np.array([p.params["speed_rpm"] for p in points])
+    A = np.zeros((len(points), len(channels), len(orders)))
+    for i, p in enumerate(points):
+        h = np.abs(p.arrays[f"harm_{quantity}"])
+        for j, c in enumerate(channels):
+            col = channel_column(p, c) if quantity != "u" else {"y": 0, "z": 1, "θy": 2, "θz": 3}[c]
+            A[i, j] = h[[o - 1 for o in orders], col]
+    return rpm, A
