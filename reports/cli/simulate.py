@@ -71,7 +71,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _run(args) -> int:
-    from rotor.dynamics.reference import simulate_reference, system_from_model
+    from rotor.dynamics.build import system_from_model
+    from rotor.dynamics.reference import simulate_reference
     from rotor.model.assembly import assemble
     from rotor.dynamics.production import simulate_production
     from rotor.model.scene import load_scene
@@ -107,7 +108,7 @@ def _run(args) -> int:
     t0 = time.perf_counter()
     extra = {}
     if args.steady:
-        from rotor.dynamics.reference import linear_initial_state
+        from rotor.dynamics.initial import linear_initial_state
         from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
 
         keep = int(round(args.revolutions))
@@ -184,7 +185,7 @@ def _law(args, scene, clearance_m):
     if not args.law.startswith("calibrated:"):
         raise InputError(f"law = {args.law!r}: must be conformal, pereira or calibrated:<name>")
     from contact.calibrate import load_calibrated
-    from rotor.dynamics.reference import support_law_from_params
+    from rotor.dynamics.kernels import support_law_from_params
 
     cal = load_calibrated(args.law.split(":", 1)[1])
     over = {"c_c_s_per_m": scene.loose_support.collision_factor_s_m, "tilt_ignored": bool(args.tilt_ignored)}

@@ -24,11 +24,14 @@ Same safeguards as the reference (see :mod:`rotor.dynamics.reference`): backtrac
 least-residual acceptance counted in ``Trajectory.unconverged_steps``. Same stick-onset rule
 (:mod:`rotor.dynamics.constraints`, "Stick onset"): the consistent multipliers and acceleration come from
 ``M a = Q − D v − K p + Bᵀ g`` at fixed ``(p, v)`` with the stuck faces' relative acceleration
-zero, condensed like the step (``W_M = M⁻¹ Bᵀ``, ``S_M = B M⁻¹ Bᵀ``, :func:`_reproject`).
+zero, condensed like the step (``W_M = M⁻¹ Bᵀ``, ``S_M = B M⁻¹ Bᵀ``,
+:func:`_reproject`).
 
 A runtime check records the largest ``ω_c Δt`` met, with ``ω_c² = k_t (B M⁻¹ Bᵀ)_yy`` and
 ``k_t`` the current radial tangent stiffness of the law, so a too-large step is
-reported after the fact as well as refused up front (:func:`rotor.dynamics.reference.check_time_step`).
+reported after the fact as well as refused up front (:func:`rotor.dynamics.system.check_time_step`).
+
+The law kernel is :func:`rotor.dynamics.kernels.contact_kernel`.
 """
 from __future__ import annotations
 
@@ -38,39 +41,27 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from contact.loose_support import N_PARAMS, point_force_jacobian
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
+from contact.loose_support import N_PARAMS
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.reference import (NewmarkOptions, RotorSystem, Trajectory, _check_inputs, check_time_step, coupling_map,
-                             initial_state, relative_compliance)
 from rotor.dynamics._numba_cache import drop_stale_cache
+from rotor.dynamics.initial import initial_state
+from rotor.dynamics.kernels import contact_kernel
+from rotor.dynamics.system import (NewmarkOptions, RotorSystem, Trajectory, check_inputs, check_time_step, coupling_map,
+                                   relative_compliance)
 
-# The kernels below inline contact._kernel and rotor.dynamics.constraints: drop our numba cache when
-# either source changes (numba itself only watches this file).
-drop_stale_cache(__file__, ["contact._kernel", "rotor.dynamics.constraints"])
+# The kernels below inline rotor.dynamics.constraints: drop our numba cache when that source changes
+# (numba itself only watches this file; the law kernel, rotor.dynamics.kernels, guards its own).
+drop_stale_cache(__file__, ["rotor.dynamics.constraints"])
 
 # Caching note: functions that take the support-law kernel (a numba dispatcher) as an argument
 # are NOT cached on disk. numba keys their cache by the dispatcher's identity, which differs in
 # every process, so the cache never hit, its index grew with every process, and saving it
 # eventually failed ("ReferenceError: underlying object has vanished"). They compile once per
-# process instead; the kernel and the small solver are cached.
+# process instead; the law kernel (rotor.dynamics.kernels) and the small solver are cached.
 
 _slip_force = njit(cache=True)(cons.slip_force)
 _mode_update = njit(cache=True)(cons.face_mode_update)
-
-
-@njit(cache=True)
-def contact_kernel(u, v, p):
-    """``contact.loose_support`` scalar path as ``(u, v, params) -> (f, Ju, Jv)`` (analytic Jacobian)."""
-    pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
-    jac = np.empty((4, 8))
-    fy, fz, my, mz = point_force_jacobian(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], pt, jac)
-    f = np.empty(4)
-    f[0] = fy
-    f[1] = fz
-    f[2] = my
-    f[3] = mz
-    return f, jac[:, :4].copy(), jac[:, 4:].copy()
 
 
 @dataclass(frozen=True)
@@ -611,7 +602,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     n = system.n
     q0 = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float).copy()
     v0 = np.zeros(n) if v0 is None else np.asarray(v0, dtype=float).copy()
-    _check_inputs(system, dt, n_steps, q0, v0)
+    check_inputs(system, dt, n_steps, q0, v0)
     sup = system.support
     if sup is not None:
         if sup.law.kernel is None:
