@@ -57,6 +57,7 @@ This module is the *reference*: clear and faithful, not fast. Use
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -65,18 +66,6 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.initial import initial_acceleration, initial_state
 from rotor.dynamics.system import (NewmarkOptions, RotorSystem, Trajectory, check_inputs, check_time_step,
                                    coupling_force, support_forces)
-
-
-def _split_multipliers(lam, n_lock: int, modes, n_faces: int):
-    """``(lock multipliers, (2, 2) face multipliers)`` from the stacked vector: the lock rows first,
-    then two per stuck face in face order (slipping faces carry none: zero rows)."""
-    lam_face = np.zeros((2, 2))
-    j = n_lock
-    for k in range(n_faces):
-        if modes[k] == cons.STICK:
-            lam_face[k] = lam[j:j + 2]
-            j += 2
-    return lam[:n_lock], lam_face
 
 
 def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0=None, *, t0: float = 0.0,
@@ -107,183 +96,261 @@ def simulate_reference(system: RotorSystem, dt: float, n_steps: int, q0=None, v0
     check_inputs(system, dt, n_steps, q0, v0)
     if system.support is not None and check_step:
         check_time_step(system, dt)
-    beta, gamma = opts.beta, opts.gamma
-    M, K, D, L = system.M, system.K, system.D, system.lock
-    off = system.offset
-    sup = system.support
-    B = sup.relative_map(n) if sup is not None else np.zeros((4, n))
-    P = cons.face_maps(sup.width_m) if sup is not None else (np.zeros((2, 4)), np.zeros((2, 4)))
-    mu_N = sup.mu_N if sup is not None else 0.0
-    n_faces = 2 if sup is not None else 0
-    modes = [int(m) for m in modes0][:n_faces] + [cons.SLIP] * (2 - n_faces)
-
-    a, lam, modes = initial_state(system, t0, q0, v0, modes, opts)
-    q, v = q0, v0
-    lam_lock, lam_face = _split_multipliers(lam, L.shape[0], modes, n_faces)
-
-    n_rec = n_steps // record_every + 1
-    tr = _allocate(n_rec, n)
-    tr.scheme = "reference (paper, FD-Newton)"
-    u, w, fc, phi, _ = support_forces(system, q, v, modes, lam_face, opts)
-
-    def record(i, t, its, passes):
-        tr.t[i], tr.q[i], tr.v[i], tr.a[i] = t, q, v, a
-        tr.u[i], tr.w[i], tr.f_contact[i] = u, w, fc
-        if sup is not None:
-            tr.f_elastic[i] = sup.law.force(u, np.zeros(4))
-        tr.face_force[i] = phi
-        tr.modes[i] = modes
-        tr.newton_iters[i] = its
-        tr.passes[i] = passes
-
-    record(0, t0, 0, 0)
-    just_released = [False, False]
-    bdt2 = beta * dt * dt
-    gdt = gamma * dt
+    run = _ReferenceRun(system, dt, opts)
+    run.start(t0, q0, v0, modes0, n_steps // record_every + 1)
     for step in range(1, n_steps + 1):
-        t = t0 + step * dt
-        q_pre = q + dt * v + dt * dt * (0.5 - beta) * a
-        v_pre = v + dt * (1 - gamma) * a
-        Q = system.force(t)
-        w_old = [P[k] @ (B @ v) for k in range(2)]
-        phi_old = phi.copy()
-        tried_stick = [modes[k] == cons.STICK for k in range(2)]
-        stuck_at_start = list(tried_stick)
-        freeze = [None, None]
-        passes = 0
-        total_its = 0
+        sp = run.predict(t0 + step * dt)
+        run.solve_step(sp, step)
+        run.correct(sp, step)
+        if step % record_every == 0:
+            run.record(step // record_every, sp.t, sp.total_its, sp.passes)
+    return run.tr
+
+
+@dataclass
+class _Step:
+    """One time step: its time ``t``, the predictor (Eq. 66), the load ``Q(t)``, the start-of-step
+    face velocities and forces of the stick test, and the active-set loop's flags and counters
+    (``freeze[k]``: the friction force of a releasing face held at μN for a first solve)."""
+
+    t: float
+    q_pre: np.ndarray
+    v_pre: np.ndarray
+    Q: np.ndarray
+    w_old: list
+    phi_old: np.ndarray
+    tried_stick: list
+    stuck_at_start: list
+    freeze: list = field(default_factory=lambda: [None, None])
+    passes: int = 0
+    total_its: int = 0
+
+
+class _ReferenceRun:
+    """One run of the paper's scheme: the fixed matrices and maps, the state (``q, v, a``, multipliers,
+    face modes, support forces) and the named stages of a step, in the order
+    :func:`simulate_reference` calls them: :meth:`predict`, :meth:`solve_step` (:meth:`newton` on
+    :meth:`residual`, then :meth:`update_modes`), :meth:`correct`, :meth:`record`."""
+
+    def __init__(self, system: RotorSystem, dt: float, opts: NewmarkOptions):
+        n = system.n
+        sup = system.support
+        self.system, self.dt, self.opts, self.n, self.sup = system, dt, opts, n, sup
+        self.M, self.K, self.D, self.L = system.M, system.K, system.D, system.lock
+        self.off = system.offset
+        self.B = sup.relative_map(n) if sup is not None else np.zeros((4, n))
+        self.P = cons.face_maps(sup.width_m) if sup is not None else (np.zeros((2, 4)), np.zeros((2, 4)))
+        self.mu_N = sup.mu_N if sup is not None else 0.0
+        self.n_faces = 2 if sup is not None else 0
+        self.bdt2 = opts.beta * dt * dt
+        self.gdt = opts.gamma * dt
+
+    def start(self, t0: float, q0, v0, modes0, n_rec: int) -> None:
+        """Initial state: consistent acceleration and multipliers with the stick test applied to
+        ``modes0`` (:func:`rotor.dynamics.initial.initial_state`), recorded as sample 0."""
+        modes = [int(m) for m in modes0][:self.n_faces] + [cons.SLIP] * (2 - self.n_faces)
+        self.a, lam, self.modes = initial_state(self.system, t0, q0, v0, modes, self.opts)
+        self.q, self.v = q0, v0
+        self.lam_lock, self.lam_face = _split_multipliers(lam, self.L.shape[0], self.modes, self.n_faces)
+        self.tr = _allocate(n_rec, self.n)
+        self.tr.scheme = "reference (paper, FD-Newton)"
+        self.u, self.w, self.fc, self.phi, _ = support_forces(self.system, self.q, self.v, self.modes, self.lam_face,
+                                                              self.opts)
+        self.record(0, t0, 0, 0)
+        self.just_released = [False, False]
+
+    def predict(self, t: float) -> _Step:
+        """Predictor (Eq. 66) and the start-of-step data of the step ending at ``t``."""
+        dt, beta, gamma = self.dt, self.opts.beta, self.opts.gamma
+        q, v, a = self.q, self.v, self.a
+        tried_stick = [self.modes[k] == cons.STICK for k in range(2)]
+        return _Step(t=t, q_pre=q + dt * v + dt * dt * (0.5 - beta) * a, v_pre=v + dt * (1 - gamma) * a,
+                     Q=self.system.force(t), w_old=[self.P[k] @ (self.B @ v) for k in range(2)],
+                     phi_old=self.phi.copy(), tried_stick=tried_stick, stuck_at_start=list(tried_stick))
+
+    def solve_step(self, sp: _Step, step: int) -> None:
+        """The active-set loop of one step: Newton with the face modes held, then the stick/slip test,
+        re-solved with the flipped modes until they are consistent (at most ``max_passes`` passes).
+        Leaves the step's acceleration, multipliers and modes in ``self``."""
+        opts = self.opts
         while True:
-            passes += 1
-            stuck = [k for k in range(n_faces) if modes[k] == cons.STICK]
-
-            def constraints(acc, stuck=stuck):
-                qn = q_pre + bdt2 * acc
-                vn = v_pre + gdt * acc
-                g = [L @ qn / bdt2]
-                for k in stuck:
-                    g.append(P[k] @ (B @ vn) / gdt)
-                return np.concatenate(g)
-
-            m = L.shape[0] + 2 * len(stuck)
-            # Φ = ∂G_c/∂q̈ by finite differences (the paper's "analogy to Eq. 72")
-            g0 = constraints(a)
-            Phi = np.empty((m, n))
-            for jj in range(n):
-                h = 1e-7 * max(abs(a[jj]), 1.0)
-                e = a.copy()
-                e[jj] += h
-                Phi[:, jj] = (constraints(e) - g0) / h
-
-            def residual(z, stuck=stuck, Phi=Phi, freeze=freeze):
-                acc = z[:n]
-                lam_ = z[n:]
-                qn = q_pre + bdt2 * acc
-                vn = v_pre + gdt * acc
-                r = M @ acc + D @ vn + K @ (qn - off) - Q + Phi.T @ lam_ - coupling_force(system, qn)
-                if sup is not None:
-                    un = B @ qn
-                    wn = B @ vn
-                    gl = np.asarray(sup.law.force(un, wn), dtype=float).copy()
-                    for k in range(2):
-                        if modes[k] == cons.SLIP:
-                            if freeze[k] is not None:
-                                gl += P[k].T @ freeze[k]
-                            else:
-                                gl += P[k].T @ cons.slip_force(P[k] @ wn, mu_N, opts.w_reg)[0]
-                    r -= B.T @ gl
-                return np.concatenate([r, constraints(acc)])
-
-            # initial iterate z0 = [q̈_n; λ_n] (Eq. 70), multipliers of the current rows
-            lam0 = [lam_lock]
-            for k in stuck:
-                lam0.append(lam_face[k])
-            z = np.concatenate([a] + lam0)
-            z, its, ok, err = _fd_newton(residual, z, opts.tol, opts.max_iter)
-            total_its += its
+            sp.passes += 1
+            stuck = [k for k in range(self.n_faces) if self.modes[k] == cons.STICK]
+            z, its, ok, err = self.newton(sp, stuck)
+            sp.total_its += its
             if not ok:
                 # slip Newton stalls when the true answer is (near) stick: try stick on the
                 # slipping faces not yet tried in this step (same rule as rotor.dynamics.production)
-                flip = [k for k in range(n_faces) if modes[k] == cons.SLIP and not tried_stick[k]]
-                if flip and passes < opts.max_passes + 4:
+                flip = [k for k in range(self.n_faces) if self.modes[k] == cons.SLIP and not sp.tried_stick[k]]
+                if flip and sp.passes < opts.max_passes + 4:
                     for k in flip:
-                        modes[k] = cons.STICK
-                        tried_stick[k] = True
-                    freeze = [None, None]
+                        self.modes[k] = cons.STICK
+                        sp.tried_stick[k] = True
+                    sp.freeze = [None, None]
                     continue
                 if np.all(np.isfinite(z)):
                     # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
                     # = 0): keep the least-residual iterate and count the step, as rotor.dynamics.production does
-                    tr.unconverged_steps += 1
+                    self.tr.unconverged_steps += 1
                     ok = True
             if not ok:
                 raise ConvergenceError(
-                    f"reference Newton (finite-difference Jacobian) did not converge at step {step}, t = {t:.6g} s: "
-                    f"|dz|/|z| = {err:.3e} > tol = {opts.tol:.1e} after {opts.max_iter} iterations; reduce dt_s = {dt:.3e} s")
-            a_new = z[:n]
-            lam_new = z[n:]
-            if any(f is not None for f in freeze):
+                    f"reference Newton (finite-difference Jacobian) did not converge at step {step}, t = {sp.t:.6g} s: "
+                    f"|dz|/|z| = {err:.3e} > tol = {opts.tol:.1e} after {opts.max_iter} iterations; "
+                    f"reduce dt_s = {self.dt:.3e} s")
+            a_new = z[:self.n]
+            if any(f is not None for f in sp.freeze):
                 # second stage of a release: now with the implicit slip direction
-                freeze = [None, None]
-                a = a_new
+                sp.freeze = [None, None]
+                self.a = a_new
                 continue
-            lam_lock_new = lam_new[:L.shape[0]]
-            lam_face_new = np.zeros((2, 2))
-            jj = L.shape[0]
-            for k in stuck:
-                lam_face_new[k] = lam_new[jj:jj + 2]
-                jj += 2
-            v_new = v_pre + gdt * a_new
-            changed = False
-            new_modes = list(modes)
-            onset_trial = [modes[k] == cons.STICK and not stuck_at_start[k] for k in range(n_faces)]
-            if opts.consistent_stick_onset and any(onset_trial):
-                # a face trying stick (slipping at the start of the step) is tested on its holding force
-                # at the end of the step: the consistent multiplier, not the trapezoidal one; a stuck
-                # other face on its consistent multiplier too (the one the step will keep)
-                _, lam_c = initial_acceleration(system, t, q_pre + bdt2 * a_new, v_new, modes, opts)
-                jj = L.shape[0]
-                for k in stuck:
-                    lam_face_new[k] = lam_c[jj:jj + 2]
-                    jj += 2
-            for k in range(n_faces):
-                wk = P[k] @ (B @ v_new)
-                if modes[k] == cons.STICK:
-                    fk = -lam_face_new[k]
-                else:
-                    fk = cons.slip_force(wk, mu_N, opts.w_reg)[0]
-                w_stick = 0.0 if just_released[k] else opts.w_stick
-                nm = cons.face_mode_update(modes[k], fk, wk, w_old[k], mu_N, w_stick, tried_stick[k],
-                                           phi_old[k], opts.stick_mean_weight if stuck_at_start[k] else 0.0)
-                if nm != modes[k]:
-                    changed = True
-                    new_modes[k] = nm
-                    if nm == cons.STICK:
-                        tried_stick[k] = True
+            lam_lock_new, lam_face_new = _split_multipliers(z[self.n:], self.L.shape[0], self.modes, self.n_faces)
+            changed, new_modes = self.update_modes(sp, stuck, a_new, lam_face_new)
+            if not changed or sp.passes >= opts.max_passes:
+                self.a, self.lam_lock, self.lam_face = a_new, lam_lock_new, lam_face_new
+                return
+            self.modes = new_modes
+            self.a = a_new if not any(f is not None for f in sp.freeze) else self.a
+
+    def newton(self, sp: _Step, stuck: list):
+        """Newton on ``z = [q̈_{n+1}; λ_{n+1}]`` with the modes held (Eqs. 67–73), from the initial
+        iterate ``z0 = [q̈_n; λ_n]`` (Eq. 70), the multipliers of the current rows. Returns
+        ``(z, iterations, converged, |dz|/|z|)`` of :func:`_fd_newton`."""
+        Phi = self.constraint_jacobian(sp, stuck)
+        freeze = sp.freeze
+        lam0 = [self.lam_lock]
+        for k in stuck:
+            lam0.append(self.lam_face[k])
+        z = np.concatenate([self.a] + lam0)
+        return _fd_newton(lambda zz: self.residual(sp, stuck, Phi, freeze, zz), z, self.opts.tol, self.opts.max_iter)
+
+    def constraints(self, sp: _Step, stuck: list, acc) -> np.ndarray:
+        """``G_c`` at the corrected state of acceleration ``acc``: lock rows ``L q/(βΔt²)``, then the
+        stuck faces' velocity rows ``P_k B q̇/(γΔt)``."""
+        qn = sp.q_pre + self.bdt2 * acc
+        vn = sp.v_pre + self.gdt * acc
+        g = [self.L @ qn / self.bdt2]
+        for k in stuck:
+            g.append(self.P[k] @ (self.B @ vn) / self.gdt)
+        return np.concatenate(g)
+
+    def constraint_jacobian(self, sp: _Step, stuck: list) -> np.ndarray:
+        """Φ = ∂G_c/∂q̈ by finite differences at the current acceleration (the paper's "analogy to Eq. 72")."""
+        a = self.a
+        m = self.L.shape[0] + 2 * len(stuck)
+        g0 = self.constraints(sp, stuck, a)
+        Phi = np.empty((m, self.n))
+        for jj in range(self.n):
+            h = 1e-7 * max(abs(a[jj]), 1.0)
+            e = a.copy()
+            e[jj] += h
+            Phi[:, jj] = (self.constraints(sp, stuck, e) - g0) / h
+        return Phi
+
+    def residual(self, sp: _Step, stuck: list, Phi: np.ndarray, freeze: list, z) -> np.ndarray:
+        """``F(z)`` of Eq. 69 (read implicitly) and the constraint rows, at ``z = [q̈; λ]``: slipping
+        faces carry their regularised Coulomb force (or the frozen one of a release)."""
+        n, sup = self.n, self.sup
+        acc = z[:n]
+        lam_ = z[n:]
+        qn = sp.q_pre + self.bdt2 * acc
+        vn = sp.v_pre + self.gdt * acc
+        r = self.M @ acc + self.D @ vn + self.K @ (qn - self.off) - sp.Q + Phi.T @ lam_ - coupling_force(self.system, qn)
+        if sup is not None:
+            B, P = self.B, self.P
+            un = B @ qn
+            wn = B @ vn
+            gl = np.asarray(sup.law.force(un, wn), dtype=float).copy()
+            for k in range(2):
+                if self.modes[k] == cons.SLIP:
+                    if freeze[k] is not None:
+                        gl += P[k].T @ freeze[k]
                     else:
-                        # release: first solve with the friction force frozen at μN along the held force
-                        nrm = math.hypot(fk[0], fk[1])
-                        freeze[k] = mu_N * fk / nrm if nrm > 0 else np.zeros(2)
-            if not changed or passes >= opts.max_passes:
-                a = a_new
-                lam_lock = lam_lock_new
-                lam_face = lam_face_new
-                break
-            modes = new_modes
-            a = a_new if not any(f is not None for f in freeze) else a
-        q = q_pre + bdt2 * a
-        v = v_pre + gdt * a
+                        gl += P[k].T @ cons.slip_force(P[k] @ wn, self.mu_N, self.opts.w_reg)[0]
+            r -= B.T @ gl
+        return np.concatenate([r, self.constraints(sp, stuck, acc)])
+
+    def update_modes(self, sp: _Step, stuck: list, a_new, lam_face_new) -> tuple[bool, list]:
+        """Stick/slip test of each face on the converged pass (:func:`rotor.dynamics.constraints.face_mode_update`).
+
+        Returns ``(changed, new modes)``. A releasing face gets its friction force frozen at μN
+        along the held force for a first solve (``sp.freeze``); with a stick onset in the pass the
+        stuck faces' multipliers in ``lam_face_new`` are replaced by the consistent ones."""
+        opts, P, B, mu_N, modes = self.opts, self.P, self.B, self.mu_N, self.modes
+        v_new = sp.v_pre + self.gdt * a_new
+        changed = False
+        new_modes = list(modes)
+        onset_trial = [modes[k] == cons.STICK and not sp.stuck_at_start[k] for k in range(self.n_faces)]
+        if opts.consistent_stick_onset and any(onset_trial):
+            # a face trying stick (slipping at the start of the step) is tested on its holding force
+            # at the end of the step: the consistent multiplier, not the trapezoidal one; a stuck
+            # other face on its consistent multiplier too (the one the step will keep)
+            _, lam_c = initial_acceleration(self.system, sp.t, sp.q_pre + self.bdt2 * a_new, v_new, modes, opts)
+            jj = self.L.shape[0]
+            for k in stuck:
+                lam_face_new[k] = lam_c[jj:jj + 2]
+                jj += 2
+        for k in range(self.n_faces):
+            wk = P[k] @ (B @ v_new)
+            if modes[k] == cons.STICK:
+                fk = -lam_face_new[k]
+            else:
+                fk = cons.slip_force(wk, mu_N, opts.w_reg)[0]
+            w_stick = 0.0 if self.just_released[k] else opts.w_stick
+            nm = cons.face_mode_update(modes[k], fk, wk, sp.w_old[k], mu_N, w_stick, sp.tried_stick[k],
+                                       sp.phi_old[k], opts.stick_mean_weight if sp.stuck_at_start[k] else 0.0)
+            if nm != modes[k]:
+                changed = True
+                new_modes[k] = nm
+                if nm == cons.STICK:
+                    sp.tried_stick[k] = True
+                else:
+                    # release: first solve with the friction force frozen at μN along the held force
+                    nrm = math.hypot(fk[0], fk[1])
+                    sp.freeze[k] = mu_N * fk / nrm if nrm > 0 else np.zeros(2)
+        return changed, new_modes
+
+    def correct(self, sp: _Step, step: int) -> None:
+        """Correction (Eq. 74), the consistent restart after a stick onset, and the support forces
+        of the new state."""
+        opts = self.opts
+        q = sp.q_pre + self.bdt2 * self.a
+        v = sp.v_pre + self.gdt * self.a
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
-            raise ConvergenceError(f"reference scheme: non-finite state at step {step}, t = {t:.6g} s; reduce dt_s = {dt:.3e} s")
+            raise ConvergenceError(f"reference scheme: non-finite state at step {step}, t = {sp.t:.6g} s; "
+                                   f"reduce dt_s = {self.dt:.3e} s")
+        self.q, self.v = q, v
         if opts.consistent_stick_onset:
-            just_released = [stuck_at_start[k] and modes[k] == cons.SLIP for k in range(2)]
-            if any(modes[k] == cons.STICK and not stuck_at_start[k] for k in range(n_faces)):
+            self.just_released = [sp.stuck_at_start[k] and self.modes[k] == cons.SLIP for k in range(2)]
+            if any(self.modes[k] == cons.STICK and not sp.stuck_at_start[k] for k in range(self.n_faces)):
                 # stick onset: restart from the consistent acceleration and multipliers (q, v kept)
-                a, lam = initial_acceleration(system, t, q, v, modes, opts)
-                lam_lock, lam_face = _split_multipliers(lam, L.shape[0], modes, n_faces)
-        u, w, fc, phi, _ = support_forces(system, q, v, modes, lam_face, opts)
-        if step % record_every == 0:
-            record(step // record_every, t, total_its, passes)
-    return tr
+                self.a, lam = initial_acceleration(self.system, sp.t, q, v, self.modes, opts)
+                self.lam_lock, self.lam_face = _split_multipliers(lam, self.L.shape[0], self.modes, self.n_faces)
+        self.u, self.w, self.fc, self.phi, _ = support_forces(self.system, q, v, self.modes, self.lam_face, opts)
+
+    def record(self, i: int, t: float, its: int, passes: int) -> None:
+        """Write the current state into sample ``i`` of the trajectory."""
+        tr = self.tr
+        tr.t[i], tr.q[i], tr.v[i], tr.a[i] = t, self.q, self.v, self.a
+        tr.u[i], tr.w[i], tr.f_contact[i] = self.u, self.w, self.fc
+        if self.sup is not None:
+            tr.f_elastic[i] = self.sup.law.force(self.u, np.zeros(4))
+        tr.face_force[i] = self.phi
+        tr.modes[i] = self.modes
+        tr.newton_iters[i] = its
+        tr.passes[i] = passes
+
+
+def _split_multipliers(lam, n_lock: int, modes, n_faces: int):
+    """``(lock multipliers, (2, 2) face multipliers)`` from the stacked vector: the lock rows first,
+    then two per stuck face in face order (slipping faces carry none: zero rows)."""
+    lam_face = np.zeros((2, 2))
+    j = n_lock
+    for k in range(n_faces):
+        if modes[k] == cons.STICK:
+            lam_face[k] = lam[j:j + 2]
+            j += 2
+    return lam[:n_lock], lam_face
 
 
 def _allocate(n_rec: int, n: int) -> Trajectory:
@@ -293,7 +360,6 @@ def _allocate(n_rec: int, n: int) -> Trajectory:
         f_elastic=np.zeros((n_rec, 4)), face_force=np.zeros((n_rec, 2, 2)),
         modes=np.zeros((n_rec, 2), dtype=np.int8), newton_iters=np.zeros(n_rec, dtype=np.int32),
         passes=np.zeros(n_rec, dtype=np.int32))
-
 
 
 def _fd_newton(residual, z, tol, max_iter):
