@@ -35,7 +35,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from contact.files import atomic_write_bytes, atomic_write_text  # noqa: E402
-from rotor.dynamics.reference import simulate_reference, system_from_model  # noqa: E402
+from rotor.dynamics.build import system_from_model  # noqa: E402
+from rotor.dynamics.reference import simulate_reference  # noqa: E402
 from rotor.model.assembly import assemble  # noqa: E402
 from rotor.dynamics.production import prepare, simulate_production  # noqa: E402
 from rotor.model.scene import load_scene  # noqa: E402
@@ -381,7 +382,7 @@ def former_rules_side_by_side(system, model, nper, point, repeats=REPEATS):
     from unittest import mock
 
     import rotor.dynamics.production as rp
-    from rotor.dynamics.reference import NewmarkOptions
+    from rotor.dynamics.system import NewmarkOptions
 
     eps = _with_edge(system, 0.0)
     _with_edge(system, eps)
@@ -432,7 +433,7 @@ def hard_cases(model, scene) -> list:
     from q = 0, with the current rules and with either fix undone; then the change of the 10 500 rpm
     steady-state amplitudes that each fix causes."""
     from contact.tilt import EDGE_TRANSITION_M
-    from rotor.dynamics.reference import NewmarkOptions
+    from rotor.dynamics.system import NewmarkOptions
 
     omega = RPM * 2 * math.pi / 60
     T = 2 * math.pi / omega

@@ -52,7 +52,7 @@ branch and keeps the paper's tilt rule.
 Example::
 
     from contact.calibrate import load_calibrated
-    from rotor.dynamics.reference import support_law_from_params
+    from rotor.dynamics.kernels import support_law_from_params
     law = load_calibrated("clamped")                  # -> "clamped-foundation"
     params = law.loose_support_params(c_c_s_per_m=100.0, mu=0.3, preload_N=5000.0)
     support_law = support_law_from_params(params)     # pass as system_from_model(..., law=support_law)

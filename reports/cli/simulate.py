@@ -113,7 +113,7 @@ def _run(args) -> int:
 
 def _system(args):
     """``(scene, model, system, validity max penetration in m or None)`` from the checked arguments."""
-    from rotor.dynamics.reference import system_from_model
+    from rotor.dynamics.build import system_from_model
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
 
@@ -147,7 +147,7 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     Returns ``(trajectory, dt, n_steps, summary fields)``.
     """
     from rotor.dynamics.production import simulate_production
-    from rotor.dynamics.reference import linear_initial_state
+    from rotor.dynamics.initial import linear_initial_state
     from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
 
     keep = int(round(args.revolutions))
@@ -208,7 +208,7 @@ def _law(args, scene, clearance_m):
     if not args.law.startswith("calibrated:"):
         raise InputError(f"law = {args.law!r}: must be conformal, pereira or calibrated:<name>")
     from contact.calibrate import load_calibrated
-    from rotor.dynamics.reference import support_law_from_params
+    from rotor.dynamics.kernels import support_law_from_params
 
     cal = load_calibrated(args.law.split(":", 1)[1])
     over = {"c_c_s_per_m": scene.loose_support.collision_factor_s_m, "tilt_ignored": bool(args.tilt_ignored)}

@@ -1,8 +1,9 @@
 """Keep numba's on-disk cache honest across modules.
 
 numba's ``cache=True`` checks only the source file of the cached function itself. Kernels in
-:mod:`rotor.dynamics.production` inline functions from :mod:`contact._kernel` and
-:mod:`rotor.dynamics.constraints`; after a change there, numba would silently load the old machine code.
+:mod:`rotor.dynamics.kernels` inline functions from :mod:`contact._kernel`, those in
+:mod:`rotor.dynamics.production_kernels` functions from :mod:`rotor.dynamics.constraints`; after a
+change there, numba would silently load the old machine code.
 :func:`drop_stale_cache` hashes the dependency sources and deletes the caller's cache entries
 when the hash changed, before any ``@njit`` in the caller is compiled or loaded.
 """

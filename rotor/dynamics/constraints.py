@@ -45,7 +45,7 @@ Decisions on the known traps (contact-laws.md Q6–Q11)
   jump on as a 2Δt oscillation of the multiplier (``f_n+1 = 2 f̄ − f_n``). So in a step where
   a face tries stick (slipping at the start), the stuck faces are tested on their *consistent*
   multipliers at the end of the step (acceleration-level constraint at fixed positions and
-  velocities, as at t0: :func:`rotor.dynamics.reference.initial_acceleration`, the paper's demand split
+  velocities, as at t0: :func:`rotor.dynamics.initial.initial_acceleration`, the paper's demand split
   Eqs. 53–56 of the holding force), and once the face sticks the step's acceleration and
   multipliers are replaced by those consistent ones (positions and velocities of the step
   kept), as Newmark's scheme is restarted after any jump. A face released in the previous step

@@ -27,7 +27,7 @@ import numpy as np
 
 from contact.errors import InputError
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.reference import RotorSystem, Trajectory, coupling_map
+from rotor.dynamics.system import RotorSystem, Trajectory, coupling_map
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ is integrated as a sequence of short segments (default 5 ms, 1.5 revolutions at
 carried across segments:
 
 * in segment ``j`` the speed is ``Ω_j = Ω(t_mid)``; the gyroscopic term is ``Ω_j G`` and the
-  loads are those of :func:`rotor.dynamics.reference.system_from_model` at ``Ω_j``;
+  loads are those of :func:`rotor.dynamics.build.system_from_model` at ``Ω_j``;
 * the excitation phase is the accumulated rotation angle ``φ(t) = ∫Ω dt`` (not ``Ω t``), by
   starting each segment at the local time ``φ_j/Ω_j``: the harmonic loads ``cos(kφ)``,
   ``sin(kφ)`` stay continuous through every speed change;
@@ -32,7 +32,7 @@ import numpy as np
 from contact.errors import InputError
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.reference import HarmonicForce, largest_stable_step
+from rotor.dynamics.system import HarmonicForce, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 
 STATIONS = ("disk1", "disk2", "5", "s")

@@ -226,7 +226,7 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
     (m, rad), ``periodic`` (C,) bool, ``contact_fraction`` (C,). Info: per case convergence,
     period, regime, transient revolutions and wall time.
     """
-    from rotor.dynamics.reference import system_from_model
+    from rotor.dynamics.build import system_from_model
     from rotor.studies.steady_state import SteadyStateOptions, steady_state
 
     check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)

@@ -33,7 +33,7 @@ import numpy as np
 from contact.errors import InputError
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.reference import RotorSystem, largest_stable_step
+from rotor.dynamics.system import RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 
 #: stations whose y/z are recorded (aliases of rotor.model.assembly.RotorModel.dof_index)
@@ -53,7 +53,7 @@ class SteadyStateOptions:
     steps_per_rev : int
         Minimum time steps per revolution (–); raised at low speed so that the step stays
         below ``stable_fraction`` times the largest stable contact step
-        (:func:`rotor.dynamics.reference.largest_stable_step`). Default 256: against 512, the 1X–3X
+        (:func:`rotor.dynamics.system.largest_stable_step`). Default 256: against 512, the 1X–3X
         velocity amplitudes of the Table 4 rotor at 4 500 and 10 500 rpm differ by ≤ 0.4 %,
         4X–5X by ≤ 2 % (measured at disk 1, disk 2 and the support).
     stable_fraction : float
@@ -346,7 +346,7 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
     Parameters
     ----------
     system : RotorSystem
-        From :func:`rotor.dynamics.reference.system_from_model` (spin speed inside, rad/s).
+        From :func:`rotor.dynamics.build.system_from_model` (spin speed inside, rad/s).
     model : rotor.model.assembly.RotorModel
         For station names (``model.dof_index``).
     options : SteadyStateOptions
@@ -444,8 +444,8 @@ def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = No
                  misalignment_m: float | None = None, tilt_ignored: bool = False, mu: float | None = None,
                  preload_n: float | None = None):
     """``(scene, model, system)`` of one operating point; overrides as in
-    :func:`rotor.dynamics.reference.system_from_model` (None keeps the scene's value)."""
-    from rotor.dynamics.reference import system_from_model
+    :func:`rotor.dynamics.build.system_from_model` (None keeps the scene's value)."""
+    from rotor.dynamics.build import system_from_model
 
     check_positive("speed_rpm", speed_rpm, "rpm", allow_zero=True, upper=1e5)
     sc, model = _scene_model(scene)

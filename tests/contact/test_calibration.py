@@ -200,9 +200,9 @@ def test_calibrated_params_refuse_another_geometry():
 
 
 def test_rotor_solver_takes_a_calibrated_law_by_name():
-    # The rotor wraps LooseSupportParams with rotor.dynamics.reference.support_law_from_params; a calibrated
+    # The rotor wraps LooseSupportParams with rotor.dynamics.kernels.support_law_from_params; a calibrated
     # law loaded by name goes through both its numpy force and its compiled kernel unchanged.
-    from rotor.dynamics.reference import support_law_from_params
+    from rotor.dynamics.kernels import support_law_from_params
 
     law = cal.load_calibrated("clamped-foundation")
     sl = support_law_from_params(law.loose_support_params(c_c_s_per_m=100.0))

@@ -5,7 +5,8 @@ import math
 
 import numpy as np
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.reference import HarmonicForce, LooseSupport, RotorSystem, SupportLaw, support_law_from_params
+from rotor.dynamics.kernels import support_law_from_params
+from rotor.dynamics.system import HarmonicForce, LooseSupport, RotorSystem, SupportLaw
 
 
 def null_law() -> SupportLaw:

@@ -13,7 +13,9 @@ import pytest
 
 from contact.errors import InputError, OutsideDomainError
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.reference import check_time_step, largest_stable_step, simulate_reference, system_from_model
+from rotor.dynamics.build import system_from_model
+from rotor.dynamics.reference import simulate_reference
+from rotor.dynamics.system import check_time_step, largest_stable_step
 from rotor.dynamics.production import simulate_production
 
 
@@ -176,7 +178,7 @@ def test_the_two_fixes_are_what_remove_chatter_and_stalls(table4):
     chatters, with the paper's sharp edge rule (edge_transition_m = 0) the 3 mm case from q = 0 keeps
     least-residual steps (measured 2 runs, 100 steps); and at every stick onset of the current scheme the
     stuck face's relative acceleration is zero (consistent restart), so the multiplier does not ring."""
-    from rotor.dynamics.reference import NewmarkOptions
+    from rotor.dynamics.system import NewmarkOptions
 
     scene, model = table4
     dt = 2 * math.pi / _rpm(10500) / 256

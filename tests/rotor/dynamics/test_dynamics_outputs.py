@@ -14,7 +14,9 @@ import pytest
 
 from contact import laws
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.reference import HarmonicForce, RotorSystem, linear_initial_state, system_from_model
+from rotor.dynamics.build import system_from_model
+from rotor.dynamics.initial import linear_initial_state
+from rotor.dynamics.system import HarmonicForce, RotorSystem
 from rotor.studies.steady_state import SteadyStateOptions, steady_state
 
 

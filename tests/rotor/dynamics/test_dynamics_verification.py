@@ -19,7 +19,8 @@ from dynamics_denhartog import DenHartog
 from dynamics_standin import friction_body
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.energy import energy_balance
-from rotor.dynamics.reference import HarmonicForce, NewmarkOptions, RotorSystem, simulate_reference
+from rotor.dynamics.reference import simulate_reference
+from rotor.dynamics.system import HarmonicForce, NewmarkOptions, RotorSystem
 from rotor.dynamics.production import simulate_production
 
 
@@ -200,7 +201,7 @@ def test_energy_conserved_undamped_average_acceleration(table4):
 
 def test_energy_balance_closes_on_nonlinear_run(table4):
     """Table 4 rotor at 10 500 rpm with contact, impact damping, stick/slip: balance within 1 % of input."""
-    from rotor.dynamics.reference import system_from_model
+    from rotor.dynamics.build import system_from_model
 
     scene, model = table4
     omega = 10500 * 2 * math.pi / 60

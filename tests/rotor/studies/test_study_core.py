@@ -108,7 +108,7 @@ def test_steady_state_equals_linear_forced_response_when_support_sticks(table4):
     """Stuck support + linear coupling: the system is linear, so the detected steady state must
     reproduce the closed-form frequency response (1X unbalance, 2X misalignment) of the locked
     rotor to the Newmark phase error (Ω Δt)²/12 ~ 1e-4 at 448 steps per revolution."""
-    from rotor.dynamics.reference import system_from_model
+    from rotor.dynamics.build import system_from_model
     from rotor.linear.unbalance import forced_response
 
     scene, model = table4

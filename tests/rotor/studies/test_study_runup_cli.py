@@ -14,7 +14,7 @@ def test_constant_speed_runup_equals_one_constant_speed_run():
     step, so the stitched run must equal one uninterrupted run to round-off.
 
     End-face friction off (μ = 0): with friction each restart re-runs the stick test on the
-    faces (rotor.dynamics.reference.initial_state), which can take another branch of the stick/slip
+    faces (rotor.dynamics.initial.initial_state), which can take another branch of the stick/slip
     active set than the uninterrupted run did (measured: 0.5 % of the dynamic amplitude after
     0.06 s at 3 000 rpm) -- a path dependence of the non-smooth problem, not of the stitching."""
     from rotor.dynamics.production import simulate_production

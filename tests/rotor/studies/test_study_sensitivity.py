@@ -319,7 +319,7 @@ def test_ignoring_tilt_markedly_lowers_3f_to_5f_on_the_proposed_scene():
     bearing support, tilt-ignored state continued from the tilted one. Holds on the proposed scene
     (measured in the sensitivity study: disk 2 0.338 → 0.124 mm/s, support 0.528 → 0.166 mm/s), where
     on paper-table4 it does not (1–2 % lower, xfail in test_study_paper.py)."""
-    from rotor.dynamics.reference import system_from_model
+    from rotor.dynamics.build import system_from_model
     from rotor.studies.steady_state import SteadyStateOptions, steady_state
 
     sc = load_scene("paper-table4-stiff-frame")

@@ -1,0 +1,68 @@
+"""A :class:`~rotor.dynamics.system.RotorSystem` from the rotor model of a scene (``rotor.model``)."""
+from __future__ import annotations
+
+import numpy as np
+
+from contact.errors import InputError
+from contact.units import check_positive
+from rotor.dynamics.kernels import support_law_from_params
+from rotor.dynamics.system import HarmonicForce, LooseSupport, RotorSystem, SupportLaw
+
+
+def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | None = None, law_name: str = "conformal",
+                      tilt_ignored: bool = False,
+                      mu: float | None = None, preload_N: float | None = None, clearance_m: float | None = None,
+                      misalignment_m: float | None = None, nonlinear_coupling: bool = True) -> RotorSystem:
+    """The loose-support rotor of a scene at spin speed ``speed_rad_s`` (rad/s).
+
+    Uses the rotor model API (``rotor.model.assembly``): ``K + K_c`` with the misalignment offset
+    ``Δq_m`` (the ``K_c Δq_m`` term moves to the static load, since the coupling spring is
+    not shifted), unbalance (1X) and misalignment excitation (2X), the two linear 3a/3b rows
+    ``model.B`` (not the squared g5), the cubic coupling remainder, and the loose support with
+    the contact law of the scene (``contact.loose_support``; the paper's conformal law as
+    published by default). Overrides: ``law`` (any :class:`SupportLaw`, e.g. a calibrated one
+    wrapped by :func:`rotor.dynamics.kernels.support_law_from_params`), ``law_name`` (a law of
+    ``contact.loose_support`` by name: "conformal", "pereira"), ``tilt_ignored``
+    (paper Fig. 16), ``mu``, ``preload_N``, ``clearance_m``, ``misalignment_m`` (δ, scales
+    Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
+    """
+    from contact.loose_support import LooseSupportParams
+    from rotor.model import assembly as rm
+
+    ls = scene.loose_support
+    n = model.n_dofs
+    check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True, upper=1e4)
+    mu_v = ls.friction_coefficient if mu is None else mu
+    pre_v = ls.preload_n if preload_N is None else preload_N
+    if law is None:
+        params = LooseSupportParams(
+            clearance_m=ls.clearance_m if clearance_m is None else clearance_m, width_m=ls.ring_width_m,
+            bearing_E_Pa=ls.bearing_modulus_pa, bearing_nu=ls.bearing_poisson,
+            support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson,
+            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored, law=law_name)
+        law = support_law_from_params(params)
+    sup = LooseSupport(tuple(model.loose_pair.bearing), tuple(model.loose_pair.support), law,
+                       ls.ring_width_m, mu_v, pre_v)
+    off = rm.misalignment_offset(model)
+    loads = rm.harmonic_loads(model, speed_rad_s)
+    delta0 = scene.misalignment.offset_m if getattr(scene, "misalignment", None) is not None else 0.0
+    scale = 1.0
+    if misalignment_m is not None:
+        check_positive("misalignment_m", misalignment_m, "m", allow_zero=True, upper=0.05)
+        if delta0 == 0.0 and misalignment_m > 0:
+            raise InputError("misalignment_m: the scene has no misalignment to scale; set it in the scene")
+        scale = misalignment_m / delta0 if delta0 else 0.0
+    off = off * scale
+    orders = np.array(sorted(loads), dtype=float)
+    cos = np.array([loads[k][0] * (scale if k == 2 else 1.0) for k in sorted(loads)]).reshape(len(orders), n)
+    sin = np.array([loads[k][1] * (scale if k == 2 else 1.0) for k in sorted(loads)]).reshape(len(orders), n)
+    static = -model.K_c @ off
+    force = HarmonicForce(static, orders, cos, sin, float(speed_rad_s))
+    L = np.asarray(model.B, dtype=float)  # the two linear 3a/3b rows (not the squared g5)
+    coupling = None
+    if nonlinear_coupling and model.couplings:
+        cp = model.couplings[0]
+        if cp.a1_n_m_rad3 != 0.0:
+            coupling = ((cp.a[2], cp.a[3]), (cp.b[2], cp.b[3]), float(cp.a1_n_m_rad3))
+    return RotorSystem(model.M, model.C, model.G, model.K + model.K_c, float(speed_rad_s), force, off, L, sup,
+                       tuple(model.dof_names), coupling)

@@ -1,0 +1,55 @@
+"""The contact law as the integrators call it: a :class:`~rotor.dynamics.system.SupportLaw` from the
+contact layer's :class:`contact.loose_support.LooseSupportParams`, with its compiled kernel.
+
+:func:`support_law_from_params` gives both forms of the radial law: the Python ``force`` the
+reference scheme evaluates (and its finite-difference Jacobian), and :func:`contact_kernel`, the
+numba-compiled scalar path of :mod:`contact.loose_support` with its analytic Jacobian, which
+the production scheme (:mod:`rotor.dynamics.production`) calls inside its compiled step loop.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from numba import njit
+
+from contact.loose_support import loose_support_force, point_force_jacobian
+from rotor.dynamics._numba_cache import drop_stale_cache
+from rotor.dynamics.system import SupportLaw
+
+# contact_kernel inlines contact._kernel: drop our numba cache when that source changes (numba
+# itself only watches this file).
+drop_stale_cache(__file__, ["contact._kernel"])
+
+
+@njit(cache=True)
+def contact_kernel(u, v, p):
+    """``contact.loose_support`` scalar path as ``(u, v, params) -> (f, Ju, Jv)`` (analytic Jacobian)."""
+    pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
+    jac = np.empty((4, 8))
+    fy, fz, my, mz = point_force_jacobian(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], pt, jac)
+    f = np.empty(4)
+    f[0] = fy
+    f[1] = fz
+    f[2] = my
+    f[3] = mz
+    return f, jac[:, :4].copy(), jac[:, 4:].copy()
+
+
+def support_law_from_params(params) -> SupportLaw:
+    """Wrap :class:`contact.loose_support.LooseSupportParams` as a :class:`SupportLaw`.
+
+    End-face friction is removed from the law (μN = 0 in its kernel arguments): the
+    integrators treat the faces as stick/slip constraints themselves. Everything else
+    (law, modulus, damping ``c_c`` in s/m, tilt geometry or ``tilt_ignored``) is the
+    contact layer's.
+    """
+    radial = dataclasses.replace(params, mu=0.0, preload_N=0.0, friction_smoothing_m_s=0.0)
+
+    def force(u, v):
+        r = loose_support_force(radial, u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3])
+        return np.array([float(r.Fy_N), float(r.Fz_N), float(r.My_Nm), float(r.Mz_Nm)])
+
+    law_label = getattr(params, "calibration_name", "") or params.law  # calibrated laws by their stored name
+    name = f"{law_label}{' (tilt ignored)' if params.tilt_ignored else ''}"
+    return SupportLaw(name, float(params.clearance_m), force, contact_kernel, np.array(radial.kernel_args, dtype=float))

@@ -1,0 +1,499 @@
+"""The compiled inner routines of the production integrator (:mod:`rotor.dynamics.production`).
+
+numba ``njit`` functions on the condensed step: the contact and coupling forces with their
+analytic Jacobian (:func:`_forces`), the residual of the condensed step (:func:`_residual`), its
+Newton solve with backtracking (:func:`_solve_support`), a hand-written Gaussian elimination for
+the ≤ 10×10 Newton systems (:func:`_small_solve`), the consistent acceleration after a stick onset
+(:func:`_reproject`) and the whole step loop (:func:`step_loop`). The equations are those of
+:mod:`rotor.dynamics.production`; the stick/slip rules are :mod:`rotor.dynamics.constraints`, compiled.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rotor.dynamics import constraints as cons
+from rotor.dynamics._numba_cache import drop_stale_cache
+
+# The kernels below inline rotor.dynamics.constraints: drop our numba cache when that source changes
+# (numba itself only watches this file).
+drop_stale_cache(__file__, ["rotor.dynamics.constraints"])
+
+# Caching note: functions that take the support-law kernel (a numba dispatcher) as an argument
+# are NOT cached on disk. numba keys their cache by the dispatcher's identity, which differs in
+# every process, so the cache never hit, its index grew with every process, and saving it
+# eventually failed ("ReferenceError: underlying object has vanished"). They compile once per
+# process instead; the kernel (rotor.dynamics.kernels.contact_kernel) and the small solver are cached.
+
+_slip_force = njit(cache=True)(cons.slip_force)
+_mode_update = njit(cache=True)(cons.face_mode_update)
+
+NC = 6  # condensed coordinates: relative support (y, z, θy, θz) + coupling Δθ (y, z)
+
+
+@njit(cache=True)
+def _small_solve(A, b, m, out):
+    """Solve A[:m,:m] out = b[:m] by Gaussian elimination with partial pivoting (A, b destroyed).
+
+    Hand-written because LAPACK's call overhead (~2 µs) dominates at m ≤ 10. Returns False if singular."""
+    for c in range(m):
+        piv = c
+        best = abs(A[c, c])
+        for r in range(c + 1, m):
+            if abs(A[r, c]) > best:
+                best = abs(A[r, c])
+                piv = r
+        if best == 0.0 or not (best == best):
+            return False
+        if piv != c:
+            for k in range(c, m):
+                tmp = A[c, k]
+                A[c, k] = A[piv, k]
+                A[piv, k] = tmp
+            tmp = b[c]
+            b[c] = b[piv]
+            b[piv] = tmp
+        inv = 1.0 / A[c, c]
+        for r in range(c + 1, m):
+            fct = A[r, c] * inv
+            if fct != 0.0:
+                for k in range(c + 1, m):
+                    A[r, k] -= fct * A[c, k]
+                b[r] -= fct * b[c]
+    for r in range(m - 1, -1, -1):
+        s = b[r]
+        for k in range(r + 1, m):
+            s -= A[r, k] * out[k]
+        out[r] = s / A[r, r]
+    return True
+
+
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
+def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
+            g, Jg, phi, u, w):
+    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x (stuck-face forces from x[NC:]);
+    also leaves the condensed displacement u and velocity w of the iterate."""
+    for i in range(NC):
+        u[i] = u_pre[i] + bdt2 * x[i]
+        w[i] = w_pre[i] + gdt * x[i]
+    f, Ju, Jv = kernel(u[:4], w[:4], params)
+    for i in range(NC):
+        g[i] = 0.0
+        for j in range(NC):
+            Jg[i, j] = 0.0
+    for i in range(4):
+        g[i] = f[i]
+        for j in range(4):
+            Jg[i, j] = Ju[i, j] * bdt2 + Jv[i, j] * gdt
+    if a1 != 0.0:
+        d0 = u[4]
+        d1 = u[5]
+        s2 = d0 * d0 + d1 * d1
+        g[4] = -a1 * s2 * d0
+        g[5] = -a1 * s2 * d1
+        Jg[4, 4] = -a1 * (s2 + 2 * d0 * d0) * bdt2
+        Jg[4, 5] = -a1 * (2 * d0 * d1) * bdt2
+        Jg[5, 4] = Jg[4, 5]
+        Jg[5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
+    j = NC
+    wk = np.empty(2)
+    for k in range(2):
+        if modes[k] == 1:
+            phi[k, 0] = x[j]
+            phi[k, 1] = x[j + 1]
+            j += 2
+        elif freeze[k]:
+            phi[k, 0] = freeze_dir[k, 0]
+            phi[k, 1] = freeze_dir[k, 1]
+        else:
+            for rr in range(2):
+                wk[rr] = P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]
+            fk, Jk = _slip_force(wk, mu_N, w_reg)
+            phi[k, 0] = fk[0]
+            phi[k, 1] = fk[1]
+            # Jg += Pkᵀ Jk Pk γΔt
+            for r in range(4):
+                for c in range(4):
+                    s = 0.0
+                    for a in range(2):
+                        for b in range(2):
+                            s += P[k, a, r] * Jk[a, b] * P[k, b, c]
+                    Jg[r, c] += s * gdt
+        for r in range(4):
+            g[r] += P[k, 0, r] * phi[k, 0] + P[k, 1, r] * phi[k, 1]
+
+
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
+def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
+              w_reg, g, Jg, phi, u, w, R, J):
+    """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|."""
+    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
+            g, Jg, phi, u, w)
+    for r in range(m):
+        for c in range(m):
+            J[r, c] = 0.0
+    for r in range(NC):
+        s = 0.0
+        for c in range(NC):
+            s += S[r, c] * g[c]
+        R[r] = x[r] - alpha_lin[r] - s
+        for c in range(NC):
+            s = 0.0
+            for k in range(NC):
+                s += S[r, k] * Jg[k, c]
+            J[r, c] = (1.0 if r == c else 0.0) - s
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            for rr in range(2):
+                R[j + rr] = (P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]) / gdt
+                for c in range(4):
+                    J[j + rr, c] = P[k, rr, c]
+            for r in range(NC):
+                for rr in range(2):
+                    s = 0.0
+                    for c in range(4):
+                        s += S[r, c] * P[k, rr, c]
+                    J[r, j + rr] = -s
+            j += 2
+    nr = 0.0
+    for i in range(m):
+        nr += R[i] * R[i]
+    return math.sqrt(nr)
+
+
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
+def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freeze, freeze_dir, mu_N, a1,
+                   bdt2, gdt, kernel, params, tol, max_iter, w_reg):
+    """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)], analytic Jacobian,
+    with backtracking on |R| when a full step does not decrease it (kinks of the law).
+    If it does not converge, the least-residual iterate is returned with ok = False.
+
+    Returns (alpha, g, phi (2,2), iterations, converged)."""
+    n_st = 0
+    for k in range(2):
+        if modes[k] == 1:
+            n_st += 1
+    m = NC + 2 * n_st
+    MX = NC + 4
+    x = np.zeros(MX)
+    for i in range(NC):
+        x[i] = alpha[i]
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            x[j] = phi_stuck[k, 0]
+            x[j + 1] = phi_stuck[k, 1]
+            j += 2
+    phi = np.zeros((2, 2))
+    g = np.zeros(NC)
+    Jg = np.zeros((NC, NC))
+    u = np.zeros(NC)
+    w = np.zeros(NC)
+    R = np.zeros(MX)
+    J = np.zeros((MX, MX))
+    R2 = np.zeros(MX)
+    J2 = np.zeros((MX, MX))
+    rhs = np.zeros(MX)
+    xt = np.zeros(MX)
+    dx = np.zeros(MX)
+    best = np.zeros(MX)
+    its = 0
+    ok = False
+    nR = _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel,
+                   params, w_reg, g, Jg, phi, u, w, R, J)
+    best[:] = x
+    best_n = nR
+    for it in range(max_iter):
+        its = it + 1
+        for i in range(m):
+            rhs[i] = R[i]
+        if not _small_solve(J, rhs, m, dx):
+            break
+        nx = 0.0
+        nd = 0.0
+        for i in range(m):
+            nx += x[i] * x[i]
+            nd += dx[i] * dx[i]
+        if not (nd == nd):
+            break
+        if math.sqrt(nd) <= tol * (math.sqrt(nx) + 1e-12):
+            for i in range(m):
+                x[i] -= dx[i]
+            ok = True
+            break
+        lam = 1.0
+        nR2 = nR
+        for ls in range(40):
+            for i in range(m):
+                xt[i] = x[i] - lam * dx[i]
+            nR2 = _residual(xt, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
+                            kernel, params, w_reg, g, Jg, phi, u, w, R2, J2)
+            if nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0:
+                break
+            lam *= 0.5
+        for i in range(m):
+            x[i] = xt[i]
+            R[i] = R2[i]
+            for c in range(m):
+                J[i, c] = J2[i, c]
+        nR = nR2
+        if nR < best_n:
+            best_n = nR
+            best[:] = x
+        if nR == 0.0:
+            ok = True
+            break
+    if not ok:
+        x[:] = best
+    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg, g, Jg, phi,
+            u, w)
+    return x[:NC].copy(), g, phi, its, ok
+
+
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
+def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, params, w_reg, phi_face):
+    """Consistent acceleration at the end of a step in which a face stuck (the stick-onset
+    re-projection of :func:`rotor.dynamics.initial.initial_acceleration`): ``M a = Q − D v − K p + Bᵀ g``
+    with the stuck faces' relative acceleration zero, at fixed ``(p, v)``. Linear in the stuck
+    faces' forces (2 per face), which it writes into ``phi_face``. Returns ``a``."""
+    u = Bt @ p
+    w = Bt @ v
+    x = np.zeros(NC + 4)
+    freeze = np.zeros(2, dtype=np.bool_)
+    fdir = np.zeros((2, 2))
+    g = np.zeros(NC)
+    Jg = np.zeros((NC, NC))
+    phi = np.zeros((2, 2))
+    uu = np.zeros(NC)
+    ww = np.zeros(NC)
+    # forces at (u, w) with the stuck faces' forces zero (x[NC:] = 0; bdt2 = gdt = 0 keeps u, w)
+    _forces(x, u, w, 0.0, 0.0, P, modes, freeze, fdir, mu_N, a1, kernel, params, w_reg, g, Jg, phi, uu, ww)
+    a = Minv @ (Q - Dr @ v - Kr @ p) + WM @ g
+    alpha = Bt @ a
+    m = 0
+    idx = np.zeros(2, dtype=np.int64)
+    for k in range(2):
+        if modes[k] == 1:
+            idx[m] = k
+            m += 1
+    if m == 0:
+        return a
+    # Σ_j P_k S_M[:4,:4] P_jᵀ φ_j = −P_k α[:4] for the stuck faces k
+    A = np.zeros((4, 4))
+    b = np.zeros(4)
+    sol = np.zeros(4)
+    for ik in range(m):
+        k = idx[ik]
+        for rr in range(2):
+            b[2 * ik + rr] = -(P[k, rr, 0] * alpha[0] + P[k, rr, 1] * alpha[1] + P[k, rr, 2] * alpha[2]
+                               + P[k, rr, 3] * alpha[3])
+            for jk in range(m):
+                j = idx[jk]
+                for cc in range(2):
+                    sacc = 0.0
+                    for r in range(4):
+                        for c in range(4):
+                            sacc += P[k, rr, r] * SM[r, c] * P[j, cc, c]
+                    A[2 * ik + rr, 2 * jk + cc] = sacc
+    if not _small_solve(A, b, 2 * m, sol):
+        return a
+    gf = np.zeros(NC)
+    for ik in range(m):
+        k = idx[ik]
+        phi_face[k, 0] = sol[2 * ik]
+        phi_face[k, 1] = sol[2 * ik + 1]
+        for r in range(4):
+            gf[r] += P[k, 0, r] * sol[2 * ik] + P[k, 1, r] * sol[2 * ik + 1]
+    return a + WM @ gf
+
+
+@njit(cache=False)  # takes the law kernel as an argument: see note on caching
+def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
+              Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, s_yy, a1,
+              has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
+              onset_projection, Minv, WM, SM,
+              rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
+              status):
+    """The ``n_steps`` steps of :func:`rotor.dynamics.production.simulate_production` on the reduced
+    coordinates ``p = Tᵀ q``: predictor, condensed Newton with the active-set loop, correction,
+    stick-onset re-projection, recording every ``record_every`` steps into ``rec_*``. ``p, v, a,
+    modes, phi_face`` are updated in place. ``status``: [0 ok / 2 non-finite, failing step,
+    least-residual steps, stick-onset re-projections]. Returns ``(steps done, largest ω_c Δt)``."""
+    nr = p.shape[0]
+    bdt2 = beta * dt * dt
+    gdt = gamma * dt
+    H = orders.shape[0]
+    alpha = Bt @ a
+    wdt_max = 0.0
+    zero4 = np.zeros(4)
+    freeze = np.zeros(2, dtype=np.bool_)
+    freeze_dir = np.zeros((2, 2))
+    w_old = np.zeros((2, 2))
+    phi_old = np.zeros((2, 2))
+    tried = np.zeros(2, dtype=np.bool_)
+    stuck0 = np.zeros(2, dtype=np.bool_)
+    just_released = np.zeros(2, dtype=np.bool_)
+    phi_c = np.zeros((2, 2))
+    Q = np.empty(nr)
+    for step in range(1, n_steps + 1):
+        t = t0 + step * dt
+        p_pre = p + dt * v + dt * dt * (0.5 - beta) * a
+        v_pre = v + dt * (1.0 - gamma) * a
+        Q[:] = static
+        for h in range(H):
+            ph = orders[h] * omega_f * t
+            cph = math.cos(ph)
+            sph = math.sin(ph)
+            for i in range(nr):
+                Q[i] += cph * cosm[h, i] + sph * sinm[h, i]
+        rhs = Q - Dr @ v_pre - Kr @ p_pre
+        a_lin = Ainv @ rhs
+        total_its = 0
+        passes = 0
+        onset = False
+        if has_support:
+            alpha_lin = Bt @ a_lin
+            u_pre = Bt @ p_pre
+            w_pre = Bt @ v_pre
+            wv = Bt @ v
+            for k in range(2):
+                w_old[k] = P[k] @ wv[:4]
+                tried[k] = modes[k] == 1
+                stuck0[k] = modes[k] == 1
+                freeze[k] = False
+                phi_old[k, 0] = phi_face[k, 0]
+                phi_old[k, 1] = phi_face[k, 1]
+            g = np.zeros(NC)
+            while True:
+                passes += 1
+                alpha_new, g, phi, its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_face,
+                                                            freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
+                                                            tol, max_iter, w_reg)
+                total_its += its
+                if not ok:
+                    # slip Newton stalls when the true answer is (near) stick: try stick on the
+                    # slipping faces not yet tried in this step, else give up
+                    flipped = False
+                    for k in range(2):
+                        if modes[k] == 0 and not tried[k]:
+                            modes[k] = 1
+                            tried[k] = True
+                            phi_face[k] = phi[k]
+                            flipped = True
+                    if flipped and passes < max_passes + 4:
+                        freeze[0] = False
+                        freeze[1] = False
+                        continue
+                    # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
+                    # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
+                    status[2] += 1
+                    alpha = alpha_new
+                    for k in range(2):
+                        phi_face[k] = phi[k]
+                    break
+                alpha = alpha_new
+                if freeze[0] or freeze[1]:
+                    freeze[0] = False
+                    freeze[1] = False
+                    continue
+                w_new = w_pre + gdt * alpha
+                changed = False
+                # a face trying stick in this step (slipping at its start) is tested on its holding
+                # force at the end of the step, the consistent multiplier (stick-onset re-projection),
+                # not on the trapezoidal one that carries the velocity jump (f_n+1 = 2 f̄ − f_n); the
+                # other face, if stuck, on its consistent multiplier too (the one the step will keep)
+                use_c = False
+                if onset_projection:
+                    for k in range(2):
+                        if modes[k] == 1 and not stuck0[k]:
+                            use_c = True
+                if use_c:
+                    a_try = a_lin + W @ g
+                    for k in range(2):
+                        phi_c[k, 0] = phi[k, 0]
+                        phi_c[k, 1] = phi[k, 1]
+                    _reproject(p_pre + bdt2 * a_try, v_pre + gdt * a_try, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes,
+                               mu_N, a1, kernel, params, w_reg, phi_c)
+                for k in range(2):
+                    wk = P[k] @ w_new[:4]
+                    fk = phi[k]
+                    if use_c and modes[k] == 1:
+                        fk = phi_c[k]
+                    nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N, 0.0 if just_released[k] else w_stick,
+                                      tried[k], phi_old[k],
+                                      stick_mean_weight if stuck0[k] else 0.0)
+                    if nm != modes[k]:
+                        changed = True
+                        modes[k] = nm
+                        if nm == 1:
+                            tried[k] = True
+                            phi_face[k] = phi[k]
+                        else:
+                            nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
+                            freeze[k] = True
+                            if nrm > 0:
+                                freeze_dir[k] = mu_N * fk / nrm
+                            else:
+                                freeze_dir[k] = 0.0
+                if not changed or passes >= max_passes:
+                    for k in range(2):
+                        phi_face[k] = phi[k]
+                    break
+            a = a_lin + W @ g
+            if onset_projection:
+                for k in range(2):
+                    if modes[k] == 1 and not stuck0[k]:
+                        onset = True
+            # largest ω_c Δt met: radial tangent stiffness of the law at the new state
+            u_new = u_pre + bdt2 * alpha
+            w_new = w_pre + gdt * alpha
+            f, Ju, Jv = kernel(u_new[:4], w_new[:4], params)
+            kt = -(Ju[0, 0] + Ju[1, 1])
+            if kt > 0:
+                wd = math.sqrt(kt * s_yy) * dt
+                if wd > wdt_max:
+                    wdt_max = wd
+        else:
+            a = a_lin
+        p = p_pre + bdt2 * a
+        v = v_pre + gdt * a
+        fin = True
+        for i in range(nr):
+            if not (math.isfinite(p[i]) and math.isfinite(v[i])):
+                fin = False
+        if not fin:
+            status[0] = 2
+            status[1] = step
+            return step - 1, wdt_max
+        for k in range(2):
+            just_released[k] = onset_projection and modes[k] == 0 and stuck0[k]
+        if onset:
+            # a face stuck in this step: restart from the consistent acceleration (positions and
+            # velocities of the step kept), so the stuck multiplier does not ring
+            a = _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, params, w_reg, phi_face)
+            alpha = Bt @ a
+            status[3] += 1
+        if step % record_every == 0:
+            i = step // record_every
+            rec_t[i] = t
+            rec_p[i] = p
+            rec_v[i] = v
+            rec_a[i] = a
+            rec_its[i] = total_its
+            rec_passes[i] = passes
+            if has_support:
+                uu = Bt @ p
+                ww = Bt @ v
+                rec_u[i] = uu[:4]
+                rec_w[i] = ww[:4]
+                f, Ju, Jv = kernel(uu[:4], ww[:4], params)
+                rec_fc[i] = f
+                fe, Ju, Jv = kernel(uu[:4], zero4, params)
+                rec_fel[i] = fe
+                rec_face[i] = phi_face
+                rec_modes[i, 0] = modes[0]
+                rec_modes[i, 1] = modes[1]
+    return n_steps, wdt_max
