@@ -4,7 +4,7 @@ Walks every module of the suite's packages with :mod:`ast` (nothing is imported)
 import graph (imports inside functions included) and checks the rules of the layout:
 
 - no import circle between modules (strongly connected components of size > 1);
-- no source module over 600 lines;
+- no source module over 600 lines, no plain-Python function over 80 (numba-compiled ones exempt);
 - a layer imports only layers below it: contact < sweep < fem_reference, rotor < reports;
   inside rotor: model < linear, dynamics < studies;
 - ``rotor/`` is split into stage sub-packages and holds no loose modules;
@@ -20,6 +20,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("contact", "sweep", "fem_reference", "rotor", "reports")
 MAX_LINES = 600
+MAX_FUNCTION_LINES = 80
 
 # Layer rank of a module by its dotted prefix (longest prefix wins); an import must not go to a
 # higher rank. Equal ranks may import each other's modules, circles are caught separately.
@@ -134,6 +135,21 @@ def test_the_cycle_finder_finds_a_circle():
 def test_module_size(module):
     n = len(MODULES[module].read_text().splitlines())
     assert n <= MAX_LINES, f"{MODULES[module].relative_to(ROOT)} has {n} lines"
+
+
+def _compiled(node: ast.FunctionDef) -> bool:
+    return any("njit" in ast.unparse(d) or "jit(" in ast.unparse(d) for d in node.decorator_list)
+
+
+def test_no_long_plain_function():
+    long = []
+    for name, path in MODULES.items():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not _compiled(node):
+                n = node.end_lineno - node.lineno + 1
+                if n > MAX_FUNCTION_LINES:
+                    long.append(f"{path.relative_to(ROOT)}:{node.lineno} {node.name} ({n} lines)")
+    assert long == []
 
 
 def test_layers_import_downwards():

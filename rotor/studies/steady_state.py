@@ -339,6 +339,17 @@ def step_per_rev(system: RotorSystem, options: SteadyStateOptions) -> int:
     return int(math.ceil(n / s) * s)
 
 
+def _at_rest(opts: SteadyStateOptions, channels, idx, q, v, d0: float, t_start: float) -> SteadyResult:
+    """No excitation and no rotation: the record is the initial (static) state."""
+    spr = opts.samples_per_rev or TRANSIENT_SAMPLES_PER_REV
+    N = opts.spectrum_revs * spr
+    z4 = np.zeros((N, 4))
+    return SteadyResult(0.0, channels, np.zeros(N), np.tile(q[idx], (N, 1)), np.zeros((N, len(idx))), z4,
+                        np.zeros(N), np.zeros(N), np.ones((N, 2), np.int8), z4, opts.spectrum_revs,
+                        spr, 0, 0, Convergence(True, 1, 0.0, 0.0, 0.0), d0, 0,
+                        time.perf_counter() - t_start, True, np.tile(q, (N, 1)), q.copy(), v.copy())
+
+
 def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | None = None,
                  stations=DEFAULT_STATIONS, q0=None, v0=None) -> SteadyResult:
     """Integrate ``system`` to its steady state and record whole revolutions of it.
@@ -370,14 +381,7 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
     q = system.offset.copy() if q0 is None else np.asarray(q0, float).copy()
     v = np.zeros(system.n) if v0 is None else np.asarray(v0, float).copy()
     if omega == 0.0:
-        # no excitation and no rotation: the record is the initial (static) state
-        spr = opts.samples_per_rev or TRANSIENT_SAMPLES_PER_REV
-        N = opts.spectrum_revs * spr
-        z4 = np.zeros((N, 4))
-        return SteadyResult(0.0, channels, np.zeros(N), np.tile(q[idx], (N, 1)), np.zeros((N, len(idx))), z4,
-                            np.zeros(N), np.zeros(N), np.ones((N, 2), np.int8), z4, opts.spectrum_revs,
-                            spr, 0, 0, Convergence(True, 1, 0.0, 0.0, 0.0), d0, 0,
-                            time.perf_counter() - t_start, True, np.tile(q, (N, 1)), q.copy(), v.copy())
+        return _at_rest(opts, channels, idx, q, v, d0, t_start)
     T = 2 * math.pi / omega
     nper = step_per_rev(system, opts)
     dt = T / nper
