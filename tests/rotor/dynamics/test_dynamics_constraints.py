@@ -206,7 +206,7 @@ def test_paper_scheme_on_a_hard_case_same_rules_as_production(table4):
     """The paper's scheme (FD-Newton, rotor.dynamics.reference) applies the same edge transition and stick-onset
     rules: on the 0.001 mm clearance from q = 0 (10 revolutions at T/256; 73 least-residual steps with the
     former rules) it has no chatter and no least-residual step, with the production scheme's stick/slip
-    modes at every step and the same state (measured 9.9e-6 relative; ~20 s)."""
+    events (each within one step) and the same state (measured 1.1e-5 relative; ~20 s)."""
     scene, model = table4
     dt = 2 * math.pi / _rpm(10500) / 256
     s = system_from_model(model, scene, _rpm(10500), clearance_m=1e-6)
@@ -215,5 +215,18 @@ def test_paper_scheme_on_a_hard_case_same_rules_as_production(table4):
     tp = simulate_production(s, dt, 2560, q0=q0, check_step=False)
     d = np.diff(tr.modes.astype(int), axis=0) != 0
     assert (d[:-2] & d[1:-1] & d[2:]).sum() == 0 and tr.unconverged_steps == 0
-    assert np.array_equal(tr.modes, tp.modes)
+    # the same stick/slip events on each face, in the same order, each within one step: the two
+    # Newton solutions differ by ~1e-5, so a face whose holding force is within 0.5 % of μN may
+    # stick one step apart (measured: face 2 at step 1522 vs 1523, |φ|/μN 0.9967 vs 0.9950)
+    for k in range(2):
+        ev_r, ev_p = _events(tr.modes[:, k]), _events(tp.modes[:, k])
+        assert [m for _, m in ev_r] == [m for _, m in ev_p]
+        assert max((abs(a - b) for (a, _), (b, _) in zip(ev_r, ev_p)), default=0) <= 1
+    assert np.mean(tr.modes == tp.modes) > 0.999
     assert np.abs(tr.q - tp.q).max() < 1e-4 * np.abs(tp.q - s.offset).max()
+
+
+def _events(modes):
+    """``[(step, new mode)]`` of every change of one face's mode."""
+    steps = np.flatnonzero(np.diff(modes.astype(int)) != 0) + 1
+    return [(int(i), int(modes[i])) for i in steps]
