@@ -424,13 +424,13 @@ def harmonic_loads(model: RotorModel, speed_rad_s: float) -> dict[int, tuple[np.
 
       (φ_u is 0 in the paper; φ_τ is the paper's φ. In the convention of :mod:`rotor.model.elements`
       this moment belongs to a principal axis tilted by τ towards the angle Ωt + φ_τ + π/2.)
-    * ``n = 2``: misalignment excitation of each coupling (Eq. 34), ``+`` on node a, ``−`` on
-      node b::
+    * ``n = 2``: misalignment excitation of the misaligned coupling (Eq. 34), magnitudes::
 
-        F_y = 2 m_sp L tan(Δθ/2) Ω² cos 2Ωt      M_y = m_sp L² tan(Δθ/2) Ω² cos 2Ωt
-        F_z = 2 m_sp L tan(Δθ/2) Ω² sin 2Ωt      M_z = m_sp L² tan(Δθ/2) Ω² sin 2Ωt
+        F = 2 m_sp L tan(Δθ/2) Ω²      (F_y with cos 2Ωt, F_z with sin 2Ωt)
+        M = m_sp L² tan(Δθ/2) Ω²       (M_y with cos 2Ωt, M_z with sin 2Ωt)
 
-      with ``Δθ`` from :func:`misalignment_angle`.
+      with ``Δθ`` from :func:`misalignment_angle`, placed by the scene's reading
+      (``Misalignment.excitation``; see :func:`misalignment_pair`).
     """
     W = float(speed_rad_s)
     n = model.n_dofs
@@ -450,19 +450,59 @@ def harmonic_loads(model: RotorModel, speed_rad_s: float) -> dict[int, tuple[np.
         put(a1, d.station, "z", u * math.sin(pu)); put(b1, d.station, "z", u * math.cos(pu))
         put(a1, d.station, "θy", t * math.cos(pt)); put(b1, d.station, "θy", -t * math.sin(pt))
         put(a1, d.station, "θz", t * math.sin(pt)); put(b1, d.station, "θz", t * math.cos(pt))
-    mis = model.scene.misalignment
-    if mis is not None:
-        tilt = misalignment_angle(model)
-        for cp in model.couplings:
-            if cp.name != mis.coupling:
-                continue
-            tt = math.tan(tilt / 2)
-            F = 2 * cp.shaft_mass_kg * cp.lever_m * tt * W ** 2
-            Mm = cp.shaft_mass_kg * cp.lever_m ** 2 * tt * W ** 2
-            for node, sign in ((cp.node_a, 1.0), (cp.node_b, -1.0)):
-                put(a2, node, "y", sign * F); put(b2, node, "z", sign * F)
-                put(a2, node, "θy", sign * Mm); put(b2, node, "θz", sign * Mm)
+    for node, fy, mz_cos_y, mz_sin_z, couple in misalignment_pair(model, W):
+        put(a2, node, "y", fy); put(b2, node, "z", fy)
+        put(a2, node, "θy", mz_cos_y); put(b2, node, "θz", mz_sin_z)
+        # a lateral force F_y = c cos 2Ωt acting a lever dx from the node adds θz: dx·F_y and
+        # F_z = c sin 2Ωt adds θy: −dx·F_z (rigid transfer, conventions of rotor.model.elements)
+        put(b2, node, "θy", -couple); put(a2, node, "θz", couple)
     return {1: (a1, b1), 2: (a2, b2)}
+
+
+def misalignment_pair(model: RotorModel, speed_rad_s: float) -> list[tuple[str, float, float, float, float]]:
+    """Nodal 2X loads of the misalignment excitation, ``(node, F, M_y, M_z, dx·F)`` amplitudes.
+
+    Dai et al. (2025), text before Eq. 34: misalignment "generates a pair of additional excitations
+    of equal magnitude but in the opposite direction on the connected fan shaft and turbine shaft";
+    Eq. 47 puts them on nodes 3a and 3b, which Eq. 31 locks together laterally. A pair of forces on
+    two rigidly joined nodes does nothing, so the reading decides what acts. ``F`` is the lateral
+    force on ``node`` (y with cos 2Ωt, z with sin 2Ωt), ``M_y``/``M_z`` its moments (θy with
+    cos 2Ωt, θz with sin 2Ωt) and the last entry the moment ``dx·F`` of a force that acts at a
+    lever ``dx`` from the node. Readings (``Misalignment.excitation``):
+
+    ``inertial-at-joint`` (default)
+        Eq. 34's force is half the inertia force of the transition shaft:
+        ``F = 2 m_sp L tan(Δθ/2) Ω² = ½ m_sp e (2Ω)²`` with ``e = L tan(Δθ/2)``, the radius of the
+        2Ω orbit of a point at ``L`` from the pivot tilted by ``Δθ/2``. Each centring surface
+        passes its half to its shaft, in the same direction: ``+F`` on both nodes, ``2F`` on the
+        joint, reacted to ground through the bearings as an unbalance force is. The moments act as
+        the opposed pair ``±M`` (as the spring's pair ``M_c``, Eq. 44). At the paper's point A
+        (4 500 rpm, support stuck, linear) this is the reading whose 2X shows at every station and
+        most at the 3# bearing, as the text of Fig. 13 says (reports/published/rotor-misalignment.md).
+    ``opposed-at-centring-surfaces``
+        The opposed pair ``±F`` acts where the transition shaft bears on each shaft: the centring
+        surfaces, at ``L`` before the joint on the fan shaft (``node_a``) and ``L`` after it on the
+        turbine shaft (``node_b``). Moved rigidly to the joint, the forces cancel and leave the
+        couple ``2FL``, reacted through the bearings; plus the pair ``±M``.
+    ``opposed-at-joint``
+        The pair ``+F, +M`` on ``node_a`` and ``−F, −M`` on ``node_b`` as Eq. 47 places it (the model
+        before this reading was questioned). The lateral forces cancel exactly on the locked
+        joint; only the moment pair acts, across the angular spring.
+    """
+    mis = model.scene.misalignment
+    if mis is None:
+        return []
+    cp = next(c for c in model.couplings if c.name == mis.coupling)
+    tt = math.tan(misalignment_angle(model) / 2)
+    F = 2 * cp.shaft_mass_kg * cp.lever_m * tt * speed_rad_s ** 2
+    M = cp.shaft_mass_kg * cp.lever_m ** 2 * tt * speed_rad_s ** 2
+    a, b = cp.node_a, cp.node_b
+    if mis.excitation == "inertial-at-joint":
+        return [(a, F, M, M, 0.0), (b, F, -M, -M, 0.0)]
+    if mis.excitation == "opposed-at-centring-surfaces":
+        L = cp.lever_m   # +F at x − L on the fan shaft, −F at x + L on the turbine shaft
+        return [(a, F, M, M, -L * F), (b, -F, -M, -M, -L * F)]
+    return [(a, F, M, M, 0.0), (b, -F, -M, -M, 0.0)]
 
 
 def unbalance_force(model: RotorModel, t_s, speed_rad_s: float) -> np.ndarray:

@@ -26,7 +26,7 @@ File layout (see ``rotor/scenes/*.toml`` for complete examples)::
                    shaft_mass_kg (m_sp), lever_mm (L)
     [[boundaries]] station, fixed = ["y", "z", ...]
     [loose_support]  bearing_station, support, clearance_mm, ring_width_mm, ...
-    [misalignment]   coupling, bearing_station, offset_mm
+    [misalignment]   coupling, bearing_station, offset_mm, excitation (a reading of Eq. 34)
     [analysis]       max_speed_rpm, speed_points, modes
 """
 from __future__ import annotations
@@ -41,7 +41,6 @@ from contact.errors import DatasetError, InputError
 
 SCENE_DIR = Path(__file__).resolve().parents[1] / "scenes"
 SCHEMA = "ringcontact.rotor-scene/1"
-DOF_LABELS = ("y", "z", "θy", "θz")
 _DOF_INPUT = {"y": "y", "z": "z", "θy": "θy", "θz": "θz", "theta_y": "θy", "theta_z": "θz"}
 
 
@@ -165,13 +164,19 @@ class LooseSupport:
     preload_n: float
 
 
+# Readings of Dai et al. 2025 Eq. 34, documented in rotor.model.assembly.harmonic_loads.
+MISALIGNMENT_EXCITATIONS = ("inertial-at-joint", "opposed-at-centring-surfaces", "opposed-at-joint")
+
+
 @dataclass(frozen=True)
 class Misalignment:
     """Offset ``δ`` (in +y) of ``bearing_station`` relative to the bearings of the other rotor
-    part; the part beyond ``coupling.node_b`` rotates rigidly about ``node_b`` (Eq. 33)."""
+    part; the part beyond ``coupling.node_b`` rotates rigidly about ``node_b`` (Eq. 33).
+    ``excitation`` names the reading of the 2X excitation (one of ``MISALIGNMENT_EXCITATIONS``)."""
     coupling: str
     bearing_station: str
     offset_m: float
+    excitation: str = MISALIGNMENT_EXCITATIONS[0]
 
 
 @dataclass(frozen=True)
@@ -272,12 +277,12 @@ def _nu(v):
     return -1 < v < 0.5
 
 
-def _unit_interval(v):
-    return 0 <= v <= 1
+def _excitation(v):
+    return v in MISALIGNMENT_EXCITATIONS
 
 
 _CHECK_TEXT = {_pos: "must be > 0", _nonneg: "must be >= 0", _nu: "must be in (-1, 0.5)",
-               _unit_interval: "must be in [0, 1]", _any: ""}
+               _excitation: "must be one of " + ", ".join(MISALIGNMENT_EXCITATIONS), _any: ""}
 
 # (toml key, python attribute, unit shown in messages, converter, check, default)
 Spec = tuple[str, str, str, Callable[[Any], Any], Callable[[Any], bool], Any]
@@ -366,6 +371,7 @@ _MISALIGN: list[Spec] = [
     ("coupling", "coupling", "", _text, _any, _REQ),
     ("bearing_station", "bearing_station", "", _text, _any, _REQ),
     ("offset_mm", "offset_m", "mm", _MM, _any, _REQ),
+    ("excitation", "excitation", "", _text, _excitation, MISALIGNMENT_EXCITATIONS[0]),
 ]
 _ANALYSIS: list[Spec] = [
     ("max_speed_rpm", "max_speed_rad_s", "rpm", _RPM, _pos, Analysis.max_speed_rad_s),
