@@ -22,8 +22,9 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     the contact law of the scene (``contact.loose_support``; the paper's conformal law as
     published by default). Overrides: ``law`` (any :class:`SupportLaw`, e.g. a calibrated one
     wrapped by :func:`rotor.dynamics.kernels.support_law_from_params`), ``law_name`` (a law of
-    ``contact.loose_support`` by name: "conformal", "pereira"), ``tilt_ignored``
-    (paper Fig. 16), ``mu``, ``preload_N``, ``clearance_m``, ``misalignment_m`` (δ, scales
+    ``contact.loose_support`` by name: "conformal", "pereira"), ``tilt_ignored`` (paper §5.2,
+    Fig. 16: no moment of any kind between bearing and support, neither from the contact law nor
+    from the end faces, whose stick lock then has no tilt rows), ``mu``, ``preload_N``, ``clearance_m``, ``misalignment_m`` (δ, scales
     Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
     """
     from contact.loose_support import LooseSupportParams
@@ -41,8 +42,10 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
             support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson,
             c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored, law=law_name)
         law = support_law_from_params(params)
+    if law.tilt_ignored != bool(tilt_ignored) and tilt_ignored:
+        raise InputError(f"tilt_ignored = True: the given law {law.name!r} passes moments; make it with tilt_ignored")
     sup = LooseSupport(tuple(model.loose_pair.bearing), tuple(model.loose_pair.support), law,
-                       ls.ring_width_m, mu_v, pre_v)
+                       ls.ring_width_m, mu_v, pre_v, tilt_ignored=law.tilt_ignored)
     off = rm.misalignment_offset(model)
     loads = rm.harmonic_loads(model, speed_rad_s)
     delta0 = scene.misalignment.offset_m if getattr(scene, "misalignment", None) is not None else 0.0

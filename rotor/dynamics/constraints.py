@@ -93,6 +93,30 @@ def face_maps(width_m: float) -> tuple[np.ndarray, np.ndarray]:
     return right, left
 
 
+def face_layout(width_m: float, mu_N: float, tilt_ignored: bool = False) -> tuple[np.ndarray, np.ndarray, int]:
+    """The end faces as the integrators see them: maps, friction limits, number of active faces.
+
+    With the tilt (the paper's model): the two faces of :func:`face_maps`, each limited to ``μN``.
+    With the tilt ignored (Dai et al. 2025 §5.2: the angular deflections are neglected,
+    "including the effect on the contact width and the angular moment M_sum", M_sum = M_n + M_τ,
+    Eq. 49): one face at the ring centre, ``w = (ẏ, ż)``, limited to ``2μN`` (both faces' preload,
+    Q12); its force ``Pᵀφ = (φy, φz, 0, 0)`` has no moment and its stick lock has no tilt rows. The
+    second slot is then inactive (zero map, zero limit) and never tried in stick.
+
+    Returns
+    -------
+    P : (2, 2, 4) array, face velocity maps (m/s per m/s, rad/s)
+    limits_N : (2,) array, friction limit of each face (N)
+    n_faces : int, active faces (2, or 1 with the tilt ignored)
+    """
+    if tilt_ignored:
+        P = np.zeros((2, 2, 4))
+        P[0, 0, 0] = P[0, 1, 1] = 1.0
+        return P, np.array([2.0 * mu_N, 0.0]), 1
+    right, left = face_maps(width_m)
+    return np.stack([right, left]), np.array([mu_N, mu_N]), 2
+
+
 def face_force_demand(force_N, moment_Nm, width_m: float) -> tuple[np.ndarray, np.ndarray]:
     """Split a total end-face force and moment into the two face forces (Eqs. 53–56).
 

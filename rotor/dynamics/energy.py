@@ -84,7 +84,7 @@ def energy_balance(system: RotorSystem, tr: Trajectory) -> EnergyBalance:
     w_imp = np.einsum("ij,ij->i", du, fbar - febar)
     w_fr = np.zeros(len(dq))
     if system.support is not None:
-        P = cons.face_maps(system.support.width_m)
+        P = system.support.faces()[0]
         phibar = 0.5 * (tr.face_force[1:] + tr.face_force[:-1])
         for k in range(2):
             w_fr += np.einsum("ij,ij->i", du @ P[k].T, phibar[:, k])

@@ -20,8 +20,8 @@ def initial_acceleration(system: RotorSystem, t0: float, q0, v0, modes, opts: Ne
     rows = [system.lock]
     if system.support is not None:
         B = system.support.relative_map(n)
-        P = cons.face_maps(system.support.width_m)
-        rows += [P[k] @ B for k in range(2) if modes[k] == cons.STICK]
+        P, _, n_faces = system.support.faces()
+        rows += [P[k] @ B for k in range(n_faces) if modes[k] == cons.STICK]
     Phi = np.vstack(rows) if rows else np.zeros((0, n))
     _, _, _, _, gnl = support_forces(system, q0, v0, [cons.SLIP if m == cons.SLIP else cons.STICK for m in modes], np.zeros((2, 2)), opts)
     rhs = system.force(t0) - system.D @ v0 - system.K @ (q0 - system.offset) + gnl + coupling_force(system, q0)
@@ -42,9 +42,10 @@ def initial_state(system: RotorSystem, t0: float, q0, v0, modes0, opts: NewmarkO
             return a0, lam, modes
         j = n_l
         changed = False
-        for k in range(2):
+        _, limits, n_faces = system.support.faces()
+        for k in range(n_faces):
             if modes[k] == cons.STICK:
-                if float(np.hypot(*lam[j:j + 2])) > system.support.mu_N * (1 + 1e-12):
+                if float(np.hypot(*lam[j:j + 2])) > limits[k] * (1 + 1e-12):
                     modes[k] = cons.SLIP
                     changed = True
                 j += 2
@@ -55,7 +56,8 @@ def initial_state(system: RotorSystem, t0: float, q0, v0, modes0, opts: NewmarkO
 
 def linear_initial_state(system: RotorSystem, t0: float = 0.0, lock_support: bool = True):
     """``(q0, v0)``: the exact periodic solution at ``t0`` of the *linear* system with the loose
-    support locked (bearing and support moving together, both end faces stuck) or free.
+    support locked (bearing and support moving together, both end faces stuck) or free. With the
+    tilt ignored (§5.2) only the lateral relative motion is locked: no moment passes.
 
     A good start for a steady-state run: the 1X/2X response of the rotor is already there,
     so only the (much smaller) nonlinear correction has to decay. Static part
@@ -64,7 +66,7 @@ def linear_initial_state(system: RotorSystem, t0: float = 0.0, lock_support: boo
     n = system.n
     rows = [system.lock]
     if lock_support and system.support is not None:
-        rows.append(system.support.relative_map(n))
+        rows.append(system.support.relative_map(n)[:2 if system.support.tilt_ignored else 4])
     T = cons.null_space_map(np.vstack(rows))
     Mr, Dr, Kr = T.T @ system.M @ T, T.T @ system.D @ T, T.T @ system.K @ T
     f = system.force

@@ -52,4 +52,5 @@ def support_law_from_params(params) -> SupportLaw:
 
     law_label = getattr(params, "calibration_name", "") or params.law  # calibrated laws by their stored name
     name = f"{law_label}{' (tilt ignored)' if params.tilt_ignored else ''}"
-    return SupportLaw(name, float(params.clearance_m), force, contact_kernel, np.array(radial.kernel_args, dtype=float))
+    return SupportLaw(name, float(params.clearance_m), force, contact_kernel, np.array(radial.kernel_args, dtype=float),
+                      bool(params.tilt_ignored))

@@ -68,7 +68,8 @@ class Prepared:
     sin: np.ndarray
     omega_force: float
     P: np.ndarray
-    mu_N: float
+    limits: np.ndarray
+    n_faces: int
     s_yy: float
     dt: float
     a1: float
@@ -90,13 +91,11 @@ def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = Non
     sup = system.support
     if sup is not None:
         B = sup.relative_map(n)
-        P = np.stack(cons.face_maps(sup.width_m))
-        mu_N = sup.mu_N
+        P, limits, n_faces = sup.faces()
         s_yy = float(relative_compliance(system)[0, 0])
     else:
         B = np.zeros((4, n))
-        P = np.zeros((2, 2, 4))
-        mu_N = 0.0
+        P, limits, n_faces = np.zeros((2, 2, 4)), np.zeros(2), 0
         s_yy = 0.0
     E = np.vstack([B, coupling_map(system)])
     Bt = E @ T
@@ -110,7 +109,7 @@ def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = Non
     WM = Minv @ Bt.T
     SM = Bt @ WM
     return Prepared(T, Ainv, Dr, Kr, Bt, W, S, static, np.asarray(f.orders, float), f.cos @ T, f.sin @ T,
-                    float(f.omega_rad_s), P, float(mu_N), s_yy, float(dt), a1, Minv, WM, SM)
+                    float(f.omega_rad_s), P, limits, n_faces, s_yy, float(dt), a1, Minv, WM, SM)
 
 
 
@@ -150,7 +149,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     try:
         done, wdt_max = step_loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
                                   pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos,
-                                  pre.sin, pre.omega_force, pre.P, pre.mu_N, pre.s_yy, pre.a1, sup is not None, kernel,
+                                  pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1, sup is not None, kernel,
                                   params, opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick,
                                   opts.max_passes, float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
                                   pre.Minv, pre.WM, pre.SM, rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"],
@@ -179,7 +178,7 @@ def _initial_faces(system: RotorSystem, t0: float, q0, v0, modes0, opts: Newmark
     applied to ``modes0`` (:func:`rotor.dynamics.initial.initial_state`), stuck faces carrying ``−λ``."""
     sup = system.support
     n = system.n
-    n_faces = 2 if sup is not None else 0
+    P, limits, n_faces = sup.faces() if sup is not None else (None, None, 0)
     modes = np.array([int(m) for m in modes0][:n_faces] + [cons.SLIP] * (2 - n_faces), dtype=np.int64)
     a0, lam, m0 = initial_state(system, t0, q0, v0, list(modes), opts)
     modes = np.array(m0, dtype=np.int64)
@@ -190,8 +189,8 @@ def _initial_faces(system: RotorSystem, t0: float, q0, v0, modes0, opts: Newmark
             phi_face[k] = -lam[j:j + 2]
             j += 2
         else:  # as the reference: the slip force at the initial velocity
-            wk = cons.face_maps(sup.width_m)[k] @ (sup.relative_map(n) @ v0)
-            phi_face[k] = cons.slip_force(wk, sup.mu_N, opts.w_reg)[0]
+            wk = P[k] @ (sup.relative_map(n) @ v0)
+            phi_face[k] = cons.slip_force(wk, limits[k], opts.w_reg)[0]
     return a0, modes, phi_face
 
 

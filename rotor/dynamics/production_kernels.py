@@ -110,7 +110,7 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
         else:
             for rr in range(2):
                 wk[rr] = P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]
-            fk, Jk = _slip_force(wk, mu_N, w_reg)
+            fk, Jk = _slip_force(wk, mu_N[k], w_reg)
             phi[k, 0] = fk[0]
             phi[k, 1] = fk[1]
             # Jg += Pkᵀ Jk Pk γΔt
@@ -312,7 +312,7 @@ def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, pa
 
 @njit(cache=False)  # takes the law kernel as an argument: see note on caching
 def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
-              Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, s_yy, a1,
+              Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
               has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
               onset_projection, Minv, WM, SM,
               rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
@@ -377,7 +377,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     # slip Newton stalls when the true answer is (near) stick: try stick on the
                     # slipping faces not yet tried in this step, else give up
                     flipped = False
-                    for k in range(2):
+                    for k in range(n_faces):
                         if modes[k] == 0 and not tried[k]:
                             modes[k] = 1
                             tried[k] = True
@@ -417,12 +417,12 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         phi_c[k, 1] = phi[k, 1]
                     _reproject(p_pre + bdt2 * a_try, v_pre + gdt * a_try, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes,
                                mu_N, a1, kernel, params, w_reg, phi_c)
-                for k in range(2):
+                for k in range(n_faces):
                     wk = P[k] @ w_new[:4]
                     fk = phi[k]
                     if use_c and modes[k] == 1:
                         fk = phi_c[k]
-                    nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N, 0.0 if just_released[k] else w_stick,
+                    nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N[k], 0.0 if just_released[k] else w_stick,
                                       tried[k], phi_old[k],
                                       stick_mean_weight if stuck0[k] else 0.0)
                     if nm != modes[k]:
@@ -435,7 +435,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                             nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
                             freeze[k] = True
                             if nrm > 0:
-                                freeze_dir[k] = mu_N * fk / nrm
+                                freeze_dir[k] = mu_N[k] * fk / nrm
                             else:
                                 freeze_dir[k] = 0.0
                 if not changed or passes >= max_passes:

@@ -139,9 +139,8 @@ class _ReferenceRun:
         self.M, self.K, self.D, self.L = system.M, system.K, system.D, system.lock
         self.off = system.offset
         self.B = sup.relative_map(n) if sup is not None else np.zeros((4, n))
-        self.P = cons.face_maps(sup.width_m) if sup is not None else (np.zeros((2, 4)), np.zeros((2, 4)))
-        self.mu_N = sup.mu_N if sup is not None else 0.0
-        self.n_faces = 2 if sup is not None else 0
+        # face maps, friction limit per face (N) and active faces (1 with the tilt ignored)
+        self.P, self.limits, self.n_faces = sup.faces() if sup is not None else (np.zeros((2, 2, 4)), np.zeros(2), 0)
         self.bdt2 = opts.beta * dt * dt
         self.gdt = opts.gamma * dt
 
@@ -266,7 +265,7 @@ class _ReferenceRun:
                     if freeze[k] is not None:
                         gl += P[k].T @ freeze[k]
                     else:
-                        gl += P[k].T @ cons.slip_force(P[k] @ wn, self.mu_N, self.opts.w_reg)[0]
+                        gl += P[k].T @ cons.slip_force(P[k] @ wn, self.limits[k], self.opts.w_reg)[0]
             r -= B.T @ gl
         return np.concatenate([r, self.constraints(sp, stuck, acc)])
 
@@ -276,7 +275,7 @@ class _ReferenceRun:
         Returns ``(changed, new modes)``. A releasing face gets its friction force frozen at μN
         along the held force for a first solve (``sp.freeze``); with a stick onset in the pass the
         stuck faces' multipliers in ``lam_face_new`` are replaced by the consistent ones."""
-        opts, P, B, mu_N, modes = self.opts, self.P, self.B, self.mu_N, self.modes
+        opts, P, B, limits, modes = self.opts, self.P, self.B, self.limits, self.modes
         v_new = sp.v_pre + self.gdt * a_new
         changed = False
         new_modes = list(modes)
@@ -295,9 +294,9 @@ class _ReferenceRun:
             if modes[k] == cons.STICK:
                 fk = -lam_face_new[k]
             else:
-                fk = cons.slip_force(wk, mu_N, opts.w_reg)[0]
+                fk = cons.slip_force(wk, limits[k], opts.w_reg)[0]
             w_stick = 0.0 if self.just_released[k] else opts.w_stick
-            nm = cons.face_mode_update(modes[k], fk, wk, sp.w_old[k], mu_N, w_stick, sp.tried_stick[k],
+            nm = cons.face_mode_update(modes[k], fk, wk, sp.w_old[k], limits[k], w_stick, sp.tried_stick[k],
                                        sp.phi_old[k], opts.stick_mean_weight if sp.stuck_at_start[k] else 0.0)
             if nm != modes[k]:
                 changed = True
@@ -307,7 +306,7 @@ class _ReferenceRun:
                 else:
                     # release: first solve with the friction force frozen at μN along the held force
                     nrm = math.hypot(fk[0], fk[1])
-                    sp.freeze[k] = mu_N * fk / nrm if nrm > 0 else np.zeros(2)
+                    sp.freeze[k] = limits[k] * fk / nrm if nrm > 0 else np.zeros(2)
         return changed, new_modes
 
     def correct(self, sp: _Step, step: int) -> None:

@@ -108,6 +108,8 @@ class SupportLaw:
     kernel : numba-compiled ``(u, v, params) -> (f, Ju, Jv)`` or None
         Same law with its analytic Jacobians, for :mod:`rotor.dynamics.production`.
     params : float array passed to ``kernel``.
+    tilt_ignored : bool, the law passes no moment (Dai et al. 2025 §5.2); the support then
+        passes none through its end faces either (:attr:`LooseSupport.tilt_ignored`).
     """
 
     name: str
@@ -115,6 +117,7 @@ class SupportLaw:
     force: Callable[[np.ndarray, np.ndarray], np.ndarray]
     kernel: Callable | None = None
     params: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    tilt_ignored: bool = False
 
 
 @dataclass(frozen=True)
@@ -129,6 +132,8 @@ class LooseSupport:
     width_m : float, ring width l0 (m)
     mu : float, end-face friction coefficient (–)
     preload_N : float, nut preload N per face (N); face limit is μN (Q12)
+    tilt_ignored : bool, the paper's §5.2 case: no moment of any kind between bearing and
+        support (one centred face, :func:`rotor.dynamics.constraints.face_layout`)
     """
 
     bearing_dofs: tuple
@@ -137,6 +142,7 @@ class LooseSupport:
     width_m: float
     mu: float
     preload_N: float
+    tilt_ignored: bool = False
 
     def __post_init__(self):
         check_positive("width_m", self.width_m, "m", upper=1.0)
@@ -148,6 +154,10 @@ class LooseSupport:
     @property
     def mu_N(self) -> float:
         return self.mu * self.preload_N
+
+    def faces(self) -> tuple[np.ndarray, np.ndarray, int]:
+        """``(P (2, 2, 4), limits_N (2,), n_faces)`` of :func:`rotor.dynamics.constraints.face_layout`."""
+        return cons.face_layout(self.width_m, self.mu_N, self.tilt_ignored)
 
     def relative_map(self, n: int) -> np.ndarray:
         """``B`` (4, n) with ``u = B q`` = bearing minus support."""
@@ -307,14 +317,14 @@ def support_forces(system: RotorSystem, q, v, modes, lam_faces, opts: NewmarkOpt
     u = B @ q
     w = B @ v
     fc = np.asarray(sup.law.force(u, w), dtype=float)
-    P = cons.face_maps(sup.width_m)
+    P, limits, _ = sup.faces()
     phi = np.zeros((2, 2))
     g = fc.copy()
     for k in range(2):
         if modes[k] == cons.STICK:
             phi[k] = -lam_faces[k]
         else:
-            phi[k], _ = cons.slip_force(P[k] @ w, sup.mu_N, opts.w_reg)
+            phi[k], _ = cons.slip_force(P[k] @ w, limits[k], opts.w_reg)
         g += P[k].T @ phi[k]
     return u, w, fc, phi, B.T @ g
 
