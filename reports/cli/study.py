@@ -42,6 +42,8 @@ def _common(p: argparse.ArgumentParser, out: str):
     p.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
     p.add_argument("--steps-per-rev", type=int, default=256, help="minimum time steps per revolution (default 256)")
     p.add_argument("--max-revs", type=int, default=1500, help="transient cap in revolutions (default 1500)")
+    p.add_argument("--elements", type=int, default=None,
+                   help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
 
 
@@ -122,14 +124,22 @@ def _options(args) -> dict:
     return {"steps_per_rev": int(args.steps_per_rev), "max_revs": int(args.max_revs)}
 
 
+def _mesh(args) -> dict:
+    """The ``elements_per_segment`` override of every point (empty: the scene's mesh)."""
+    if getattr(args, "elements", None) is None:
+        return {}
+    check_positive("elements", args.elements, "elements per segment", upper=64)
+    return {"elements_per_segment": int(args.elements)}
+
+
 def _sweep(tasks, out: Path, args, description: dict):
     from sweep import run_sweep
     from rotor.studies.steady_state import _scene_model
 
-    sc, _ = _scene_model(args.scene)
+    sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
     import dataclasses
     manifest = {"study": args.study, "description": description, "scene_name": sc.name,
-                "scene": dataclasses.asdict(sc)}
+                "scene": dataclasses.asdict(sc), **_mesh(args)}
     t0 = time.perf_counter()
     s = run_sweep(tasks, out, max_workers=args.workers, manifest=manifest,
                   progress=False if args.no_progress else None)
@@ -178,7 +188,7 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
 
     check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
     speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
-    kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts}
+    kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts, **_mesh(args)}
     if args.clearance_mm is not None:
         kw["clearance_m"] = check_positive("clearance_mm", args.clearance_mm, "mm", upper=10) * 1e-3
     if args.misalignment_mm is not None:
@@ -196,7 +206,7 @@ def _point(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from rotor.studies.steady_state import sweep_tasks
 
     speeds = args.speed_rpm or [4500.0, 10500.0]
-    tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8)
+    tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8, **_mesh(args))
     _sweep(tasks, out, args, {"speeds_rpm": speeds})
     return point_figures(out, figs, tasks=tasks)
 
@@ -208,11 +218,13 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
 
     speeds = np.linspace(0.0, args.rpm_max, int(args.points))
     # the scene's own clearance/misalignment is one shared 'base' curve of both figures
-    tasks = sweep_tasks(args.scene, speeds, prefix="base-rpm", options=opts)
+    mesh = _mesh(args)
+    tasks = sweep_tasks(args.scene, speeds, prefix="base-rpm", options=opts, **mesh)
     for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
-        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts, **mesh)
     for d in _floats(args.misalignments_mm, "misalignments_mm", "mm"):
-        tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", misalignment_m=d * 1e-3, options=opts)
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", misalignment_m=d * 1e-3, options=opts,
+                             **mesh)
     _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
                               "misalignments_mm": args.misalignments_mm})
     return params_figures(out, figs, tasks=tasks)

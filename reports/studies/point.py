@@ -17,7 +17,7 @@ def point_figures(out, figs, *, tasks=None, prefix: str = "study-point") -> list
     files = []
     for p in load_points(out, tasks):
         rpm = p.params["speed_rpm"]
-        _, model = _scene_model(p.params["scene"])
+        _, model = _scene_model(p.params["scene"], p.params.get("elements_per_segment"))
         a = p.arrays
         tag = f"{prefix}-{rpm:.0f}rpm"
         fig = plt.figure(figsize=(14, 9), constrained_layout=True)

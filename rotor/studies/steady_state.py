@@ -433,26 +433,31 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
 _MODEL_CACHE: dict = {}
 
 
-def _scene_model(scene: str):
-    """Scene and assembled model, cached per process (workers reuse them across points)."""
-    if scene not in _MODEL_CACHE:
+def _scene_model(scene: str, elements_per_segment: int | None = None):
+    """Scene and assembled model, cached per process (workers reuse them across points).
+    ``elements_per_segment`` refines every shaft segment (None: the scene's own mesh)."""
+    key = (scene, elements_per_segment)
+    if key not in _MODEL_CACHE:
         from rotor.model.assembly import assemble
         from rotor.model.scene import load_scene
 
+        if elements_per_segment is not None:
+            check_positive("elements_per_segment", elements_per_segment, "elements", upper=64)
         sc = load_scene(scene)
-        _MODEL_CACHE[scene] = (sc, assemble(sc))
-    return _MODEL_CACHE[scene]
+        _MODEL_CACHE[key] = (sc, assemble(sc, elements_per_segment=elements_per_segment))
+    return _MODEL_CACHE[key]
 
 
 def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = None,
                  misalignment_m: float | None = None, tilt_ignored: bool = False, mu: float | None = None,
-                 preload_n: float | None = None):
+                 preload_n: float | None = None, elements_per_segment: int | None = None):
     """``(scene, model, system)`` of one operating point; overrides as in
-    :func:`rotor.dynamics.build.system_from_model` (None keeps the scene's value)."""
+    :func:`rotor.dynamics.build.system_from_model` (None keeps the scene's value), and the mesh
+    (``elements_per_segment``, None: the scene's)."""
     from rotor.dynamics.build import system_from_model
 
     check_positive("speed_rpm", speed_rpm, "rpm", allow_zero=True, upper=1e5)
-    sc, model = _scene_model(scene)
+    sc, model = _scene_model(scene, elements_per_segment)
     omega = float(speed_rpm) * math.pi / 30.0
     system = system_from_model(model, sc, omega, tilt_ignored=bool(tilt_ignored), mu=mu, preload_N=preload_n,
                                clearance_m=clearance_m, misalignment_m=misalignment_m)
@@ -461,7 +466,8 @@ def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = No
 
 def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, misalignment_m: float | None = None,
               tilt_ignored: bool = False, mu: float | None = None, preload_n: float | None = None,
-              options: dict | None = None, max_order: float = 6.0, history_revs: int = 4):
+              options: dict | None = None, max_order: float = 6.0, history_revs: int = 4,
+              elements_per_segment: int | None = None):
     """Steady state of one operating point, as ``(arrays, info)`` for :func:`sweep.run_sweep`.
 
     Arrays (SI): ``channels`` names; ``harm_q`` (5, c) complex displacement amplitudes of 1X–5X (m),
@@ -474,7 +480,8 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
     """
     opts = SteadyStateOptions(**(options or {}))
     sc, model, system = point_system(scene, speed_rpm, clearance_m=clearance_m, misalignment_m=misalignment_m,
-                                     tilt_ignored=tilt_ignored, mu=mu, preload_n=preload_n)
+                                     tilt_ignored=tilt_ignored, mu=mu, preload_n=preload_n,
+                                     elements_per_segment=elements_per_segment)
     res = steady_state(system, model, options=opts)
     orders = (1, 2, 3, 4, 5)
     arrays = {"channels": np.array(res.channels)}
@@ -503,6 +510,7 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
                                     else (sc.misalignment.offset_m if getattr(sc, "misalignment", None) else 0.0)),
             "tilt_ignored": bool(tilt_ignored), "least_residual_steps": int(res.unconverged_steps),
             "static": bool(res.static), "wall_s": float(res.wall_s), "law": system.support.law.name,
+            "elements_per_segment": elements_per_segment, "n_dofs": int(model.n_dofs),
             "options": dataclasses.asdict(opts), **res.regime()}
     return arrays, info
 
