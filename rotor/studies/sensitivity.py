@@ -69,6 +69,8 @@ GROUPS = {
     "a1": ("coupling_a1_n_m_rad3",),
     # m_sp alone: the 2X force is 2 m_sp L tan(Δθ/2) Ω², linear in m_sp (Eq. 34)
     "msp": ("coupling_shaft_mass_kg",),
+    # L alone: the 2X force grows as L, the 2X moment pair as L² (Eq. 34)
+    "lever": ("coupling_lever_m",),
     "cc": ("collision_factor_s_m",),
     "preload": ("preload_n",),
     "mu": ("friction_coefficient",),
@@ -499,8 +501,10 @@ def one_at_a_time() -> list:
         v.append(Variant(f"a1-x{f:g}", {"a1": f}, "transition-shaft cubic stiffness a1 (0 = linear joint)"))
     for f in (0.1, 10.0):
         v.append(Variant(f"ks-x{f:g}", {"ks": f}, "support-to-ground k_s, c_s (1.5e6 … 1.5e8 N/m)"))
-    for f in (0.3, 3.0):
+    for f in (0.1, 0.3, 3.0):
         v.append(Variant(f"msp-x{f:g}", {"msp": f}, "transition-shaft mass m_sp (2X force ∝ m_sp L)"))
+    for f in (0.33, 2.0):
+        v.append(Variant(f"lever-x{f:g}", {"lever": f}, "transition-shaft lever L (25 … 150 mm; 2X force ∝ L, moment ∝ L²)"))
     for f in (0.01, 0.1, 10.0):
         v.append(Variant(f"cc-x{f:g}", {"cc": f}, "collision factor c_c (0.1 … 1000 s/m)"))
     for f in (0.2, 5.0):
