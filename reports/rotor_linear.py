@@ -477,5 +477,7 @@ def testrig_report(out: Path) -> list[Path]:
 
 def build_reports(out_dir: str | Path = "reports/published") -> list[Path]:
     """Regenerate every rotor report under ``out_dir``; returns the files written."""
+    from reports.rotor_misalignment import misalignment_report
+
     out = Path(out_dir)
-    return mesh_report(out) + table4_report(out) + testrig_report(out)
+    return mesh_report(out) + table4_report(out) + testrig_report(out) + misalignment_report(out)
