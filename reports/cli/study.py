@@ -94,6 +94,10 @@ def _parser() -> argparse.ArgumentParser:
     pb = sub.add_parser("publish", help="figures + notes of finished study directories into reports/published (study-*)")
     for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup"):
         pb.add_argument(f"--{k}", default=None, help=f"directory of a finished '{k}' study")
+    for k in ("cascade", "notilt", "params", "point"):
+        pb.add_argument(f"--{k}-converged", default=None,
+                        help=f"the '{k}' study on the converged mesh (with --elements): study-findings.md")
+    pb.add_argument("--elements", type=int, default=2, help="elements per segment of the converged-mesh studies")
     pb.add_argument("--to", default=str(Path(__file__).resolve().parents[1] / "published"), help="output directory")
     return p
 
@@ -174,8 +178,11 @@ def _publish(args) -> int:
     """``study publish``: figures + notes of finished study directories into ``--to``."""
     from reports.studies import publish
 
-    runs = {k: getattr(args, k) for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup")
-            if getattr(args, k)}
+    keys = ("cascade", "notilt", "params", "point", "testrig", "map", "runup") + tuple(
+        f"{k}_converged" for k in ("cascade", "notilt", "params", "point"))
+    runs = {k: getattr(args, k) for k in keys if getattr(args, k)}
+    if any(k.endswith("_converged") for k in runs):
+        runs["elements"] = int(args.elements)
     for f in publish(runs, Path(args.to)):
         print(f"  wrote {f}")
     return 0

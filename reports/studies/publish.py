@@ -6,6 +6,7 @@ from pathlib import Path
 from contact.files import atomic_write_text
 from reports.studies.cascade import cascade_figures, cascade_note
 from reports.studies.common import load_points
+from reports.studies.mesh import KINDS, findings_figure, findings_note
 from reports.studies.params import params_figures, params_note
 from reports.studies.point import point_figures, point_note
 from reports.studies.regime_map import map_figures, map_note
@@ -17,7 +18,9 @@ def publish(runs: dict, published) -> list[Path]:
     """Figures + notes of finished study directories into ``published`` as ``study-*`` files.
 
     ``runs``: ``{"cascade": dir, "notilt": dir, "params": dir, "point": dir, "testrig": dir, "map": dir,
-    "runup": dir}`` (any subset).
+    "runup": dir}`` (any subset), and the same studies on a converged mesh as ``"<kind>_converged"``
+    with ``"elements"`` (elements per segment): then ``study-findings.md`` judges the five Section 5
+    findings on both meshes.
     """
     import json
 
@@ -49,4 +52,10 @@ def publish(runs: dict, published) -> list[Path]:
     if "runup" in runs:
         files += runup_figures(runs["runup"], published)
         files.append(atomic_write_text(published / "study-runup.md", runup_note(runs["runup"])))
+    if any(f"{k}_converged" in runs for k in KINDS):
+        paper = {k: load_points(runs[k]) for k in KINDS if k in runs}
+        conv = {k: load_points(runs[f"{k}_converged"]) for k in KINDS if f"{k}_converged" in runs}
+        elements = int(runs.get("elements", 2))
+        files += findings_figure(paper, conv, elements, published / "study-findings")
+        files.append(atomic_write_text(published / "study-findings.md", findings_note(paper, conv, elements)))
     return files
