@@ -121,7 +121,8 @@ def cascade_note(points, notilt=None, timing=None) -> str:
     lo = (rpm > 0) & (rpm < 9000)
     r2 = V[lo][:, :, 1] / V[lo][:, :, 0]
     lines.append(f"| 2f present (misalignment) | 2f/1f below 9 000 rpm: disk 1 median {_fmt(np.median(r2[:, 0]))}, "
-                 f"disk 2 {_fmt(np.median(r2[:, 1]))}, support {_fmt(np.median(r2[:, 2]))} | yes (small) |")
+                 f"disk 2 {_fmt(np.median(r2[:, 1]))}, support {_fmt(np.median(r2[:, 2]))} | "
+                 f"{'yes' if np.median(r2[:, 2]) >= 0.05 else 'yes (small)'} |")
     if hi.any():
         r = hi3 / np.maximum(hi3[:, [0]], 1e-30)
         lines.append(f"| At high speed 3f–5f significant at disk 2 and the 3# bearing, more than at disk 1 | "
