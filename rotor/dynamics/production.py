@@ -45,6 +45,7 @@ import numpy as np
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from contact.loose_support import N_PARAMS
 from rotor.dynamics import constraints as cons
+from rotor.dynamics.condense import condense, expand
 from rotor.dynamics.initial import initial_state
 from rotor.dynamics.kernels import contact_kernel
 from rotor.dynamics.production_kernels import step_loop
@@ -82,6 +83,8 @@ class Prepared:
 def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = None) -> Prepared:
     """Reduce, factorise and condense ``system`` for step ``dt`` (s)."""
     opts = options or NewmarkOptions()
+    condensed = condense(system)  # DOFs without mass or inertia: statically condensed (rotor.dynamics.condense)
+    system = condensed.system if condensed is not None else system
     n = system.n
     T = cons.null_space_map(system.lock)
     Mr = T.T @ system.M @ T
@@ -123,6 +126,13 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     a :func:`prepare` result for the same system and ``dt``.
     """
     opts = options or NewmarkOptions()
+    condensed = condense(system)
+    if condensed is not None:  # integrate the massive DOFs, recover the massless ones (rotor.dynamics.condense)
+        keep = condensed.keep
+        tr = simulate_production(condensed.system, dt, n_steps, None if q0 is None else np.asarray(q0, float)[keep],
+                                 None if v0 is None else np.asarray(v0, float)[keep], t0=t0, modes0=modes0,
+                                 options=options, record_every=record_every, check_step=check_step, prepared=prepared)
+        return expand(condensed, tr)
     n = system.n
     q0 = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float).copy()
     v0 = np.zeros(n) if v0 is None else np.asarray(v0, dtype=float).copy()
