@@ -40,7 +40,10 @@ import math
 import numba
 import numpy as np
 
+from contact.compiled_cache import compiled_with
 from contact.errors import OutsideDomainError
+
+compiled_with(__file__, [])  # cached in the user's cache folder (contact.compiled_cache)
 
 N_PARAMS = 14
 STATE_NONE, STATE_EDGE1, STATE_EDGE2, STATE_TWO_POINT, STATE_LINE = 0, 1, 2, 3, 4

@@ -30,8 +30,6 @@ from contact.files import atomic_write_bytes, atomic_write_text
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
 
-DEFAULT_DOFS = "disk1.y,disk1.z,disk2.y,disk2.z,5.y,5.z,s.y,s.z"
-
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
@@ -42,7 +40,13 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--record-per-rev", type=int, default=64, help="recorded samples per revolution (default 64)")
     p.add_argument("--scheme", choices=("production", "reference"), default="production",
                    help="production (fast, default) or the paper's reference scheme (slow)")
-    p.add_argument("--dofs", default=DEFAULT_DOFS, help=f"comma-separated DOF names (default {DEFAULT_DOFS})")
+    p.add_argument("--dofs", default=None,
+                   help="comma-separated DOF names written to the CSV and analysed by --steady (default: y and z of "
+                        "--stations)")
+    p.add_argument("--stations", default=None,
+                   help="comma-separated station names (the scene's disk, bearing, support or node names); default: "
+                        "the CSV gets the scene's disks, loose-support bearing station and supports (Table 4: disk1, "
+                        "disk2, 5, s), --steady analyses every disk, bearing and support station")
     p.add_argument("--law", default="conformal", metavar="LAW",
                    help="radial contact law: conformal (default, the paper's law as published), pereira, or "
                         "calibrated:<name>, a law fitted to a FEM scene (contact/calibrated/<name>.json; its "
@@ -71,11 +75,11 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _run(args) -> int:
-    from rotor.dynamics.production import simulate_production
+    from rotor.dynamics.production import simulate_production, warm_up
     from rotor.dynamics.reference import simulate_reference
 
     scene, model, system, validity_m = _system(args)
-    names = [s.strip() for s in args.dofs.split(",") if s.strip()]
+    names = _dof_names(args, model, primary_only=True)
     idx = [model.dof_index(n) for n in names]
     omega = args.speed_rpm * 2 * math.pi / 60
     T = 2 * math.pi / omega
@@ -83,20 +87,26 @@ def _run(args) -> int:
     n_steps = int(round(args.revolutions * args.steps_per_rev))
     rec = max(1, args.steps_per_rev // args.record_per_rev)
     run = simulate_production if args.scheme == "production" else simulate_reference
+    compiled = warm_up()  # compile or load the step loop now (the --steady detector uses it too)
     t0 = time.perf_counter()
     extra = {}
     if args.steady:
-        tr, dt, n_steps, extra = _steady_run(args, system, model, T, names, idx)
+        amp_names = _dof_names(args, model, primary_only=False)
+        tr, dt, n_steps, extra = _steady_run(args, system, model, T, amp_names, [model.dof_index(n) for n in amp_names])
     else:
         tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
-    wall = time.perf_counter() - t0
-    r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
-    d0 = system.support.law.clearance_m
+    run_s = time.perf_counter() - t0
+    sup = system.support  # None: a scene without a loose support (no contact, no end faces)
+    r1, r2 = cons.edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
+    d0 = sup.law.clearance_m if sup is not None else math.inf
     out = Path(args.out)
     _write_trajectory(out, tr, system, names, idx, r1, r2, d0)
     summary = {"scene": scene.name, "speed_rpm": args.speed_rpm, "revolutions": args.revolutions,
-               "scheme": tr.scheme, "dt_s": dt, "steps": n_steps, "wall_s": round(wall, 3),
-               "law": system.support.law.name, "clearance_mm": d0 * 1e3,
+               "scheme": tr.scheme, "dt_s": dt, "steps": n_steps,
+               "wall_s": round(compiled["compile_s"] + run_s, 3), "compile_s": round(compiled["compile_s"], 3),
+               "run_s": round(run_s, 3), "compiled_from_cache": compiled["from_cache"],
+               "law": sup.law.name if sup is not None else None,
+               "clearance_mm": d0 * 1e3 if sup is not None else None,
                "max_r1_mm": float(r1.max() * 1e3), "max_r2_mm": float(r2.max() * 1e3),
                "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
@@ -109,6 +119,19 @@ def _run(args) -> int:
               f"exceeds the calibrated law's validity range ({summary['law_validity_max_penetration_mm']:.4g} mm): "
               "the law was extrapolated", file=sys.stderr)
     return 0
+
+
+def _dof_names(args, model, primary_only: bool) -> list[str]:
+    """``--dofs``, else y and z of ``--stations``, else of the scene's response stations."""
+    if args.dofs:
+        return [s.strip() for s in args.dofs.split(",") if s.strip()]
+    if args.stations:
+        stations = [s.strip() for s in args.stations.split(",") if s.strip()]
+        for s in stations:
+            model.node_of(s)  # an unknown name: one line listing the scene's nodes and elements
+    else:
+        stations = model.response_stations(primary_only=primary_only)
+    return [f"{s}.{c}" for s in stations for c in ("y", "z")]
 
 
 def _system(args):

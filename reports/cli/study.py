@@ -191,7 +191,7 @@ def _publish(args) -> int:
 def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study cascade``: steady state at each speed of a range (Figs. 12, 16, 17)."""
     from reports.studies.cascade import cascade_figures
-    from rotor.studies.steady_state import sweep_tasks
+    from rotor.studies.steady_state import _scene_model, sweep_tasks
 
     check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
     speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
@@ -204,6 +204,10 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     tasks = sweep_tasks(args.scene, speeds, **kw)
     s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **kw})
     _timing(out, s, wall, args)
+    _, model = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
+    if not {"disk1", "disk2", "s"} <= set(model.response_stations()):  # not the paper's stations: by the scene's names
+        from reports.station_cascade import station_cascade
+        return station_cascade(out, figs, tasks=tasks)
     return cascade_figures(out, figs, tasks=tasks)
 
 

@@ -27,25 +27,18 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     from the end faces, whose stick lock then has no tilt rows), ``mu``, ``preload_N``, ``clearance_m``, ``misalignment_m`` (δ, scales
     Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
     """
-    from contact.loose_support import LooseSupportParams
     from rotor.model import assembly as rm
 
     ls = scene.loose_support
     n = model.n_dofs
     check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True, upper=1e4)
-    mu_v = ls.friction_coefficient if mu is None else mu
-    pre_v = ls.preload_n if preload_N is None else preload_N
-    if law is None:
-        params = LooseSupportParams(
-            clearance_m=ls.clearance_m if clearance_m is None else clearance_m, width_m=ls.ring_width_m,
-            bearing_E_Pa=ls.bearing_modulus_pa, bearing_nu=ls.bearing_poisson,
-            support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson,
-            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored, law=law_name)
-        law = support_law_from_params(params)
-    if law.tilt_ignored != bool(tilt_ignored) and tilt_ignored:
-        raise InputError(f"tilt_ignored = True: the given law {law.name!r} passes moments; make it with tilt_ignored")
-    sup = LooseSupport(tuple(model.loose_pair.bearing), tuple(model.loose_pair.support), law,
-                       ls.ring_width_m, mu_v, pre_v, tilt_ignored=law.tilt_ignored)
+    sup = None if ls is None else _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m)
+    if ls is None:
+        given = {"law": law, "mu": mu, "preload_N": preload_N, "clearance_m": clearance_m,
+                 "tilt_ignored": tilt_ignored or None}
+        for k, v in given.items():
+            if v is not None:
+                raise InputError(f"{k} = {getattr(v, 'name', v)!r}: scene {scene.name!r} has no [loose_support] to apply it to")
     off = rm.misalignment_offset(model)
     loads = rm.harmonic_loads(model, speed_rad_s)
     delta0 = scene.misalignment.offset_m if getattr(scene, "misalignment", None) is not None else 0.0
@@ -69,3 +62,22 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
             coupling = ((cp.a[2], cp.a[3]), (cp.b[2], cp.b[3]), float(cp.a1_n_m_rad3))
     return RotorSystem(model.M, model.C, model.G, model.K + model.K_c, float(speed_rad_s), force, off, L, sup,
                        tuple(model.dof_names), coupling)
+
+
+def _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m) -> LooseSupport:
+    """The scene's loose support ``ls`` with the overrides of :func:`system_from_model`."""
+    from contact.loose_support import LooseSupportParams
+
+    mu_v = ls.friction_coefficient if mu is None else mu
+    pre_v = ls.preload_n if preload_N is None else preload_N
+    if law is None:
+        params = LooseSupportParams(
+            clearance_m=ls.clearance_m if clearance_m is None else clearance_m, width_m=ls.ring_width_m,
+            bearing_E_Pa=ls.bearing_modulus_pa, bearing_nu=ls.bearing_poisson,
+            support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson,
+            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored, law=law_name)
+        law = support_law_from_params(params)
+    if law.tilt_ignored != bool(tilt_ignored) and tilt_ignored:
+        raise InputError(f"tilt_ignored = True: the given law {law.name!r} passes moments; make it with tilt_ignored")
+    return LooseSupport(tuple(model.loose_pair.bearing), tuple(model.loose_pair.support), law,
+                        ls.ring_width_m, mu_v, pre_v, tilt_ignored=law.tilt_ignored)

@@ -13,13 +13,13 @@ import dataclasses
 import numpy as np
 from numba import njit
 
+from contact.compiled_cache import compiled_with
 from contact.loose_support import loose_support_force, point_force_jacobian
-from rotor.dynamics._numba_cache import drop_stale_cache
 from rotor.dynamics.system import SupportLaw
 
-# contact_kernel inlines contact._kernel: drop our numba cache when that source changes (numba
-# itself only watches this file).
-drop_stale_cache(__file__, ["contact._kernel"])
+# contact_kernel inlines contact._kernel: its cache entries are stale when that source changes too
+# (numba itself only watches this file).
+compiled_with(__file__, ["contact._kernel"])
 
 
 @njit(cache=True)

@@ -37,6 +37,7 @@ This module prepares the system (:func:`prepare`) and drives the run; the compil
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,6 +45,7 @@ import numpy as np
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from contact.loose_support import N_PARAMS
 from rotor.dynamics import constraints as cons
+from rotor.dynamics.condense import condense, expand
 from rotor.dynamics.initial import initial_state
 from rotor.dynamics.kernels import contact_kernel
 from rotor.dynamics.production_kernels import step_loop
@@ -81,6 +83,8 @@ class Prepared:
 def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = None) -> Prepared:
     """Reduce, factorise and condense ``system`` for step ``dt`` (s)."""
     opts = options or NewmarkOptions()
+    condensed = condense(system)  # DOFs without mass or inertia: statically condensed (rotor.dynamics.condense)
+    system = condensed.system if condensed is not None else system
     n = system.n
     T = cons.null_space_map(system.lock)
     Mr = T.T @ system.M @ T
@@ -122,15 +126,23 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     a :func:`prepare` result for the same system and ``dt``.
     """
     opts = options or NewmarkOptions()
+    condensed = condense(system)
+    if condensed is not None:  # integrate the massive DOFs, recover the massless ones (rotor.dynamics.condense)
+        keep = condensed.keep
+        tr = simulate_production(condensed.system, dt, n_steps, None if q0 is None else np.asarray(q0, float)[keep],
+                                 None if v0 is None else np.asarray(v0, float)[keep], t0=t0, modes0=modes0,
+                                 options=options, record_every=record_every, check_step=check_step, prepared=prepared)
+        return expand(condensed, tr)
     n = system.n
     q0 = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float).copy()
     v0 = np.zeros(n) if v0 is None else np.asarray(v0, dtype=float).copy()
     check_inputs(system, dt, n_steps, q0, v0)
     sup = system.support
     if sup is not None:
-        if sup.law.kernel is None:
-            raise InputError(f"support law {sup.law.name!r}: has no compiled kernel with analytic Jacobian; "
-                             "use rotor.dynamics.reference.simulate_reference")
+        if sup.law.kernel is not contact_kernel:
+            raise InputError(f"support law {sup.law.name!r}: the production scheme compiles only "
+                             "rotor.dynamics.kernels.contact_kernel (any law of contact.loose_support, chosen by its "
+                             "law code); use rotor.dynamics.reference.simulate_reference")
         if check_step:
             check_time_step(system, dt)
     pre = prepared if prepared is not None else prepare(system, dt, opts)
@@ -142,14 +154,12 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     T = pre.T
     p, vp, ap = T.T @ q0, T.T @ v0, T.T @ a0
     rec = _records(system, n_steps // record_every + 1, T.shape[1], t0, p, vp, ap, q0, v0, modes, phi_face)
-    # without a support the kernel is never called; reuse the contact kernel's compiled loop
-    kernel = sup.law.kernel if sup is not None else contact_kernel
     params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(N_PARAMS)
     status = np.zeros(4, dtype=np.int64)
     try:
         done, wdt_max = step_loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
                                   pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos,
-                                  pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1, sup is not None, kernel,
+                                  pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1, sup is not None,
                                   params, opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick,
                                   opts.max_passes, float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
                                   pre.Minv, pre.WM, pre.SM, rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"],
@@ -171,6 +181,30 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
                     unconverged_steps=int(status[2]),
                     scheme="production (condensed, analytic Jacobian, numba)")
     return tr
+
+
+def warm_up() -> dict:
+    """Compile the step loop, or load it from the on-disk cache (:mod:`contact.compiled_cache`), now.
+
+    Runs :func:`rotor.dynamics.production_kernels.step_loop` for zero steps on arguments of the
+    types :func:`simulate_production` passes, so that a later run times the stepping alone.
+
+    Returns
+    -------
+    dict
+        ``compile_s`` (s, wall time of the compile or cache load; 0 if already done in this
+        process) and ``from_cache`` (True if the machine code came from the disk cache).
+    """
+    if step_loop.signatures:
+        return {"compile_s": 0.0, "from_cache": bool(sum(step_loop.stats.cache_hits.values()))}
+    f1, f2, f3 = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2, 4))
+    i1 = np.zeros(2, dtype=np.int64)
+    rec = [np.zeros(1), f2, f2, f2, f2, f2, f2, f2, f3, np.zeros((1, 2), dtype=np.int8),
+           np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32), np.zeros(4, dtype=np.int64)]
+    t0 = time.perf_counter()
+    step_loop(f1, f1.copy(), f1.copy(), i1, f2.copy(), 0.0, 1.0, 0, 1, f2, f2, f2, f2, f2, f2, f1, f1, f2, f2, 0.0, f3,
+              f1, 0, 0.0, 0.0, True, np.zeros(N_PARAMS), 0.25, 0.5, 1e-10, 1, 0.0, 0.0, 1, 0.0, True, f2, f2, f2, *rec)
+    return {"compile_s": time.perf_counter() - t0, "from_cache": bool(sum(step_loop.stats.cache_hits.values()))}
 
 
 def _initial_faces(system: RotorSystem, t0: float, q0, v0, modes0, opts: NewmarkOptions):

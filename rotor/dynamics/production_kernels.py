@@ -14,18 +14,21 @@ import math
 import numpy as np
 from numba import njit
 
+from contact.compiled_cache import compiled_with
 from rotor.dynamics import constraints as cons
-from rotor.dynamics._numba_cache import drop_stale_cache
+from rotor.dynamics.kernels import contact_kernel
 
-# The kernels below inline rotor.dynamics.constraints: drop our numba cache when that source changes
-# (numba itself only watches this file).
-drop_stale_cache(__file__, ["rotor.dynamics.constraints"])
+# The kernels below inline rotor.dynamics.constraints and the law kernel (rotor.dynamics.kernels, which
+# inlines contact._kernel): their cache entries are stale when any of those sources changes (numba
+# itself only watches this file).
+compiled_with(__file__, ["rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
-# Caching note: functions that take the support-law kernel (a numba dispatcher) as an argument
-# are NOT cached on disk. numba keys their cache by the dispatcher's identity, which differs in
-# every process, so the cache never hit, its index grew with every process, and saving it
-# eventually failed ("ReferenceError: underlying object has vanished"). They compile once per
-# process instead; the kernel (rotor.dynamics.kernels.contact_kernel) and the small solver are cached.
+# Caching: the law kernel is not an argument but the one compiled law of the suite,
+# rotor.dynamics.kernels.contact_kernel, which picks the law (conformal, Pereira, elastic foundation)
+# by the law code in its parameter array. A kernel passed as an argument keys numba's cache by the
+# dispatcher's identity, which differs in every process (the cache never hit, its index grew, and
+# saving eventually failed); a global one is compiled into the loop, so every function here is cached
+# on disk (contact.compiled_cache) and compiled once per machine.
 
 _slip_force = njit(cache=True)(cons.slip_force)
 _mode_update = njit(cache=True)(cons.face_mode_update)
@@ -70,15 +73,15 @@ def _small_solve(A, b, m, out):
     return True
 
 
-@njit(cache=False)  # takes the law kernel as an argument: see note on caching
-def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
+@njit(cache=True)
+def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
             g, Jg, phi, u, w):
     """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x (stuck-face forces from x[NC:]);
     also leaves the condensed displacement u and velocity w of the iterate."""
     for i in range(NC):
         u[i] = u_pre[i] + bdt2 * x[i]
         w[i] = w_pre[i] + gdt * x[i]
-    f, Ju, Jv = kernel(u[:4], w[:4], params)
+    f, Ju, Jv = contact_kernel(u[:4], w[:4], params)
     for i in range(NC):
         g[i] = 0.0
         for j in range(NC):
@@ -125,11 +128,11 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
             g[r] += P[k, 0, r] * phi[k, 0] + P[k, 1, r] * phi[k, 1]
 
 
-@njit(cache=False)  # takes the law kernel as an argument: see note on caching
-def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
+@njit(cache=True)
+def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
               w_reg, g, Jg, phi, u, w, R, J):
     """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|."""
-    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg,
+    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
             g, Jg, phi, u, w)
     for r in range(m):
         for c in range(m):
@@ -164,9 +167,9 @@ def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu
     return math.sqrt(nr)
 
 
-@njit(cache=False)  # takes the law kernel as an argument: see note on caching
+@njit(cache=True)
 def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freeze, freeze_dir, mu_N, a1,
-                   bdt2, gdt, kernel, params, tol, max_iter, w_reg):
+                   bdt2, gdt, params, tol, max_iter, w_reg):
     """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)], analytic Jacobian,
     with backtracking on |R| when a full step does not decrease it (kinks of the law).
     If it does not converge, the least-residual iterate is returned with ok = False.
@@ -202,7 +205,7 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
     best = np.zeros(MX)
     its = 0
     ok = False
-    nR = _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel,
+    nR = _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
                    params, w_reg, g, Jg, phi, u, w, R, J)
     best[:] = x
     best_n = nR
@@ -230,7 +233,7 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             for i in range(m):
                 xt[i] = x[i] - lam * dx[i]
             nR2 = _residual(xt, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
-                            kernel, params, w_reg, g, Jg, phi, u, w, R2, J2)
+                            params, w_reg, g, Jg, phi, u, w, R2, J2)
             if nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0:
                 break
             lam *= 0.5
@@ -248,13 +251,13 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             break
     if not ok:
         x[:] = best
-    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, kernel, params, w_reg, g, Jg, phi,
+    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg, g, Jg, phi,
             u, w)
     return x[:NC].copy(), g, phi, its, ok
 
 
-@njit(cache=False)  # takes the law kernel as an argument: see note on caching
-def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, params, w_reg, phi_face):
+@njit(cache=True)
+def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face):
     """Consistent acceleration at the end of a step in which a face stuck (the stick-onset
     re-projection of :func:`rotor.dynamics.initial.initial_acceleration`): ``M a = Q − D v − K p + Bᵀ g``
     with the stuck faces' relative acceleration zero, at fixed ``(p, v)``. Linear in the stuck
@@ -270,7 +273,7 @@ def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, pa
     uu = np.zeros(NC)
     ww = np.zeros(NC)
     # forces at (u, w) with the stuck faces' forces zero (x[NC:] = 0; bdt2 = gdt = 0 keeps u, w)
-    _forces(x, u, w, 0.0, 0.0, P, modes, freeze, fdir, mu_N, a1, kernel, params, w_reg, g, Jg, phi, uu, ww)
+    _forces(x, u, w, 0.0, 0.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Jg, phi, uu, ww)
     a = Minv @ (Q - Dr @ v - Kr @ p) + WM @ g
     alpha = Bt @ a
     m = 0
@@ -310,10 +313,10 @@ def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, pa
     return a + WM @ gf
 
 
-@njit(cache=False)  # takes the law kernel as an argument: see note on caching
+@njit(cache=True)
 def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
               Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
-              has_support, kernel, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
+              has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
               onset_projection, Minv, WM, SM,
               rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
               status):
@@ -370,7 +373,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             while True:
                 passes += 1
                 alpha_new, g, phi, its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_face,
-                                                            freeze, freeze_dir, mu_N, a1, bdt2, gdt, kernel, params,
+                                                            freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
                                                             tol, max_iter, w_reg)
                 total_its += its
                 if not ok:
@@ -416,7 +419,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         phi_c[k, 0] = phi[k, 0]
                         phi_c[k, 1] = phi[k, 1]
                     _reproject(p_pre + bdt2 * a_try, v_pre + gdt * a_try, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes,
-                               mu_N, a1, kernel, params, w_reg, phi_c)
+                               mu_N, a1, params, w_reg, phi_c)
                 for k in range(n_faces):
                     wk = P[k] @ w_new[:4]
                     fk = phi[k]
@@ -450,7 +453,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             # largest ω_c Δt met: radial tangent stiffness of the law at the new state
             u_new = u_pre + bdt2 * alpha
             w_new = w_pre + gdt * alpha
-            f, Ju, Jv = kernel(u_new[:4], w_new[:4], params)
+            f, Ju, Jv = contact_kernel(u_new[:4], w_new[:4], params)
             kt = -(Ju[0, 0] + Ju[1, 1])
             if kt > 0:
                 wd = math.sqrt(kt * s_yy) * dt
@@ -473,7 +476,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         if onset:
             # a face stuck in this step: restart from the consistent acceleration (positions and
             # velocities of the step kept), so the stuck multiplier does not ring
-            a = _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, kernel, params, w_reg, phi_face)
+            a = _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
             alpha = Bt @ a
             status[3] += 1
         if step % record_every == 0:
@@ -489,9 +492,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 ww = Bt @ v
                 rec_u[i] = uu[:4]
                 rec_w[i] = ww[:4]
-                f, Ju, Jv = kernel(uu[:4], ww[:4], params)
+                f, Ju, Jv = contact_kernel(uu[:4], ww[:4], params)
                 rec_fc[i] = f
-                fe, Ju, Jv = kernel(uu[:4], zero4, params)
+                fe, Ju, Jv = contact_kernel(uu[:4], zero4, params)
                 rec_fel[i] = fe
                 rec_face[i] = phi_face
                 rec_modes[i, 0] = modes[0]

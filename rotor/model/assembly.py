@@ -120,6 +120,28 @@ class RotorModel:
             raise InputError(f"DOF {name!r} ({key}) is fixed by a boundary condition")
         return self._index[key]
 
+    def response_stations(self, primary_only: bool = False) -> tuple[str, ...]:
+        """The scene's response stations by the scene's own names, one per node with free y and z.
+
+        Its disks, the loose support's bearing station, its supports (the *primary* stations: those
+        that carry mass or the loose support), then its bearings; with ``primary_only`` the first
+        three kinds alone (all of them if there are none). For the Table 4 scene: ``disk1, disk2, 5,
+        s`` then ``bearing1, bearing2``.
+        """
+        sc = self.scene
+        primary = [d.name for d in sc.disks]
+        if sc.loose_support is not None:
+            primary.append(sc.loose_support.bearing_station)
+        primary += [sp.name for sp in sc.supports]
+        names = primary if primary_only and primary else primary + [b.name for b in sc.bearings]
+        out, nodes = [], set()
+        for name in names or [st.name for st in sc.stations]:
+            node = self.node_of(name)
+            if node not in nodes and f"{node}.y" in self._index and f"{node}.z" in self._index:
+                nodes.add(node)
+                out.append(name)
+        return tuple(out)
+
     def node_dofs(self, name: str) -> tuple[int, int, int, int]:
         """Indices of ``(y, z, θy, θz)`` of a node or element alias (all must be free)."""
         node = self.node_of(name)

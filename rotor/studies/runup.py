@@ -35,9 +35,6 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import HarmonicForce, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 
-STATIONS = ("disk1", "disk2", "5", "s")
-
-
 @dataclass(frozen=True)
 class RunupSpec:
     """A linear speed ramp.
@@ -91,8 +88,9 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
     rec = max(1, int(round(1.0 / (spec.sample_rate_hz * dt))))
     seg_steps = max(rec, int(round(spec.segment_s / dt / rec)) * rec)
     n_seg = int(math.ceil(spec.duration_s / (seg_steps * dt)))
-    idx = [model.dof_index(f"{s}.{c}") for s in STATIONS for c in ("y", "z")]
-    channels = tuple(f"{s}.{c}" for s in STATIONS for c in ("y", "z"))
+    stations = model.response_stations()  # every disk, bearing and support station, by the scene's names
+    idx = [model.dof_index(f"{s}.{c}") for s in stations for c in ("y", "z")]
+    channels = tuple(f"{s}.{c}" for s in stations for c in ("y", "z"))
     _, _, sys0 = point_system(spec.scene, spec.rpm_start, **kw)
     q = sys0.offset.copy()
     v = np.zeros(sys0.n)

@@ -36,10 +36,9 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 
-#: stations whose y/z are recorded (aliases of rotor.model.assembly.RotorModel.dof_index)
-DEFAULT_STATIONS = ("disk1", "disk2", "5", "s")
-#: Poincaré section stations (lateral displacement, m)
-POINCARE_STATIONS = ("disk1", "disk2", "5", "s")
+# Stations come from the scene (rotor.model.assembly.RotorModel.response_stations): every disk, bearing
+# and support station is recorded, the primary ones (disks, the loose support's bearing station,
+# supports; for Table 4 the paper's disk1, disk2, 5, s) form the Poincaré section.
 #: samples per revolution kept of the transient (Poincaré points and the amplitude scale)
 TRANSIENT_SAMPLES_PER_REV = 64
 
@@ -351,7 +350,7 @@ def _at_rest(opts: SteadyStateOptions, channels, idx, q, v, d0: float, t_start: 
 
 
 def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | None = None,
-                 stations=DEFAULT_STATIONS, q0=None, v0=None) -> SteadyResult:
+                 stations=None, q0=None, v0=None) -> SteadyResult:
     """Integrate ``system`` to its steady state and record whole revolutions of it.
 
     Parameters
@@ -361,7 +360,9 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
     model : rotor.model.assembly.RotorModel
         For station names (``model.dof_index``).
     options : SteadyStateOptions
-    stations : station names recorded as ``<name>.y``, ``<name>.z``.
+    stations : station names recorded as ``<name>.y``, ``<name>.z`` (scene names or nodes); None: every
+        disk, bearing and support station of the scene (``model.response_stations()``). The Poincaré
+        section is always on the primary stations (``model.response_stations(primary_only=True)``).
     q0, v0 : initial state (default: the misalignment offset ``Δq_m`` at rest).
 
     Returns
@@ -372,9 +373,10 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
     """
     opts = options or SteadyStateOptions()
     t_start = time.perf_counter()
+    stations = model.response_stations() if stations is None else tuple(stations)
     channels = tuple(f"{s}.{c}" for s in stations for c in ("y", "z"))
     idx = [model.dof_index(c) for c in channels]
-    pidx = [model.dof_index(f"{s}.{c}") for s in POINCARE_STATIONS for c in ("y", "z")]
+    pidx = [model.dof_index(f"{s}.{c}") for s in model.response_stations(primary_only=True) for c in ("y", "z")]
     omega = float(system.omega_rad_s)
     d0 = system.support.law.clearance_m if system.support is not None else math.inf
     width = system.support.width_m if system.support is not None else 0.0
@@ -509,7 +511,8 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
             "misalignment_m": float(misalignment_m if misalignment_m is not None
                                     else (sc.misalignment.offset_m if getattr(sc, "misalignment", None) else 0.0)),
             "tilt_ignored": bool(tilt_ignored), "least_residual_steps": int(res.unconverged_steps),
-            "static": bool(res.static), "wall_s": float(res.wall_s), "law": system.support.law.name,
+            "static": bool(res.static), "wall_s": float(res.wall_s),
+            "law": system.support.law.name if system.support is not None else None,
             "elements_per_segment": elements_per_segment, "n_dofs": int(model.n_dofs),
             "options": dataclasses.asdict(opts), **res.regime()}
     return arrays, info
