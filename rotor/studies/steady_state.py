@@ -264,6 +264,7 @@ class SteadyResult:
     wall_s : float
     static : bool, True at zero speed (no dynamics: the static equilibrium is the answer)
     q_all : (N, n) all generalised coordinates over the record (m, rad), for deflection shapes
+    n_faces : int, active end faces (1 with the tilt ignored: one centred face, the second slot unused)
     q_end, v_end : (n,) state one step after the record, at a whole revolution (phase 0): a
         starting state for a neighbouring operating point (continuation)
     """
@@ -290,6 +291,7 @@ class SteadyResult:
     q_all: np.ndarray | None = None
     q_end: np.ndarray | None = None
     v_end: np.ndarray | None = None
+    n_faces: int = 2
 
     def channel(self, name: str) -> int:
         try:
@@ -308,13 +310,13 @@ class SteadyResult:
     def regime(self) -> dict:
         """Where the loose support sticks, slips and impacts (fractions of the record, –).
 
-        ``contact``: r1 or r2 beyond the clearance; ``stick``: both faces stuck;
+        ``contact``: r1 or r2 beyond the clearance; ``stick``: every active face stuck;
         ``label``: 'stick' (faces stuck throughout, no contact), 'slip' (slip, no contact),
         'impact' (contact part of the time), 'contact' (contact throughout).
         """
         d0 = self.clearance_m
         contact = (self.r1 > d0) | (self.r2 > d0)
-        stick = (self.modes[:, 0] == cons.STICK) & (self.modes[:, 1] == cons.STICK)
+        stick = np.all(self.modes[:, :max(self.n_faces, 1)] == cons.STICK, axis=1)
         cf, sf = float(contact.mean()), float(stick.mean())
         if cf >= 1.0:
             label = "contact"
@@ -425,7 +427,7 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
     return SteadyResult(omega, channels, tr.t[sl], tr.q[sl][:, idx], tr.v[sl][:, idx], u, r1, r2,
                         tr.modes[sl].astype(np.int8), tr.f_contact[sl], n_rec, spr, nper, revs,
                         conv, d0, unconv, time.perf_counter() - t_start, False, tr.q[sl], tr.q[-1].copy(),
-                        tr.v[-1].copy())
+                        tr.v[-1].copy(), system.support.faces()[2] if system.support is not None else 0)
 
 
 # ---------------------------------------------------------------------------
