@@ -35,6 +35,15 @@ def _load(args):
     return scene, assemble(scene, elements_per_segment=args.elements)
 
 
+def _warn_free(model, args) -> None:
+    """Modal jobs allow a rotor free to move as a rigid body (a free-free beam is a legitimate test
+    piece) but say so on stderr: its 0 Hz rigid-body modes are left out (rotor.model.topology)."""
+    from rotor.model.topology import ground_problem
+    msg = ground_problem(model, lock_loose_support=not args.open_support)
+    if msg is not None:
+        print(f"ringcontact rotor: warning: {msg}; rigid-body (0 Hz) modes are left out", file=sys.stderr)
+
+
 def _max_speed(args, scene) -> float:
     if args.max_rpm is None:
         return scene.analysis.max_speed_rad_s
@@ -65,6 +74,7 @@ def cmd_scenes(args) -> int:
 def cmd_modes(args) -> int:
     from rotor.linear.modes import modes
     scene, model = _load(args)
+    _warn_free(model, args)
     if not math.isfinite(args.speed_rpm) or args.speed_rpm < 0:
         raise_input(f"--speed-rpm = {args.speed_rpm} rpm: must be finite and >= 0")
     res = modes(model, args.speed_rpm / RPM, n_modes=args.modes or scene.analysis.modes,
@@ -86,6 +96,7 @@ def cmd_modes(args) -> int:
 def cmd_campbell(args) -> int:
     from rotor.linear.modes import campbell, critical_speeds
     scene, model = _load(args)
+    _warn_free(model, args)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(0.0, wmax, args.points or scene.analysis.speed_points)
     n_modes = args.modes or scene.analysis.modes
@@ -110,6 +121,7 @@ def cmd_campbell(args) -> int:
 def cmd_critical(args) -> int:
     from rotor.linear.modes import critical_speeds
     scene, model = _load(args)
+    _warn_free(model, args)
     wmax = _max_speed(args, scene)
     crit = critical_speeds(model, wmax, orders=tuple(args.orders), n_modes=(args.modes or scene.analysis.modes) + 4,
                            lock_loose_support=not args.open_support)
