@@ -79,24 +79,30 @@ def response_figure(model: RotorModel, resp: ForcedResponse, nodes: list[str], t
 
 
 def mode_shape_figure(model: RotorModel, shapes: list[tuple[str, Modes, int]], title: str):
-    """Lateral deflection |ŷ + iẑ| along the rotor for selected modes (normalised to 1)."""
+    """Orbit semi-major axis ``(|ŷ + iẑ| + |ŷ − iẑ|)/2`` along the rotor for selected modes (normalised
+    to 1), so forward and backward whirl show alike; a DOF fixed by a boundary condition shows as 0."""
     fig, ax = _figure()
-    stations = [n for n in model.node_names if f"{n}.y" in model.dof_names]
+    stations = list(model.node_names)
     xs = np.array([model.node_x_m[model.node_names.index(n)] for n in stations])
     support = model.loose_pair.support_node if model.loose_pair else None
+    free = set(model.dof_names)
+
+    def lateral(m, j, n, d):
+        return m.shapes[model.dof_index(f"{n}.{d}"), j] if f"{n}.{d}" in free else 0.0
+
     for label, m, j in shapes:
-        vals = np.array([m.shapes[model.dof_index(f"{n}.y"), j] + 1j * m.shapes[model.dof_index(f"{n}.z"), j]
-                         for n in stations])
+        Y = np.array([lateral(m, j, n, "y") for n in stations])
+        Z = np.array([lateral(m, j, n, "z") for n in stations])
         rotor = [i for i, n in enumerate(stations) if n != support]
         order = sorted(rotor, key=lambda i: xs[i])
-        amp = np.abs(vals)
+        amp = (np.abs(Y + 1j * Z) + np.abs(Y - 1j * Z)) / 2
         amp = amp / amp.max()
         ax.plot(xs[order] * 1e3, amp[order], "-o", ms=3, label=label)
     for d in model.scene.disks:
         ax.axvline(model.scene.station(d.station).x_m * 1e3, color="0.6", lw=0.8)
         ax.annotate(d.name, (model.scene.station(d.station).x_m * 1e3, 1.02), fontsize=8, ha="center")
     ax.set_xlabel("axial position x (mm)")
-    ax.set_ylabel("lateral amplitude |y + iz| (normalised)")
+    ax.set_ylabel("orbit semi-major axis (normalised)")
     ax.set_title(title, fontsize=10)
     ax.set_ylim(0, 1.1)
     ax.grid(alpha=0.3)

@@ -3,8 +3,9 @@
 Sub-commands (each takes a scene file path or a bundled scene name)::
 
     ringcontact rotor scenes                                   # list bundled scenes
-    ringcontact rotor modes SCENE [--speed-rpm 0] [--modes 8] [--json]
-    ringcontact rotor campbell SCENE [--max-rpm R] [--points N] [--plot PREFIX] [--json]
+    ringcontact rotor modes SCENE [--speed-rpm 0] [--modes 8] [--plot PREFIX] [--json]   # PREFIX-modeshapes.png/.svg
+    ringcontact rotor campbell SCENE [--max-rpm R] [--points N] [--damped] [--plot PREFIX] [--json]
+    ringcontact rotor response SCENE --speed-rpm N [--revolutions R] [--method harmonic|newmark] --out DIR [--json]
     ringcontact rotor critical-speeds SCENE [--max-rpm R] [--orders 1 2] [--json]
     ringcontact rotor unbalance SCENE [--max-rpm R] [--points N] [--nodes disk1 disk2] [--plot PREFIX] [--json]
     ringcontact rotor report [--out reports/published]        # regenerate reports/published/rotor-*
@@ -33,6 +34,15 @@ def _load(args):
     from rotor.model.scene import load_scene
     scene = load_scene(args.scene)
     return scene, assemble(scene, elements_per_segment=args.elements)
+
+
+def _warn_free(model, args) -> None:
+    """Modal jobs allow a rotor free to move as a rigid body (a free-free beam is a legitimate test
+    piece) but say so on stderr: its 0 Hz rigid-body modes are left out (rotor.model.topology)."""
+    from rotor.model.topology import ground_problem
+    msg = ground_problem(model, lock_loose_support=not args.open_support)
+    if msg is not None:
+        print(f"ringcontact rotor: warning: {msg}; rigid-body (0 Hz) modes are left out", file=sys.stderr)
 
 
 def _max_speed(args, scene) -> float:
@@ -65,6 +75,7 @@ def cmd_scenes(args) -> int:
 def cmd_modes(args) -> int:
     from rotor.linear.modes import modes
     scene, model = _load(args)
+    _warn_free(model, args)
     if not math.isfinite(args.speed_rpm) or args.speed_rpm < 0:
         raise_input(f"--speed-rpm = {args.speed_rpm} rpm: must be finite and >= 0")
     res = modes(model, args.speed_rpm / RPM, n_modes=args.modes or scene.analysis.modes,
@@ -78,18 +89,31 @@ def cmd_modes(args) -> int:
              f"{'mode':>4} {'freq (Hz)':>11} {'freq (rpm)':>11} {'whirl':>9} {'fwd frac':>8} {'zeta':>7}"]
     lines += [f"{r['mode']:>4} {r['frequency_hz']:>11.3f} {r['frequency_rpm']:>11.1f} {r['whirl']:>9} "
               f"{r['forward_fraction']:>8.3f} {r['damping_ratio']:>7.4f}" for r in rows]
+    if args.plot:
+        _plot_mode_shapes(args, scene, model, res)
     _emit(args, {"scene": scene.name, "speed_rpm": args.speed_rpm, "dofs": model.n_dofs, "modes": rows},
           "\n".join(lines))
     return 0
 
 
+def _plot_mode_shapes(args, scene, model, res) -> None:
+    """``PREFIX-modeshapes.png/.svg``: |y + iz| along the shaft of the first (up to 6) modes."""
+    from reports.rotor_plots import mode_shape_figure, save
+    picks = [(f"mode {j + 1}: {res.frequency_hz[j]:.2f} Hz, {res.whirl[j]}", res, j)
+             for j in range(min(6, len(res.frequency_hz)))]
+    title = f"Mode shapes at {args.speed_rpm:g} rpm: {scene.title}"
+    for p in save(mode_shape_figure(model, picks, title), f"{args.plot}-modeshapes"):
+        print(f"wrote {p}", file=sys.stderr)
+
+
 def cmd_campbell(args) -> int:
     from rotor.linear.modes import campbell, critical_speeds
     scene, model = _load(args)
+    _warn_free(model, args)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(0.0, wmax, args.points or scene.analysis.speed_points)
     n_modes = args.modes or scene.analysis.modes
-    camp = campbell(model, speeds, n_modes=n_modes, lock_loose_support=not args.open_support)
+    camp = campbell(model, speeds, n_modes=n_modes, lock_loose_support=not args.open_support, damped=args.damped)
     if args.plot:
         from reports.rotor_plots import campbell_figure, save
         crit = critical_speeds(model, wmax, n_modes=n_modes + 4, lock_loose_support=not args.open_support)
@@ -97,19 +121,28 @@ def cmd_campbell(args) -> int:
             print(f"wrote {p}", file=sys.stderr)
     data = {"scene": scene.name, "speed_rpm": (speeds * RPM).tolist(),
             "frequency_hz": [[None if not np.isfinite(v) else float(v) for v in row] for row in camp.frequency_hz],
-            "whirl": [list(w) for w in camp.whirl]}
-    head = f"{'speed (rpm)':>11} " + " ".join(f"{'mode ' + str(j + 1) + ' (Hz)':>16}" for j in range(n_modes))
-    lines = [scene.title, head]
+            "whirl": [list(w) for w in camp.whirl], "damped": bool(args.damped),
+            "damping_ratio": _finite_rows(camp.damping_ratio), "log_decrement": _finite_rows(camp.log_decrement)}
+    head = f"{'speed (rpm)':>11} " + " ".join(f"{'mode ' + str(j + 1) + ' (Hz, zeta)':>23}" for j in range(n_modes))
+    lines = [scene.title + (" (damped: frequencies and zeta with C)" if args.damped else " (undamped: zeta = 0)"),
+             head]
     for i, w in enumerate(speeds):
-        cells = [f"{camp.frequency_hz[i, j]:>10.3f} {camp.whirl[i][j][:3]:>5}" for j in range(n_modes)]
+        cells = [f"{camp.frequency_hz[i, j]:>10.3f} {camp.whirl[i][j][:3]:>5} {camp.damping_ratio[i, j]:>6.4f}"
+                 for j in range(n_modes)]
         lines.append(f"{w * RPM:>11.1f} " + " ".join(cells))
     _emit(args, data, "\n".join(lines))
     return 0
 
 
+def _finite_rows(a) -> list:
+    """Rows of ``a`` as JSON lists, non-finite entries (a mode missing at a speed) as null."""
+    return [[float(v) if np.isfinite(v) else None for v in row] for row in a]
+
+
 def cmd_critical(args) -> int:
     from rotor.linear.modes import critical_speeds
     scene, model = _load(args)
+    _warn_free(model, args)
     wmax = _max_speed(args, scene)
     crit = critical_speeds(model, wmax, orders=tuple(args.orders), n_modes=(args.modes or scene.analysis.modes) + 4,
                            lock_loose_support=not args.open_support)
@@ -149,6 +182,19 @@ def cmd_unbalance(args) -> int:
     return 0
 
 
+def cmd_response(args) -> int:
+    from reports.rotor_response import run_response, summary_table
+    for name, v, unit in (("--speed-rpm", args.speed_rpm, "rpm"), ("--revolutions", args.revolutions, "rev")):
+        if not (math.isfinite(v) and v > 0):
+            raise_input(f"{name} = {v:g} {unit}: must be finite and > 0")
+    stations = [x.strip() for x in args.stations.split(",") if x.strip()] if args.stations else None
+    summary = run_response(args.scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
+                           stations=stations, steps_per_rev=args.steps_per_rev, record_per_rev=args.record_per_rev,
+                           elements=args.elements)
+    _emit(args, summary, summary_table(summary) + f"\nwrote {args.out}/response.csv, response-summary.json")
+    return 0
+
+
 def cmd_report(args) -> int:
     from reports.rotor_linear import build_reports
     for p in build_reports(args.out):
@@ -178,11 +224,14 @@ def _parser() -> argparse.ArgumentParser:
     common(sp, speed_range=False)
     sp.add_argument("--speed-rpm", type=float, default=0.0, help="rotor speed (rpm), default 0")
     sp.add_argument("--damped", action="store_true", help="include viscous damping (damped frequencies)")
+    sp.add_argument("--plot", default=None, help="write PREFIX-modeshapes.png and .svg (first 6 mode shapes)")
     sp.set_defaults(func=cmd_modes)
     sp = sub.add_parser("campbell", help="whirl frequencies over a speed range")
     common(sp)
     sp.add_argument("--points", type=int, default=None, help="number of speeds")
     sp.add_argument("--plot", default=None, help="write PREFIX.png and PREFIX.svg")
+    sp.add_argument("--damped", action="store_true", help="include viscous damping: damped frequencies and each "
+                    "mode's damping ratio zeta and log decrement (default undamped, zeta = 0)")
     sp.set_defaults(func=cmd_campbell)
     sp = sub.add_parser("critical-speeds", help="intersections of whirl frequencies with 1X, 2X ...")
     common(sp)
@@ -195,6 +244,20 @@ def _parser() -> argparse.ArgumentParser:
     sp.add_argument("--order", type=int, default=1, choices=(1, 2), help="1: unbalance, 2: misalignment")
     sp.add_argument("--plot", default=None, help="write PREFIX.png and PREFIX.svg")
     sp.set_defaults(func=cmd_unbalance)
+    sp = sub.add_parser("response", help="linear time response of the stations (loose support locked), CSV")
+    sp.add_argument("scene", help="scene file (.toml) or bundled scene name")
+    sp.add_argument("--speed-rpm", type=float, required=True, help="spin speed (rpm)")
+    sp.add_argument("--revolutions", type=float, default=20.0, help="duration in revolutions (default 20)")
+    sp.add_argument("--method", choices=("harmonic", "newmark"), default="harmonic",
+                    help="harmonic: steady state by superposition (default); newmark: from rest, in time")
+    sp.add_argument("--stations", default=None, help="comma-separated station/disk/bearing/support names "
+                    "(default: the scene's disks, loose-support bearing, supports and bearings)")
+    sp.add_argument("--steps-per-rev", type=int, default=256, help="Newmark steps per revolution (default 256)")
+    sp.add_argument("--record-per-rev", type=int, default=64, help="samples per revolution (default 64)")
+    sp.add_argument("--elements", type=int, default=None, help="elements per shaft segment (override)")
+    sp.add_argument("--json", action="store_true", help="print the summary as JSON")
+    sp.add_argument("--out", default="response-out", help="output directory (default response-out)")
+    sp.set_defaults(func=cmd_response)
     sp = sub.add_parser("report", help="regenerate reports/published/rotor-* (figures and tables)")
     sp.add_argument("--out", default="reports/published", help="output directory")
     sp.set_defaults(func=cmd_report)
@@ -203,10 +266,10 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    for name in ("modes", "points", "elements"):
+    for name in ("modes", "points", "elements", "steps_per_rev", "record_per_rev"):
         v = getattr(args, name, None)
         if v is not None and v < 1:
-            print(f"ringcontact rotor: error: --{name} = {v}: must be >= 1", file=sys.stderr)
+            print(f"ringcontact rotor: error: --{name.replace('_', '-')} = {v}: must be >= 1", file=sys.stderr)
             return 2
     try:
         return args.func(args)

@@ -28,10 +28,12 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
     """
     from rotor.model import assembly as rm
+    from rotor.model.topology import require_ground
 
     ls = scene.loose_support
     n = model.n_dofs
     check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True, upper=1e4)
+    require_ground(model, "time integration")   # a free rotor has no rest position (rotor.model.topology)
     sup = None if ls is None else _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m)
     if ls is None:
         given = {"law": law, "mu": mu, "preload_N": preload_N, "clearance_m": clearance_m,

@@ -180,28 +180,44 @@ def modes(model: RotorModel, speed_rad_s: float = 0.0, *, n_modes: int | None = 
 class Campbell:
     """Whirl frequencies over a speed range.
 
-    ``frequency_hz[i, j]``: j-th lowest frequency at ``speeds_rad_s[i]``; ``whirl[i][j]`` its label.
+    ``frequency_hz[i, j]``: j-th lowest frequency at ``speeds_rad_s[i]``; ``whirl[i][j]`` its label;
+    ``damping_ratio[i, j]`` its ζ = −Re(λ)/|λ| (0 when built undamped). Log decrement: :attr:`log_decrement`.
     """
 
     speeds_rad_s: np.ndarray
     frequency_hz: np.ndarray
     forward_fraction: np.ndarray
     whirl: tuple[tuple[str, ...], ...]
+    damping_ratio: np.ndarray | None = None
+
+    @property
+    def log_decrement(self) -> np.ndarray:
+        """δ = ln(x_k / x_{k+1}) = 2πζ/√(1 − ζ²) per mode and speed (–); inf for ζ ≥ 1."""
+        z = np.zeros_like(self.frequency_hz) if self.damping_ratio is None else self.damping_ratio
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(z < 1, TWO_PI * z / np.sqrt(np.clip(1 - z * z, 0, None)), np.inf)
 
 
-def campbell(model: RotorModel, speeds_rad_s, *, n_modes: int = 8, lock_loose_support: bool = True) -> Campbell:
-    """Campbell diagram data: the lowest ``n_modes`` whirl frequencies at each speed."""
+def campbell(model: RotorModel, speeds_rad_s, *, n_modes: int = 8, lock_loose_support: bool = True,
+             damped: bool = False) -> Campbell:
+    """Campbell diagram data: the lowest ``n_modes`` whirl frequencies at each speed.
+
+    ``damped``: solve with the viscous damping ``C`` (:func:`modes`), so that the frequencies are the
+    damped ones and ``damping_ratio`` holds each mode's ζ; otherwise undamped, ζ = 0.
+    """
     speeds = np.asarray(speeds_rad_s, dtype=float)
     F = np.full((len(speeds), n_modes), np.nan)
     R = np.full((len(speeds), n_modes), np.nan)
+    Z = np.full((len(speeds), n_modes), np.nan)
     labels = []
     for i, w in enumerate(speeds):
-        m = modes(model, w, n_modes=n_modes, lock_loose_support=lock_loose_support)
+        m = modes(model, w, n_modes=n_modes, lock_loose_support=lock_loose_support, damped=damped)
         k = len(m.frequency_hz)
         F[i, :k] = m.frequency_hz
         R[i, :k] = m.forward_fraction
+        Z[i, :k] = m.damping_ratio
         labels.append(m.whirl + ("",) * (n_modes - k))
-    return Campbell(speeds, F, R, tuple(labels))
+    return Campbell(speeds, F, R, tuple(labels), Z)
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ import numpy as np
 
 from contact.errors import InputError
 from rotor.model.assembly import RotorModel, constraint_basis, harmonic_loads
+from rotor.model.topology import require_ground
 
 
 @dataclass(frozen=True)
@@ -51,6 +52,7 @@ def forced_response(model: RotorModel, speeds_rad_s, *, order: int = 1, lock_loo
     speeds = np.atleast_1d(np.asarray(speeds_rad_s, dtype=float))
     if not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
         raise InputError("speeds_rad_s: must be finite and >= 0 rad/s")
+    require_ground(model, "the forced response", lock_loose_support=lock_loose_support)
     T = constraint_basis(model, lock_loose_support=lock_loose_support)
     M, C, G, K = (T.T @ X @ T for X in (model.M, model.C, model.G, model.K_total))
     out = np.zeros((len(speeds), model.n_dofs), complex)

@@ -28,6 +28,7 @@ import numpy as np
 from contact.errors import InputError
 from rotor.model import elements as el
 from rotor.model.scene import Scene
+from rotor.model.topology import check_scene_topology
 
 DOFS = el.NODE_DOFS
 
@@ -271,6 +272,7 @@ def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bo
     if elements_per_segment is not None and (int(elements_per_segment) != elements_per_segment
                                              or elements_per_segment < 1):
         raise InputError(f"elements_per_segment = {elements_per_segment!r}: must be an integer >= 1")
+    check_scene_topology(scene)    # a station no shaft reaches, a support nothing joins (one line each)
     names, xs, shaft_nodes, shaft_pieces = _node_layout(scene, elements_per_segment)
     node_pos = {n: i for i, n in enumerate(names)}
     M, C, G, K, Kc, aliases = _full_matrices(scene, names, node_pos, shaft_pieces, shear=shear,
