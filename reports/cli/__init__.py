@@ -61,7 +61,10 @@ def main(argv: list[str] | None = None) -> int:
         print(version_line())
         return 0
     if argv[0] == "--ranges":
-        print(_ranges())
+        try:
+            print(_ranges())
+        except BrokenPipeError:          # piped into head
+            sys.stderr.close()
         return 0
     job, rest = argv[0], argv[1:]
     if job not in JOBS:

@@ -46,3 +46,19 @@ def test_edited_calibrated_law_is_refused(tmp_path):
         load_calibrated(name, tmp_path)
     (tmp_path / f"{name}.json").write_text(text)                          # the original loads
     assert load_calibrated(name, tmp_path).geometry.bearing_E_Pa == doc["geometry"]["bearing_E_Pa"] * 2
+
+
+def test_written_files_respect_the_umask(tmp_path):
+    """Results are 0644 under the usual umask 022 (not the 0600 of a temporary file), and follow the umask."""
+    import os
+
+    from contact.files import atomic_write_text
+
+    old = os.umask(0o022)
+    try:
+        assert (atomic_write_text(tmp_path / "a.txt", "x").stat().st_mode & 0o777) == 0o644
+        os.umask(0o077)
+        assert (atomic_write_text(tmp_path / "b.txt", "x").stat().st_mode & 0o777) == 0o600
+    finally:
+        os.umask(old)
+    assert not list(tmp_path.glob(".*.tmp"))
