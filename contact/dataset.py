@@ -8,7 +8,8 @@ One JSON file per dataset, UTF-8, written atomically (:mod:`contact.files`)::
       "metadata": {...},                 # free-form, but must hold the REQUIRED_METADATA keys
       "columns": {"force_n": "N", ...},  # unit of every point field (SI; '-' if none)
       "points": [{"scene": "clamped", "penetration_m": 1e-05, "force_n": 308956.0, ...}, ...],
-      "points_sha256": "..."             # of the canonical JSON of "points"
+      "points_sha256": "...",            # of the canonical JSON of "points"
+      "sha256": "..."                    # of the canonical JSON of the whole document without this key
     }
 
 Every point holds the REQUIRED_POINT keys; other fields are free (scalars or lists of numbers,
@@ -17,7 +18,9 @@ reference uses tilt 0; a 3D dataset adds e.g. ``tilt_rad`` and ``moment_nm`` wit
 
 :func:`read_dataset` raises :class:`~contact.errors.DatasetError` (naming the file and what is
 wrong) for a missing or unreadable file, invalid JSON, a wrong schema or version, a checksum
-mismatch (a hand-edited or truncated file), missing keys or non-finite numbers.
+mismatch (a hand-edited or truncated file: the whole-document ``sha256`` covers the metadata and
+the column units too, so an edited scene clearance is caught like an edited force), missing keys or
+non-finite numbers.
 """
 from __future__ import annotations
 
@@ -40,6 +43,26 @@ REQUIRED_METADATA = ("title", "created_utc", "code_revision", "package_versions"
 
 def _canonical(points) -> str:
     return json.dumps(points, sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+def document_sha256(doc: dict) -> str:
+    """SHA-256 of the canonical JSON of ``doc`` without its own ``"sha256"`` key (datasets, calibrated laws)."""
+    body = {k: v for k, v in doc.items() if k != "sha256"}
+    return hashlib.sha256(json.dumps(body, sort_keys=True, separators=(",", ":"), allow_nan=False).encode()).hexdigest()
+
+
+def check_document_sha256(doc: dict, path) -> None:
+    """Raise :class:`DatasetError` unless ``doc["sha256"]`` matches its content."""
+    stored = doc.get("sha256")
+    if not isinstance(stored, str):
+        raise DatasetError(f"{path}: no whole-file checksum 'sha256' (written by an older version or edited)")
+    try:
+        digest = document_sha256(doc)
+    except ValueError as exc:
+        raise DatasetError(f"{path}: holds non-finite numbers ({exc})") from exc
+    if digest != stored:
+        raise DatasetError(f"{path}: checksum mismatch (edited or corrupted): stored {stored[:12]}…, "
+                           f"computed {digest[:12]}…")
 
 
 def _check_value(path, i: int, key: str, value) -> None:
@@ -103,6 +126,7 @@ def write_dataset(path, metadata: dict, columns: dict, points: list[dict]) -> Pa
     _validate(path, metadata, columns, points)
     doc = {"schema": SCHEMA, "version": VERSION, "metadata": metadata, "columns": columns,
            "points": points, "points_sha256": hashlib.sha256(_canonical(points).encode()).hexdigest()}
+    doc["sha256"] = document_sha256(doc)
     text = json.dumps(doc, indent=1, sort_keys=False, allow_nan=False)
     return atomic_write_text(path, text + "\n")
 
@@ -125,8 +149,16 @@ def _validate(path, metadata, columns, points) -> None:
             _check_value(path, i, k, v)
 
 
-def read_dataset(path) -> ReferenceDataset:
-    """Read and validate a dataset file (see module docstring for what is checked)."""
+def dataset_kind(columns: dict) -> str:
+    """``"3d"`` for a tilted-ring (3D) dataset (it has moments), else ``"2d"``."""
+    return "3d" if "moment_nm" in columns else "2d"
+
+
+def read_dataset(path, kind: str | None = None) -> ReferenceDataset:
+    """Read and validate a dataset file (see module docstring for what is checked).
+
+    ``kind`` (``"2d"`` or ``"3d"``) refuses a dataset of the other kind with a :class:`DatasetError`.
+    """
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -154,5 +186,9 @@ def read_dataset(path) -> ReferenceDataset:
     if digest != doc["points_sha256"]:
         raise DatasetError(f"{path}: checksum mismatch (points edited or corrupted): "
                            f"stored {doc['points_sha256'][:12]}…, computed {digest[:12]}…")
+    check_document_sha256(doc, path)
     _validate(path, doc["metadata"], doc["columns"], points)
+    if kind is not None and dataset_kind(doc["columns"]) != kind:
+        raise DatasetError(f"{path}: a {dataset_kind(doc['columns']).upper()} dataset; this job needs a "
+                           f"{kind.upper()} one")
     return ReferenceDataset(metadata=doc["metadata"], columns=doc["columns"], points=tuple(points))

@@ -7,7 +7,13 @@ from __future__ import annotations
 
 
 class RingContactError(Exception):
-    """Base class of every error the suite raises on purpose."""
+    """Base class of every error the suite raises on purpose.
+
+    ``exit_status`` is what the command line returns for it: 2 for bad input (the default),
+    1 for a computation that failed on good input.
+    """
+
+    exit_status = 2
 
 
 class InputError(RingContactError, ValueError):
@@ -16,6 +22,14 @@ class InputError(RingContactError, ValueError):
 
 class ConvergenceError(RingContactError, RuntimeError):
     """A solver did not converge (names the solver, the tolerance and what was reached)."""
+
+    exit_status = 1
+
+
+class FailedPointsError(RingContactError, RuntimeError):
+    """Some points of a sweep or study failed: the job stops before writing figures or reports."""
+
+    exit_status = 1
 
 
 class DatasetError(RingContactError, OSError):

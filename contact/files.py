@@ -1,9 +1,19 @@
-"""Atomic file writing: never leave a half-written result file."""
+"""Atomic file writing: never leave a half-written result file.
+
+Files get the mode an ordinary ``open()`` would give them (0666 less the umask: 0644 usually),
+not the 0600 of the temporary file they are written through.
+"""
 from __future__ import annotations
 
 import os
 import tempfile
 from pathlib import Path
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
@@ -15,6 +25,7 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
+            os.fchmod(fh.fileno(), 0o666 & ~_umask())
             os.fsync(fh.fileno())
         os.replace(tmp, path)
     except BaseException:

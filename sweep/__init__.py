@@ -13,9 +13,9 @@ One machinery for every sweep of the suite (rotor studies, 2D and 3D FEM referen
 from sweep.progress import Progress
 from sweep.provenance import code_revision, environment, machine, package_versions, revision_label, utc_stamp
 from sweep.run import SweepSummary, as_executor, run_sweep
-from sweep.store import FORMAT, ResultStore, load_sweep
+from sweep.store import FORMAT, ResultStore, load_sweep, run_status, write_status
 from sweep.tasks import PointResult, Task
 
 __all__ = ["FORMAT", "PointResult", "Progress", "ResultStore", "SweepSummary", "Task", "as_executor",
            "code_revision", "environment", "load_sweep", "machine", "package_versions", "revision_label",
-           "run_sweep", "utc_stamp"]
+           "run_status", "run_sweep", "utc_stamp", "write_status"]

@@ -14,6 +14,8 @@ import subprocess
 from pathlib import Path
 from typing import Mapping, Sequence
 
+from contact.stamp import build_stamp, is_source_checkout
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -31,6 +33,9 @@ def code_revision(path: str | os.PathLike | None = None, *, scope: Sequence[str]
     -------
     ``{"git_commit": sha or "unknown", "git_dirty": bool, or None when git is unavailable}``
     """
+    if path is None and not is_source_checkout():
+        stamp = build_stamp() or {}                 # an installed wheel: the commit stamped at build time
+        return {"git_commit": stamp.get("git_commit", "unknown"), "git_dirty": stamp.get("git_dirty")}
     root = Path(path) if path is not None else ROOT
     status = ["git", "status", "--porcelain"] + ([] if untracked else ["--untracked-files=no"])
     if scope:

@@ -22,7 +22,7 @@ from typing import Callable
 from contact.errors import InputError
 from sweep.progress import Progress
 from sweep.provenance import code_revision, environment
-from sweep.store import ResultStore
+from sweep.store import ResultStore, write_status
 from sweep.tasks import Task
 
 
@@ -135,6 +135,7 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
     t_start = time.perf_counter()
     summary = SweepSummary()
     _write_manifest(store, tasks, manifest)
+    write_status(store.root, "running")
     todo = _plan(tasks, store, summary, say, resume)
     if isinstance(progress, Progress):
         prog = progress
@@ -142,6 +143,7 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
         prog = Progress(len(todo), label=label, enabled=(None if progress is None else bool(progress)))
     if not todo:
         summary.wall_s = time.perf_counter() - t_start
+        write_status(store.root, "complete", tasks=len(tasks))
         return summary
     own = executor is None
     ex = cf.ProcessPoolExecutor(max_workers=max_workers) if own else as_executor(executor)
@@ -151,6 +153,7 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
             futures[ex.submit(_call, t.func, t.params)] = t
         _collect(futures, store, summary, prog, say)
     except BaseException:
+        write_status(store.root, "interrupted", tasks=len(tasks))
         for f in futures:
             f.cancel()
         if own:
@@ -162,4 +165,6 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
         if own:
             ex.shutdown(wait=True)
     summary.wall_s = time.perf_counter() - t_start
+    write_status(store.root, "incomplete" if summary.failed else "complete", tasks=len(tasks),
+                 failed=sorted(summary.failed))
     return summary

@@ -5,6 +5,8 @@ Result store layout (:class:`ResultStore`)::
     <root>/sweep.json            what the sweep is: description, code revision, versions, tasks
     <root>/points/<key>.npz      arrays of one point (numpy NPZ, compressed)
     <root>/points/<key>.json     its parameters, scalar results, run info and the SHA-256 of the NPZ
+    <root>/status.json           "running", "interrupted", "incomplete" (failed points) or "complete":
+                                 written when a run starts and when it ends (:func:`run_status` reads it)
 
 Why NPZ + JSON and not NetCDF/HDF5: both need a new dependency (netCDF4/h5py) for a few
 arrays per point; NPZ is numpy's own format, JSON is readable anywhere, and the pair is
@@ -148,4 +150,39 @@ def load_sweep(store: ResultStore | str | os.PathLike, tasks: list[Task] | None 
     for key, params in items:
         if store.check(key, params)[0] == "done":
             out[key] = store.load(key, params)
+    return out
+
+
+STATUS_FILE = "status.json"
+
+
+def write_status(root: str | os.PathLike, state: str, **fields) -> Path:
+    """Mark a run directory ``state`` (running | interrupted | incomplete | complete), atomically."""
+    doc = {"state": state, "complete": state == "complete", **fields}
+    return atomic_write_text(Path(root) / STATUS_FILE, json.dumps(doc, indent=1, sort_keys=True, default=_json_default) + "\n")
+
+
+def run_status(root: str | os.PathLike) -> dict:
+    """Is ``root`` a finished run directory? ``{"complete": bool, "tasks": n, "done": m, "why": text}``.
+
+    Complete means: ``sweep.json`` lists the tasks, the last run ended ``complete`` and every task has
+    its point record (each is still verified by checksum when it is loaded).
+    """
+    root = Path(root)
+    out = {"complete": False, "tasks": 0, "done": 0, "why": ""}
+    try:
+        tasks = json.loads((root / "sweep.json").read_text(encoding="utf-8")).get("tasks", {})
+    except (OSError, ValueError, AttributeError):
+        out["why"] = "no readable sweep.json: not a study directory"
+        return out
+    out["tasks"] = len(tasks)
+    out["done"] = sum((root / "points" / f"{k}.json").exists() for k in tasks)
+    try:
+        state = json.loads((root / STATUS_FILE).read_text(encoding="utf-8")).get("state", "unknown")
+    except (OSError, ValueError, AttributeError):
+        state = "complete" if out["done"] == out["tasks"] else "unknown"   # a run from before status files
+    if state != "complete" or out["done"] < out["tasks"] or not tasks:
+        out["why"] = f"state {state}, {out['done']} of {out['tasks']} points"
+        return out
+    out["complete"] = True
     return out

@@ -15,6 +15,7 @@ import numpy as np
 
 from contact import laws
 from contact.calibrate.families import FAMILIES, KERNEL_LAW_CODE, PARAMETERS, SceneGeometry, family_force
+from contact.dataset import check_document_sha256, document_sha256
 from contact.errors import DatasetError, InputError
 from contact.loose_support import LooseSupportParams
 
@@ -169,7 +170,9 @@ class CalibratedLaw:
                "validity": {"penetration_min_m": self.validity_penetration_m[0],
                             "penetration_max_m": self.validity_penetration_m[1], "tilt_rad": 0.0},
                "dataset": self.dataset, "fit": self.fit}
-        return json.dumps(_round_floats(doc), indent=1, allow_nan=False) + "\n"
+        doc = _round_floats(doc)
+        doc["sha256"] = document_sha256(doc)      # whole-file checksum: an edited modulus is refused on load
+        return json.dumps(doc, indent=1, allow_nan=False) + "\n"
 
     @classmethod
     def from_json(cls, text: str, source: str = "<string>") -> "CalibratedLaw":
@@ -179,6 +182,7 @@ class CalibratedLaw:
             raise DatasetError(f"{source}: not valid JSON: {exc}") from exc
         if not isinstance(doc, dict) or doc.get("schema") != SCHEMA or doc.get("version") != VERSION:
             raise DatasetError(f"{source}: not a {SCHEMA} v{VERSION} file")
+        check_document_sha256(doc, source)
         try:
             fam = doc["family"]
             if fam not in FAMILIES:

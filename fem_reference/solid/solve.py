@@ -339,13 +339,14 @@ def save_compliance(comp: ContactCompliance, path) -> None:
 def load_compliance(path) -> ContactCompliance:
     """Read a compliance written by :func:`save_compliance` (DatasetError if unreadable)."""
     import json
+    import zipfile
 
     from contact.errors import DatasetError
     try:
         with np.load(path) as z:
             meta = json.loads(str(z["meta"]))
             phi_grid, x_grid, area, G = z["phi_grid"], z["x_grid"], z["area_m2"], z["G"]
-    except (OSError, ValueError, KeyError) as exc:
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:   # BadZipFile: a CRC mismatch
         raise DatasetError(f"{path}: cannot read cached 3D compliance ({exc})") from exc
     return ContactCompliance(meta["scene"], MeshLevel3D(**meta["level"]), RingPair3D(**meta["geom"]), phi_grid,
                              x_grid, np.repeat(phi_grid, len(x_grid)), np.tile(x_grid, len(phi_grid)), area, G,

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from contact.dataset import read_dataset, write_dataset
-from contact.errors import ConvergenceError, InputError
+from contact.errors import ConvergenceError, DatasetError, InputError
 from contact.units import ARCMIN, MM
 from fem_reference.solid.geometry import RigidMotion, RingPair3D
 from fem_reference.solid.mesh import DEFAULT_LEVELS, LEVELS, MeshLevel3D
@@ -131,10 +131,16 @@ def compliance_path(geom: RingPair3D, level: MeshLevel3D, scene: str, cache: Pat
 
 def get_compliance(geom: RingPair3D, level: MeshLevel3D, scene: str = "clamped", cache: Path | None = None,
                    use_cache: bool = True) -> ContactCompliance:
-    """The compliance of one level: from the cache if there, else built (and cached)."""
+    """The compliance of one level: from the cache if there and readable, else built (and cached).
+
+    A cached file that does not load (truncated, corrupted, another format) is rebuilt over.
+    """
     path = compliance_path(geom, level, scene, cache)
     if use_cache and path.exists():
-        return load_compliance(path)
+        try:
+            return load_compliance(path)
+        except DatasetError:
+            pass                         # corrupt cache entry: rebuilt and rewritten below
     comp = build_compliance(geom, level, scene)
     if use_cache:
         save_compliance(comp, path)

@@ -5,10 +5,18 @@ Every job's command line lives in a module of ``reports/cli/`` and exposes
 entry) with its own ``argparse`` parser; the computing and the report writing stay in
 their own layers. The table below is the only place jobs are registered; modules are
 imported only when their job runs, so ``ringcontact --help`` stays instant.
+
+Whatever goes wrong, the user sees ONE line on stderr, never a traceback: a suite error
+(:class:`~contact.errors.RingContactError`) as ``ringcontact JOB: error: MESSAGE`` with exit status
+2 (bad input) or 1 (a computation that failed); anything else as an internal error with exit
+status 1 (``RINGCONTACT_DEBUG=1`` shows the traceback). ``ringcontact --version`` prints the
+version and the commit it was built from; ``ringcontact --ranges`` the plausible range of every
+physical input (:mod:`contact.plausible`).
 """
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 
 from contact.errors import RingContactError
@@ -38,22 +46,50 @@ def _usage() -> str:
     return "\n".join(lines)
 
 
+def _ranges() -> str:
+    from contact.plausible import RANGES, range_text
+    return "\n".join(f"{name:<26} {range_text(name):<28} {why}" for name, (*_, why) in RANGES.items())
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0] in {"-h", "--help", "help"}:
         print(_usage())
         return 0
+    if argv[0] in {"--version", "-V"}:
+        from reports.version import version_line
+        print(version_line())
+        return 0
+    if argv[0] == "--ranges":
+        try:
+            print(_ranges())
+        except BrokenPipeError:          # piped into head
+            sys.stderr.close()
+        return 0
     job, rest = argv[0], argv[1:]
     if job not in JOBS:
-        print(f"ringcontact: unknown job {job!r}\n\n{_usage()}", file=sys.stderr)
+        print(f"ringcontact: error: job = {job!r}: unknown (jobs: {', '.join(JOBS)}; ringcontact --help)",
+              file=sys.stderr)
         return 2
     module_name, _, func_name = JOBS[job][0].partition(":")
     entry = getattr(importlib.import_module(module_name), func_name or "main")
     try:
         return int(entry(rest) or 0)
+    except SystemExit as exc:         # argparse: --help (0) or its one-line error (2)
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     except RingContactError as exc:  # safety net: every job reports suite errors the same way
-        print(f"ringcontact {job}: {type(exc).__name__}: {exc}", file=sys.stderr)
-        return 2
+        print(f"ringcontact {job}: error: {' '.join(str(exc).split())}", file=sys.stderr)
+        return int(getattr(exc, "exit_status", 2))
+    except BrokenPipeError:          # output piped into head & co.
+        sys.stderr.close()
+        return 0
+    except (Exception, MemoryError) as exc:   # never a traceback for the user
+        if os.environ.get("RINGCONTACT_DEBUG"):
+            raise
+        print(f"ringcontact {job}: internal error: {type(exc).__name__}: {' '.join(str(exc).split())[:300]} "
+              "(a bug: please report it with the command line; RINGCONTACT_DEBUG=1 shows the traceback)",
+              file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -7,26 +7,33 @@
     ringcontact fem-paper [--h-mm 2] [--out D]    the paper set-up study and its report (reports.fem2d_paper)
     ringcontact fem-vtu 0.01 out.vtu [--scene clamped]   deformed rings + pressure + stresses for ParaView
 
-Engineer units at this edge only (mm, kN, degrees, MPa); everything inside is SI.
+Engineer units at this edge only (mm, kN, degrees, MPa); everything inside is SI. JSON keys carry
+the SI unit symbol (``force_N``, ``peak_pressure_Pa``). Outputs default to paths relative to the
+working directory; every input is checked (plausible ranges: :mod:`contact.plausible`) and every
+output is checked writable before anything is computed.
 """
 from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
 
-from contact.errors import RingContactError
+from contact.errors import InputError, RingContactError
 from contact.units import MM
+from reports.cli._edge import Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys
+
+#: where the jobs write by default: relative to the working directory (the repository root in a checkout)
+DATASET_OUT = "fem_reference/data/fem2d-reference.json"
+REPORT_OUT = "reports/published"
 
 
 def _point_parser(prog: str, help_: str) -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog=prog, description=help_)
-    ap.add_argument("penetration_mm", type=float, help="penetration Δr = r − δ0 [mm]")
+    ap = Parser(prog=prog, description=help_)
+    ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="penetration Δr = r − δ0 [mm]")
     ap.add_argument("--scene", default="clamped", help="clamped | clamped-stress | persson-<ratio> | paper-…")
-    ap.add_argument("--h-mm", type=float, default=None,
+    ap.add_argument("--h-mm", type=quantity("h_mm"), default=None,
                     help="contact element size [mm]; default: Richardson over 4, 2, 1 mm (+0.5 if needed)")
     ap.add_argument("--order", type=int, default=2, choices=(1, 2), help="element order")
     return ap
@@ -56,10 +63,10 @@ def point_main(argv: list[str]) -> int:
                    "wall_s": s.wall_s, "h_contact_m": args.h_mm * MM, "element_order": args.order,
                    "arc_phi_rad": s.arc_phi_rad.tolist(), "arc_pressure_pa": s.arc_pressure_pa.tolist()}
     except RingContactError as exc:
-        print(f"fem-point: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem-point", exc)
     if args.json:
-        print(json.dumps({k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in rec.items()}, indent=1))
+        print(json.dumps(unit_keys({k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in rec.items()}),
+                         indent=1))
         return 0
     err = rec.get("force_error_rel")
     print(f"scene            {rec['scene']} (plane {rec['plane']})")
@@ -82,33 +89,37 @@ def sweep_main(argv: list[str]) -> int:
     """``fem-sweep``: regenerate the committed dataset."""
     from fem_reference.plane.sweep import DATASET_PATH, regenerate
 
-    ap = argparse.ArgumentParser(prog="ringcontact fem-sweep", description="regenerate the 2D FEM reference dataset")
-    ap.add_argument("--out", default=str(DATASET_PATH), help="output JSON (default: the committed copy)")
+    ap = Parser(prog="ringcontact fem-sweep", description="regenerate the 2D FEM reference dataset")
+    ap.add_argument("--out", type=out_file, default=DATASET_OUT,
+                    help=f"output JSON (default {DATASET_OUT}: the committed copy when run from the repository root)")
     args = ap.parse_args(argv)
     try:
         path = regenerate(args.out)
     except RingContactError as exc:
-        print(f"fem-sweep: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem-sweep", exc)
     print(f"wrote {path}")
     return 0
 
 
 def check_main(argv: list[str]) -> int:
     """``fem-check``: recompute a few committed points and report the differences."""
+    from contact.dataset import read_dataset
     from fem_reference.plane.sweep import DATASET_PATH, check_against_committed
 
-    ap = argparse.ArgumentParser(prog="ringcontact fem-check", description="recompute committed points, compare")
-    ap.add_argument("--path", default=str(DATASET_PATH))
-    ap.add_argument("--points", type=int, default=3, help="points per scene")
+    ap = Parser(prog="ringcontact fem-check", description="recompute committed points, compare")
+    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="2D dataset (default: the packaged one)")
+    ap.add_argument("--points", type=count(1, 50, "points"), default=3, help="points per scene (1-50)")
     ap.add_argument("--scene", action="append", help="only this scene (repeatable)")
-    ap.add_argument("--tol", type=float, default=1e-6, help="relative difference that counts as a change")
+    ap.add_argument("--tol", type=quantity("tol"), default=1e-6, help="relative difference that counts as a change")
     args = ap.parse_args(argv)
     try:
+        have = read_dataset(args.path, kind="2d").scenes()
+        for name in args.scene or []:
+            if name not in have:
+                raise InputError(f"--scene = {name}: not in {args.path} (have {', '.join(have)})")
         rows = check_against_committed(args.path, args.points, args.scene)
     except RingContactError as exc:
-        print(f"fem-check: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem-check", exc)
     worst = 0.0
     print(f"{'scene':<16}{'Δr mm':>9}{'committed kN':>15}{'new kN':>15}{'diff':>11}{'est.err':>10}")
     for r in rows:
@@ -121,29 +132,37 @@ def check_main(argv: list[str]) -> int:
 
 def report_main(argv: list[str] | None = None) -> int:
     """``fem-report``: report of the committed 2D dataset and its verification (:mod:`reports.fem2d`)."""
+    from contact.dataset import read_dataset
     from fem_reference.plane.sweep import DATASET_PATH
-    from reports.fem2d import OUT, write_report
+    from reports.fem2d import write_report
 
-    ap = argparse.ArgumentParser(prog="ringcontact fem-report", description="report of the committed 2D FEM dataset")
-    ap.add_argument("--path", default=str(DATASET_PATH))
-    ap.add_argument("--out", default=str(OUT))
+    ap = Parser(prog="ringcontact fem-report", description="report of the committed 2D FEM dataset")
+    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="2D dataset (default: the packaged one)")
+    ap.add_argument("--out", type=out_dir, default=REPORT_OUT, help=f"output directory (default {REPORT_OUT})")
     args = ap.parse_args(argv)
-    print(f"wrote {write_report(args.path, args.out)}")
+    try:
+        read_dataset(args.path, kind="2d")
+        print(f"wrote {write_report(args.path, args.out)}")
+    except RingContactError as exc:
+        return fail("ringcontact fem-report", exc)
     return 0
 
 
 def paper_main(argv: list[str] | None = None) -> int:
     """``fem-paper``: run the paper set-up study (:mod:`fem_reference.paper_setup`) and write its report."""
     from fem_reference import paper_setup
-    from reports.fem2d_paper import REPORT_DIR, write_report
+    from reports.fem2d_paper import write_report
 
-    ap = argparse.ArgumentParser(prog="ringcontact fem-paper", description=paper_setup.__doc__.splitlines()[0])
-    ap.add_argument("--h-mm", type=float, default=2.0, help="contact element size [mm]")
-    ap.add_argument("--out", default=str(REPORT_DIR))
+    ap = Parser(prog="ringcontact fem-paper", description=paper_setup.__doc__.splitlines()[0])
+    ap.add_argument("--h-mm", type=quantity("h_mm"), default=2.0, help="contact element size [mm]")
+    ap.add_argument("--out", type=out_dir, default=REPORT_OUT, help=f"output directory (default {REPORT_OUT})")
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args(argv)
-    rows = paper_setup.run(args.h_mm * 1e-3, progress=(lambda *_: None) if args.quiet else print)
-    write_report(rows, Path(args.out))
+    try:
+        rows = paper_setup.run(args.h_mm * 1e-3, progress=(lambda *_: None) if args.quiet else print)
+        write_report(rows, Path(args.out))
+    except RingContactError as exc:
+        return fail("ringcontact fem-paper", exc)
     print(f"wrote {Path(args.out) / 'fem2d-paper-setup.md'}")
     return 0
 
@@ -156,17 +175,20 @@ def vtu_main(argv: list[str]) -> int:
     from fem_reference.plane.sweep import spec_for
 
     ap = _point_parser("ringcontact fem-vtu", "export a solved point to VTU (ParaView)")
-    ap.add_argument("out", help="output .vtu file")
-    ap.add_argument("--scale", type=float, default=1.0, help="displacement magnification stored as 'warp' [-]")
+    ap.add_argument("out", type=out_file, nargs="?", default=None, help="output .vtu file (or --out)")
+    ap.add_argument("--out", dest="out_flag", type=out_file, default=None, help="output .vtu file")
+    ap.add_argument("--scale", type=quantity("scale"), default=1.0, help="displacement magnification stored as 'warp' [-]")
     args = ap.parse_args(argv)
+    args.out = args.out_flag or args.out
+    if args.out is None:
+        ap.error("--out: an output .vtu file is needed (ringcontact fem-vtu 0.01 --out p.vtu)")
     try:
         scene = by_name(args.scene)
         m = ContactModel.build(scene, spec_for(scene, (args.h_mm or 2.0) * MM, args.order))
         s = m.solve(args.penetration_mm * MM)
         path = write_vtu(args.out, m, s, warp_scale=args.scale)
     except RingContactError as exc:
-        print(f"fem-vtu: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem-vtu", exc)
     print(f"wrote {path} ({s.force_n / 1e3:.3f} kN)")
     return 0
 

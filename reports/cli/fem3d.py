@@ -6,18 +6,30 @@
     ringcontact fem3d report                                       tables/figures into reports/published/
     ringcontact fem3d vtu 0.02 --tilt-arcmin 2 --out p.vtu [--level L2]   contact pressure map for ParaView
 
-Engineer units at this edge only (mm, arcmin, kN, kN*m, MPa); everything inside is SI. Mesh
-levels are cached under ``RINGCONTACT_CACHE`` (default ``~/.cache/ringcontact/fem3d``).
+Engineer units at this edge only (mm, arcmin, kN, kN*m, MPa); everything inside is SI; JSON keys
+carry the SI unit symbol (``force_N``, ``moment_Nm``). Mesh levels are cached under
+``RINGCONTACT_CACHE`` (default ``~/.cache/ringcontact/fem3d``); a corrupt cached level is rebuilt.
+Inputs are checked against their plausible ranges (:mod:`contact.plausible`) and outputs checked
+writable before anything is computed.
 """
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys
 
 from contact.errors import RingContactError
 from contact.units import ARCMIN, MM
+from reports.cli._edge import Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys
+
+SCENES_3D = ("clamped", "clamped-axially-fixed-ends")     # fem_reference.solid.solve.SCENES
+DATASET_OUT = "fem_reference/data/3d/fem3d-reference.json"
+REPORT_OUT = "reports/published"
+
+
+def _levels():
+    from fem_reference.solid.mesh import LEVELS
+    return sorted(LEVELS)
 
 
 def _fmt_point(rec: dict) -> str:
@@ -45,14 +57,15 @@ def _fmt_point(rec: dict) -> str:
 
 def point_main(argv: list[str]) -> int:
     """``fem3d point``: solve one (penetration, tilt) and print it (or JSON with --json)."""
-    ap = argparse.ArgumentParser(prog="ringcontact fem3d point", description="solve one 3D contact point")
-    ap.add_argument("penetration_mm", type=float, help="mid-plane penetration Δr = r − δ0 [mm]")
-    ap.add_argument("--tilt-arcmin", type=float, default=0.0, help="tilt [arcmin]")
+    ap = Parser(prog="ringcontact fem3d point", description="solve one 3D contact point")
+    ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="mid-plane penetration Δr = r − δ0 [mm]")
+    ap.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), default=0.0, help="tilt [arcmin]")
     ap.add_argument("--tilt-axis", choices=("z", "y"), default="z",
                     help="z: translation along +y, tilt theta_z (canonical); y: translation along +z, tilt theta_y "
                          "(the rotated case: same magnitudes, vectors rotated, see contact-laws.md §1)")
-    ap.add_argument("--scene", default="clamped", help="clamped | clamped-axially-fixed-ends")
-    ap.add_argument("--level", default=None, help="one mesh level (L0, L1, L2, E0…) instead of the three-level estimate")
+    ap.add_argument("--scene", default="clamped", choices=SCENES_3D, help="boundary-condition scene")
+    ap.add_argument("--level", default=None, choices=_levels(),
+                    help="one mesh level (L0, L1, L2, E0…) instead of the three-level estimate")
     ap.add_argument("--edge-refined", action="store_true",
                     help="use the levels E0-E2 graded hard toward the ring edges (edge-only contact, width << l0)")
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
@@ -90,10 +103,9 @@ def point_main(argv: list[str]) -> int:
         rec.update({"tilt_axis": args.tilt_axis, "force_y_n": fy, "force_z_n": fz, "moment_y_nm": my,
                     "moment_z_nm": mz})
     except RingContactError as exc:
-        print(f"fem3d point: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem3d point", exc)
     if args.json:
-        print(json.dumps(_jsonable(rec), indent=1))
+        print(json.dumps(unit_keys(_jsonable(rec)), indent=1))
     else:
         print(_fmt_point(rec))
     return 0
@@ -101,40 +113,38 @@ def point_main(argv: list[str]) -> int:
 
 def sweep_main(argv: list[str]) -> int:
     """``fem3d sweep``: regenerate the 3D dataset through a process pool (resumable)."""
-    from fem_reference.solid.sweep import DATASET_PATH, regenerate
+    from fem_reference.solid.sweep import regenerate
 
-    ap = argparse.ArgumentParser(prog="ringcontact fem3d sweep", description="regenerate the 3D FEM reference dataset")
-    ap.add_argument("--out", default=str(DATASET_PATH), help="output JSON (default: the committed copy)")
-    ap.add_argument("--workers", type=int, default=2, help="processes")
+    ap = Parser(prog="ringcontact fem3d sweep", description="regenerate the 3D FEM reference dataset")
+    ap.add_argument("--out", type=out_file, default=DATASET_OUT,
+                    help=f"output JSON (default {DATASET_OUT}: the committed copy when run from the repository root)")
+    ap.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="processes (1-64)")
     ap.add_argument("--fresh", action="store_true", help="ignore finished points kept from an interrupted run")
     args = ap.parse_args(argv)
-    if args.workers < 1:
-        print(f"fem3d sweep: workers = {args.workers}: must be >= 1", file=sys.stderr)
-        return 2
     try:
         path = regenerate(args.out, workers=args.workers, resume=not args.fresh)
     except RingContactError as exc:
-        print(f"fem3d sweep: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem3d sweep", exc)
     print(f"wrote {path}")
     return 0
 
 
 def check_main(argv: list[str]) -> int:
     """``fem3d check``: recompute a few committed points and report the differences."""
+    from contact.dataset import read_dataset
     from fem_reference.solid.sweep import DATASET_PATH, check_against_committed
 
-    ap = argparse.ArgumentParser(prog="ringcontact fem3d check", description="recompute committed 3D points, compare")
-    ap.add_argument("--path", default=str(DATASET_PATH))
-    ap.add_argument("--points", type=int, default=3)
+    ap = Parser(prog="ringcontact fem3d check", description="recompute committed 3D points, compare")
+    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="3D dataset (default: the packaged one)")
+    ap.add_argument("--points", type=count(1, 50, "points"), default=3, help="points to recompute (1-50)")
     ap.add_argument("--cached", action="store_true", help="reuse cached mesh levels instead of rebuilding them")
-    ap.add_argument("--tol", type=float, default=1e-6, help="relative difference that counts as a change")
+    ap.add_argument("--tol", type=quantity("tol"), default=1e-6, help="relative difference that counts as a change")
     args = ap.parse_args(argv)
     try:
+        read_dataset(args.path, kind="3d")
         rows = check_against_committed(args.path, args.points, use_cache=args.cached)
     except RingContactError as exc:
-        print(f"fem3d check: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem3d check", exc)
     worst = 0.0
     print(f"{'Δr mm':>8}{'tilt′':>7}{'committed kN':>14}{'new kN':>14}{'diff':>10}"
           f"{'committed kN*m':>16}{'new kN*m':>12}{'diff':>10}{'est.err':>9}")
@@ -153,31 +163,31 @@ def report_main(argv: list[str]) -> int:
 
     from contact.dataset import read_dataset
     from fem_reference.solid.sweep import DATASET_PATH
-    from reports.fem3d import OUT, write_report
+    from reports.fem3d import write_report
 
-    ap = argparse.ArgumentParser(prog="ringcontact fem3d report", description="report of the committed 3D dataset")
-    ap.add_argument("--path", default=str(DATASET_PATH))
-    ap.add_argument("--out-dir", default=str(OUT))
+    ap = Parser(prog="ringcontact fem3d report", description="report of the committed 3D dataset")
+    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="3D dataset (default: the packaged one)")
+    ap.add_argument("--out", "--out-dir", dest="out", type=out_dir, default=REPORT_OUT,
+                    help=f"output directory (default {REPORT_OUT})")
     args = ap.parse_args(argv)
     try:
-        ds = read_dataset(args.path)
+        ds = read_dataset(args.path, kind="3d")
+        md = write_report(ds, Path(args.path).name, Path(args.out))
     except RingContactError as exc:
-        print(f"fem3d report: {exc}", file=sys.stderr)
-        return 2
-    md = write_report(ds, Path(args.path).name, Path(args.out_dir))
+        return fail("ringcontact fem3d report", exc)
     print(f"wrote {md} (+ .csv, .png, .svg)")
     return 0
 
 
 def vtu_main(argv: list[str]) -> int:
     """``fem3d vtu``: solve one point on one mesh level and write the bore's pressure map as VTU."""
-    ap = argparse.ArgumentParser(prog="ringcontact fem3d vtu",
-                                 description="contact pressure and rigid gap on the support bore (half ring) as VTU")
-    ap.add_argument("penetration_mm", type=float, help="mid-plane penetration Δr = r − δ0 [mm]")
-    ap.add_argument("--tilt-arcmin", type=float, default=0.0, help="tilt about z [arcmin]")
-    ap.add_argument("--scene", default="clamped", help="clamped | clamped-axially-fixed-ends")
-    ap.add_argument("--level", default="L2", help="mesh level (default L2, the finest reference level)")
-    ap.add_argument("--out", required=True, help="output .vtu file")
+    ap = Parser(prog="ringcontact fem3d vtu",
+                description="contact pressure and rigid gap on the support bore (half ring) as VTU")
+    ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="mid-plane penetration Δr = r − δ0 [mm]")
+    ap.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), default=0.0, help="tilt about z [arcmin]")
+    ap.add_argument("--scene", default="clamped", choices=SCENES_3D, help="boundary-condition scene")
+    ap.add_argument("--level", default="L2", choices=_levels(), help="mesh level (default L2, the finest reference level)")
+    ap.add_argument("--out", type=out_file, required=True, help="output .vtu file")
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
     args = ap.parse_args(argv)
     from contact.units import check_finite
@@ -199,8 +209,7 @@ def vtu_main(argv: list[str]) -> int:
         gap = rigid_gap_m(geom, motion, comp.phi, comp.x)
         path = write_pressure_vtu(args.out, res, geom, gap)
     except RingContactError as exc:
-        print(f"fem3d vtu: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact fem3d vtu", exc)
     print(f"wrote {path} ({res.force_n / 1e3:.3f} kN, peak {res.peak_pressure_pa / 1e6:.1f} MPa, "
           f"width {res.contact_width_m / MM:.2f} mm, level {args.level})")
     return 0
@@ -213,9 +222,13 @@ SUBCOMMANDS = {"point": point_main, "sweep": sweep_main, "check": check_main, "r
 def main(argv: list[str] | None = None) -> int:
     """``ringcontact fem3d {point,sweep,check} ...``"""
     argv = list(sys.argv[1:] if argv is None else argv)
-    if not argv or argv[0] in {"-h", "--help"} or argv[0] not in SUBCOMMANDS:
+    if not argv or argv[0] in {"-h", "--help"}:
         print(__doc__.strip())
-        return 0 if (not argv or argv[0] in {"-h", "--help"}) else 2
+        return 0
+    if argv[0] not in SUBCOMMANDS:
+        print(f"ringcontact fem3d: error: sub-command = {argv[0]!r}: must be one of {', '.join(SUBCOMMANDS)}",
+              file=sys.stderr)
+        return 2
     return int(SUBCOMMANDS[argv[0]](argv[1:]) or 0)
 
 

@@ -38,10 +38,14 @@ import numpy as np
 from contact import calibrate, laws, tilt
 from contact.errors import DatasetError, InputError, RingContactError
 from contact.units import ARCMIN, GPA, MM
+from reports.cli._edge import Parser, fail, in_file, quantity
+
+#: most points one call evaluates (penetrations x tilts, or CSV rows): more is a batch job for the library
+MAX_POINTS = 20000
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = Parser(
         prog="ringcontact law",
         description="Evaluate an analytic contact law of a bearing ring in its support (Dai et al. 2025). "
                     "Geometry and material defaults are the paper's Table 1 (204 GPa, nu 0.3, l0 30 mm, "
@@ -51,20 +55,21 @@ def build_parser() -> argparse.ArgumentParser:
                    help="contact law: " + ", ".join(sorted(laws.LAWS)) + ", or calibrated:<name> with <name> one of "
                         + ", ".join(calibrate.available()))
     src = p.add_mutually_exclusive_group(required=True)
-    src.add_argument("--penetration-mm", type=float, nargs="+", metavar="MM",
+    src.add_argument("--penetration-mm", type=quantity("penetration_mm"), nargs="+", metavar="MM",
                      help="penetration(s) Δr = |r| − δ0 in mm")
-    src.add_argument("--csv", type=Path, metavar="FILE",
-                     help="CSV with a column penetration_mm and optionally tilt_arcmin")
-    p.add_argument("--tilt-arcmin", type=float, nargs="+", default=[0.0], metavar="ARCMIN",
+    src.add_argument("--csv", type=in_file, metavar="FILE",
+                     help=f"CSV with a column penetration_mm and optionally tilt_arcmin (every cell filled; "
+                          f"at most {MAX_POINTS} rows)")
+    p.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), nargs="+", default=[0.0], metavar="ARCMIN",
                    help="relative tilt(s) in arcminutes (combined with every penetration)")
     p.add_argument("--penetration-at", choices=("centre", "edge"), default="centre",
                    help="where a tilted ring's penetration is measured")
-    p.add_argument("--clearance-mm", type=float, default=None, help="radial clearance δ0 (mm)")
-    p.add_argument("--width-mm", type=float, default=None, help="ring width l0 (mm)")
-    p.add_argument("--bearing-E-GPa", type=float, default=None, help="Young's modulus of the ring (GPa)")
-    p.add_argument("--bearing-nu", type=float, default=None, help="Poisson's ratio of the ring")
-    p.add_argument("--support-E-GPa", type=float, default=None, help="Young's modulus of the support (GPa)")
-    p.add_argument("--support-nu", type=float, default=None, help="Poisson's ratio of the support")
+    p.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance δ0 (mm)")
+    p.add_argument("--width-mm", type=quantity("width_mm"), default=None, help="ring width l0 (mm)")
+    p.add_argument("--bearing-E-GPa", type=quantity("E_GPa"), default=None, help="Young's modulus of the ring (GPa)")
+    p.add_argument("--bearing-nu", type=quantity("nu"), default=None, help="Poisson's ratio of the ring")
+    p.add_argument("--support-E-GPa", type=quantity("E_GPa"), default=None, help="Young's modulus of the support (GPa)")
+    p.add_argument("--support-nu", type=quantity("nu"), default=None, help="Poisson's ratio of the support")
     p.add_argument("--modulus", choices=laws.MODULI, default=None,
                    help="2D idealisation (default: plane_stress for conformal, plane_strain otherwise)")
     p.add_argument("--beta-reading", choices=laws.BETA_READINGS, default="zero",
@@ -73,24 +78,47 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def read_points_csv(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    """Read ``penetration_mm`` and optional ``tilt_arcmin`` columns; raise DatasetError on any problem."""
+def _csv_rows(path: Path) -> tuple[list[str], list[list[str]]]:
     try:
         with open(path, newline="", encoding="utf-8") as fh:
-            rows = list(csv.DictReader(fh))
+            reader = csv.reader(fh)
+            header = next(reader, [])
+            rows = []
+            for row in reader:
+                if len(rows) >= MAX_POINTS:
+                    raise InputError(f"--csv = {path}: more than {MAX_POINTS} rows (split the file, or call "
+                                     "contact.tilt.aligned_tilt_contact from Python)")
+                rows.append(row)
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
-        raise DatasetError(f"csv = {path}: cannot read ({exc})") from exc
-    if not rows or "penetration_mm" not in (rows[0].keys() if rows else []):
-        raise DatasetError(f"csv = {path}: needs a header with a column 'penetration_mm' and at least one row")
-    pen, tilts = [], []
-    for i, row in enumerate(rows, start=2):
-        try:
-            pen.append(float(row["penetration_mm"]))
-            t = row.get("tilt_arcmin")
-            tilts.append(float(t) if t not in (None, "") else 0.0)
-        except (TypeError, ValueError) as exc:
-            raise DatasetError(f"csv = {path}, line {i}: not a number ({exc})") from exc
-    return np.array(pen), np.array(tilts)
+        raise DatasetError(f"--csv = {path}: cannot read ({exc})") from None
+    return [h.strip() for h in header], rows
+
+
+def read_points_csv(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """Read ``penetration_mm`` and optional ``tilt_arcmin`` columns; raise DatasetError on any problem.
+
+    Every row must have as many cells as the header, every cell of the two columns a number inside
+    its plausible range (:mod:`contact.plausible`); an empty cell is an error, not a zero.
+    """
+    from contact import plausible
+
+    header, rows = _csv_rows(path)
+    if "penetration_mm" not in header or not rows:
+        raise DatasetError(f"--csv = {path}: needs a header with a column 'penetration_mm' and at least one row")
+    cols = [(k, header.index(k)) for k in ("penetration_mm", "tilt_arcmin") if k in header]
+    out = {"penetration_mm": [], "tilt_arcmin": []}
+    for line, row in enumerate(rows, start=2):
+        if len(row) != len(header):
+            raise DatasetError(f"--csv = {path}, line {line}: {len(row)} cells, the header has {len(header)}")
+        for key, j in cols:
+            cell = row[j].strip()
+            try:
+                value = float(cell)
+            except ValueError:
+                raise DatasetError(f"--csv = {path}, line {line}: {key} = {cell!r}: not a number") from None
+            out[key].append(plausible.check(key, value, cell, label=f"--csv line {line}: {key}"))
+    pen = np.array(out["penetration_mm"])
+    return pen, np.array(out["tilt_arcmin"]) if out["tilt_arcmin"] else np.zeros_like(pen)
 
 
 #: the paper's Table 1 (Dai et al. 2025): geometry and materials when none are given
@@ -117,12 +145,12 @@ def resolve_geometry(args: argparse.Namespace) -> calibrate.CalibratedLaw | None
         for key, val in own.items():
             given = getattr(args, key)
             if given is not None and not np.isclose(given, val, rtol=1e-9, atol=0.0):
-                raise InputError(f"{key} = {given:g}: calibrated law {law.name!r} holds for {key} = {val:g} only "
+                raise InputError(f"--{key.replace('_', '-')} = {given:g}: calibrated law {law.name!r} holds for {key} = {val:g} only "
                                  "(its FEM scene); leave it out or refit for another geometry")
             setattr(args, key, val)
         return law
     if args.law not in laws.LAWS:
-        raise InputError(f"law = {args.law!r}: unknown (have {', '.join(sorted(laws.LAWS))} or "
+        raise InputError(f"--law = {args.law!r}: unknown (have {', '.join(sorted(laws.LAWS))} or "
                          f"{CALIBRATED_PREFIX}<name> with <name> in {', '.join(calibrate.available())})")
     for key, val in TABLE1_DEFAULTS.items():
         if getattr(args, key) is None:
@@ -216,14 +244,16 @@ def main(argv: list[str] | None = None) -> int:
         if args.csv is not None:
             pen_mm, tilt_arcmin = read_points_csv(args.csv)
         else:
+            n = len(args.penetration_mm) * len(args.tilt_arcmin)
+            if n > MAX_POINTS:
+                raise InputError(f"--penetration-mm x --tilt-arcmin = {n} points: at most {MAX_POINTS} per call")
             pen, tl = np.meshgrid(np.asarray(args.penetration_mm, dtype=float),
                                   np.asarray(args.tilt_arcmin, dtype=float))
             order = np.argsort(tl.ravel(), kind="stable")
             pen_mm, tilt_arcmin = pen.ravel()[order], tl.ravel()[order]
         points = evaluate(args, pen_mm, tilt_arcmin)
     except RingContactError as exc:
-        print(f"ringcontact law: error: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact law", exc)
     if args.json:
         params = {"clearance_m": args.clearance_mm * MM, "width_m": args.width_mm * MM,
                   "bearing_E_Pa": args.bearing_E_GPa * GPA, "bearing_nu": args.bearing_nu,

@@ -7,15 +7,15 @@ they run, so one broken optional builder cannot stop ``--help``.
 """
 from __future__ import annotations
 
-import argparse
 import importlib
 import sys
 import time
 from pathlib import Path
 
 from contact.errors import RingContactError
+from reports.cli._edge import Parser, fail, out_dir
 
-DEFAULT_OUT = Path(__file__).resolve().parents[1] / "published"
+DEFAULT_OUT = Path("reports/published")   # relative to the working directory (the repository root in a checkout)
 
 # name -> (module with a build(out_dir) function, one-line description). Order = run order.
 BUILDERS: dict[str, tuple[str, str]] = {
@@ -24,10 +24,10 @@ BUILDERS: dict[str, tuple[str, str]] = {
 }
 
 
-def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ringcontact report",
-                                description="Build the reports from the committed data into reports/published/.")
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, help=f"output directory (default {DEFAULT_OUT})")
+def build_parser() -> Parser:
+    p = Parser(prog="ringcontact report",
+               description="Build the reports from the committed data into reports/published/.")
+    p.add_argument("--out", type=out_dir, default=str(DEFAULT_OUT), help=f"output directory (default {DEFAULT_OUT})")
     p.add_argument("--only", action="append", choices=sorted(BUILDERS), metavar="NAME",
                    help="run only this builder (repeatable); default: all")
     p.add_argument("--list", action="store_true", help="list the builders and exit")
@@ -57,8 +57,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         run(names, args.out)
     except RingContactError as exc:
-        print(f"ringcontact report: error: {exc}", file=sys.stderr)
-        return 2
+        return fail("ringcontact report", exc)
     print(f"reports written to {args.out}")
     return 0
 

@@ -25,6 +25,7 @@ import sys
 import numpy as np
 
 from contact.errors import RingContactError
+from reports.cli._edge import Parser, count, fail, out_dir, out_prefix, quantity
 
 RPM = 30 / math.pi
 
@@ -203,63 +204,63 @@ def cmd_report(args) -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ringcontact rotor", description="Linear analyses of a rotor scene "
+    p = Parser(prog="ringcontact rotor", description="Linear analyses of a rotor scene "
                                 "(natural frequencies, Campbell diagram, critical speeds, unbalance response).")
     sub = p.add_subparsers(dest="cmd", required=True)
 
     def common(sp, speed_range=True):
         sp.add_argument("scene", help="scene file (.toml) or bundled scene name (see 'ringcontact rotor scenes')")
-        sp.add_argument("--elements", type=int, default=None, help="elements per shaft segment (override)")
+        sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override, 1-64)")
         sp.add_argument("--open-support", action="store_true",
                         help="leave the loose-support bearing and support unconnected (default: locked together)")
-        sp.add_argument("--modes", type=int, default=None, help="number of modes")
+        sp.add_argument("--modes", type=count(1, 200), default=None, help="number of modes (1-200)")
         sp.add_argument("--json", action="store_true", help="print JSON instead of a table")
         if speed_range:
-            sp.add_argument("--max-rpm", type=float, default=None, help="top speed (rpm); default from the scene")
+            sp.add_argument("--max-rpm", type=quantity("rpm_max"), default=None, help="top speed (rpm); default from the scene")
 
     sp = sub.add_parser("scenes", help="list bundled scenes")
     sp.add_argument("--json", action="store_true")
     sp.set_defaults(func=cmd_scenes)
     sp = sub.add_parser("modes", help="natural (whirl) frequencies and whirl direction at one speed")
     common(sp, speed_range=False)
-    sp.add_argument("--speed-rpm", type=float, default=0.0, help="rotor speed (rpm), default 0")
+    sp.add_argument("--speed-rpm", type=quantity("speed_rpm"), default=0.0, help="rotor speed (rpm), default 0")
     sp.add_argument("--damped", action="store_true", help="include viscous damping (damped frequencies)")
-    sp.add_argument("--plot", default=None, help="write PREFIX-modeshapes.png and .svg (first 6 mode shapes)")
+    sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX-modeshapes.png and .svg (first 6 mode shapes)")
     sp.set_defaults(func=cmd_modes)
     sp = sub.add_parser("campbell", help="whirl frequencies over a speed range")
     common(sp)
-    sp.add_argument("--points", type=int, default=None, help="number of speeds")
-    sp.add_argument("--plot", default=None, help="write PREFIX.png and PREFIX.svg")
+    sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
+    sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX.png and PREFIX.svg")
     sp.add_argument("--damped", action="store_true", help="include viscous damping: damped frequencies and each "
                     "mode's damping ratio zeta and log decrement (default undamped, zeta = 0)")
     sp.set_defaults(func=cmd_campbell)
     sp = sub.add_parser("critical-speeds", help="intersections of whirl frequencies with 1X, 2X ...")
     common(sp)
-    sp.add_argument("--orders", type=int, nargs="+", default=[1, 2], help="excitation orders (default 1 2)")
+    sp.add_argument("--orders", type=count(1, 20), nargs="+", default=[1, 2], help="excitation orders 1-20 (default 1 2)")
     sp.set_defaults(func=cmd_critical)
     sp = sub.add_parser("unbalance", help="linear steady-state unbalance (1X) or misalignment (2X) response")
     common(sp)
-    sp.add_argument("--points", type=int, default=None, help="number of speeds")
+    sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
     sp.add_argument("--nodes", nargs="+", default=None, help="nodes or element names (default: the disks)")
     sp.add_argument("--order", type=int, default=1, choices=(1, 2), help="1: unbalance, 2: misalignment")
-    sp.add_argument("--plot", default=None, help="write PREFIX.png and PREFIX.svg")
+    sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX.png and PREFIX.svg")
     sp.set_defaults(func=cmd_unbalance)
     sp = sub.add_parser("response", help="linear time response of the stations (loose support locked), CSV")
     sp.add_argument("scene", help="scene file (.toml) or bundled scene name")
-    sp.add_argument("--speed-rpm", type=float, required=True, help="spin speed (rpm)")
-    sp.add_argument("--revolutions", type=float, default=20.0, help="duration in revolutions (default 20)")
+    sp.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
+    sp.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
     sp.add_argument("--method", choices=("harmonic", "newmark"), default="harmonic",
                     help="harmonic: steady state by superposition (default); newmark: from rest, in time")
     sp.add_argument("--stations", default=None, help="comma-separated station/disk/bearing/support names "
                     "(default: the scene's disks, loose-support bearing, supports and bearings)")
-    sp.add_argument("--steps-per-rev", type=int, default=256, help="Newmark steps per revolution (default 256)")
-    sp.add_argument("--record-per-rev", type=int, default=64, help="samples per revolution (default 64)")
-    sp.add_argument("--elements", type=int, default=None, help="elements per shaft segment (override)")
+    sp.add_argument("--steps-per-rev", type=count(16, 100000), default=256, help="Newmark steps per revolution (default 256)")
+    sp.add_argument("--record-per-rev", type=count(1, 100000), default=64, help="samples per revolution (default 64)")
+    sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override)")
     sp.add_argument("--json", action="store_true", help="print the summary as JSON")
-    sp.add_argument("--out", default="response-out", help="output directory (default response-out)")
+    sp.add_argument("--out", type=out_dir, default="response-out", help="output directory (default response-out)")
     sp.set_defaults(func=cmd_response)
     sp = sub.add_parser("report", help="regenerate reports/published/rotor-* (figures and tables)")
-    sp.add_argument("--out", default="reports/published", help="output directory")
+    sp.add_argument("--out", type=out_dir, default="reports/published", help="output directory")
     sp.set_defaults(func=cmd_report)
     return p
 
@@ -274,8 +275,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return args.func(args)
     except RingContactError as exc:
-        print(f"ringcontact rotor: error: {exc}", file=sys.stderr)
-        return 2
+        return fail(f"ringcontact rotor {args.cmd}", exc)
     except BrokenPipeError:  # output piped into head & co.
         sys.stderr.close()
         return 0

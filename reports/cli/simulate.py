@@ -28,16 +28,17 @@ import numpy as np
 from contact.errors import InputError, RingContactError
 from contact.files import atomic_write_bytes, atomic_write_text
 from contact.units import check_positive
+from reports.cli._edge import Parser, count, fail, out_dir, quantity
 from rotor.dynamics import constraints as cons
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
     p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
-    p.add_argument("--speed-rpm", type=float, required=True, help="spin speed (rpm)")
-    p.add_argument("--revolutions", type=float, default=20.0, help="duration in revolutions (default 20)")
-    p.add_argument("--steps-per-rev", type=int, default=256, help="time steps per revolution (default 256)")
-    p.add_argument("--record-per-rev", type=int, default=64, help="recorded samples per revolution (default 64)")
+    p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
+    p.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
+    p.add_argument("--steps-per-rev", type=count(16, 100000), default=256, help="time steps per revolution (default 256)")
+    p.add_argument("--record-per-rev", type=count(1, 100000), default=64, help="recorded samples per revolution (default 64)")
     p.add_argument("--scheme", choices=("production", "reference"), default="production",
                    help="production (fast, default) or the paper's reference scheme (slow)")
     p.add_argument("--dofs", default=None,
@@ -52,16 +53,18 @@ def _parser() -> argparse.ArgumentParser:
                         "calibrated:<name>, a law fitted to a FEM scene (contact/calibrated/<name>.json; its "
                         "clearance and ring width are the scene's)")
     p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
-    p.add_argument("--mu", type=float, default=None, help="end-face friction coefficient (default: scene)")
-    p.add_argument("--preload-n", type=float, default=None, help="nut preload per face (N, default: scene)")
-    p.add_argument("--clearance-mm", type=float, default=None, help="radial clearance (mm, default: scene)")
-    p.add_argument("--misalignment-mm", type=float, default=None, help="misalignment δ (mm, default: scene)")
+    p.add_argument("--mu", type=quantity("mu"), default=None, help="end-face friction coefficient (default: scene)")
+    p.add_argument("--preload-N", "--preload-n", dest="preload_n", type=quantity("preload_N"), default=None,
+                   help="nut preload per face (N, default: scene)")
+    p.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance (mm, default: scene)")
+    p.add_argument("--misalignment-mm", type=quantity("misalignment_mm"), default=None,
+                   help="misalignment δ (mm, default: scene)")
     p.add_argument("--steady", action="store_true",
                    help="run to steady state first (rotor.studies.steady_state.steady_state: displacement Poincaré samples "
                         "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
                         "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
                         "amplitudes of --dofs in the summary")
-    p.add_argument("--out", default="simulate-out", help="output directory")
+    p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
     return p
 
 
@@ -70,8 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return _run(args)
     except RingContactError as e:
-        print(f"ringcontact simulate: {type(e).__name__}: {e}", file=sys.stderr)
-        return 2
+        return fail("ringcontact simulate", e)
 
 
 def _run(args) -> int:

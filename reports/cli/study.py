@@ -31,40 +31,45 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from contact.errors import RingContactError
+from contact.errors import FailedPointsError, InputError, RingContactError
 from contact.units import check_positive
+from reports.cli._edge import Parser, count, fail, in_dir, out_dir, quantity
+
+PUBLISHED = "reports/published"     # relative to the working directory (the repository root in a checkout)
 
 
 def _common(p: argparse.ArgumentParser, out: str):
     p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
-    p.add_argument("--out", default=out, help=f"result directory (default {out})")
-    p.add_argument("--figures", default=None, help="figure directory (default <out>/figures)")
-    p.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
-    p.add_argument("--steps-per-rev", type=int, default=256, help="minimum time steps per revolution (default 256)")
-    p.add_argument("--max-revs", type=int, default=1500, help="transient cap in revolutions (default 1500)")
-    p.add_argument("--elements", type=int, default=None,
+    p.add_argument("--out", type=out_dir, default=out, help=f"result directory (default {out})")
+    p.add_argument("--figures", type=out_dir, default=None, help="figure directory (default <out>/figures)")
+    p.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")
+    p.add_argument("--steps-per-rev", type=count(16, 100000), default=256,
+                   help="minimum time steps per revolution (default 256)")
+    p.add_argument("--max-revs", type=count(1, 100000), default=1500, help="transient cap in revolutions (default 1500)")
+    p.add_argument("--elements", type=count(1, 64), default=None,
                    help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ringcontact study", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="ringcontact study", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="study", required=True)
     c = sub.add_parser("cascade", help="steady-state spectrum cascade over speed (Figs. 12, 16, 17)")
     _common(c, "runs/cascade")
-    c.add_argument("--rpm-max", type=float, default=18000.0, help="highest speed (rpm, default 18000)")
-    c.add_argument("--rpm-min", type=float, default=0.0, help="lowest speed (rpm, default 0)")
-    c.add_argument("--points", type=int, default=61, help="number of speeds (default 61)")
+    c.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0, help="highest speed (rpm, default 18000)")
+    c.add_argument("--rpm-min", type=quantity("speed_rpm"), default=0.0, help="lowest speed (rpm, default 0)")
+    c.add_argument("--points", type=count(1, 2000), default=61, help="number of speeds (default 61)")
     c.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (Fig. 16)")
-    c.add_argument("--clearance-mm", type=float, default=None, help="radial clearance (mm, default: scene)")
-    c.add_argument("--misalignment-mm", type=float, default=None, help="misalignment δ (mm, default: scene)")
+    c.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance (mm, default: scene)")
+    c.add_argument("--misalignment-mm", type=quantity("misalignment_mm"), default=None,
+                   help="misalignment δ (mm, default: scene)")
     pt = sub.add_parser("point", help="orbits, deflection, time histories, spectra, r1/r2 at one speed (Figs. 13-15)")
     _common(pt, "runs/point")
-    pt.add_argument("--speed-rpm", type=float, action="append", help="speed (rpm), repeatable (default 4500 and 10500)")
+    pt.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), action="append", help="speed (rpm), repeatable (default 4500 and 10500)")
     pr = sub.add_parser("params", help="1X/2X/3X vs speed for several clearances and misalignments (Figs. 18-19)")
     _common(pr, "runs/params")
-    pr.add_argument("--rpm-max", type=float, default=18000.0)
-    pr.add_argument("--points", type=int, default=31, help="speeds per curve (default 31)")
+    pr.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0)
+    pr.add_argument("--points", type=count(1, 2000), default=31, help="speeds per curve (default 31)")
     pr.add_argument("--clearances-mm", default="0.03,0.08", help="comma list besides the scene's (mm)")
     pr.add_argument("--misalignments-mm", default="0.5,2", help="comma list besides the scene's (mm)")
     tr = sub.add_parser("testrig", help="Table 5 test rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/3 mm")
@@ -72,33 +77,33 @@ def _parser() -> argparse.ArgumentParser:
     tr.set_defaults(scene="paper-table5-testrig")
     ru = sub.add_parser("runup", help="run-up/run-down with time-varying speed and a time-frequency cascade")
     _common(ru, "runs/runup")
-    ru.add_argument("--rpm-start", type=float, default=600.0)
-    ru.add_argument("--rpm-end", type=float, default=18000.0)
-    ru.add_argument("--duration-s", type=float, default=20.0)
+    ru.add_argument("--rpm-start", type=quantity("run_speed_rpm"), default=600.0)
+    ru.add_argument("--rpm-end", type=quantity("run_speed_rpm"), default=18000.0)
+    ru.add_argument("--duration-s", type=quantity("duration_s"), default=20.0)
     ru.add_argument("--down", action="store_true", help="run down: from the higher of the two speeds to the lower")
     mp = sub.add_parser("map", help="where the support sticks, slips and impacts over (speed, clearance)")
     _common(mp, "runs/map")
-    mp.add_argument("--rpm-max", type=float, default=18000.0)
-    mp.add_argument("--points", type=int, default=13, help="speeds (default 13)")
+    mp.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0)
+    mp.add_argument("--points", type=count(1, 2000), default=13, help="speeds (default 13)")
     mp.add_argument("--clearances-mm", default="0.01,0.02,0.05,0.1,0.2", help="comma list (mm)")
     se = sub.add_parser("sensitivity", help="do the paper's Section 5 findings hold for plausible values of the "
                                             "inputs Table 4 does not give? (slow: ~30 min with 2 workers)")
     se.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
-    se.add_argument("--out", default="runs/sensitivity", help="result directory (default runs/sensitivity)")
-    se.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+    se.add_argument("--out", type=out_dir, default="runs/sensitivity", help="result directory (default runs/sensitivity)")
+    se.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")
     se.add_argument("--variants", default=None, help="comma list of variant names (default: all; see rotor.studies.sensitivity)")
     se.add_argument("--report-only", action="store_true", help="no computing: report what is in --out")
-    se.add_argument("--to", default=str(Path(__file__).resolve().parents[1] / "published"),
-                    help="where study-sensitivity.{md,csv,png,svg} go (default reports/published)")
+    se.add_argument("--report-out", "--to", dest="to", type=out_dir, default=PUBLISHED,
+                    help=f"where study-sensitivity.{{md,csv,png,svg}} go (default {PUBLISHED})")
     se.add_argument("--no-progress", action="store_true", help="no progress line")
     pb = sub.add_parser("publish", help="figures + notes of finished study directories into reports/published (study-*)")
     for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup"):
-        pb.add_argument(f"--{k}", default=None, help=f"directory of a finished '{k}' study")
+        pb.add_argument(f"--{k}", type=in_dir, default=None, help=f"directory of a finished '{k}' study")
     for k in ("cascade", "notilt", "params", "point"):
-        pb.add_argument(f"--{k}-converged", default=None,
+        pb.add_argument(f"--{k}-converged", type=in_dir, default=None,
                         help=f"the '{k}' study on the converged mesh (with --elements): study-findings.md")
-    pb.add_argument("--elements", type=int, default=2, help="elements per segment of the converged-mesh studies")
-    pb.add_argument("--to", default=str(Path(__file__).resolve().parents[1] / "published"), help="output directory")
+    pb.add_argument("--elements", type=count(1, 64), default=2, help="elements per segment of the converged-mesh studies")
+    pb.add_argument("--out", "--to", dest="to", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")
     return p
 
 
@@ -107,17 +112,21 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return _run(args)
     except RingContactError as e:
-        print(f"ringcontact study: {type(e).__name__}: {e}", file=sys.stderr)
-        return 2
+        return fail(f"ringcontact study {args.study}", e)
 
 
 def _floats(text: str, name: str, unit: str) -> list[float]:
+    from contact import plausible
+    flag = "--" + name.replace("_", "-")
     try:
         vals = [float(x) for x in text.split(",") if x.strip()]
     except ValueError:
-        from contact.errors import InputError
-        raise InputError(f"{name} = {text!r}: expected a comma-separated list of numbers ({unit})") from None
-    for v in vals:
+        raise InputError(f"{flag} = {text} {unit}: expected a comma-separated list of numbers") from None
+    if not vals:
+        raise InputError(f"{flag} = {text} {unit}: expected at least one number")
+    single = {"clearances_mm": "clearance_mm", "misalignments_mm": "misalignment_mm"}[name]
+    for v, typed in zip(vals, [x.strip() for x in text.split(",") if x.strip()]):
+        plausible.check(single, v, typed, label=flag)
         check_positive(name, v, unit)
     return vals
 
@@ -152,6 +161,9 @@ def _sweep(tasks, out: Path, args, description: dict):
           f"{len(s.recomputed)} recomputed, {len(s.failed)} failed, wall {wall:.1f} s")
     for k, e in s.failed.items():
         print(f"  FAILED {k}: {e}", file=sys.stderr)
+    if s.failed:
+        raise FailedPointsError(f"{len(s.failed)} of {len(tasks)} points failed (FAILED lines above); no figures "
+                                f"written; the finished points stay in {out}, a rerun computes only the rest")
     return s, wall
 
 
@@ -160,12 +172,11 @@ def _run(args) -> int:
         return _publish(args)
     if args.study == "sensitivity":
         return _sensitivity(args)
+    from rotor.model.scene import load_scene
+    load_scene(args.scene)          # a bad scene is refused here, not by every point of the sweep
     out = Path(args.out)
     figs = Path(args.figures) if args.figures else out / "figures"
     opts = _options(args)
-    if args.workers < 1:
-        from contact.errors import InputError
-        raise InputError(f"workers = {args.workers}: must be >= 1")
     study = _STUDIES.get(args.study)
     if study is None:  # pragma: no cover - argparse guards this
         return 2
@@ -181,11 +192,24 @@ def _publish(args) -> int:
     keys = ("cascade", "notilt", "params", "point", "testrig", "map", "runup") + tuple(
         f"{k}_converged" for k in ("cascade", "notilt", "params", "point"))
     runs = {k: getattr(args, k) for k in keys if getattr(args, k)}
+    if not runs:
+        raise InputError("nothing to publish: give at least one of --cascade, --notilt, --params, --point, "
+                         "--testrig, --map, --runup (a finished study directory)")
+    for k, d in runs.items():
+        _require_finished(f"--{k.replace('_', '-')}", Path(d))
     if any(k.endswith("_converged") for k in runs):
         runs["elements"] = int(args.elements)
     for f in publish(runs, Path(args.to)):
         print(f"  wrote {f}")
     return 0
+
+
+def _require_finished(flag: str, d: Path) -> None:
+    """Refuse a study directory that is not a finished run (nothing is written over the published reports)."""
+    from sweep import run_status
+    st = run_status(d)
+    if not st["complete"]:
+        raise InputError(f"{flag} = {d}: not a finished study ({st['why']}); rerun the study to complete it")
 
 
 def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
@@ -194,6 +218,8 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from rotor.studies.steady_state import _scene_model, sweep_tasks
 
     check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
+    if args.rpm_min > args.rpm_max:
+        raise InputError(f"--rpm-min = {args.rpm_min:g} rpm: must be <= --rpm-max = {args.rpm_max:g} rpm")
     speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
     kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts, **_mesh(args)}
     if args.clearance_mm is not None:
@@ -277,6 +303,8 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from rotor.studies.runup import RunupSpec, run_runup
 
     a, b = args.rpm_start, args.rpm_end
+    if a == b:
+        raise InputError(f"--rpm-end = {b:g} rpm: must differ from --rpm-start (one speed: 'study point' or 'simulate')")
     if args.down and a < b:
         a, b = b, a
     spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
@@ -307,9 +335,9 @@ def _sensitivity(args) -> int:
             raise InputError(f"variants: unknown {bad}; known: {', '.join(known)}")
         variants = [known[w] for w in want]
     out = Path(args.out)
-    if not args.report_only:
-        if args.workers < 1:
-            raise InputError(f"workers = {args.workers}: must be >= 1")
+    if args.report_only and not any((out / "points").glob("*.json")):
+        raise InputError(f"--out = {out}: no stored points to report (run the study without --report-only first)")
+    else:
         tasks = sens.study_tasks(variants, scene=args.scene)
         t0 = time.perf_counter()
         s = run_sweep(tasks, out, max_workers=args.workers, progress=False if args.no_progress else None,

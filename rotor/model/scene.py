@@ -38,6 +38,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from contact.errors import DatasetError, InputError
+from contact.plausible import check_field as _plausible
 
 SCENE_DIR = Path(__file__).resolve().parents[1] / "scenes"
 SCHEMA = "ringcontact.rotor-scene/1"
@@ -222,10 +223,8 @@ def _num(scale: float = 1.0):
     return lambda v: float(v) * scale
 
 
-_ID = _num()
-_MM = _num(1e-3)
-_GPA = _num(1e9)
-_DEG = _num(math.pi / 180)
+_ID, _MM = _num(), _num(1e-3)
+_GPA, _DEG = _num(1e9), _num(math.pi / 180)
 _MRAD = _num(1e-3)
 _GMM = _num(1e-6)        # g·mm -> kg·m
 _RPM = _num(math.pi / 30)
@@ -428,6 +427,7 @@ def _parse_table(raw: Any, specs: list[Spec], where: str, cls):
             raise InputError(f"{where}.{key} = {shown} {unit}: must be finite")
         if not check(si):
             raise InputError(f"{where}.{key} = {shown} {unit}".rstrip() + f": {_CHECK_TEXT[check]}")
+        _plausible(where, key, value, shown, si)      # inside contact.plausible.RANGES[key]
         kwargs[attr] = si
     return kwargs
 

@@ -38,7 +38,7 @@ def test_tilt_grid_and_table_output(capsys):
 
 def test_csv_input(tmp_path, capsys):
     f = tmp_path / "points.csv"
-    f.write_text("penetration_mm,tilt_arcmin\n0.01,0\n0.02,\n0.05,1\n")
+    f.write_text("penetration_mm,tilt_arcmin\n0.01,0\n0.02,0\n0.05,1\n")
     out = run_json(capsys, ["--csv", str(f)])
     assert [p["penetration_mm"] for p in out["points"]] == [0.01, 0.02, 0.05]
     assert out["points"][1]["force_N"] == pytest.approx(104410, abs=1)
@@ -46,14 +46,15 @@ def test_csv_input(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("argv,pattern", [
-    (["--penetration-mm", "0.01", "--clearance-mm", "-0.05"], "clearance_m = -5e-05 m"),
-    (["--penetration-mm", "nan"], "penetration_mm = nan mm"),
-    (["--penetration-mm", "0.01", "--width-mm", "0"], "width_m = 0 m"),
-    (["--penetration-mm", "0.01", "--bearing-E-GPa", "-204"], "bearing_E_Pa = -2.04e\\+11 Pa"),
-    (["--penetration-mm", "0.01", "--clearance-mm", "50"], "clearance_m = 0.05 m.*wrong unit"),
+    (["--penetration-mm", "0.01", "--clearance-mm", "-0.05"], r"--clearance-mm = -0.05 mm: must be in \(0, 2\] mm"),
+    (["--penetration-mm", "nan"], "--penetration-mm = nan mm: must be finite"),
+    (["--penetration-mm", "0.01", "--width-mm", "0"], "--width-mm = 0 mm"),
+    (["--penetration-mm", "0.01", "--bearing-E-GPa", "-204"], "--bearing-E-GPa = -204 GPa"),
+    (["--penetration-mm", "0.01", "--clearance-mm", "50"], r"--clearance-mm = 50 mm: must be in \(0, 2\] mm"),
 ])
 def test_bad_input_clear_error(capsys, argv, pattern):
-    assert cli.main(argv) == 2
+    """Values are echoed as typed, with the unit typed (not converted to SI), in one line."""
+    assert top_cli.main(["law", *argv]) == 2
     err = capsys.readouterr().err
     assert "ringcontact law: error:" in err
     assert re.search(pattern, err), err
@@ -61,8 +62,8 @@ def test_bad_input_clear_error(capsys, argv, pattern):
 
 def test_bad_csv_files(tmp_path, capsys):
     missing = tmp_path / "nope.csv"
-    assert cli.main(["--csv", str(missing)]) == 2
-    assert "cannot read" in capsys.readouterr().err
+    assert top_cli.main(["law", "--csv", str(missing)]) == 2
+    assert "no such file" in capsys.readouterr().err
     bad = tmp_path / "bad.csv"
     bad.write_text("penetration_mm\n0.01\nabc\n")
     assert cli.main(["--csv", str(bad)]) == 2
@@ -71,6 +72,15 @@ def test_bad_csv_files(tmp_path, capsys):
     nohead.write_text("x,y\n1,2\n")
     assert cli.main(["--csv", str(nohead)]) == 2
     assert "penetration_mm" in capsys.readouterr().err
+    for text, word in (("penetration_mm,tilt_arcmin\n0.01,1\n0.02\n", "line 3: 1 cells"),       # ragged row
+                       ("penetration_mm,tilt_arcmin\n0.01,\n", "tilt_arcmin = '': not a number"),  # empty cell
+                       ("penetration_mm\n5\n", "penetration_mm = 5 mm: must be in [-1, 2] mm")):    # 5 mm typed
+        bad.write_text(text)
+        assert cli.main(["--csv", str(bad)]) == 2
+        assert word in capsys.readouterr().err
+    bad.write_text("penetration_mm\n" + "0.01\n" * 20001)                                         # too many rows
+    assert cli.main(["--csv", str(bad)]) == 2
+    assert "more than 20000 rows" in capsys.readouterr().err
 
 
 def test_top_level_command_dispatches_law(capsys):
@@ -131,6 +141,6 @@ def test_calibrated_law_flags_points_beyond_its_validity_and_keeps_its_geometry(
     assert [f[2] for f in flags] == [False, False, True, False, True, True]   # 1′ adds θ l0/2 at the edge
     assert all((f[3] is None) == f[2] for f in flags)
     assert cli.main(["--law", "calibrated:clamped-foundation", "--penetration-mm", "0.01", "--clearance-mm", "0.08"]) == 2
-    assert "clearance_mm = 0.08" in capsys.readouterr().err
+    assert "--clearance-mm = 0.08" in capsys.readouterr().err
     assert cli.main(["--law", "calibrated:no-such-law", "--penetration-mm", "0.01"]) == 2
     assert "available:" in capsys.readouterr().err

@@ -23,11 +23,12 @@ def test_point_json_and_tilt_about_y(capsys):
     assert rc == 0
     y = json.loads(out.out)
     # same magnitudes, vectors rotated by 90 deg about x (contact-laws.md §1: M_y = -x F_z, M_z = x F_y)
-    assert y["force_n"] == pytest.approx(z["force_n"], rel=1e-12)
-    assert z["force_y_n"] < 0 and abs(z["force_z_n"]) < 1e-9 * z["force_n"]
-    assert y["force_z_n"] == pytest.approx(z["force_y_n"], rel=1e-12) and abs(y["force_y_n"]) < 1e-9 * y["force_n"]
-    assert z["moment_z_nm"] < 0 and y["moment_y_nm"] == pytest.approx(z["moment_z_nm"], rel=1e-12)
-    assert math.isfinite(z["force_n"]) and z["ndofs"] > 0
+    assert y["force_N"] == pytest.approx(z["force_N"], rel=1e-12)
+    assert z["force_y_N"] < 0 and abs(z["force_z_N"]) < 1e-9 * z["force_N"]
+    assert y["force_z_N"] == pytest.approx(z["force_y_N"], rel=1e-12) and abs(y["force_y_N"]) < 1e-9 * y["force_N"]
+    assert z["moment_z_Nm"] < 0 and y["moment_y_Nm"] == pytest.approx(z["moment_z_Nm"], rel=1e-12)
+    assert math.isfinite(z["force_N"]) and z["ndofs"] > 0
+    assert not any(k.endswith(("_n", "_nm", "_pa")) for k in z), "JSON keys carry the unit symbol: force_N, moment_Nm"
 
 
 @pytest.mark.parametrize("args, word", [
@@ -36,6 +37,7 @@ def test_point_json_and_tilt_about_y(capsys):
     (["point", "nan", "--level", "L0", "--no-cache"], "penetration"),
 ])
 def test_point_errors_are_clear(capsys, args, word):
-    rc = cli3d.main(args)
+    from reports.cli import main
+    rc = main(["fem3d", *args])
     err = capsys.readouterr().err
     assert rc == 2 and word in err

@@ -24,18 +24,20 @@ def test_fem_point_json_is_si_and_consistent(capsys):
     assert point_main(["0.01", "--h-mm", "4", "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
     assert rec["penetration_m"] == pytest.approx(1e-5)
-    assert rec["force_n"] > 0 and 0 < rec["half_angle_rad"] < np.pi / 2
+    assert rec["force_N"] > 0 and 0 < rec["half_angle_rad"] < np.pi / 2
+    assert not any(k.endswith(("_n", "_nm", "_pa")) for k in rec), "JSON keys carry the unit symbol: force_N"
     # force = integral of the arc pressure (half model, symmetric): F = 2 l0 R_s ∫ p cos φ dφ
     # (P1 multipliers: trapezoidal rule is exact for p·cos φ up to O(h²))
-    phi, p = np.array(rec["arc_phi_rad"]), np.array(rec["arc_pressure_pa"])
+    phi, p = np.array(rec["arc_phi_rad"]), np.array(rec["arc_pressure_Pa"])
     f = 2 * 0.03 * 0.10005 * np.trapezoid(p * np.cos(phi), phi)
-    assert f == pytest.approx(rec["force_n"], rel=5e-3)
+    assert f == pytest.approx(rec["force_N"], rel=5e-3)
 
 
 def test_fem_point_bad_input_gives_message_and_code(capsys):
-    assert point_main(["nan", "--h-mm", "4"]) == 2
-    assert "penetration_m" in capsys.readouterr().err
-    assert point_main(["0.01", "--scene", "nonsense"]) == 2
+    from reports.cli import main
+    assert main(["fem-point", "nan", "--h-mm", "4"]) == 2
+    assert "penetration_mm = nan mm: must be finite" in capsys.readouterr().err
+    assert main(["fem-point", "0.01", "--scene", "nonsense"]) == 2
 
 
 def test_fem_check_reports_no_change(capsys):

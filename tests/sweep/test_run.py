@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from contact.errors import InputError
-from sweep import Progress, ResultStore, Task, load_sweep, run_sweep
+from sweep import Progress, ResultStore, Task, load_sweep, run_status, run_sweep
 from sweep_helpers import calls as _calls, failing_task, square_tasks as _tasks
 
 
@@ -45,11 +45,14 @@ def test_interrupted_sweep_resumes_without_recomputing(dirs):
     st = ResultStore(store)
     done = [t.key for t in tasks if st.check(t.key, t.params)[0] == "done"]
     assert len(done) == 2
+    status = run_status(store)                      # the directory says it is not finished
+    assert not status["complete"] and "interrupted" in status["why"] and status["done"] == 2
     before = {t.params["x"]: _calls(calls, t.params["x"]) for t in tasks}
     with cf.ThreadPoolExecutor(max_workers=2) as ex:
         s = run_sweep(tasks, store, executor=ex, progress=False)
     assert sorted(s.reused) == sorted(done)
     assert sorted(s.computed) == sorted(set(t.key for t in tasks) - set(done))
+    assert run_status(store)["complete"]
     for t in tasks:
         x = t.params["x"]
         if t.key in done:
@@ -84,6 +87,9 @@ def test_failed_point_reported_others_kept(tmp_path):
     assert list(s.failed) == ["x2"] and "boom at 2" in s.failed["x2"]
     assert sorted(s.computed) == ["x1", "x3"]
     assert ResultStore(tmp_path).check("x2")[0] == "missing"
+    status = run_status(tmp_path)
+    assert not status["complete"] and "incomplete" in status["why"]
+    assert json.loads((tmp_path / "status.json").read_text())["failed"] == ["x2"]
 
 
 def test_bad_tasks_rejected(tmp_path):

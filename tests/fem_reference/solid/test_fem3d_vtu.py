@@ -56,4 +56,21 @@ def test_bad_input_and_no_partial_file(tmp_path):
     with pytest.raises(InputError, match="non-finite"):
         write_pressure_vtu(tmp_path / "bad.vtu", R(), G())
     assert list(tmp_path.iterdir()) == []
-    assert cli3d.main(["vtu", "0.01", "--level", "L9", "--out", str(tmp_path / "x.vtu")]) == 2
+    with pytest.raises(SystemExit) as exc:
+        cli3d.main(["vtu", "0.01", "--level", "L9", "--out", str(tmp_path / "x.vtu")])
+    assert exc.value.code == 2
+
+
+def test_corrupt_cached_level_is_rebuilt(tmp_path):
+    """A cached compliance that does not load (truncated) is rebuilt and rewritten, not a traceback."""
+    from fem_reference.solid.geometry import RingPair3D
+    from fem_reference.solid.mesh import LEVELS
+    from fem_reference.solid.sweep import compliance_path, get_compliance
+
+    geom, level = RingPair3D(), LEVELS["L0"]
+    path = compliance_path(geom, level, "clamped", tmp_path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(b"PK\x03\x04 truncated")
+    comp = get_compliance(geom, level, "clamped", cache=tmp_path)
+    assert comp.G.shape[0] == comp.G.shape[1] > 0
+    assert get_compliance(geom, level, "clamped", cache=tmp_path).G.shape == comp.G.shape   # the rewritten file loads

@@ -122,7 +122,7 @@ def test_simulate_job_writes_files_and_rejects_bad_input(tmp_path, capsys):
     assert not list(out.glob(".*.tmp"))
     rc = main(["simulate", "--speed-rpm", "10500", "--clearance-mm", "-1", "--out", str(out)])
     assert rc == 2
-    assert "clearance_mm = -1 mm" in capsys.readouterr().err
+    assert "--clearance-mm = -1 mm" in capsys.readouterr().err
 
 
 def test_simulate_steady_record_is_the_detected_steady_state(tmp_path, table4):

@@ -68,8 +68,8 @@ def test_study_cli_cascade_small_then_resume(tmp_path, capsys):
 
 
 def test_study_cli_bad_input_names_parameter(capsys):
-    from reports.cli.study import main
+    from reports.cli import main
 
-    assert main(["cascade", "--rpm-max", "-5", "--out", "/tmp/never-written"]) == 2
+    assert main(["study", "cascade", "--rpm-max", "-5", "--out", "/tmp/never-written"]) == 2
     err = capsys.readouterr().err
-    assert "rpm_max" in err and "-5" in err
+    assert "--rpm-max = -5 rpm" in err and len(err.splitlines()) == 1

@@ -1,0 +1,94 @@
+"""Plausible ranges of every physical input, in the unit the user types it (one table, checked at the edge).
+
+A value outside its range is refused with :class:`~contact.errors.InputError` naming the input, the
+value as typed with its unit and the range: a 5 mm penetration, a 200e9 GPa modulus or 1e30 rpm is a
+typing or unit mistake, not a question the suite can answer. The ranges are wide on purpose (they
+catch the absurd, not the unusual); the reason for each bound is the last field of its row.
+``docs`` and ``ringcontact --ranges`` print this table.
+"""
+from __future__ import annotations
+
+import math
+
+from contact.errors import InputError
+
+# name (with its unit) -> (low, high, unit, low allowed?, high allowed?, why the bounds)
+RANGES: dict[str, tuple[float, float, str, bool, bool, str]] = {
+    # contact: command line
+    "penetration_mm": (-1.0, 2.0, "mm", True, True, "20x past the paper's 0.05 mm clearance on a 10 mm ring; negative = no contact"),
+    "tilt_arcmin": (-600.0, 600.0, "arcmin", True, True, "10 deg: beyond any bearing misalignment"),
+    "clearance_mm": (0.0, 2.0, "mm", False, True, "radial clearance of a bearing seat (paper 0.01-0.08 mm)"),
+    "width_mm": (1.0, 500.0, "mm", True, True, "ring width l0 (paper 30 mm)"),
+    "E_GPa": (1.0, 1000.0, "GPa", True, True, "polymers to tungsten carbide"),
+    "nu": (-1.0, 0.5, "-", False, False, "Poisson's ratio of an isotropic solid"),
+    "h_mm": (0.1, 10.0, "mm", True, True, "FEM contact element size: finer does not finish, coarser is not a mesh of a 10 mm ring"),
+    "scale": (-1e6, 1e6, "-", True, True, "displacement magnification for viewing"),
+    "tol": (0.0, 1.0, "-", False, True, "relative difference"),
+    # rotor: command line
+    "speed_rpm": (0.0, 200000.0, "rpm", True, True, "200 000 rpm: beyond any aero-engine spool"),
+    "rpm_max": (0.0, 200000.0, "rpm", False, True, "top of a speed range"),
+    "run_speed_rpm": (0.0, 200000.0, "rpm", False, True, "spin speed of a time integration (> 0: the step is a fraction of a revolution)"),
+    "revolutions": (0.0, 100000.0, "rev", False, True, "a run longer than 1e5 revolutions does not fit a working day"),
+    "duration_s": (0.0, 3600.0, "s", False, True, "run-up duration: an hour at most"),
+    "mu": (0.0, 2.0, "-", True, True, "dry friction coefficient"),
+    "preload_N": (0.0, 1e7, "N", True, True, "nut preload per face: 10 MN crushes any bearing"),
+    "misalignment_mm": (0.0, 50.0, "mm", True, True, "misalignment offset δ (paper 0.5-3 mm)"),
+    # rotor scene files (TOML keys)
+    "density_kg_m3": (0.0, 30000.0, "kg/m^3", True, True, "0 (massless model) to osmium"),
+    "youngs_modulus_gpa": (1.0, 1000.0, "GPa", True, True, "polymers to tungsten carbide"),
+    "bearing_modulus_gpa": (1.0, 1000.0, "GPa", True, True, "polymers to tungsten carbide"),
+    "support_modulus_gpa": (1.0, 1000.0, "GPa", True, True, "polymers to tungsten carbide"),
+    "x_mm": (-100000.0, 100000.0, "mm", True, True, "a rotor shorter than 200 m"),
+    "outer_diameter_mm": (1.0, 5000.0, "mm", True, True, "a shaft, not a wire or a building"),
+    "inner_diameter_mm": (0.0, 5000.0, "mm", True, True, "bore of a hollow shaft"),
+    "ring_width_mm": (1.0, 500.0, "mm", True, True, "ring width l0 (paper 30 mm)"),
+    "mass_kg": (0.0, 1e6, "kg", True, True, "up to a 1000 t turbine-generator rotor part"),
+    "shaft_mass_kg": (0.0, 1e6, "kg", True, True, "up to a 1000 t rotor part"),
+    "stiffness_n_per_m": (0.0, 1e13, "N/m", True, True, "stiffer than 1e13 N/m is a rigid boundary: fix the DOF"),
+    "max_speed_rpm": (0.0, 200000.0, "rpm", False, True, "200 000 rpm: beyond any aero-engine spool"),
+    "friction_coefficient": (0.0, 2.0, "-", True, True, "dry friction coefficient"),
+    "preload_n": (0.0, 1e7, "N", True, True, "nut preload per face"),
+    "offset_mm": (-50.0, 50.0, "mm", True, True, "misalignment offset δ"),
+    "lever_mm": (0.0, 100000.0, "mm", True, True, "a lever shorter than the rotor"),
+    "speed_points": (1, 10000, "-", True, True, "speeds of a linear sweep"),
+    "modes": (1, 200, "-", True, True, "modes of a rotor model"),
+    "elements": (1, 64, "-", True, True, "elements per shaft segment (64 resolve any mode below 1 MHz)"),
+}
+
+
+def range_text(name: str) -> str:
+    """``"in [-1, 2] mm"`` for ``name`` (open ends shown with parentheses)."""
+    lo, hi, unit, lo_in, hi_in, _ = RANGES[name]
+    u = "" if unit == "-" else f" {unit}"
+    return f"in {'[' if lo_in else '('}{lo:g}, {hi:g}{']' if hi_in else ')'}{u}"
+
+
+def inside(name: str, value: float) -> bool:
+    """True if ``value`` is finite and inside the plausible range of ``name``."""
+    lo, hi, _, lo_in, hi_in, _ = RANGES[name]
+    if not math.isfinite(value):
+        return False
+    return (value >= lo if lo_in else value > lo) and (value <= hi if hi_in else value < hi)
+
+
+def check(name: str, value: float, shown: str | None = None, *, label: str | None = None) -> float:
+    """Return ``value`` if plausible, else raise :class:`InputError` "``label = shown unit: must be in [..]``".
+
+    ``shown`` is the value as the user typed it (default: ``value`` formatted), ``label`` the name the
+    user knows (a flag, a TOML key; default ``name``).
+    """
+    if inside(name, value):
+        return value
+    unit = RANGES[name][2]
+    typed = f"{value:g}" if shown is None else shown
+    head = f"{label or name} = {typed}" + ("" if unit == "-" else f" {unit}")
+    why = "must be finite" if not math.isfinite(value) else f"must be {range_text(name)}"
+    raise InputError(f"{head}: {why} ({RANGES[name][5]})")
+
+
+def check_field(where: str, key: str, value, shown: str, si) -> None:
+    """A file field (a scene's TOML key): finite, and inside ``RANGES[key]`` when the key has a range."""
+    if isinstance(si, float) and not math.isfinite(si):
+        raise InputError(f"{where}.{key} = {shown}: must be finite")
+    if key in RANGES and isinstance(value, (int, float)) and not isinstance(value, bool):
+        check(key, float(value), shown, label=f"{where}.{key}")

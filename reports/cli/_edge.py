@@ -1,0 +1,187 @@
+"""What every job's command line shares: one error format, typed-input checks, output checks.
+
+* :class:`Parser`: an ``argparse`` parser whose errors are ONE line on stderr and exit status 2:
+  ``ringcontact JOB: error: --flag = VALUE UNIT: what is allowed``.
+* :func:`quantity` / :func:`count`: ``type=`` callables that parse a number, refuse NaN/inf and
+  values outside its plausible range (:mod:`contact.plausible`), and echo the value as typed.
+* :func:`out_dir` / :func:`out_file` / :func:`in_file` / :func:`in_dir`: outputs are checked before
+  any computing (a probe file is created and removed), inputs must exist and be of the right kind.
+* :func:`fail`: the one line for a :class:`~contact.errors.RingContactError` (exit status from the
+  exception class: 2 for bad input, 1 for a failed computation).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import re
+import sys
+import tempfile
+from pathlib import Path
+
+from contact import plausible
+from contact.errors import RingContactError
+
+_ARG = re.compile(r"^argument ([^:]+): (.*)$", re.S)
+
+
+class Parser(argparse.ArgumentParser):
+    """``argparse.ArgumentParser`` with one-line errors (exit 2) and ``--help`` unchanged."""
+
+    def error(self, message: str):   # noqa: D401 - argparse hook
+        m = _ARG.match(message)
+        if m:
+            flag, rest = m.group(1).split("/")[0], m.group(2)
+            message = f"{flag} = {rest[1:]}" if rest.startswith("=") else f"{flag}: {rest}"
+        message = " ".join(message.split())
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def fail(prog: str, exc: BaseException) -> int:
+    """Print ``PROG: error: MESSAGE`` (one line) and return the exception's exit status."""
+    print(f"{prog}: error: {' '.join(str(exc).split())}", file=sys.stderr)
+    return int(getattr(exc, "exit_status", 2))
+
+
+def quantity(name: str):
+    """A ``type=`` for a physical input whose plausible range is ``contact.plausible.RANGES[name]``."""
+    unit = plausible.RANGES[name][2]
+    u = "" if unit == "-" else f" {unit}"
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"= {text}{u}: not a number") from None
+        if not plausible.inside(name, value):
+            why = "must be finite" if not math.isfinite(value) else f"must be {plausible.range_text(name)}"
+            raise argparse.ArgumentTypeError(f"= {text}{u}: {why}")
+        return value
+    parse.__name__ = name
+    return parse
+
+
+def count(lo: int, hi: int, what: str = ""):
+    """A ``type=`` for a whole number in ``[lo, hi]`` (``what`` names the unit, e.g. 'points')."""
+    w = f" {what}" if what else ""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"= {text}{w}: not a whole number") from None
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError(f"= {text}{w}: must be in [{lo}, {hi}]")
+        return value
+    parse.__name__ = "count"
+    return parse
+
+
+def _probe(path: Path, kind: str) -> Path:
+    """Raise ``ArgumentTypeError`` unless ``path`` can be written as a ``kind`` ('dir' or 'file')."""
+    shown = str(path)
+    if not shown.strip():
+        raise argparse.ArgumentTypeError(f"= '': must name a {'directory' if kind == 'dir' else 'file'}")
+    if path.exists():
+        if kind == "dir" and not path.is_dir():
+            raise argparse.ArgumentTypeError(f"= {shown}: is a file, a directory is needed")
+        if kind == "file" and path.is_dir():
+            raise argparse.ArgumentTypeError(f"= {shown}: is a directory, a file name is needed")
+    base = path if (kind == "dir" and path.is_dir()) else path.parent
+    while not base.exists():
+        base = base.parent
+    if not base.is_dir():
+        raise argparse.ArgumentTypeError(f"= {shown}: {base} is a file, not a directory")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".ringcontact-probe-", dir=base)
+        os.close(fd)
+        os.unlink(tmp)
+    except OSError as exc:
+        raise argparse.ArgumentTypeError(f"= {shown}: cannot write in {base} ({exc.strerror or exc})") from None
+    return path
+
+
+def _named(text: str, what: str) -> str:
+    if not str(text).strip():
+        raise argparse.ArgumentTypeError(f"= '': must name a {what}")
+    return str(text)
+
+
+def out_dir(text: str) -> Path:
+    """A ``type=`` for an output directory (created later by the job; checked writable now)."""
+    return _probe(Path(_named(text, "directory")), "dir")
+
+
+def out_file(text: str) -> Path:
+    """A ``type=`` for an output file."""
+    return _probe(Path(_named(text, "file")), "file")
+
+
+def out_prefix(text: str) -> str:
+    """A ``type=`` for an output PREFIX (PREFIX.png, PREFIX.svg ...)."""
+    if _named(text, "file prefix").endswith(("/", ".")) or Path(text).is_dir():
+        raise argparse.ArgumentTypeError(f"= {text}: a prefix needs a file name part (e.g. {text.rstrip('/')}/campbell)")
+    _probe(Path(text + ".png"), "file")
+    return text
+
+
+def in_file(text: str) -> Path:
+    """A ``type=`` for an input file that must exist and be a regular file."""
+    p = Path(text)
+    if not text.strip():
+        raise argparse.ArgumentTypeError("= '': must name a file")
+    if not p.exists():
+        raise argparse.ArgumentTypeError(f"= {text}: no such file")
+    if p.is_dir():
+        raise argparse.ArgumentTypeError(f"= {text}: is a directory, a file is needed")
+    return p
+
+
+def in_dir(text: str) -> Path:
+    """A ``type=`` for an input directory that must exist."""
+    p = Path(text)
+    if not text.strip():
+        raise argparse.ArgumentTypeError("= '': must name a directory")
+    if not p.is_dir():
+        raise argparse.ArgumentTypeError(f"= {text}: {'is a file' if p.exists() else 'no such directory'}, "
+                                         "a directory is needed")
+    return p
+
+
+def guard(prog: str, func, *args) -> int:
+    """Run ``func(*args)`` and turn a suite error into the one-line message and its exit status."""
+    try:
+        return int(func(*args) or 0)
+    except RingContactError as exc:
+        return fail(prog, exc)
+
+
+_UNIT_SUFFIX = {"_n": "_N", "_nm": "_Nm", "_pa": "_Pa", "_n_m": "_N_m"}
+
+
+def unit_keys(value):
+    """The JSON key convention of every job: ``force_N``, ``moment_Nm``, ``pressure_Pa`` (SI symbols' case).
+
+    Datasets store ``force_n``/``moment_nm`` (their committed schema); the command line shows the
+    same fields with the unit written as its symbol, so ``nm`` can never read as nanometres.
+    """
+    if isinstance(value, dict):
+        out = {}
+        for k, v in value.items():
+            for old, new in _UNIT_SUFFIX.items():
+                if isinstance(k, str) and k.endswith(old):
+                    k = k[: -len(old)] + new
+                    break
+            out[k] = unit_keys(v)
+        return out
+    if isinstance(value, list):
+        return [unit_keys(v) for v in value]
+    return value
+
+
+def check_arg(parser: argparse.ArgumentParser, flag: str, kind, text: str):
+    """Apply a ``type=`` check (``out_dir`` …) after parsing, with the parser's one-line error."""
+    try:
+        return kind(str(text))
+    except argparse.ArgumentTypeError as exc:
+        parser.error(f"argument {flag}: {exc}")

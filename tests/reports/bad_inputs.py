@@ -1,0 +1,398 @@
+"""The bad-input cases of every ``ringcontact`` job, and the harness that runs one in-process.
+
+Each case is ``(id, argv, echo)``: ``argv`` may hold placeholders filled by :func:`make_inputs`
+(``{tmp}``: a fresh directory per case, ``{file}``: a regular file, ``{dir}``: an existing empty
+directory, ``{ragged}`` …); ``echo`` (or None) must appear in the one-line message: the value as
+the user typed it, with its unit. Used by tests/reports/test_bad_inputs.py.
+"""
+from __future__ import annotations
+
+import json
+import os
+import signal
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+UNWRITABLE_DIRS = ["/proc/ringcontact-out", "{file}/sub", ""]      # a file where a directory is meant, …
+UNWRITABLE_FILES = ["/proc/ringcontact-out.x", "{file}/sub.x", "{dir}", ""]
+NUMBERS_BAD = ["nan", "inf", "-inf", "1e30", "abc"]
+
+
+def _num_cases(prefix: str, base: list[str], flag: str, values: list[str], unit: str) -> list:
+    # a value that starts with '-' is typed --flag=-1e6 (argparse reads a bare '-1e6' as an option)
+    return [(f"{prefix} {flag} {v}", [*base, f"{flag}={v}"] if v.startswith("-") else [*base, flag, v],
+             f"{v} {unit}" if unit and v else None) for v in values]
+
+
+def _out_cases(prefix: str, base: list[str], flag: str, targets: list[str]) -> list:
+    return [(f"{prefix} {flag} {t or 'EMPTY'}", [*base, flag, t], None) for t in targets]
+
+
+def _law_cases() -> list:
+    b, c = ["law", "--penetration-mm", "0.01"], []
+    c += _num_cases("law", ["law"], "--penetration-mm", NUMBERS_BAD + ["5", "-5", "2.5"], "mm")
+    c += _num_cases("law", b, "--tilt-arcmin", NUMBERS_BAD + ["1e6", "-1e6"], "arcmin")
+    c += _num_cases("law", b, "--clearance-mm", NUMBERS_BAD + ["0", "-0.05", "50"], "mm")
+    c += _num_cases("law", b, "--width-mm", NUMBERS_BAD + ["0", "-30", "1e5"], "mm")
+    for f in ("--bearing-E-GPa", "--support-E-GPa"):
+        c += _num_cases("law", b, f, NUMBERS_BAD + ["0", "-204", "200e9"], "GPa")
+    for f in ("--bearing-nu", "--support-nu"):
+        c += _num_cases("law", b, f, ["nan", "0.5", "0.7", "-1.5", "abc"], "")
+    c += [("law --law nosuch", [*b, "--law", "nosuch"], "nosuch"),
+          ("law --law calibrated:nosuch", [*b, "--law", "calibrated:nosuch"], "nosuch"),
+          ("law --law calibrated:", [*b, "--law", "calibrated:"], None),
+          ("law --law EMPTY", [*b, "--law", ""], None),
+          ("law --modulus bad", [*b, "--modulus", "bad"], None),
+          ("law --penetration-at middle", [*b, "--penetration-at", "middle"], None),
+          ("law calibrated with another clearance", [*b, "--law", "calibrated:clamped-foundation", "--clearance-mm",
+                                                     "0.08"], "0.08"),
+          ("law calibrated 5 mm", ["law", "--law", "calibrated:clamped-foundation", "--penetration-mm", "5"], "5 mm"),
+          ("law no points", ["law"], None),
+          ("law both sources", [*b, "--csv", "{good_csv}"], None),
+          ("law grid too large", ["law", "--penetration-mm", *[f"{0.001 * i:g}" for i in range(1, 201)],
+                                  "--tilt-arcmin", *[f"{0.01 * i:g}" for i in range(200)]], None)]
+    for name in ("ragged", "empty_cell", "header_only", "no_column", "nan_csv", "deep_csv", "binary", "huge_csv",
+                 "text_value", "missing", "dir"):
+        c.append((f"law --csv {name}", ["law", "--csv", "{" + name + "}"], None))
+    return c
+
+
+def _fem_cases() -> list:
+    c = []
+    for job in ("fem-point", "fem-vtu"):
+        tail = ["{tmp}/p.vtu"] if job == "fem-vtu" else []
+        for v in NUMBERS_BAD + ["5", "-5"]:
+            c.append((f"{job} penetration {v}", [job, "--", v, *tail] if v.startswith("-") else [job, v, *tail],
+                      f"{v} mm" if v != "abc" else "abc"))
+        b = [job, "0.01", *tail]
+        c += _num_cases(job, b, "--h-mm", NUMBERS_BAD + ["0", "-1", "1e-6", "100"], "mm")
+        c += [(f"{job} --scene nosuch", [*b, "--scene", "nosuch"], "nosuch"),
+              (f"{job} --scene persson-abc", [*b, "--scene", "persson-abc"], "persson-abc"),
+              (f"{job} --order 3", [*b, "--order", "3"], None),
+              (f"{job} --order abc", [*b, "--order", "abc"], None)]
+    c += _out_cases("fem-vtu", ["fem-vtu", "0.01"], "", UNWRITABLE_FILES)
+    c += _num_cases("fem-vtu", ["fem-vtu", "0.01", "{tmp}/p.vtu"], "--scale", ["nan", "inf", "-inf", "1e30", "abc"], "")
+    c += _out_cases("fem-sweep", ["fem-sweep"], "--out", UNWRITABLE_FILES)
+    c += [("fem-sweep extra", ["fem-sweep", "now"], None)]
+    b = ["fem-check"]
+    c += _num_cases("fem-check", b, "--points", ["-1", "0", "1000000", "abc", "2.5"], "")
+    c += _num_cases("fem-check", b, "--tol", ["nan", "-1", "abc", "inf"], "")
+    c += [("fem-check --scene nosuch", [*b, "--scene", "nosuch"], "nosuch")]
+    for job, out in (("fem-check", None), ("fem-report", "--out")):
+        for name in ("missing", "dir", "corrupt_json", "not_json", "dataset3d", "edited_points", "edited_meta",
+                     "empty_file"):
+            argv = [job, "--path", "{" + name + "}"] + ([out, "{tmp}/o"] if out else [])
+            c.append((f"{job} --path {name}", argv, None))
+    c += _out_cases("fem-report", ["fem-report"], "--out", UNWRITABLE_DIRS)
+    c += _num_cases("fem-paper", ["fem-paper", "--quiet", "--out", "{tmp}/o"], "--h-mm",
+                    NUMBERS_BAD + ["0", "-1", "1e-6"], "mm")
+    c += _out_cases("fem-paper", ["fem-paper", "--quiet"], "--out", UNWRITABLE_DIRS)
+    return c
+
+
+def _fem3d_cases() -> list:
+    c = []
+    for sub in ("point", "vtu"):
+        tail = ["--out", "{tmp}/p.vtu"] if sub == "vtu" else []
+        for v in NUMBERS_BAD + ["5", "-5"]:
+            c.append((f"fem3d {sub} penetration {v}", ["fem3d", sub, *tail, "--", v] if v.startswith("-")
+                      else ["fem3d", sub, v, *tail], f"{v} mm" if v != "abc" else "abc"))
+        b = ["fem3d", sub, "0.02", *tail]
+        c += _num_cases(f"fem3d {sub}", b, "--tilt-arcmin", NUMBERS_BAD + ["1e6", "-1e6"], "arcmin")
+        c += [(f"fem3d {sub} --level L9", [*b, "--level", "L9"], "L9"),
+              (f"fem3d {sub} --scene nosuch", [*b, "--scene", "nosuch"], "nosuch")]
+    c += [("fem3d point --tilt-axis x", ["fem3d", "point", "0.02", "--tilt-axis", "x"], None),
+          ("fem3d vtu no --out", ["fem3d", "vtu", "0.02"], None),
+          ("fem3d nosuch", ["fem3d", "nosuch"], None)]
+    c += _out_cases("fem3d vtu", ["fem3d", "vtu", "0.02"], "--out", UNWRITABLE_FILES)
+    c += _num_cases("fem3d sweep", ["fem3d", "sweep", "--out", "{tmp}/d.json"], "--workers",
+                    ["0", "-1", "1000", "abc"], "")
+    c += _out_cases("fem3d sweep", ["fem3d", "sweep"], "--out", UNWRITABLE_FILES)
+    c += _num_cases("fem3d check", ["fem3d", "check"], "--points", ["-1", "0", "1000000", "abc"], "")
+    c += _num_cases("fem3d check", ["fem3d", "check"], "--tol", ["nan", "-1"], "")
+    for sub in ("check", "report"):
+        for name in ("missing", "dir", "corrupt_json", "dataset2d", "edited_meta", "empty_file"):
+            argv = ["fem3d", sub, "--path", "{" + name + "}"] + (["--out", "{tmp}/o"] if sub == "report" else [])
+            c.append((f"fem3d {sub} --path {name}", argv, None))
+    c += _out_cases("fem3d report", ["fem3d", "report"], "--out", UNWRITABLE_DIRS)
+    return c
+
+
+def _calibrate_cases() -> list:
+    c = [(f"calibrate --dataset {n}", ["calibrate", "--dataset", "{" + n + "}", "--out", "{tmp}/cal"], None)
+         for n in ("missing", "dir", "corrupt_json", "not_json", "edited_points", "empty_file")]
+    c += _out_cases("calibrate", ["calibrate"], "--out", UNWRITABLE_DIRS)
+    c += [("calibrate --check missing dir", ["calibrate", "--check", "--out", "{tmp}/none"], None)]
+    return c
+
+
+def _rotor_cases() -> list:
+    c = []
+    for sub in ("modes", "campbell", "critical-speeds", "unbalance"):
+        for name in ("nosuch_scene", "bad_toml", "huge_modulus", "thin_shaft", "neg_density", "empty_file", "dir",
+                     "binary", "unknown_field"):
+            c.append((f"rotor {sub} scene {name}", ["rotor", sub, "{" + name + "}"], None))
+        b = ["rotor", sub, "verify-jeffcott"]
+        c += _num_cases(f"rotor {sub}", b, "--elements", ["0", "-1", "100000", "abc"], "")
+        c += _num_cases(f"rotor {sub}", b, "--modes", ["0", "1000000", "abc"], "")
+        if sub != "modes":
+            c += _num_cases(f"rotor {sub}", b, "--max-rpm", NUMBERS_BAD + ["0", "-1"], "rpm")
+    b = ["rotor", "modes", "verify-jeffcott"]
+    c += _num_cases("rotor modes", b, "--speed-rpm", NUMBERS_BAD + ["-1"], "rpm")
+    for sub in ("campbell", "unbalance"):
+        b = ["rotor", sub, "verify-jeffcott"]
+        c += _num_cases(f"rotor {sub}", b, "--points", ["0", "-1", "1000000", "abc"], "")
+        c += _out_cases(f"rotor {sub}", b, "--plot", ["/proc/ringcontact", "{file}/sub", "{dir}/", ""])
+    c += _num_cases("rotor critical-speeds", ["rotor", "critical-speeds", "verify-jeffcott"], "--orders",
+                    ["0", "-1", "1000000", "abc"], "")
+    c += [("rotor unbalance --order 3", ["rotor", "unbalance", "verify-jeffcott", "--order", "3"], None),
+          ("rotor unbalance --nodes nosuch", ["rotor", "unbalance", "verify-jeffcott", "--nodes", "nosuch"], "nosuch"),
+          ("rotor nosuch", ["rotor", "nosuch"], None), ("rotor no sub", ["rotor"], None)]
+    c += _out_cases("rotor report", ["rotor", "report"], "--out", UNWRITABLE_DIRS)
+    return c
+
+
+def _simulate_cases() -> list:
+    b, c = ["simulate", "--speed-rpm", "10500", "--out", "{tmp}/o"], []
+    c += _num_cases("simulate", ["simulate", "--out", "{tmp}/o"], "--speed-rpm", NUMBERS_BAD + ["-1", "0"], "rpm")
+    c += _num_cases("simulate", b, "--revolutions", NUMBERS_BAD + ["0", "-1"], "rev")
+    c += _num_cases("simulate", b, "--steps-per-rev", ["0", "-1", "1000000000", "abc"], "")
+    c += _num_cases("simulate", b, "--record-per-rev", ["0", "-1", "100000", "abc"], "")
+    c += _num_cases("simulate", b, "--mu", NUMBERS_BAD + ["-0.3", "5"], "")
+    c += _num_cases("simulate", b, "--preload-N", NUMBERS_BAD + ["-1"], "N")
+    c += _num_cases("simulate", b, "--clearance-mm", NUMBERS_BAD + ["0", "-1", "50"], "mm")
+    c += _num_cases("simulate", b, "--misalignment-mm", NUMBERS_BAD + ["-1", "500"], "mm")
+    c += [("simulate --scheme x", [*b, "--scheme", "x"], None),
+          ("simulate --dofs nosuch", [*b, "--dofs", "nosuch.y"], "nosuch"),
+          ("simulate --law nosuch", [*b, "--law", "nosuch"], "nosuch"),
+          ("simulate --law calibrated:nosuch", [*b, "--law", "calibrated:nosuch"], "nosuch"),
+          ("simulate --steady reference", [*b, "--steady", "--scheme", "reference"], None),
+          ("simulate no speed", ["simulate", "--out", "{tmp}/o"], None)]
+    for name in ("nosuch_scene", "bad_toml", "huge_modulus", "thin_shaft"):
+        c.append((f"simulate --scene {name}", [*b, "--scene", "{" + name + "}"], None))
+    c += _out_cases("simulate", ["simulate", "--speed-rpm", "10500"], "--out", UNWRITABLE_DIRS)
+    return c
+
+
+def _study_cases() -> list:
+    c = []
+    for sub in ("cascade", "point", "params", "testrig", "map", "runup"):
+        b = ["study", sub, "--out", "{tmp}/o", "--no-progress"]
+        c += _num_cases(f"study {sub}", b, "--workers", ["0", "-1", "1000", "abc"], "")
+        c += _num_cases(f"study {sub}", b, "--steps-per-rev", ["0", "1000000000", "abc"], "")
+        c += _num_cases(f"study {sub}", b, "--max-revs", ["0", "-5"], "")
+        c += _num_cases(f"study {sub}", b, "--elements", ["0", "100000"], "")
+        c += [(f"study {sub} --scene nosuch", [*b, "--scene", "nosuch"], "nosuch"),
+              (f"study {sub} --scene huge_modulus", [*b, "--scene", "{huge_modulus}"], None)]
+        c += _out_cases(f"study {sub}", ["study", sub, "--no-progress"], "--out", UNWRITABLE_DIRS)
+        c += _out_cases(f"study {sub}", ["study", sub, "--no-progress", "--out", "{tmp}/o"], "--figures",
+                        ["/proc/ringcontact-figs", "{file}/sub"])
+    for sub in ("cascade", "params", "map"):
+        b = ["study", sub, "--out", "{tmp}/o", "--no-progress"]
+        c += _num_cases(f"study {sub}", b, "--points", ["0", "-1", "1000000", "abc"], "")
+        c += _num_cases(f"study {sub}", b, "--rpm-max", NUMBERS_BAD + ["0", "-1"], "rpm")
+    b = ["study", "cascade", "--out", "{tmp}/o", "--no-progress"]
+    c += _num_cases("study cascade", b, "--rpm-min", ["nan", "-1", "1e30"], "rpm")
+    c += _num_cases("study cascade", b, "--clearance-mm", ["nan", "0", "50"], "mm")
+    c += _num_cases("study cascade", b, "--misalignment-mm", ["-1", "nan"], "mm")
+    c += [("study cascade rpm-min > rpm-max", [*b, "--rpm-min", "5000", "--rpm-max", "3000"], None)]
+    c += _num_cases("study point", ["study", "point", "--out", "{tmp}/o"], "--speed-rpm", NUMBERS_BAD + ["-1"], "rpm")
+    for sub, flag in (("params", "--clearances-mm"), ("params", "--misalignments-mm"), ("map", "--clearances-mm")):
+        c += [(f"study {sub} {flag} {v}", ["study", sub, "--out", "{tmp}/o", flag, v], v)
+              for v in ("a,b", "-1", "nan", "1e30", ",")]
+    b = ["study", "runup", "--out", "{tmp}/o", "--no-progress"]
+    c += _num_cases("study runup", b, "--rpm-start", NUMBERS_BAD + ["-1"], "rpm")
+    c += _num_cases("study runup", b, "--rpm-end", ["nan", "1e30", "-1"], "rpm")
+    c += _num_cases("study runup", b, "--duration-s", NUMBERS_BAD + ["0", "-1"], "s")
+    c += [("study runup same speeds", [*b, "--rpm-start", "3000", "--rpm-end", "3000"], None)]
+    for name in ("missing", "file", "dir"):
+        c.append((f"study publish --cascade {name}", ["study", "publish", "--cascade", "{" + name + "}",
+                                                      "--out", "{tmp}/pub"], None))
+        c.append((f"study publish --map {name}", ["study", "publish", "--map", "{" + name + "}",
+                                                  "--out", "{tmp}/pub"], None))
+    c += [("study publish nothing", ["study", "publish", "--out", "{tmp}/pub"], None)]
+    c += _out_cases("study publish", ["study", "publish", "--cascade", "{dir}"], "--out",
+                    ["/proc/ringcontact-pub", "{file}/sub"])
+    b = ["study", "sensitivity", "--out", "{tmp}/o", "--no-progress"]
+    c += [("study sensitivity --variants nosuch", [*b, "--variants", "nosuch"], "nosuch"),
+          ("study sensitivity --workers 0", [*b, "--workers", "0"], None),
+          ("study sensitivity --report-only empty", [*b, "--report-only", "--report-out", "{tmp}/r"], None)]
+    c += _out_cases("study sensitivity", ["study", "sensitivity", "--no-progress", "--variants", "nosuch"], "--out",
+                    ["/proc/ringcontact-sens"])
+    c += [("study nosuch", ["study", "nosuch"], None), ("study no sub", ["study"], None)]
+    return c
+
+
+def _other_cases() -> list:
+    c = [("report --only nosuch", ["report", "--only", "nosuch", "--out", "{tmp}/r"], None),
+         ("nosuch job", ["nosuch"], None), ("empty job", [""], None)]
+    c += _out_cases("report", ["report"], "--out", UNWRITABLE_DIRS)
+    return c
+
+
+CASES = _law_cases() + _fem_cases() + _fem3d_cases() + _calibrate_cases() + _rotor_cases() + _simulate_cases() \
+    + _study_cases() + _other_cases()
+
+
+def _scene_variant(text: str, old: str, new: str) -> str:
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
+def make_inputs(root: Path) -> dict[str, str]:
+    """Create the malformed inputs under ``root``; return placeholder -> path."""
+    root.mkdir(parents=True, exist_ok=True)
+    p = {"file": root / "plain.txt", "dir": root / "empty-dir", "missing": root / "no-such-file"}
+    p["file"].write_text("hello\n")
+    p["dir"].mkdir(exist_ok=True)
+    csvs = {"good_csv": "penetration_mm,tilt_arcmin\n0.01,1\n", "ragged": "penetration_mm,tilt_arcmin\n0.01,1\n0.02\n",
+            "empty_cell": "penetration_mm,tilt_arcmin\n0.01,\n,1\n", "header_only": "penetration_mm\n",
+            "no_column": "pen,tilt\n0.01,1\n", "nan_csv": "penetration_mm\nnan\n", "deep_csv": "penetration_mm\n5\n",
+            "text_value": "penetration_mm\nten\n",
+            "huge_csv": "penetration_mm,tilt_arcmin\n" + "0.01,1\n" * 200_000}
+    for k, text in csvs.items():
+        p[k] = root / f"{k}.csv"
+        p[k].write_text(text)
+    p["binary"] = root / "binary.bin"
+    p["binary"].write_bytes(bytes(range(256)) * 4)
+    p["empty_file"] = root / "empty.json"
+    p["empty_file"].write_text("")
+    p["corrupt_json"] = root / "corrupt.json"
+    p["corrupt_json"].write_text('{"schema": "ringcontact/reference-dataset", "points": [')
+    p["not_json"] = root / "not.json"
+    p["not_json"].write_text("penetration,force\n1,2\n")
+    d2 = ROOT / "fem_reference" / "data" / "fem2d-reference.json"
+    d3 = ROOT / "fem_reference" / "data" / "3d" / "fem3d-reference.json"
+    p["dataset2d"], p["dataset3d"] = d2, d3
+    doc = json.loads(d2.read_text())
+    doc["points"][0]["force_n"] *= 1.01
+    p["edited_points"] = root / "edited-points.json"
+    p["edited_points"].write_text(json.dumps(doc))
+    doc = json.loads(d3.read_text())
+    doc["metadata"]["edited"] = "clearance changed by hand"
+    p["edited_meta"] = root / "edited-meta.json"
+    p["edited_meta"].write_text(json.dumps(doc))
+    law_dir = root / "calibrated"
+    law_dir.mkdir(exist_ok=True)
+    for f in (ROOT / "contact" / "calibrated").glob("*.json"):
+        (law_dir / f.name).write_text(f.read_text().replace("204000000000", "104000000000"))
+    p["edited_law_dir"] = law_dir
+    scene = (ROOT / "rotor" / "scenes" / "verify-jeffcott.toml").read_text()
+    scenes = {"bad_toml": "this is [not toml\n", "huge_modulus": _scene_variant(scene, "youngs_modulus_gpa = ",
+                                                                               "youngs_modulus_gpa = 200e9 # "),
+              "thin_shaft": _scene_variant(scene, "outer_diameter_mm = ", "outer_diameter_mm = 0.02 # "),
+              "neg_density": _scene_variant(scene, "density_kg_m3 = ", "density_kg_m3 = -7800 # "),
+              "unknown_field": _scene_variant(scene, "density_kg_m3 = ", "density_kg = 7800\ndensity_kg_m3 = ")}
+    for k, text in scenes.items():
+        p[k] = root / f"{k}.toml"
+        p[k].write_text(text)
+    p["nosuch_scene"] = "no-such-scene"
+    return {k: str(v) for k, v in p.items()}
+
+
+PRELOAD = ("reports.cli.law", "reports.cli.fem", "reports.cli.fem3d", "reports.cli.rotor", "reports.cli.simulate",
+           "reports.cli.study", "reports.cli.calibrate", "reports.cli.report", "fem_reference.plane.sweep",
+           "fem_reference.solid.sweep", "rotor.model.assembly", "rotor.studies.steady_state", "matplotlib.pyplot")
+
+
+def preload() -> None:
+    """Import the jobs' modules once, so that each forked case starts warm."""
+    import importlib
+    for name in PRELOAD:
+        try:
+            importlib.import_module(name)
+        except Exception:          # noqa: BLE001 - a module the old code lacks
+            pass
+
+
+def fill(argv: list[str], inputs: dict[str, str], tmp: Path) -> list[str]:
+    """Substitute the placeholders of one case."""
+    return [a.format(tmp=tmp, **inputs) if "{" in a else a for a in argv]
+
+
+def _child(argv: list[str], out_dir: Path, cwd: Path | None) -> None:
+    import resource
+    import traceback
+    os.setpgid(0, 0)
+    if cwd is not None:
+        os.chdir(cwd)             # default outputs (relative paths) land in the case's own directory
+    resource.setrlimit(resource.RLIMIT_AS, (4 << 30, 4 << 30))
+    for fd, name in ((1, "stdout"), (2, "stderr")):
+        f = os.open(out_dir / name, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        os.dup2(f, fd)
+    sys.stdout = open(1, "w", closefd=False)
+    sys.stderr = open(2, "w", closefd=False)
+    res = {"outcome": "exit"}
+    try:
+        from reports import cli
+        res["rc"] = cli.main(list(argv))
+    except SystemExit as exc:
+        res["rc"] = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    except BaseException as exc:    # noqa: BLE001 - the suite counts these
+        res.update(outcome="traceback", error=f"{type(exc).__name__}: {exc}"[:300])
+        traceback.print_exc()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    (out_dir / "result.json").write_text(json.dumps(res))
+    os._exit(0)
+
+
+def run_case(argv: list[str], out_dir: Path, timeout_s: float = 10.0, cwd: Path | None = None) -> dict:
+    """Run ``ringcontact ARGV`` in a forked child (warm, 4 GiB address-space cap, own process group).
+
+    Returns ``rc``, ``outcome`` ('exit', 'traceback' or 'hang': killed with its workers after
+    ``timeout_s``), ``stdout``, ``stderr`` and ``wall_s``.
+    """
+    out_dir.mkdir(parents=True, exist_ok=True)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    t0 = time.perf_counter()
+    pid = os.fork()
+    if pid == 0:
+        _child(argv, out_dir, cwd)
+    res = {"rc": None, "outcome": "hang", "error": ""}
+    while True:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        if time.perf_counter() - t0 > timeout_s:
+            try:
+                os.killpg(pid, signal.SIGKILL)
+            except OSError:
+                os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+            break
+        time.sleep(0.005)
+    try:
+        os.killpg(pid, signal.SIGKILL)        # workers a pool left behind
+    except OSError:
+        pass
+    if (out_dir / "result.json").exists():
+        res.update(json.loads((out_dir / "result.json").read_text()))
+    elif done:
+        res.update(outcome="crash", error=f"status {status}")
+    res["wall_s"] = time.perf_counter() - t0
+    for name in ("stdout", "stderr"):
+        f = out_dir / name
+        res[name] = f.read_text(errors="replace") if f.exists() else ""
+    return res
+
+
+if __name__ == "__main__":      # measure: python tests/reports/bad_inputs.py OUT.json (run from a scratch copy)
+    import tempfile
+    work = Path(tempfile.mkdtemp(prefix="bad-inputs-"))
+    os.chdir(work)
+    inputs = make_inputs(work / "inputs")
+    preload()
+    rows = []
+    for i, (cid, argv, echo) in enumerate(CASES):
+        tmp = work / f"case{i}"
+        tmp.mkdir()
+        r = run_case(fill(argv, inputs, tmp), work / f"io{i}", cwd=tmp)
+        r.update(id=cid, stderr=r["stderr"][-400:], stdout=r["stdout"][-200:])
+        rows.append(r)
+        print(f"{r['outcome']:9s} rc={r['rc']} {r['wall_s']:5.1f}s {cid} | {r['error'] or r['stderr'].strip()[:150]!r}",
+              flush=True)
+    Path(sys.argv[1]).write_text(json.dumps(rows, indent=1))
