@@ -80,6 +80,10 @@ def _run(args) -> int:
     from rotor.dynamics.production import simulate_production, warm_up
     from rotor.dynamics.reference import simulate_reference
 
+    if args.steady and (args.scheme != "production" or int(round(args.revolutions)) < 1
+                        or args.steps_per_rev % args.record_per_rev):
+        raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
+                         "dividing --steps-per-rev")   # refused before building or compiling anything
     scene, model, system, validity_m = _system(args)
     names = _dof_names(args, model, primary_only=True)
     idx = [model.dof_index(n) for n in names]
@@ -175,10 +179,7 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     from rotor.dynamics.initial import linear_initial_state
     from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
 
-    keep = int(round(args.revolutions))
-    if args.scheme != "production" or keep < 1 or args.steps_per_rev % args.record_per_rev:
-        raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
-                         "dividing --steps-per-rev")
+    keep = int(round(args.revolutions))   # the options were checked by _run before any work
     # detection by rotor.studies.steady_state (displacement Poincaré samples with the projected tail of the
     # decay, subharmonic periods); its own record is one period only: the kept revolutions are
     # integrated below from its end state so that every field of the trajectory is written
