@@ -217,7 +217,7 @@ def critical_speed_section(scene_name: str = "paper-table4", max_rpm: float = 18
             f"above it on a converged one. {conv} elements per segment bring every critical speed within "
             f"{100 * CONVERGED_TOL:.0f} % ({max(abs(v / r - 1) for v, r in zip(rows[conv], ref)) * 100:.2f} % worst); "
             f"the Section 5 studies run on the paper's mesh and on this one (`study * --elements {conv}`, "
-            "`study-mesh.md`).", ""]
+            "`study-findings.md`).", ""]
 
 
 # --------------------------------------------------------------------------------------------
