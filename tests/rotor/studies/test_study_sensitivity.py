@@ -201,8 +201,10 @@ def test_amplitude_table_rejects_bad_shapes_and_values():
 @pytest.mark.slow
 def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(tmp_path):
     """The reference variant at 10 500 rpm (the paper's point B), all six cases, via run_sweep with two
-    processes; resumable (a second call reuses it) and its findings as the xfail tests of
-    tests/rotor/studies/test_study_paper.py state them: tilt off changes Σ3f–5f by a few percent only, 2f rises with δ."""
+    processes; resumable (a second call reuses it) and its findings as tests/rotor/studies/test_study_paper.py
+    states them on the paper's mesh: without the tilt Σ3f–5f all but vanishes (the tilt-ignored state creeps on
+    its centred end face: not periodic within 1 500 revolutions, so the periodic-only verdict has nothing to
+    compare), 2f rises with δ."""
     from sweep import run_sweep
     from reports.sensitivity import tables
 
@@ -212,12 +214,12 @@ def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(t
     assert not s.failed and len(s.computed) == 1
     assert len(run_sweep(tasks, tmp_path, max_workers=2, progress=False).reused) == 1
     t = tables(tmp_path, v, speeds_rpm=(10500.0,))["base"]
-    assert t.periodic.all()
+    assert all(t.ok(c)[0] for c in sens.CASE_NAMES if c != "notilt") and not t.ok("notilt")[0]
     on = t.amp("v", "base")[0, 2:5].sum(axis=0)
     off = t.amp("v", "notilt")[0, 2:5].sum(axis=0)
-    assert np.all(np.abs(off / on - 1) < 0.1)
+    assert np.all(off < 0.01 * on)              # measured 3e-5 / 0.060 mm/s at disk 2
     f = sens.tilt_finding(t)
-    assert (f.n_compared, f.n_pass) == (1, 0)
+    assert f.n_compared == 0
     two = [t.amp("q", c)[0, 1] for c in ("mis0.5", "base", "mis2")]
     assert np.all(two[0] < two[1]) and np.all(two[1] < two[2])
     # the published study (reports/published/study-sensitivity-points.csv, computed on an earlier revision of
