@@ -345,20 +345,17 @@ def _points_code(out: Path, current: dict) -> str:
 
 
 def _timing(out: Path, s, wall: float, args) -> None:
-    """Append the wall time of this sweep run (points computed, per-point times) to ``timing.json``."""
-    import os
+    """Append the wall time of this sweep run (points computed, per-point times) to ``timing.json``
+    (a damaged one is set aside with a message, see :func:`sweep.append_timing`)."""
+    from sweep import append_timing
 
-    from contact.files import atomic_write_text
-
-    p = out / "timing.json"
-    runs = json.loads(p.read_text()) if p.exists() else []
     pw = sorted(s.point_wall_s.values())
-    runs.append({"workers": args.workers, "computed": len(s.computed), "reused": len(s.reused),
-                 "wall_s": round(wall, 2), "point_wall_s_median": round(float(np.median(pw)), 3) if pw else None,
-                 "point_wall_s_sum": round(float(sum(pw)), 2), "load_avg_end": os.getloadavg(),
-                 "finished_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())})
-    atomic_write_text(p, json.dumps(runs, indent=1) + "\n")
-
+    append_timing(out, {"workers": args.workers, "scheduler": getattr(args, "scheduler", None),
+                        "computed": len(s.computed), "reused": len(s.reused),
+                        "wall_s": round(wall, 2), "point_wall_s_median": round(float(np.median(pw)), 3) if pw else None,
+                        "point_wall_s_sum": round(float(sum(pw)), 2), "load_avg_end": os.getloadavg(),
+                        "finished_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())},
+                  say=lambda m: print(m, file=sys.stderr))
 
 if __name__ == "__main__":
     sys.exit(main())
