@@ -17,10 +17,10 @@ from sweep.guard import DirectoryBusy, DirectoryLock
 from sweep.progress import Progress
 from sweep.provenance import (code_revision, environment, machine, package_versions, revision_label, utc_stamp,
                               worker_stamp)
-from sweep.run import SweepSummary, as_executor, run_sweep
+from sweep.run import SweepSummary, as_executor, local_pool, run_sweep
 from sweep.store import FORMAT, ResultStore, append_timing, load_sweep, read_timing
 from sweep.tasks import PointResult, Task
 
 __all__ = ["FORMAT", "DirectoryBusy", "DirectoryLock", "PointResult", "Progress", "ResultStore", "SweepSummary",
-           "Task", "append_timing", "as_executor", "code_revision", "environment", "load_sweep", "machine",
+           "Task", "append_timing", "as_executor", "local_pool", "code_revision", "environment", "load_sweep", "machine",
            "package_versions", "read_timing", "revision_label", "run_sweep", "utc_stamp", "worker_stamp"]

@@ -86,9 +86,15 @@ def local_pool(max_workers: int) -> cf.ProcessPoolExecutor:
 
 
 def as_executor(executor):
-    """A ``dask.distributed.Client`` exposes a concurrent.futures executor via ``get_executor``."""
+    """A ``dask.distributed.Client`` exposes a concurrent.futures executor via ``get_executor``.
+
+    Asked for impure tasks (``pure=False``): dask otherwise names a task by its arguments and hands a
+    re-run the remembered failure of a task whose worker died, instead of computing it again."""
     if executor is not None and not isinstance(executor, cf.Executor) and hasattr(executor, "get_executor"):
-        return executor.get_executor()
+        try:
+            return executor.get_executor(pure=False)
+        except TypeError:
+            return executor.get_executor()
     return executor
 
 

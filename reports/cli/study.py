@@ -40,11 +40,18 @@ def _common(p: argparse.ArgumentParser, out: str):
     p.add_argument("--out", default=out, help=f"result directory (default {out})")
     p.add_argument("--figures", default=None, help="figure directory (default <out>/figures)")
     p.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+    _scheduler(p)
     p.add_argument("--steps-per-rev", type=int, default=256, help="minimum time steps per revolution (default 256)")
     p.add_argument("--max-revs", type=int, default=1500, help="transient cap in revolutions (default 1500)")
     p.add_argument("--elements", type=int, default=None,
                    help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
+
+
+def _scheduler(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run on the dask.distributed cluster at ADDRESS (e.g. tcp://10.0.0.5:8786; the dask "
+                        "extra) instead of --workers local processes")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -86,6 +93,7 @@ def _parser() -> argparse.ArgumentParser:
     se.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
     se.add_argument("--out", default="runs/sensitivity", help="result directory (default runs/sensitivity)")
     se.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+    _scheduler(se)
     se.add_argument("--variants", default=None, help="comma list of variant names (default: all; see rotor.studies.sensitivity)")
     se.add_argument("--report-only", action="store_true", help="no computing: report what is in --out")
     se.add_argument("--to", default=str(Path(__file__).resolve().parents[1] / "published"),
@@ -138,6 +146,7 @@ def _mesh(args) -> dict:
 
 def _sweep(tasks, out: Path, args, description: dict):
     from sweep import run_sweep
+    from sweep.cluster import connect
     from rotor.studies.steady_state import _scene_model
 
     sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
@@ -145,8 +154,9 @@ def _sweep(tasks, out: Path, args, description: dict):
     manifest = {"study": args.study, "description": description, "scene_name": sc.name,
                 "scene": dataclasses.asdict(sc), **_mesh(args)}
     t0 = time.perf_counter()
-    s = run_sweep(tasks, out, max_workers=args.workers, manifest=manifest,
-                  progress=False if args.no_progress else None)
+    with connect(args.scheduler) as client:
+        s = run_sweep(tasks, out, executor=client, max_workers=args.workers, manifest=manifest,
+                      progress=False if args.no_progress else None)
     wall = time.perf_counter() - t0
     print(f"study {args.study}: {len(tasks)} points, {len(s.computed)} computed, {len(s.reused)} reused, "
           f"{len(s.recomputed)} recomputed, {len(s.failed)} failed, wall {wall:.1f} s")
@@ -281,7 +291,10 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
         a, b = b, a
     spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
                      steps_per_rev=int(args.steps_per_rev))
-    info = run_runup(spec, out)
+    from sweep.cluster import connect
+
+    with connect(args.scheduler) as client:
+        info = run_runup(spec, out, executor=client)
     print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")
     return runup_figures(out, figs)
 
@@ -297,6 +310,7 @@ def _sensitivity(args) -> int:
     from reports import sensitivity as rep
     from rotor.studies import sensitivity as sens
     from sweep import code_revision, run_sweep
+    from sweep.cluster import connect
 
     variants = sens.study_variants()
     if args.variants:
@@ -312,9 +326,11 @@ def _sensitivity(args) -> int:
             raise InputError(f"workers = {args.workers}: must be >= 1")
         tasks = sens.study_tasks(variants, scene=args.scene)
         t0 = time.perf_counter()
-        s = run_sweep(tasks, out, max_workers=args.workers, progress=False if args.no_progress else None,
-                      manifest={"study": "sensitivity", "variants": {v.name: v.factors for v in variants},
-                                "speeds_rpm": list(sens.SPEEDS_RPM)})
+        with connect(args.scheduler) as client:
+            s = run_sweep(tasks, out, executor=client, max_workers=args.workers,
+                          progress=False if args.no_progress else None,
+                          manifest={"study": "sensitivity", "variants": {v.name: v.factors for v in variants},
+                                    "speeds_rpm": list(sens.SPEEDS_RPM)})
         wall = time.perf_counter() - t0
         print(f"study sensitivity: {len(tasks)} tasks, {len(s.computed)} computed, {len(s.reused)} reused, "
               f"{len(s.failed)} failed, wall {wall:.1f} s")
