@@ -10,6 +10,7 @@ Sub-studies (each resumable: points already in ``--out`` are reused, corrupt one
     ringcontact study runup    --out runs/runup                      # run-up with time–frequency cascade
     ringcontact study map      --out runs/map                        # stick/slip/impact over (speed, clearance)
     ringcontact study publish  --cascade runs/fig12 --notilt runs/fig16 …   # study-* into reports/published
+    ringcontact study export   runs/fig12 --format netcdf|csv          # speed x station x harmonic dataset
     ringcontact study sensitivity --out runs/sensitivity             # §5 findings vs the unstated inputs (slow)
 
 Engineer units at the edge (``_rpm``, ``_mm``); results in SI (see sweep.store for the file
@@ -99,6 +100,13 @@ def _parser() -> argparse.ArgumentParser:
     se.add_argument("--to", default=str(Path(__file__).resolve().parents[1] / "published"),
                     help="where study-sensitivity.{md,csv,png,svg} go (default reports/published)")
     se.add_argument("--no-progress", action="store_true", help="no progress line")
+    ex = sub.add_parser("export", help="a study directory (or a FEM reference dataset .json) as one labelled "
+                                       "dataset: netCDF or CSV (the xarray extra)")
+    ex.add_argument("run", help="result directory of a study, or a FEM dataset such as "
+                                "fem_reference/data/fem2d-reference.json")
+    ex.add_argument("--format", choices=("netcdf", "csv"), default="netcdf", help="file format (default netcdf)")
+    ex.add_argument("--out", default=None, help="output file (default <run>/study.nc|csv, or <dataset name>.nc|csv "
+                                                "in the current directory)")
     pb = sub.add_parser("publish", help="figures + notes of finished study directories into reports/published (study-*)")
     for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup"):
         pb.add_argument(f"--{k}", default=None, help=f"directory of a finished '{k}' study")
@@ -168,6 +176,8 @@ def _sweep(tasks, out: Path, args, description: dict):
 def _run(args) -> int:
     if args.study == "publish":
         return _publish(args)
+    if args.study == "export":
+        return _export(args)
     if args.study == "sensitivity":
         return _sensitivity(args)
     out = Path(args.out)
@@ -181,6 +191,27 @@ def _run(args) -> int:
         return 2
     for f in study(args, out, figs, opts):
         print(f"  wrote {f}")
+    return 0
+
+
+def _export(args) -> int:
+    """``study export``: the points of a study (or a FEM dataset) as one netCDF or CSV file."""
+    from contact.errors import InputError
+    from sweep.export import fem_to_xarray, write
+
+    src = Path(args.run)
+    suffix = {"netcdf": ".nc", "csv": ".csv"}[args.format]
+    if src.is_dir():
+        from rotor.studies.export import to_xarray
+        ds = to_xarray(src)
+        out = Path(args.out) if args.out else src / f"study{suffix}"
+    elif src.is_file():
+        ds = fem_to_xarray(src)
+        out = Path(args.out) if args.out else Path(src.stem + suffix)
+    else:
+        raise InputError(f"run = {str(src)!r}: no such study directory or dataset file")
+    dims = " x ".join(f"{d} {n}" for d, n in ds.sizes.items())
+    print(f"  wrote {write(ds, out, args.format)} ({dims})")
     return 0
 
 
