@@ -170,3 +170,17 @@ def test_study_cascade_on_the_cluster_by_its_address(cluster, tmp_path, capsys):
     st = ResultStore(out)
     assert {st.load(k).record["run"]["worker"]["pid"] for k in ("rpm1500.0", "rpm3000.0")} <= pids
     assert (out / "figures" / "study-cascade.csv").exists()
+
+
+def test_fem2d_scene_on_the_cluster_equals_the_local_run(cluster):
+    # gmsh meshes in a dask worker's task thread (it used to fail: 'signal only works in main thread')
+    from fem_reference.plane.sweep import sweep_dataset
+
+    kw = {"scene_names": ("clamped",), "penetrations_m": [1e-5], "levels_m": (4e-3, 2e-3, 1e-3)}
+    with connect(cluster.scheduler_address) as client:
+        _, on_dask = sweep_dataset(executor=client, **kw)
+    _, local = sweep_dataset(**kw)
+    drop = ("wall_s", "wall_levels_s")
+    assert [{k: v for k, v in p.items() if k not in drop} for p in on_dask] == \
+           [{k: v for k, v in p.items() if k not in drop} for p in local]
+    assert on_dask[0]["force_n"] > 1e5
