@@ -17,12 +17,12 @@ def _umask() -> int:
 
 
 def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
-    """Write ``data`` to a temporary file beside ``path`` (``.NAME.*.tmp``), fsync, then rename over ``path`` (mode 0644)."""
+    """Write ``data`` to a temporary file beside ``path`` (``.NAME.*.tmp``), fsync, then rename over ``path``
+    (mode 0666 less the umask, as ``open()`` gives)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
-        os.fchmod(fd, 0o644)  # mkstemp makes 0600; results are for everyone to read
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
