@@ -8,14 +8,20 @@ One machinery for every sweep of the suite (rotor studies, 2D and 3D FEM referen
   process pool), resuming from the store;
 - :mod:`sweep.progress`: :class:`Progress` (count, rate, time left on a terminal; quiet under CI
   or when piped);
-- :mod:`sweep.provenance`: :func:`code_revision`, :func:`package_versions`, :func:`environment`.
+- :mod:`sweep.provenance`: :func:`code_revision`, :func:`package_versions`, :func:`environment`,
+  :func:`worker_stamp` (taken in the process computing a point);
+- :mod:`sweep.guard`: :class:`DirectoryLock` (one writer per result directory), stale temporaries;
+- :mod:`sweep.cluster`: :func:`connect` to a ``dask.distributed`` scheduler (the ``dask`` extra).
 """
+from sweep.guard import DirectoryBusy, DirectoryLock
 from sweep.progress import Progress
-from sweep.provenance import code_revision, environment, machine, package_versions, revision_label, utc_stamp
-from sweep.run import SweepSummary, as_executor, run_sweep
-from sweep.store import FORMAT, ResultStore, load_sweep, run_status, write_status
+from sweep.provenance import (code_revision, environment, machine, package_versions, revision_label, utc_stamp,
+                              worker_stamp)
+from sweep.run import SweepSummary, as_executor, local_pool, run_sweep
+from sweep.store import FORMAT, ResultStore, append_timing, load_sweep, read_timing, run_status, write_status
 from sweep.tasks import PointResult, Task
 
-__all__ = ["FORMAT", "PointResult", "Progress", "ResultStore", "SweepSummary", "Task", "as_executor",
-           "code_revision", "environment", "load_sweep", "machine", "package_versions", "revision_label",
-           "run_status", "run_sweep", "utc_stamp", "write_status"]
+__all__ = ["FORMAT", "DirectoryBusy", "DirectoryLock", "PointResult", "Progress", "ResultStore", "SweepSummary",
+           "Task", "append_timing", "as_executor", "local_pool", "code_revision", "environment", "load_sweep", "machine",
+           "package_versions", "read_timing", "revision_label", "run_status", "run_sweep", "utc_stamp", "worker_stamp",
+           "write_status"]

@@ -7,7 +7,9 @@ libraries computed it.
 from __future__ import annotations
 
 import datetime as _dt
+import functools
 import importlib
+import importlib.metadata
 import os
 import platform
 import subprocess
@@ -93,3 +95,52 @@ def machine() -> dict:
 def utc_stamp() -> str:
     """Now in UTC, ``YYYY-MM-DDTHH:MM:SSZ``."""
     return _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+
+
+_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS")
+
+
+def blas_threads() -> dict:
+    """Threads the BLAS of this process may use: ``{"blas_threads": n or None, "thread_env": {...}}``.
+
+    ``blas_threads`` is what threadpoolctl reports when it is installed, else the first of
+    ``OPENBLAS_NUM_THREADS``, ``OMP_NUM_THREADS``, ``MKL_NUM_THREADS`` that is set (None: the
+    library's default, one per core). ``thread_env`` holds those variables as set in the process.
+    """
+    env = {k: os.environ[k] for k in _THREAD_VARIABLES if k in os.environ}
+    n = None
+    try:
+        from threadpoolctl import threadpool_info
+        found = [i["num_threads"] for i in threadpool_info() if i.get("user_api") == "blas"]
+        n = max(found) if found else None
+    except ImportError:
+        for k in _THREAD_VARIABLES[:3]:
+            if env.get(k, "").strip().isdigit():
+                n = int(env[k])
+                break
+    return {"blas_threads": n, "thread_env": env}
+
+
+def package_version(name: str = "ringcontact") -> str | None:
+    """The installed version of the suite (None when it runs from a source tree not installed)."""
+    try:
+        return importlib.metadata.version(name)
+    except importlib.metadata.PackageNotFoundError:
+        return None
+
+
+@functools.lru_cache(maxsize=1)
+def _process_revision() -> tuple:
+    rev = code_revision()
+    return rev["git_commit"], rev["git_dirty"]
+
+
+def worker_stamp() -> dict:
+    """Where a point is computed, taken in the process computing it (a pool or cluster worker).
+
+    Host, pid, the suite's package version and git commit as that process sees its own source
+    tree (asked once per process), its BLAS threads and CPU count.
+    """
+    commit, dirty = _process_revision()
+    return {"host": platform.node(), "pid": os.getpid(), "package_version": package_version(),
+            "git_commit": commit, "git_dirty": dirty, **blas_threads(), "cpu_count": os.cpu_count()}

@@ -2,11 +2,22 @@
 
 A sweep is a list of :class:`~sweep.tasks.Task` (a key, a picklable top-level function, JSON
 parameters). :func:`run_sweep` submits the tasks that have no valid result yet to a
-:class:`concurrent.futures.Executor` — a local process pool by default; for a cluster pass a
-``dask.distributed.Client`` (optional dependency, not required here): its
-``get_executor()`` is such an executor, so no other code changes — and stores every finished
-point in a :class:`~sweep.store.ResultStore` as soon as it arrives. An interrupted sweep
-resumes with the points that are still missing.
+:class:`concurrent.futures.Executor` — a local process pool by default, or a
+``dask.distributed.Client`` (the ``dask`` extra; :func:`sweep.cluster.connect` opens one from a
+scheduler address) — and stores every finished point in a :class:`~sweep.store.ResultStore` as
+soon as it arrives. An interrupted sweep resumes with the points that are still missing.
+
+Faults it guards against:
+
+- one writer per result directory (:class:`~sweep.guard.DirectoryLock`: a second sweep into the
+  same directory is refused, or waits ``lock_wait_s``); temporaries left by a killed writer are
+  removed when the next one takes the lock;
+- the local pool's workers watch their parent and exit when it dies (kill -9 included), so none is
+  left orphaned;
+- every point's provenance (host, pid, package version, git commit, BLAS threads) is taken in the
+  process that computed it (:func:`sweep.provenance.worker_stamp`), not in the client;
+- a damaged ``sweep.json`` is refused with its name; a damaged or deleted point record is
+  recomputed with a message naming it.
 """
 from __future__ import annotations
 
@@ -15,13 +26,15 @@ import datetime as _dt
 import os
 import platform
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from typing import Callable
 
 from contact.errors import InputError
+from sweep.guard import DirectoryLock, remove_stale_temporaries
 from sweep.progress import Progress
-from sweep.provenance import code_revision, environment
+from sweep.provenance import code_revision, environment, worker_stamp
 from sweep.store import ResultStore, write_status
 from sweep.tasks import Task
 
@@ -44,15 +57,44 @@ class SweepSummary:
 
 
 def _call(func, params):
+    """Run one task where the executor puts it; its result, wall time and the worker's stamp."""
     t0 = time.perf_counter()
     arrays, info = func(**params)
-    return arrays, info, time.perf_counter() - t0
+    return arrays, info, time.perf_counter() - t0, worker_stamp()
+
+
+def _watch_parent(parent_pid: int, period_s: float) -> None:
+    while True:
+        time.sleep(period_s)
+        if os.getppid() != parent_pid:
+            os._exit(70)  # orphaned: the sweep that started this worker is gone
+
+
+def die_with_parent(parent_pid: int, period_s: float = 0.5) -> None:
+    """Pool-worker initializer: exit as soon as ``parent_pid`` is no longer this process's parent.
+
+    A daemon thread polls ``os.getppid()``; it works whatever killed the parent (kill -9 included),
+    on any POSIX system, and from whichever thread the pool started the worker.
+    """
+    threading.Thread(target=_watch_parent, args=(int(parent_pid), float(period_s)), daemon=True,
+                     name="ringcontact-parent-watch").start()
+
+
+def local_pool(max_workers: int) -> cf.ProcessPoolExecutor:
+    """The default executor: ``max_workers`` processes that die with this one (:func:`die_with_parent`)."""
+    return cf.ProcessPoolExecutor(max_workers=max_workers, initializer=die_with_parent, initargs=(os.getpid(),))
 
 
 def as_executor(executor):
-    """A ``dask.distributed.Client`` exposes a concurrent.futures executor via ``get_executor``."""
+    """A ``dask.distributed.Client`` exposes a concurrent.futures executor via ``get_executor``.
+
+    Asked for impure tasks (``pure=False``): dask otherwise names a task by its arguments and hands a
+    re-run the remembered failure of a task whose worker died, instead of computing it again."""
     if executor is not None and not isinstance(executor, cf.Executor) and hasattr(executor, "get_executor"):
-        return executor.get_executor()
+        try:
+            return executor.get_executor(pure=False)
+        except TypeError:
+            return executor.get_executor()
     return executor
 
 
@@ -61,21 +103,29 @@ def _now() -> str:
 
 
 def _write_manifest(store: ResultStore, tasks: list[Task], manifest: dict | None) -> None:
-    man = {"created_utc": _now(), **code_revision(), "environment": environment(),
+    """``sweep.json`` for this run; a damaged one is refused (DatasetError naming it), never rewritten."""
+    previous = store.read_manifest(required=False) or {}
+    man = {"created_utc": previous.get("created_utc", _now()), "updated_utc": _now(), **code_revision(),
+           "environment": environment(),
            "tasks": {t.key: {"func": f"{t.func.__module__}.{t.func.__qualname__}", "params": t.params} for t in tasks}}
     man.update(manifest or {})
     store.write_manifest(man)
 
 
 def _plan(tasks: list[Task], store: ResultStore, summary: SweepSummary, say, resume: bool) -> list[Task]:
-    """The tasks to compute: those without a verified result (all of them unless ``resume``)."""
+    """The tasks to compute: those without a verified result (all of them unless ``resume``).
+
+    A damaged record, or one gone although the journal says it was stored, is named in a message."""
     todo = []
+    stored = store.journal_keys() if resume else set()
     for t in tasks:
         status, why = store.check(t.key, t.params) if resume else ("missing", "not resuming")
         if status == "done":
             summary.reused.append(t.key)
             continue
-        if status in ("corrupt", "stale"):
+        if status == "missing" and t.key in stored:
+            status, why = "deleted", "its record was stored, then removed"
+        if status in ("corrupt", "stale", "deleted"):
             summary.recomputed[t.key] = why
             say(f"sweep: {t.key}: {status} ({why}); recomputing")
         todo.append(t)
@@ -84,76 +134,37 @@ def _plan(tasks: list[Task], store: ResultStore, summary: SweepSummary, say, res
 
 def _collect(futures: dict, store: ResultStore, summary: SweepSummary, prog: Progress, say) -> None:
     """Store every point as its future finishes; a failing point is recorded, not raised."""
-    run_info = {**code_revision(), "host": platform.node()}
+    client_host = platform.node()
     for fut in cf.as_completed(futures):
         t = futures[fut]
         try:
-            arrays, info, wall = fut.result()
+            arrays, info, wall, stamp = fut.result()
         except Exception as e:  # a failing point must not lose the others
             summary.failed[t.key] = f"{type(e).__name__}: {e}"
             summary.errors[t.key] = e
             say(f"sweep: {t.key} failed: {type(e).__name__}: {e}")
             prog.update(note=f"{t.key} FAILED")
             continue
-        store.save(t.key, t.params, arrays, info, run={**run_info, "wall_s": round(wall, 4), "finished_utc": _now()})
+        run = {"git_commit": stamp["git_commit"], "git_dirty": stamp["git_dirty"], "host": stamp["host"],
+               "worker": stamp, "client_host": client_host, "wall_s": round(wall, 4), "finished_utc": _now()}
+        store.save(t.key, t.params, arrays, info, run=run)
         summary.computed.append(t.key)
         summary.point_wall_s[t.key] = wall
         prog.update(note=t.key)
 
 
-def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, executor=None, max_workers: int = 2,
-              manifest: dict | None = None, progress: Progress | bool | None = None,
-              log: Callable[[str], None] | None = None, label: str = "sweep", resume: bool = True) -> SweepSummary:
-    """Compute every task without a valid stored result, storing each as it finishes.
-
-    Parameters
-    ----------
-    tasks : list of Task (unique keys)
-    store : ResultStore or its directory
-    executor : concurrent.futures.Executor, dask.distributed.Client, or None
-        None: a local :class:`~concurrent.futures.ProcessPoolExecutor` with ``max_workers``
-        processes, shut down at the end. A given executor is used and left open.
-    manifest : dict, optional
-        Sweep description written to ``sweep.json`` with the code revision and environment.
-    progress : Progress, True/False, or None (auto: on a terminal, not under CI)
-    log : callable for one-line messages (default: stderr)
-    label : name on the progress line
-    resume : reuse verified stored points (False: compute every task again, overwriting)
-
-    Returns
-    -------
-    SweepSummary. Failed tasks are listed with their error, not raised; an interruption
-    (KeyboardInterrupt) cancels pending tasks and re-raises: finished points stay on disk,
-    and the next call resumes with the rest.
-    """
-    store = store if isinstance(store, ResultStore) else ResultStore(store)
-    keys = [t.key for t in tasks]
-    if len(set(keys)) != len(keys):
-        dup = sorted({k for k in keys if keys.count(k) > 1})
-        raise InputError(f"tasks: duplicate keys {dup[:5]}")
-    say = log if log is not None else (lambda m: print(m, file=sys.stderr))
-    t_start = time.perf_counter()
-    summary = SweepSummary()
-    _write_manifest(store, tasks, manifest)
-    write_status(store.root, "running")
-    todo = _plan(tasks, store, summary, say, resume)
-    if isinstance(progress, Progress):
-        prog = progress
-    else:
-        prog = Progress(len(todo), label=label, enabled=(None if progress is None else bool(progress)))
-    if not todo:
-        summary.wall_s = time.perf_counter() - t_start
-        write_status(store.root, "complete", tasks=len(tasks))
-        return summary
+def _execute(todo: list[Task], executor, max_workers: int, store: ResultStore, summary: SweepSummary,
+             prog: Progress, say) -> None:
+    """Submit ``todo`` to the executor (a local pool of its own if None) and store what comes back."""
     own = executor is None
-    ex = cf.ProcessPoolExecutor(max_workers=max_workers) if own else as_executor(executor)
+    ex = local_pool(max_workers) if own else as_executor(executor)
     futures = {}
     try:
         for t in todo:
             futures[ex.submit(_call, t.func, t.params)] = t
         _collect(futures, store, summary, prog, say)
     except BaseException:
-        write_status(store.root, "interrupted", tasks=len(tasks))
+        write_status(store.root, "interrupted", tasks=len(summary.reused) + len(todo))
         for f in futures:
             f.cancel()
         if own:
@@ -164,7 +175,60 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
         prog.close()
         if own:
             ex.shutdown(wait=True)
+
+
+def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, executor=None, max_workers: int = 2,
+              manifest: dict | None = None, progress: Progress | bool | None = None,
+              log: Callable[[str], None] | None = None, label: str = "sweep", resume: bool = True,
+              lock_wait_s: float = 0.0) -> SweepSummary:
+    """Compute every task without a valid stored result, storing each as it finishes.
+
+    Parameters
+    ----------
+    tasks : list of Task (unique keys)
+    store : ResultStore or its directory
+    executor : concurrent.futures.Executor, dask.distributed.Client, or None
+        None: a local :class:`~concurrent.futures.ProcessPoolExecutor` with ``max_workers``
+        processes that die with this one, shut down at the end. A given executor is used and left open.
+    manifest : dict, optional
+        Sweep description written to ``sweep.json`` with the code revision and environment.
+    progress : Progress, True/False, or None (auto: on a terminal, not under CI)
+    log : callable for one-line messages (default: stderr)
+    label : name on the progress line
+    resume : reuse verified stored points (False: compute every task again, overwriting)
+    lock_wait_s : how long to wait for another sweep writing into the same directory
+        (0: refuse at once with :class:`~sweep.guard.DirectoryBusy`)
+
+    Returns
+    -------
+    SweepSummary. Failed tasks are listed with their error, not raised; an interruption
+    (KeyboardInterrupt) cancels pending tasks and re-raises: finished points stay on disk,
+    and the next call resumes with the rest. A damaged ``sweep.json`` raises
+    :class:`~contact.errors.DatasetError` naming it, before anything is computed.
+    """
+    store = store if isinstance(store, ResultStore) else ResultStore(store)
+    keys = [t.key for t in tasks]
+    if len(set(keys)) != len(keys):
+        dup = sorted({k for k in keys if keys.count(k) > 1})
+        raise InputError(f"tasks: duplicate keys {dup[:5]}")
+    say = log if log is not None else (lambda m: print(m, file=sys.stderr))
+    t_start = time.perf_counter()
+    summary = SweepSummary()
+    with DirectoryLock(store.root, wait_s=lock_wait_s):
+        removed = remove_stale_temporaries(store.root, store.points)
+        if removed:
+            say(f"sweep: removed {len(removed)} temporary file(s) left by an interrupted writer: "
+                f"{', '.join(p.name for p in removed[:3])}")
+        _write_manifest(store, tasks, manifest)
+        write_status(store.root, "running")
+        todo = _plan(tasks, store, summary, say, resume)
+        if isinstance(progress, Progress):
+            prog = progress
+        else:
+            prog = Progress(len(todo), label=label, enabled=(None if progress is None else bool(progress)))
+        if todo:
+            _execute(todo, executor, max_workers, store, summary, prog, say)
+        write_status(store.root, "incomplete" if summary.failed else "complete", tasks=len(tasks),
+                     failed=sorted(summary.failed))
     summary.wall_s = time.perf_counter() - t_start
-    write_status(store.root, "incomplete" if summary.failed else "complete", tasks=len(tasks),
-                 failed=sorted(summary.failed))
     return summary

@@ -16,6 +16,12 @@ JSON last: the JSON is the completion mark. A point counts as done only if its J
 its own checksum matches, its parameters equal the task's, and the NPZ's SHA-256 matches; a
 truncated or altered file is reported and recomputed, never read.
 
+Beside them: ``sweep.json`` carries its own SHA-256 (``manifest_sha256``; a damaged one is refused
+with its name, never silently rewritten), ``journal.jsonl`` lists every point stored (one line per
+save, so a record deleted after it was finished is told apart from one never computed), and
+``timing.json`` the wall times of the runs (a damaged one is set aside with a message and started
+afresh: it is a log, not a result).
+
 Used by the rotor studies (:mod:`rotor.studies`) and the 2D/3D FEM reference sweeps.
 """
 from __future__ import annotations
@@ -25,6 +31,7 @@ import hashlib
 import io
 import json
 import os
+import time
 from pathlib import Path
 
 import numpy as np
@@ -34,6 +41,9 @@ from contact.files import atomic_write_bytes, atomic_write_text
 from sweep.tasks import PointResult, Task
 
 FORMAT = "ringcontact.sweep-point/1"
+MANIFEST = "sweep.json"
+JOURNAL = "journal.jsonl"
+TIMING = "timing.json"
 
 
 def _sha256(data: bytes) -> str:
@@ -76,18 +86,31 @@ class ResultStore:
 
     # -- writing -------------------------------------------------------
     def write_manifest(self, manifest: dict) -> Path:
-        """Write ``sweep.json`` (atomically): what the sweep is, code revision, environment."""
-        doc = dict(manifest)
+        """Write ``sweep.json`` (atomically) with its own SHA-256: what the sweep is, code revision, environment."""
+        doc = json.loads(json.dumps(dict(manifest), default=_json_default))
         doc.setdefault("format", "ringcontact.sweep/1")
-        return atomic_write_text(self.root / "sweep.json", json.dumps(doc, indent=2, sort_keys=True,
-                                                                       default=_json_default) + "\n")
+        doc.pop("manifest_sha256", None)
+        doc["manifest_sha256"] = _sha256(_canonical(doc).encode())
+        return atomic_write_text(self.root / MANIFEST, json.dumps(doc, indent=2, sort_keys=True) + "\n")
 
-    def read_manifest(self) -> dict:
-        p = self.root / "sweep.json"
+    def read_manifest(self, required: bool = True) -> dict | None:
+        """``sweep.json`` verified; None if absent and not ``required``; :class:`DatasetError` naming it
+        if it is unreadable or its checksum does not match (files written before the checksum have none)."""
+        p = self.root / MANIFEST
+        if not p.exists() and not required:
+            return None
         try:
-            return json.loads(p.read_text())
+            doc = json.loads(p.read_text(encoding="utf-8"))
+            if not isinstance(doc, dict):
+                raise ValueError("not a JSON object")
         except (OSError, ValueError) as e:
-            raise DatasetError(f"{p}: cannot read sweep record ({e})") from None
+            raise DatasetError(f"{p}: damaged sweep record ({type(e).__name__}: {str(e)[:80]}); it says what this "
+                               "sweep is: restore it, or move it away to start a new record (points are kept)") from None
+        claimed = doc.pop("manifest_sha256", None)
+        if claimed is not None and _sha256(_canonical(doc).encode()) != claimed:
+            raise DatasetError(f"{p}: damaged sweep record (checksum mismatch); restore it, or move it away to "
+                               "start a new record (points are kept)")
+        return doc
 
     def save(self, key: str, params: dict, arrays: dict, info: dict, *, run: dict | None = None) -> Path:
         """Store one finished point: NPZ first, then the JSON record holding its checksum."""
@@ -99,8 +122,34 @@ class ResultStore:
                "arrays": {k: {"shape": list(np.shape(v)), "dtype": str(np.asarray(v).dtype)} for k, v in arrays.items()},
                "npz_sha256": _sha256(data), "npz_bytes": len(data)}
         rec["record_sha256"] = _sha256(_canonical(rec).encode())
-        return atomic_write_text(self.json_path(key), json.dumps(rec, indent=1, sort_keys=True,
+        path = atomic_write_text(self.json_path(key), json.dumps(rec, indent=1, sort_keys=True,
                                                                  default=_json_default) + "\n")
+        self._journal(key, rec["record_sha256"])
+        return path
+
+    # -- journal of stored points ----------------------------------------
+    def _journal(self, key: str, record_sha256: str) -> None:
+        line = json.dumps({"key": key, "record_sha256": record_sha256,
+                           "utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}) + "\n"
+        fd = os.open(self.root / JOURNAL, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        try:
+            os.write(fd, line.encode())
+        finally:
+            os.close(fd)
+
+    def journal_keys(self) -> set[str]:
+        """Keys of every point ever stored here (unreadable lines, e.g. one cut by a kill, are skipped)."""
+        try:
+            lines = (self.root / JOURNAL).read_text(encoding="utf-8").splitlines()
+        except OSError:
+            return set()
+        keys = set()
+        for line in lines:
+            try:
+                keys.add(json.loads(line)["key"])
+            except (ValueError, KeyError, TypeError):
+                continue
+        return keys
 
     # -- reading -------------------------------------------------------
     def check(self, key: str, params: dict | None = None) -> tuple[str, str]:
@@ -141,15 +190,42 @@ class ResultStore:
         return sorted(p.stem for p in self.points.glob("*.json")) if self.points.exists() else []
 
 
-def load_sweep(store: ResultStore | str | os.PathLike, tasks: list[Task] | None = None) -> dict[str, PointResult]:
-    """All verified points of a store (those of ``tasks`` if given, checking their params);
-    corrupt, stale or missing points are left out."""
+def expected_points(store: ResultStore) -> dict[str, dict | None]:
+    """The points a store should hold: the tasks of its ``sweep.json`` (key -> params), plus any
+    record it holds (params not checked: None). :class:`DatasetError` if sweep.json is damaged."""
+    man = store.read_manifest(required=False) or {}
+    want: dict[str, dict | None] = {k: (v or {}).get("params") for k, v in (man.get("tasks") or {}).items()}
+    for k in store.keys():
+        want.setdefault(k, None)
+    return want
+
+
+def load_sweep(store: ResultStore | str | os.PathLike, tasks: list[Task] | None = None, *,
+               complete: bool = False) -> dict[str, PointResult]:
+    """All verified points of a store (those of ``tasks`` if given, checking their params).
+
+    ``complete=False``: corrupt, stale or missing points are left out. ``complete=True``: they are
+    refused with one :class:`DatasetError` naming each (without ``tasks``, the points expected are
+    those of :func:`expected_points`).
+    """
     store = store if isinstance(store, ResultStore) else ResultStore(store)
-    out = {}
-    items = [(t.key, t.params) for t in tasks] if tasks is not None else [(k, None) for k in store.keys()]
+    if tasks is not None:
+        items = [(t.key, t.params) for t in tasks]
+    elif complete:
+        items = list(expected_points(store).items())
+    else:
+        items = [(k, None) for k in store.keys()]
+    out, bad = {}, []
     for key, params in items:
-        if store.check(key, params)[0] == "done":
+        status, why = store.check(key, params)
+        if status == "done":
             out[key] = store.load(key, params)
+        elif complete:
+            bad.append(f"{key} ({status}{': ' + why if why and status != 'missing' else ''})")
+    if bad:
+        raise DatasetError(f"{store.root}: {len(bad)} of {len(items)} points missing or damaged: "
+                           f"{', '.join(bad[:8])}{' …' if len(bad) > 8 else ''}; run the sweep again to "
+                           "recompute them")
     return out
 
 
@@ -186,3 +262,34 @@ def run_status(root: str | os.PathLike) -> dict:
         return out
     out["complete"] = True
     return out
+
+
+def read_timing(root: str | os.PathLike) -> list | None:
+    """The runs recorded in ``<root>/timing.json`` (None if absent); :class:`DatasetError` naming it if damaged."""
+    p = Path(root) / TIMING
+    if not p.exists():
+        return None
+    try:
+        runs = json.loads(p.read_text(encoding="utf-8"))
+        if not isinstance(runs, list):
+            raise ValueError("not a JSON list")
+    except (OSError, ValueError) as e:
+        raise DatasetError(f"{p}: damaged timing record ({type(e).__name__}); a new run of the sweep sets it "
+                           "aside and starts a new one") from None
+    return runs
+
+
+def append_timing(root: str | os.PathLike, entry: dict, say=None) -> Path:
+    """Append one run's timing to ``<root>/timing.json``; a damaged file is renamed
+    ``timing.json.damaged-<UTC>`` (said through ``say``) and a new list started."""
+    p = Path(root) / TIMING
+    try:
+        runs = read_timing(root) or []
+    except DatasetError as e:
+        aside = p.with_name(f"{TIMING}.damaged-{time.strftime('%Y%m%dT%H%M%SZ', time.gmtime())}")
+        os.replace(p, aside)
+        if say is not None:
+            say(f"sweep: {e.args[0].split(';')[0]}: kept as {aside.name}, starting a new one")
+        runs = []
+    runs.append(entry)
+    return atomic_write_text(p, json.dumps(runs, indent=1, default=_json_default) + "\n")

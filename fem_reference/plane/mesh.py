@@ -148,7 +148,8 @@ def _gmsh_triangles(rings: RingPair, spec: MeshSpec, size_expr: str):
 
     hc = spec.h_contact_m
     with _GMSH_LOCK:
-        gmsh.initialize(readConfigFiles=False)
+        # gmsh's Ctrl-C handler can only be installed from the main thread (dask workers run tasks in threads)
+        gmsh.initialize(readConfigFiles=False, interruptible=threading.current_thread() is threading.main_thread())
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.model.add("rings")

@@ -325,8 +325,8 @@ def sweep_dataset(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFA
     """Solve every (scene, penetration); returns (metadata, points).
 
     One task per scene through :func:`sweep.run_sweep`: ``workers`` local processes (default 1:
-    every point timed alone), or ``executor`` (it must run tasks in a process's main thread: gmsh
-    installs a signal handler, so a thread pool fails). ``store``: directory of a
+    every point timed alone), or ``executor`` (a process pool or a dask client; gmsh's Ctrl-C handler
+    is installed only from a main thread, so a dask worker's task threads mesh too). ``store``: directory of a
     :class:`sweep.ResultStore` keeping finished scenes, so a repeated call resumes (default: a
     temporary one, nothing kept).
     """

@@ -40,8 +40,8 @@ from fem_reference.solid.geometry import RigidMotion, RingPair3D
 from fem_reference.solid.mesh import DEFAULT_LEVELS, LEVELS, MeshLevel3D
 from fem_reference.solid.solve import (SCENES, ContactCompliance, build_compliance, load_compliance,
                                        save_compliance, solve_point)
-from sweep import (ResultStore, Task, as_executor, code_revision, machine, package_versions, revision_label,
-                   run_sweep, utc_stamp)
+from sweep import (ResultStore, Task, as_executor, code_revision, local_pool, machine, package_versions,
+                   revision_label, run_sweep, utc_stamp)
 
 DATA_DIR = Path(__file__).resolve().parents[1] / "data" / "3d"
 DATASET_PATH = DATA_DIR / "fem3d-reference.json"
@@ -308,7 +308,7 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
     cache = cache_dir() if cache is None else Path(cache)
     t0 = time.perf_counter()
     own = executor is None
-    ex = cf.ProcessPoolExecutor(max_workers=workers) if own else as_executor(executor)
+    ex = local_pool(workers) if own else as_executor(executor)  # local workers die with this process
     try:
         paths, builds = _compliances(ex, geom, levels, scene, cache)
         store = point_store(paths, cache)

@@ -1,7 +1,7 @@
 """Console jobs of the 2D FEM reference (registered in reports/cli/__init__.py).
 
     ringcontact fem-point 0.01 [--scene clamped] [--h-mm 1] [--order 2] [--json]
-    ringcontact fem-sweep [--out PATH]            regenerate the committed dataset (progress on a TTY)
+    ringcontact fem-sweep [--out PATH] [--scheduler ADDRESS]   regenerate the committed dataset (progress on a TTY)
     ringcontact fem-check [--points 3]            recompute a few committed points, print differences
     ringcontact fem-report [--path P] [--out D]   report of the committed dataset (reports.fem2d)
     ringcontact fem-paper [--h-mm 2] [--out D]    the paper set-up study and its report (reports.fem2d_paper)
@@ -86,15 +86,19 @@ def point_main(argv: list[str]) -> int:
 
 
 def sweep_main(argv: list[str]) -> int:
-    """``fem-sweep``: regenerate the committed dataset."""
-    from fem_reference.plane.sweep import DATASET_PATH, regenerate
+    """``fem-sweep``: regenerate the committed dataset (locally, or on a dask cluster with ``--scheduler``)."""
+    from fem_reference.plane.sweep import regenerate
+    from sweep.cluster import connect
 
     ap = Parser(prog="ringcontact fem-sweep", description="regenerate the 2D FEM reference dataset")
     ap.add_argument("--out", type=out_file, default=DATASET_OUT,
                     help=f"output JSON (default {DATASET_OUT}: the committed copy when run from the repository root)")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="run the scenes on the dask.distributed cluster at ADDRESS (the dask extra)")
     args = ap.parse_args(argv)
     try:
-        path = regenerate(args.out)
+        with connect(args.scheduler) as client:
+            path = regenerate(args.out, executor=client)
     except RingContactError as exc:
         return fail("ringcontact fem-sweep", exc)
     print(f"wrote {path}")

@@ -1,7 +1,7 @@
 """Console job ``ringcontact fem3d`` of the 3D tilted-ring FEM reference (registered in reports/cli/__init__.py).
 
     ringcontact fem3d point 0.02 --tilt-arcmin 2 [--tilt-axis z|y] [--level L2 | --levels] [--json]
-    ringcontact fem3d sweep [--out PATH] [--workers 2] [--fresh]   regenerate the committed dataset
+    ringcontact fem3d sweep [--out PATH] [--workers 2] [--fresh] [--scheduler ADDRESS]   regenerate the committed dataset
     ringcontact fem3d check [--points 3] [--cached]                recompute a few committed points
     ringcontact fem3d report                                       tables/figures into reports/published/
     ringcontact fem3d vtu 0.02 --tilt-arcmin 2 --out p.vtu [--level L2]   contact pressure map for ParaView
@@ -112,17 +112,22 @@ def point_main(argv: list[str]) -> int:
 
 
 def sweep_main(argv: list[str]) -> int:
-    """``fem3d sweep``: regenerate the 3D dataset through a process pool (resumable)."""
+    """``fem3d sweep``: regenerate the 3D dataset through a process pool or a dask cluster (resumable)."""
     from fem_reference.solid.sweep import regenerate
+    from sweep.cluster import connect
 
     ap = Parser(prog="ringcontact fem3d sweep", description="regenerate the 3D FEM reference dataset")
     ap.add_argument("--out", type=out_file, default=DATASET_OUT,
                     help=f"output JSON (default {DATASET_OUT}: the committed copy when run from the repository root)")
     ap.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="processes (1-64)")
     ap.add_argument("--fresh", action="store_true", help="ignore finished points kept from an interrupted run")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="run on the dask.distributed cluster at ADDRESS (the dask extra; workers must see the "
+                         "same $RINGCONTACT_CACHE)")
     args = ap.parse_args(argv)
     try:
-        path = regenerate(args.out, workers=args.workers, resume=not args.fresh)
+        with connect(args.scheduler) as client:
+            path = regenerate(args.out, workers=args.workers, executor=client, resume=not args.fresh)
     except RingContactError as exc:
         return fail("ringcontact fem3d sweep", exc)
     print(f"wrote {path}")

@@ -10,6 +10,7 @@ Sub-studies (each resumable: points already in ``--out`` are reused, corrupt one
     ringcontact study runup    --out runs/runup                      # run-up with time–frequency cascade
     ringcontact study map      --out runs/map                        # stick/slip/impact over (speed, clearance)
     ringcontact study publish  --cascade runs/fig12 --notilt runs/fig16 …   # study-* into reports/published
+    ringcontact study export   runs/fig12 --format netcdf|csv          # speed x station x harmonic dataset
     ringcontact study sensitivity --out runs/sensitivity             # §5 findings vs the unstated inputs (slow)
 
 Engineer units at the edge (``_rpm``, ``_mm``); results in SI (see sweep.store for the file
@@ -33,7 +34,7 @@ import numpy as np  # noqa: E402
 
 from contact.errors import FailedPointsError, InputError, RingContactError
 from contact.units import check_positive
-from reports.cli._edge import Parser, count, fail, in_dir, out_dir, quantity
+from reports.cli._edge import Parser, count, fail, in_dir, out_dir, out_file, quantity
 
 PUBLISHED = "reports/published"     # relative to the working directory (the repository root in a checkout)
 
@@ -43,12 +44,19 @@ def _common(p: argparse.ArgumentParser, out: str):
     p.add_argument("--out", type=out_dir, default=out, help=f"result directory (default {out})")
     p.add_argument("--figures", type=out_dir, default=None, help="figure directory (default <out>/figures)")
     p.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")
+    _scheduler(p)
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=256,
                    help="minimum time steps per revolution (default 256)")
     p.add_argument("--max-revs", type=count(1, 100000), default=1500, help="transient cap in revolutions (default 1500)")
     p.add_argument("--elements", type=count(1, 64), default=None,
                    help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
+
+
+def _scheduler(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run on the dask.distributed cluster at ADDRESS (e.g. tcp://10.0.0.5:8786; the dask "
+                        "extra) instead of --workers local processes")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -91,11 +99,19 @@ def _parser() -> argparse.ArgumentParser:
     se.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
     se.add_argument("--out", type=out_dir, default="runs/sensitivity", help="result directory (default runs/sensitivity)")
     se.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")
+    _scheduler(se)
     se.add_argument("--variants", default=None, help="comma list of variant names (default: all; see rotor.studies.sensitivity)")
     se.add_argument("--report-only", action="store_true", help="no computing: report what is in --out")
     se.add_argument("--report-out", "--to", dest="to", type=out_dir, default=PUBLISHED,
                     help=f"where study-sensitivity.{{md,csv,png,svg}} go (default {PUBLISHED})")
     se.add_argument("--no-progress", action="store_true", help="no progress line")
+    ex = sub.add_parser("export", help="a study directory (or a FEM reference dataset .json) as one labelled "
+                                       "dataset: netCDF or CSV (the xarray extra)")
+    ex.add_argument("run", help="result directory of a study, or a FEM dataset such as "
+                                "fem_reference/data/fem2d-reference.json")
+    ex.add_argument("--format", choices=("netcdf", "csv"), default="netcdf", help="file format (default netcdf)")
+    ex.add_argument("--out", type=out_file, default=None, help="output file (default <run>/study.nc|csv, or <dataset name>.nc|csv "
+                                                "in the current directory)")
     pb = sub.add_parser("publish", help="figures + notes of finished study directories into reports/published (study-*)")
     for k in ("cascade", "notilt", "params", "point", "testrig", "map", "runup"):
         pb.add_argument(f"--{k}", type=in_dir, default=None, help=f"directory of a finished '{k}' study")
@@ -147,6 +163,7 @@ def _mesh(args) -> dict:
 
 def _sweep(tasks, out: Path, args, description: dict):
     from sweep import run_sweep
+    from sweep.cluster import connect
     from rotor.studies.steady_state import _scene_model
 
     sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
@@ -154,8 +171,9 @@ def _sweep(tasks, out: Path, args, description: dict):
     manifest = {"study": args.study, "description": description, "scene_name": sc.name,
                 "scene": dataclasses.asdict(sc), **_mesh(args)}
     t0 = time.perf_counter()
-    s = run_sweep(tasks, out, max_workers=args.workers, manifest=manifest,
-                  progress=False if args.no_progress else None)
+    with connect(args.scheduler) as client:
+        s = run_sweep(tasks, out, executor=client, max_workers=args.workers, manifest=manifest,
+                      progress=False if args.no_progress else None)
     wall = time.perf_counter() - t0
     print(f"study {args.study}: {len(tasks)} points, {len(s.computed)} computed, {len(s.reused)} reused, "
           f"{len(s.recomputed)} recomputed, {len(s.failed)} failed, wall {wall:.1f} s")
@@ -170,6 +188,8 @@ def _sweep(tasks, out: Path, args, description: dict):
 def _run(args) -> int:
     if args.study == "publish":
         return _publish(args)
+    if args.study == "export":
+        return _export(args)
     if args.study == "sensitivity":
         return _sensitivity(args)
     from rotor.model.scene import load_scene
@@ -182,6 +202,27 @@ def _run(args) -> int:
         return 2
     for f in study(args, out, figs, opts):
         print(f"  wrote {f}")
+    return 0
+
+
+def _export(args) -> int:
+    """``study export``: the points of a study (or a FEM dataset) as one netCDF or CSV file."""
+    from contact.errors import InputError
+    from sweep.export import fem_to_xarray, write
+
+    src = Path(args.run)
+    suffix = {"netcdf": ".nc", "csv": ".csv"}[args.format]
+    if src.is_dir():
+        from rotor.studies.export import to_xarray
+        ds = to_xarray(src)
+        out = Path(args.out) if args.out else src / f"study{suffix}"
+    elif src.is_file():
+        ds = fem_to_xarray(src)
+        out = Path(args.out) if args.out else Path(src.stem + suffix)
+    else:
+        raise InputError(f"run = {str(src)!r}: no such study directory or dataset file")
+    dims = " x ".join(f"{d} {n}" for d, n in ds.sizes.items())
+    print(f"  wrote {write(ds, out, args.format)} ({dims})")
     return 0
 
 
@@ -309,7 +350,10 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
         a, b = b, a
     spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
                      steps_per_rev=int(args.steps_per_rev))
-    info = run_runup(spec, out)
+    from sweep.cluster import connect
+
+    with connect(args.scheduler) as client:
+        info = run_runup(spec, out, executor=client)
     print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")
     return runup_figures(out, figs)
 
@@ -325,6 +369,7 @@ def _sensitivity(args) -> int:
     from reports import sensitivity as rep
     from rotor.studies import sensitivity as sens
     from sweep import code_revision, run_sweep
+    from sweep.cluster import connect
 
     variants = sens.study_variants()
     if args.variants:
@@ -340,9 +385,11 @@ def _sensitivity(args) -> int:
     else:
         tasks = sens.study_tasks(variants, scene=args.scene)
         t0 = time.perf_counter()
-        s = run_sweep(tasks, out, max_workers=args.workers, progress=False if args.no_progress else None,
-                      manifest={"study": "sensitivity", "variants": {v.name: v.factors for v in variants},
-                                "speeds_rpm": list(sens.SPEEDS_RPM)})
+        with connect(args.scheduler) as client:
+            s = run_sweep(tasks, out, executor=client, max_workers=args.workers,
+                          progress=False if args.no_progress else None,
+                          manifest={"study": "sensitivity", "variants": {v.name: v.factors for v in variants},
+                                    "speeds_rpm": list(sens.SPEEDS_RPM)})
         wall = time.perf_counter() - t0
         print(f"study sensitivity: {len(tasks)} tasks, {len(s.computed)} computed, {len(s.reused)} reused, "
               f"{len(s.failed)} failed, wall {wall:.1f} s")
@@ -373,20 +420,17 @@ def _points_code(out: Path, current: dict) -> str:
 
 
 def _timing(out: Path, s, wall: float, args) -> None:
-    """Append the wall time of this sweep run (points computed, per-point times) to ``timing.json``."""
-    import os
+    """Append the wall time of this sweep run (points computed, per-point times) to ``timing.json``
+    (a damaged one is set aside with a message, see :func:`sweep.append_timing`)."""
+    from sweep import append_timing
 
-    from contact.files import atomic_write_text
-
-    p = out / "timing.json"
-    runs = json.loads(p.read_text()) if p.exists() else []
     pw = sorted(s.point_wall_s.values())
-    runs.append({"workers": args.workers, "computed": len(s.computed), "reused": len(s.reused),
-                 "wall_s": round(wall, 2), "point_wall_s_median": round(float(np.median(pw)), 3) if pw else None,
-                 "point_wall_s_sum": round(float(sum(pw)), 2), "load_avg_end": os.getloadavg(),
-                 "finished_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())})
-    atomic_write_text(p, json.dumps(runs, indent=1) + "\n")
-
+    append_timing(out, {"workers": args.workers, "scheduler": getattr(args, "scheduler", None),
+                        "computed": len(s.computed), "reused": len(s.reused),
+                        "wall_s": round(wall, 2), "point_wall_s_median": round(float(np.median(pw)), 3) if pw else None,
+                        "point_wall_s_sum": round(float(sum(pw)), 2), "load_avg_end": os.getloadavg(),
+                        "finished_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())},
+                  say=lambda m: print(m, file=sys.stderr))
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -44,8 +44,9 @@ def write_csv(path: Path, header: list[str], rows) -> Path:
 
 
 def load_points(out, tasks=None) -> list:
-    """Verified points of a sweep in task order (missing/corrupt ones left out)."""
-    res = load_sweep(out, tasks)
+    """Verified points of a sweep in task order; a missing, damaged or stale point (of ``tasks``, else of
+    the sweep's ``sweep.json``) is refused with a DatasetError naming each, so nothing is published short."""
+    res = load_sweep(out, tasks, complete=True)
     keys = [t.key for t in tasks] if tasks is not None else sorted(res, key=lambda k: res[k].params.get("speed_rpm", 0))
     return [res[k] for k in keys if k in res]
 

@@ -22,7 +22,7 @@ def publish(runs: dict, published) -> list[Path]:
     with ``"elements"`` (elements per segment): then ``study-findings.md`` judges the five Section 5
     findings on both meshes.
     """
-    import json
+    from sweep import read_timing
 
     published = Path(published)
     files = []
@@ -33,8 +33,7 @@ def publish(runs: dict, published) -> list[Path]:
             files += cascade_figures(runs["notilt"], published, prefix="study-cascade-notilt",
                                      title="Spectrum cascades with the tilt ignored (paper Fig. 16)")
             notilt = load_points(runs["notilt"])
-        tp = Path(runs["cascade"]) / "timing.json"
-        timing = json.loads(tp.read_text()) if tp.exists() else None
+        timing = read_timing(runs["cascade"])
         files.append(atomic_write_text(published / "study-cascade.md",
                                        cascade_note(load_points(runs["cascade"]), notilt, timing)))
     if "params" in runs:

@@ -147,16 +147,17 @@ def _runup_task(**params):
     return r["arrays"], r["info"]
 
 
-def run_runup(spec: RunupSpec, out) -> dict:
-    """Simulate (unless a verified result with the same spec is in ``out``) and store as point ``runup``."""
+def run_runup(spec: RunupSpec, out, executor=None) -> dict:
+    """Simulate (unless a verified result with the same spec is in ``out``) and store as point ``runup``;
+    ``executor``: where to run it (e.g. a dask client; default a thread here)."""
     from sweep import ResultStore, Task, run_sweep
 
     params = dataclasses.asdict(spec)
     task = Task("runup", _runup_task, params)
     import concurrent.futures as cf
 
-    with cf.ThreadPoolExecutor(max_workers=1) as ex:  # one task: no process start-up
-        s = run_sweep([task], out, executor=ex, manifest={"study": "runup", "spec": params})
+    with cf.ThreadPoolExecutor(max_workers=1) as local:  # one task: no process start-up
+        s = run_sweep([task], out, executor=executor or local, manifest={"study": "runup", "spec": params})
     if s.failed:
         raise InputError(f"run-up failed: {s.failed['runup']}")
     return ResultStore(out).load("runup", params).info

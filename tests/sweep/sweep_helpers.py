@@ -27,3 +27,35 @@ def calls(d, x):
 
 def square_tasks(calls_dir, xs=(1.0, 2.0, 3.0, 4.0, 5.0)):
     return [Task(f"x{x:g}", square_task, {"x": x, "calls_dir": str(calls_dir)}) for x in xs]
+
+
+def waiting_task(x: float, calls_dir: str, gate: str, timeout_s: float = 60.0):
+    """Marks its start (``start-<x>-<pid>`` in calls_dir), then waits until the file ``gate`` exists."""
+    import time
+
+    with open(os.path.join(calls_dir, f"start-{x:g}-{os.getpid()}"), "w"):
+        pass
+    t0 = time.monotonic()
+    while not os.path.exists(gate) and time.monotonic() - t0 < timeout_s:
+        time.sleep(0.05)
+    return {"x": np.array([x])}, {"pid": os.getpid()}
+
+
+def dying_task(x: float, calls_dir: str, die_at: float):
+    """square_task, except that the first call with x == die_at kills its own process (kill -9)."""
+    import signal
+
+    if x == die_at and not os.path.exists(os.path.join(calls_dir, "died")):
+        with open(os.path.join(calls_dir, "died"), "w"):
+            pass
+        os.kill(os.getpid(), signal.SIGKILL)
+    return square_task(x, calls_dir)
+
+
+def alive(pid: int) -> bool:
+    """Whether process ``pid`` runs (a zombie does not)."""
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
