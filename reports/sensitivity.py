@@ -352,13 +352,9 @@ def timing_text(out, keys=None) -> dict:
             walls.append(float(w))
         info = rec.get("info", {})
         ss += [float(info[c]["wall_s"]) for c in info.get("cases", []) if isinstance(info.get(c), dict)]
-    runs = []
-    p = Path(out) / "timing.json"
-    if p.exists():
-        try:
-            runs = json.loads(p.read_text())
-        except ValueError:
-            runs = []
+    from sweep import read_timing
+
+    runs = read_timing(out) or []   # a damaged timing.json is refused by name (DatasetError), not ignored
     if not walls:
         return {}
     total = sum(r.get("wall_s", 0.0) for r in runs)
