@@ -24,7 +24,7 @@ cache, so it stays in the default run):
    directory by default), every file 0644; the venv (its site-packages included) is byte-for-byte
    the listing taken after the install; an audit hook logging every file each job opens shows the
    calibrated law, the scene, the datasets read from the venv's site-packages and no file of the
-   repository; the notes ship in the wheel; the installed copy's numbers equal the source tree's.
+   repository; the notes and the LICENSE ship in the wheel; the installed copy's numbers equal the source tree's.
 """
 from __future__ import annotations
 
@@ -210,3 +210,5 @@ def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
                   "print(files('reports').joinpath('notes/study-sensitivity-reading.md').read_text(encoding='utf-8'), end='')"],
                  cwd=work, env=env).stdout
     assert notes == (ROOT / "reports" / "notes" / "study-sensitivity-reading.md").read_text(encoding="utf-8")
+    licence = next(site_packages.glob("ringcontact-*.dist-info")) / "licenses" / "LICENSE"
+    assert licence.read_text(encoding="utf-8") == (ROOT / "LICENSE").read_text(encoding="utf-8")
