@@ -272,7 +272,7 @@ def main(argv: list[str] | None = None) -> int:
     for name in ("modes", "points", "elements", "steps_per_rev", "record_per_rev"):
         v = getattr(args, name, None)
         if v is not None and v < 1:
-            print(f"ringcontact rotor: error: --{name.replace('_', '-')} = {v}: must be >= 1", file=sys.stderr)
+            print(f"ringcontact rotor {args.cmd}: error: --{name.replace('_', '-')} = {v}: must be >= 1", file=sys.stderr)
             return 2
     try:
         return args.func(args)
