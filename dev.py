@@ -25,7 +25,7 @@ VENV = ROOT / ".venv"
 PY = VENV / "bin" / "python"
 
 # Shared libraries the gmsh wheel's libgmsh.so needs, mapped to Debian packages
-# (measured with ldd on gmsh 4.15; see shared fem-notes).
+# (measured with ldd on gmsh 4.15; see docs/reference/fem-notes.md).
 GMSH_DEBIAN_LIBS = {
     "libGLU.so": "libglu1-mesa",
     "libGL.so": "libgl1",

@@ -2,7 +2,7 @@
 
 Dai et al. (2025) Eqs. 20–24 (sliding friction at the two end faces, ideal dry friction of
 Den Hartog 1931) and Eqs. 50–58 (stick constraints and the face force demand), with the
-signs restored in contact-laws.md §9. Conventions as in :mod:`contact.loose_support`:
+signs restored in docs/reference/contact-laws.md §9. Conventions as in :mod:`contact.loose_support`:
 relative bearing − support quantities (SI), face 1 = right face at ``x = +l0/2``, face 2 =
 left face at ``x = −l0/2``; a force F at x gives ``My = −x Fz``, ``Mz = x Fy``; outputs act
 on the bearing. Each face carries the full nut preload N, so it slides at ``μN`` (Q12).

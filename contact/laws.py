@@ -22,7 +22,7 @@ Validity domains are explicit. A point where a law has no (physical) value is re
 to get :class:`~contact.errors.OutsideDomainError` instead. A zero or negative penetration
 is *inside* the domain and gives zero force.
 
-Open questions resolved here (see ``shared/reference/contact-laws.md`` Q1, Q3, Q6):
+Open questions resolved here (see ``docs/reference/contact-laws.md`` Q1, Q3, Q6):
 
 * ``beta_reading`` (Q1): the β term of Eq. 5 is garbled in the paper. ``"zero"`` (default)
   drops it; this is the exact plane-elasticity solution whenever the Dundurs β vanishes,
@@ -198,7 +198,7 @@ def contact_b_squared(penetration_m, clearance_m: float) -> np.ndarray:
     """``b² = tan²(ε/2) = Δr / (2δ0 + Δr)`` for ``Δr > 0`` (0 otherwise).
 
     ε is the rigid-overlap contact half-angle, ``cos ε = δ0/(δ0 + Δr)`` (Dai et al. 2025
-    Eq. 7 read with ε the *half*-angle, contact-laws.md §2 / Q2).
+    Eq. 7 read with ε the *half*-angle, docs/reference/contact-laws.md §2 / Q2).
     """
     pen = np.maximum(np.asarray(penetration_m, dtype=float), 0.0)
     return pen / (2.0 * clearance_m + pen)
@@ -228,7 +228,7 @@ def conformal_denominator(b2, alpha: float, beta_coef: float = 0.0):
 def conformal_neat_fit_limit_m(clearance_m: float, alpha: float = 0.0, beta_coef: float = 0.0) -> float:
     """Penetration (m) at which ``D(b) = 0`` and the conformal load diverges; ``inf`` if never.
 
-    For α = β = 0 this is ``Δr_max = 10.09 δ0`` (ε_max = 84.83°, contact-laws.md §3.1).
+    For α = β = 0 this is ``Δr_max = 10.09 δ0`` (ε_max = 84.83°, docs/reference/contact-laws.md §3.1).
     ``b²`` ranges over [0, 1) as Δr goes from 0 to ∞, so the root is sought on that interval.
     """
     f = lambda s: float(conformal_denominator(s, alpha, beta_coef))  # noqa: E731
@@ -301,7 +301,7 @@ def _conformal_per_width(pen: np.ndarray, clearance_m: float, e_star: float, alp
 # Johnson (Dai et al. 2025 Eqs. 26-27)
 # --------------------------------------------------------------------------------------------
 
-JOHNSON_MAX_RATIO = 4.0 / math.e ** 2   # max of Δr/δ: no solution above (contact-laws.md §5)
+JOHNSON_MAX_RATIO = 4.0 / math.e ** 2   # max of Δr/δ: no solution above (docs/reference/contact-laws.md §5)
 
 
 def johnson_penetration(force_N, *, clearance_m: float, width_m: float, e_star_Pa: float) -> np.ndarray:

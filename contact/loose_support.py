@@ -11,7 +11,7 @@ arrays of relative displacement, tilt, velocity and angular velocity. It is the 
 * the Coulomb friction of the two preloaded end faces and its moments (Eqs. 20–24,
   :mod:`contact.friction`).
 
-Sign conventions (the one place they are written; contact-laws.md §1, §8, §9)
+Sign conventions (the one place they are written; docs/reference/contact-laws.md §1, §8, §9)
 -----------------------------------------------------------------------------
 * Inputs are **relative** quantities, bearing minus support, SI units:
   ``y = y_b − y_s``, ``z = z_b − z_s`` (m), ``θy = θ_b,y − θ_s,y``, ``θz`` (rad), their time
@@ -26,7 +26,7 @@ Sign conventions (the one place they are written; contact-laws.md §1, §8, §9)
   opposite. The contact force points from the contact towards the centre
   (``−P r_k/|r_k|``); friction opposes the face's relative velocity.
 
-Model choices (open questions of contact-laws.md)
+Model choices (open questions of docs/reference/contact-laws.md)
 -------------------------------------------------
 * Q8 selection: with the centre inside the clearance (``|r| <= δ0``) the two edges touch
   opposite sides and both forces add (two-point contact). With ``|r| > δ0`` only the edge

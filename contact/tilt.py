@@ -4,7 +4,7 @@ Readable numpy reference of Dai et al. (2025) Eqs. 8–19 (point and two-point c
 tilted bearing ring in its support). :mod:`contact.loose_support` evaluates the same model
 in a compiled kernel for speed; the tests check that both agree.
 
-Conventions (contact-laws.md §1, §8; written out in :mod:`contact.loose_support`): relative
+Conventions (docs/reference/contact-laws.md §1, §8; written out in :mod:`contact.loose_support`): relative
 bearing − support quantities in SI; edge 1 is the right edge at ``x = +l0/2``, edge 2 the
 left edge at ``x = −l0/2``; a point at x moves by ``(y + x θz, z − x θy)``; a force F at x
 gives ``My = −x Fz``, ``Mz = x Fy``; forces and moments act on the bearing.
@@ -247,7 +247,7 @@ def aligned_tilt_contact(penetration_m, tilt_rad, *, clearance_m: float, width_m
     """Static contact at centre penetration Δr with the tilt aligned so that edge 1 penetrates most.
 
     The bearing centre sits at ``y = δ0 + Δr`` and the tilt is ``θz = tilt`` (``θy = 0``), so
-    ``Δr1 = Δr + |θ| l0/2`` (the illustration of contact-laws.md §10 and the set-up of the
+    ``Δr1 = Δr + |θ| l0/2`` (the illustration of docs/reference/contact-laws.md §10 and the set-up of the
     paper's Table 3 read with centre penetration, Q9). Scalars or arrays that broadcast.
     """
     pen = np.asarray(penetration_m, dtype=float)

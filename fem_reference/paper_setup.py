@@ -2,7 +2,7 @@
 
 Dai et al. (2025) do not state how their FE model was held, loaded or measured. Their Table 2
 percentages imply FEM loads of 44.9, 105.2, 169.4, 235.9 and 304.0 kN at Δr = 0.01…0.05 mm
-(contact-laws.md §10, recovered from the Pereira column). This module evaluates plausible
+(docs/reference/contact-laws.md §10, recovered from the Pereira column). This module evaluates plausible
 readings — plane stress/strain, how the bearing is driven, how the support is held, how the
 "relative displacement" is measured, and (as a geometry change) a support embedded in a larger
 housing. :func:`run` returns one row per reading; :mod:`reports.fem2d_paper` writes them as
@@ -32,7 +32,7 @@ from fem_reference.plane.solve import ContactModel
 from fem_reference.scenes import Scene
 
 PAPER_DR_MM = np.array([0.01, 0.02, 0.03, 0.04, 0.05])
-PAPER_FEM_KN = np.array([44.878, 105.247, 169.351, 235.945, 304.036])  # contact-laws.md §10
+PAPER_FEM_KN = np.array([44.878, 105.247, 169.351, 235.945, 304.036])  # docs/reference/contact-laws.md §10
 MEASUREMENTS = ("drive", "contact-circles", "centroids")
 
 

@@ -3,7 +3,7 @@
 A scene = ring geometry + plane assumption + how the bearing is driven + how the support is
 held. All scenes are half models (x >= 0, u_x = 0 on x = 0) driven by a displacement ``t``
 of the bearing along +y; the reported penetration is ``Δr = t − δ0`` (Dai et al. 2025,
-Tables 2–3 "relative displacement"; contact-laws.md §10) and the reported force is the
+Tables 2–3 "relative displacement"; docs/reference/contact-laws.md §10) and the reported force is the
 reaction of the driven surface (= total contact force), for the whole ring, times ``l0``.
 
 Scenes

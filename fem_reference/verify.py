@@ -2,7 +2,7 @@
 
 * Lamé (1852) thick cylinder: annulus a < r < b, outer surface clamped, inner pressure p.
 * Persson (1964) / Ciavarella & Decuzzi (2001) conformal pin-in-hole law, in the explicit form
-  of Yang et al. (2024) / Dai et al. (2025) Eq. 5 (contact-laws.md §3):
+  of Yang et al. (2024) / Dai et al. (2025) Eq. 5 (docs/reference/contact-laws.md §3):
   ``P = 2π E* δ0 l b²(1+b²)/D(b)``, ``D = 2 − (1−α)(ln(1+b²) + 2b⁴)``, ``b = tan(ε/2)``,
   with ε the *measured* contact half-angle. Implemented here (not imported from
   ``contact.laws``) because fem_reference may only import contact's errors/units/files/dataset,

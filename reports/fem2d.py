@@ -6,7 +6,7 @@ Writes ``reports/published/fem2d-reference.{md,csv,png,svg}`` from
 * per scene: force, contact half-angle, peak pressure, Richardson error, observed order, DOFs,
   iterations and wall time of every committed point;
 * Persson check: the ``persson-40`` points' force against the conformal law evaluated at the
-  *measured* half-angle (Persson 1964; Ciavarella & Decuzzi 2001; contact-laws.md §3.1);
+  *measured* half-angle (Persson 1964; Ciavarella & Decuzzi 2001; docs/reference/contact-laws.md §3.1);
 * Lamé check (P1/P2, plane strain/stress).
 """
 from __future__ import annotations

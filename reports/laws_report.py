@@ -2,7 +2,7 @@
 
 The paper gives only percentage differences to its FEM, not the FEM loads. The FEM load of
 each row is recovered from the **Pereira** percentage (Pereira under-predicts,
-contact-laws.md §10): ``FEM = P_Pereira / (1 − p_Pereira/100)``. The conformal law's and
+docs/reference/contact-laws.md §10): ``FEM = P_Pereira / (1 − p_Pereira/100)``. The conformal law's and
 Johnson's percentages against that load are then compared with the paper's. Because the
 conformal and Pereira laws are coded independently (different formulas, units and moduli),
 matching the conformal percentages to ±0.05 points shows that both laws keep the paper's

@@ -82,7 +82,7 @@ class CalibratedLaw:
 
         The ring centre is at ``y = δ0 + Δr`` and the tilt ``θ`` is about z, so the slice at axial
         position x has ``Δr(x) = Δr + θx`` on the +y side and ``−2δ0 − Δr − θx`` on the −y side
-        (small angles, contact-laws.md §1, §8). ``P = ∫ h(Δr(x)) dx`` and ``M_z = Σ x F_y`` over the
+        (small angles, docs/reference/contact-laws.md §1, §8). ``P = ∫ h(Δr(x)) dx`` and ``M_z = Σ x F_y`` over the
         contact, by Gauss–Legendre quadrature on each contact interval (exact for a Winkler bed,
         whose slices are independent; Johnson 1985 §4.3). This is the calibrated law's tilt
         model; the paper's edge/patch model (Eqs. 8–19) is the compiled kernel's.

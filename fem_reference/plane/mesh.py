@@ -14,7 +14,7 @@ The mesh goes to scikit-fem straight from gmsh's arrays (``MeshTri1``/``MeshTri2
 meshio round trip), with the body of each element recorded and named boundaries
 (``mesh.boundaries``: bearing_inner, bearing_outer, support_bore, support_outer, symmetry) found
 by radius and body (:func:`facets_on_circle`) – what ``from_meshio`` would need on quadratic
-meshes anyway, since it ignores gmsh's physical groups there (fem-notes.md).
+meshes anyway, since it ignores gmsh's physical groups there (docs/reference/fem-notes.md).
 """
 from __future__ import annotations
 

@@ -10,7 +10,7 @@ width), with point data
 * ``rigid_gap_m`` – gap of the rigid motion before deformation (m), negative = overlap;
 * ``phi_deg``, ``x_mm`` – the surface coordinates, for plots over the unrolled bore.
 
-Coordinates are the project's (x axial, y, z lateral; contact-laws.md §1), in metres.
+Coordinates are the project's (x axial, y, z lateral; docs/reference/contact-laws.md §1), in metres.
 """
 from __future__ import annotations
 

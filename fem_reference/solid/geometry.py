@@ -1,6 +1,6 @@
 """Geometry of the tilted ring-in-ring problem in 3D: rings, rigid motion, exact gap.
 
-Coordinates (as in Dai et al. 2025 and ``shared/reference/contact-laws.md`` §1): ``x`` along
+Coordinates (as in Dai et al. 2025 and ``docs/reference/contact-laws.md`` §1): ``x`` along
 the shaft (the ring axis), ``y`` the load direction, ``z`` completes a right-handed frame.
 A point of a ring surface is addressed by its axial position ``x`` and its polar angle
 ``phi`` measured from +y towards +z: ``y = R cos(phi)``, ``z = R sin(phi)``.
@@ -9,7 +9,7 @@ The bearing's inner surface is moved rigidly: a translation ``r`` along +y and a
 about +z through the ring centre, so that a point at axial position ``x`` moves by
 ``r + theta*x`` in y (small-angle form; Dai et al. 2025 Eq. 8: ``y + x*theta_z``).
 The penetration quoted everywhere is the one at the mid-plane, ``Delta r = r - delta0``
-(Dai et al. 2025 Table 2's "relative displacement", see contact-laws.md §10).
+(Dai et al. 2025 Table 2's "relative displacement", see docs/reference/contact-laws.md §10).
 
 The gap is computed from the true cylinders, never from the faceted mesh: the support bore is
 the cylinder of radius ``R_s = R_b + delta0`` about the x axis; the moved bearing surface is the
@@ -151,7 +151,7 @@ def reduce_motion(translation_y_m: float, translation_z_m: float,
     """Reduce a general motion (r_y, r_z, theta_y, theta_z) to the canonical half-model frame.
 
     The relative lateral displacement at axial position x is ``(y + x*theta_z, z - x*theta_y)``
-    (contact-laws.md §1, from Dai et al. 2025 Eqs. 13-14). The half model about the plane that
+    (docs/reference/contact-laws.md §1, from Dai et al. 2025 Eqs. 13-14). The half model about the plane that
     holds the load direction and the axis applies only if that displacement stays in one plane
     through the axis for every x, i.e. the translation and the "tilt direction"
     ``(theta_z, -theta_y)`` are parallel (or one of them is zero). Then a rotation about x by
@@ -223,7 +223,7 @@ def edge_penetrations_m(geom: RingPair3D, motion: RigidMotion) -> tuple[float, f
     """Rigid penetrations at the two ring edges on the loaded side, small-angle form (m).
 
     Returns ``(Delta r_1, Delta r_2)`` at ``x = +l0/2`` and ``x = -l0/2`` on the +y generatrix,
-    ``Delta r_k = r +- theta*l0/2 - delta0`` (contact-laws.md §8). A negative value is open.
+    ``Delta r_k = r +- theta*l0/2 - delta0`` (docs/reference/contact-laws.md §8). A negative value is open.
     Contact on the opposite (-y) generatrix at edge k happens when ``-(r +- theta*l0/2) > delta0``.
     """
     half = 0.5 * geom.width_m

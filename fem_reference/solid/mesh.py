@@ -11,7 +11,7 @@ Why not gmsh here: the 2D reference meshes with gmsh; for the 3D rings a gmsh tr
 extrusion gives the same structured hexes, but a mapped tensor mesh gives the node pairing and
 the grading (optionally toward the generatrices phi = 0 and phi = pi, toward the ring edges
 x = +-l0/2 and toward the contact surfaces) directly, with no prism/orphan-node risk
-(fem-notes.md, gmsh facts). The rings' curvature enters the gap exactly
+(docs/reference/fem-notes.md, gmsh facts). The rings' curvature enters the gap exactly
 (:mod:`fem_reference.solid.geometry`), never through the faceted surface.
 
 Mesh levels are named and nested in spirit: each level halves the element size of the previous

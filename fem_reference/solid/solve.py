@@ -3,7 +3,7 @@
 Method (and why)
 ----------------
 Each ring is assembled separately with scikit-fem (hexahedra, order 1 or 2, explicit
-``intorder``; fem-notes.md: the default Hex2 rule is needlessly heavy). The bearing's inner
+``intorder``; docs/reference/fem-notes.md: the default Hex2 rule is needlessly heavy). The bearing's inner
 surface moves rigidly (translation r along y, tilt theta about z); an infinitesimal rigid motion
 is strain-free, so the displacement is ``u_b = u_rigid + w`` with ``w = 0`` on the driven surface,
 and the support's outer surface is clamped (scene ``clamped``). Both elastic problems therefore
@@ -29,7 +29,7 @@ set must stay open); a violation enlarges the set and re-solves. This is exact f
 node-to-node contact for the discrete model: no penalty parameter, no augmentation error.
 
 Totals are doubled for the full ring (the half model about z = 0 carries half of every force;
-nodes on the symmetry plane carry half their full-model share). Sign convention (contact-laws.md
+nodes on the symmetry plane carry half their full-model share). Sign convention (docs/reference/contact-laws.md
 §1, §8): the contact force on the bearing is ``-P`` along +y for a +y translation, and its
 moment about +z through the ring centre is ``M_z = sum x F_y`` (negative for a positive tilt).
 """
@@ -401,7 +401,7 @@ class PointResult3D:
         Load magnitude (N): minus the y-component of the contact force on the bearing.
     moment_z_nm : float
         Moment about +z through the ring centre of the contact force on the bearing (N*m),
-        ``sum x*F_y`` (contact-laws.md §1 convention; negative for a positive tilt).
+        ``sum x*F_y`` (docs/reference/contact-laws.md §1 convention; negative for a positive tilt).
     contact_x_min_m, contact_x_max_m, contact_width_m : float
         Axial extent of the contact on the loaded (+y) side (m): active nodes on any generatrix
         of that side; each open end located by extrapolating the squared pressure on phi = 0 to

@@ -359,7 +359,7 @@ def _metadata(geom: RingPair3D, scene: str, levels: list[MeshLevel3D], points: l
             "tilt_rad": "tilt theta about +z through the ring centre: a point at axial x moves by r + theta*x",
             "force_n": "load = minus the y-force of the contact on the bearing, full ring",
             "moment_nm": "moment about +z through the ring centre of the contact force on the bearing, full "
-                         "ring (contact-laws.md sec. 1: M_z = x F_y; negative for a positive tilt)",
+                         "ring (docs/reference/contact-laws.md sec. 1: M_z = x F_y; negative for a positive tilt)",
             "width_m": "axial extent of contact on the +y side; open ends from p^2 extrapolated to zero on phi = 0",
             "width_law_m": "Dai et al. 2025 Eq. 11: min(Delta r_edge/|theta|, l0)",
             "sides": "'+y', '-y' or 'both' (two-point contact on opposite generatrices)",

@@ -62,7 +62,7 @@ def point_main(argv: list[str]) -> int:
     ap.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), default=0.0, help="tilt [arcmin]")
     ap.add_argument("--tilt-axis", choices=("z", "y"), default="z",
                     help="z: translation along +y, tilt theta_z (canonical); y: translation along +z, tilt theta_y "
-                         "(the rotated case: same magnitudes, vectors rotated, see contact-laws.md §1)")
+                         "(the rotated case: same magnitudes, vectors rotated, see docs/reference/contact-laws.md §1)")
     ap.add_argument("--scene", default="clamped", choices=SCENES_3D, help="boundary-condition scene")
     ap.add_argument("--level", default=None, choices=_levels(),
                     help="one mesh level (L0, L1, L2, E0…) instead of the three-level estimate")

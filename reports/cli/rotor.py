@@ -4,10 +4,11 @@ Sub-commands (each takes a scene file path or a bundled scene name)::
 
     ringcontact rotor scenes                                   # list bundled scenes
     ringcontact rotor modes SCENE [--speed-rpm 0] [--modes 8] [--plot PREFIX] [--json]   # PREFIX-modeshapes.png/.svg
-    ringcontact rotor campbell SCENE [--max-rpm R] [--points N] [--damped] [--plot PREFIX] [--json]
+    ringcontact rotor campbell SCENE [--max-rpm R] [--points N] [--damped] [--plot PREFIX] [--json]   # PREFIX-campbell.png/.svg
     ringcontact rotor response SCENE --speed-rpm N [--revolutions R] [--method harmonic|newmark] --out DIR [--json]
     ringcontact rotor critical-speeds SCENE [--max-rpm R] [--orders 1 2] [--json]
     ringcontact rotor unbalance SCENE [--max-rpm R] [--points N] [--nodes disk1 disk2] [--plot PREFIX] [--json]
+        # PREFIX-unbalance.png/.svg (--order 2: PREFIX-misalignment.png/.svg)
     ringcontact rotor report [--out reports/published]        # regenerate reports/published/rotor-*
 
 Frequencies are printed in Hz, speeds in rpm, amplitudes in µm; ``--json`` prints the same
@@ -118,7 +119,7 @@ def cmd_campbell(args) -> int:
     if args.plot:
         from reports.rotor_plots import campbell_figure, save
         crit = critical_speeds(model, wmax, n_modes=n_modes + 4, lock_loose_support=not args.open_support)
-        for p in save(campbell_figure(camp, f"Campbell diagram: {scene.title}", crit), args.plot):
+        for p in save(campbell_figure(camp, f"Campbell diagram: {scene.title}", crit), f"{args.plot}-campbell"):
             print(f"wrote {p}", file=sys.stderr)
     data = {"scene": scene.name, "speed_rpm": (speeds * RPM).tolist(),
             "frequency_hz": [[None if not np.isfinite(v) else float(v) for v in row] for row in camp.frequency_hz],
@@ -171,7 +172,7 @@ def cmd_unbalance(args) -> int:
         from reports.rotor_plots import response_figure, save
         what = "unbalance" if args.order == 1 else "misalignment"
         for p in save(response_figure(model, resp, nodes, f"Linear {what} response ({args.order}X): {scene.title}"),
-                      args.plot):
+                      f"{args.plot}-{what}"):
             print(f"wrote {p}", file=sys.stderr)
     table = {n: resp.orbit(model, n)[0] * 1e6 for n in nodes}
     data = {"scene": scene.name, "order": args.order, "speed_rpm": (speeds * RPM).tolist(),
@@ -230,7 +231,7 @@ def _parser() -> argparse.ArgumentParser:
     sp = sub.add_parser("campbell", help="whirl frequencies over a speed range")
     common(sp)
     sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
-    sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX.png and PREFIX.svg")
+    sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX-campbell.png and .svg")
     sp.add_argument("--damped", action="store_true", help="include viscous damping: damped frequencies and each "
                     "mode's damping ratio zeta and log decrement (default undamped, zeta = 0)")
     sp.set_defaults(func=cmd_campbell)
@@ -243,7 +244,8 @@ def _parser() -> argparse.ArgumentParser:
     sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
     sp.add_argument("--nodes", nargs="+", default=None, help="nodes or element names (default: the disks)")
     sp.add_argument("--order", type=int, default=1, choices=(1, 2), help="1: unbalance, 2: misalignment")
-    sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX.png and PREFIX.svg")
+    sp.add_argument("--plot", type=out_prefix, default=None,
+                    help="write PREFIX-unbalance.png and .svg (--order 2: PREFIX-misalignment.png and .svg)")
     sp.set_defaults(func=cmd_unbalance)
     sp = sub.add_parser("response", help="linear time response of the stations (loose support locked), CSV")
     sp.add_argument("scene", help="scene file (.toml) or bundled scene name")
@@ -270,7 +272,7 @@ def main(argv: list[str] | None = None) -> int:
     for name in ("modes", "points", "elements", "steps_per_rev", "record_per_rev"):
         v = getattr(args, name, None)
         if v is not None and v < 1:
-            print(f"ringcontact rotor: error: --{name.replace('_', '-')} = {v}: must be >= 1", file=sys.stderr)
+            print(f"ringcontact rotor {args.cmd}: error: --{name.replace('_', '-')} = {v}: must be >= 1", file=sys.stderr)
             return 2
     try:
         return args.func(args)

@@ -4,7 +4,7 @@ Everything here is plain numpy on small arrays, so the same functions serve the
 reference integrator (:mod:`rotor.dynamics.reference`) and, compiled with numba, the
 production integrator (:mod:`rotor.dynamics.production`).
 
-Conventions (contact-laws.md §1, §9)
+Conventions (docs/reference/contact-laws.md §1, §9)
 -----------------------------------
 Relative coordinates of the loose support are ``u = (y, z, θy, θz)`` of the
 bearing minus the support (m, rad); ``w = u̇``. A point at axial position ``x`` on
@@ -14,7 +14,7 @@ A face force ``φ = (φy, φz)`` acting on the bearing at ``x`` contributes the
 generalised relative force ``Pᵀ φ = (φy, φz, −x φz, x φy)``, i.e.
 ``My = −x Fz, Mz = x Fy``.
 
-Decisions on the known traps (contact-laws.md Q6–Q11)
+Decisions on the known traps (docs/reference/contact-laws.md Q6–Q11)
 ----------------------------------------------------
 * **3a/3b lock (Q11).** The paper's ``g5 = (y3a − y3b)² + (z3a − z3b)²`` has a zero
   gradient at its own solution, so its row of Φ vanishes and the augmented matrix
@@ -127,7 +127,7 @@ def face_force_demand(force_N, moment_Nm, width_m: float) -> tuple[np.ndarray, n
         f_l,y = Fy/2 − Mz/l0,   f_l,z = Fz/2 + My/l0
         f_r,y = Fy/2 + Mz/l0,   f_r,z = Fz/2 − My/l0
 
-    (the paper's equations with the signs restored by statics, contact-laws.md §9).
+    (the paper's equations with the signs restored by statics, docs/reference/contact-laws.md §9).
     With ``force = f_s + f_n`` and ``moment = M_s + M_n`` (support dynamics plus radial
     contact) this is the paper's stick-test demand.
 
@@ -271,7 +271,7 @@ def null_space_map(L: np.ndarray) -> np.ndarray:
 
 
 def edge_offsets(u, width_m: float) -> tuple[float, float]:
-    """Relative radial offsets ``|r1|, |r2|`` of the ring edges (m), contact-laws.md §8.
+    """Relative radial offsets ``|r1|, |r2|`` of the ring edges (m), docs/reference/contact-laws.md §8.
 
     ``r_1 = (y + θz l0/2, z − θy l0/2)`` (right edge), ``r_2`` with ``−l0/2``.
     Works on arrays of shape (..., 4) too.

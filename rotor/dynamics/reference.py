@@ -41,7 +41,7 @@ Safeguards not in the paper (identical in both schemes, so they still agree)
   law: first touch, damping clip, edge switch).
 * If Newton does not converge with a face slipping (the regularised direction
   ``w/√(|w|²+w_reg²)`` is very stiff near ``w = 0``), that face is tried in stick.
-* The paper's sharp one-edge selection (contact-laws.md §8, Q8) is discontinuous where the two
+* The paper's sharp one-edge selection (docs/reference/contact-laws.md §8, Q8) is discontinuous where the two
   edge penetrations cross; there an implicit step can have no exact root. The contact layer
   regularises it by default (``LooseSupportParams.edge_transition_m``, :mod:`contact.tilt`), which
   removed every such step of the hard cases. If Newton still fails after the fallbacks, the

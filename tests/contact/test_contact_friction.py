@@ -42,7 +42,7 @@ def test_zero_face_velocity_gives_no_sliding_friction():
 
 
 def test_face_demand_split_recombines_to_force_and_moment():
-    """Statics of contact-laws.md section 9: f_l + f_r = F and face forces at x = -+l0/2 give M."""
+    """Statics of docs/reference/contact-laws.md section 9: f_l + f_r = F and face forces at x = -+l0/2 give M."""
     rng = np.random.default_rng(1)
     F = rng.normal(0, 1e4, (4, 50))
     ly, lz, ry, rz = friction.face_force_demand(*F, width_m=L0)

@@ -30,14 +30,14 @@ def test_conformal_approaches_hertz_line_contact_at_small_load():
     rel = np.abs(P / hertz - 1)
     assert np.all(rel < 2 * eps ** 2)
     assert np.all(np.diff(rel) > 0)          # the deviation grows with the load: a true limit
-    # initial stiffness pi E* l / 2 (contact-laws.md section 3.1), independent of the clearance
+    # initial stiffness pi E* l / 2 (docs/reference/contact-laws.md section 3.1), independent of the clearance
     k0 = np.pi * e_star * TABLE1["width_m"] / 2
     assert P[0] / pen[0] == pytest.approx(k0, rel=1e-6)
 
 
 def test_conformal_and_pereira_keep_the_papers_table2_ratio():
     """Dai et al. (2025) Table 2: the FEM load implied by the Pereira percentage (Pereira
-    under-predicts, contact-laws.md section 10) must give the paper's conformal-law percentages
+    under-predicts, docs/reference/contact-laws.md section 10) must give the paper's conformal-law percentages
     to +-0.05 points: two independently coded laws keep the paper's ratio to each other."""
     conf = laws.conformal_force(PEN_TABLE2_M, **TABLE1).force_N
     per = laws.pereira_force(PEN_TABLE2_M, **TABLE1).force_N
@@ -53,7 +53,7 @@ def test_conformal_and_pereira_keep_the_papers_table2_ratio():
 
 
 def test_conformal_reproduces_reconstructed_loads():
-    """contact-laws.md section 10 (independent numerical reconstruction): 50 272 N at 0.01 mm,
+    """docs/reference/contact-laws.md section 10 (independent numerical reconstruction): 50 272 N at 0.01 mm,
     286 731 N at 0.05 mm; Pereira 31 145 N / 231 918 N."""
     conf = laws.conformal_force(PEN_TABLE2_M, **TABLE1).force_N
     per = laws.pereira_force(PEN_TABLE2_M, **TABLE1).force_N
@@ -62,14 +62,14 @@ def test_conformal_reproduces_reconstructed_loads():
 
 
 def test_plane_strain_raises_loads_by_one_over_one_minus_nu_squared():
-    """Identical materials: E*_pe / E*_ps = 1/(1 - nu^2) (contact-laws.md section 3.3 item 5)."""
+    """Identical materials: E*_pe / E*_ps = 1/(1 - nu^2) (docs/reference/contact-laws.md section 3.3 item 5)."""
     ps = laws.conformal_force(PEN_TABLE2_M, **TABLE1).force_N
     pe = laws.conformal_force(PEN_TABLE2_M, **TABLE1, modulus="plane_strain").force_N
     assert pe / ps == pytest.approx(np.full(5, 1 / (1 - 0.3 ** 2)), rel=1e-12)
 
 
 def test_neat_fit_limit_flagged_never_a_number():
-    """D(b) = 0 at b = 0.91357, i.e. Delta r = 10.09 delta0 for equal materials (contact-laws.md 3.1)."""
+    """D(b) = 0 at b = 0.91357, i.e. Delta r = 10.09 delta0 for equal materials (docs/reference/contact-laws.md 3.1)."""
     d0 = TABLE1["clearance_m"]
     lim = laws.conformal_neat_fit_limit_m(d0)
     assert lim / d0 == pytest.approx(10.09, abs=0.01)
@@ -105,11 +105,11 @@ def test_johnson_closed_form_satisfies_implicit_equation():
 
 def test_johnson_domain_matches_table2_blanks():
     """Dai et al. (2025) Table 2: Johnson has values at 0.01 and 0.02 mm and '-' at 0.03-0.05 mm;
-    the bound is Delta r = 4 delta0 / e^2 = 0.0271 mm (contact-laws.md section 5)."""
+    the bound is Delta r = 4 delta0 / e^2 = 0.0271 mm (docs/reference/contact-laws.md section 5)."""
     res = laws.johnson_force(PEN_TABLE2_M, **TABLE1)
     assert res.in_domain.tolist() == [True, True, False, False, False]
     assert np.all(np.isfinite(res.force_N[:2])) and np.all(np.isnan(res.force_N[2:]))
-    assert res.force_N[:2] == pytest.approx([33644, 106094], abs=1.0)   # contact-laws.md section 10
+    assert res.force_N[:2] == pytest.approx([33644, 106094], abs=1.0)   # docs/reference/contact-laws.md section 10
     edge = 4 * TABLE1["clearance_m"] / math.e ** 2
     assert laws.johnson_force(edge * (1 - 1e-12), **TABLE1).in_domain
     assert not laws.johnson_force(edge * (1 + 1e-9), **TABLE1).in_domain
@@ -118,7 +118,7 @@ def test_johnson_domain_matches_table2_blanks():
 
 
 def test_pereira_exponent_and_branch_continuity():
-    """Dai et al. (2025) Eq. 29 / contact-laws.md section 6: n = 1.2475 at 0.05 mm; both Y branches
+    """Dai et al. (2025) Eq. 29 / docs/reference/contact-laws.md section 6: n = 1.2475 at 0.05 mm; both Y branches
     give 1.156278 at 0.34954 mm."""
     assert laws.pereira_exponent(0.05e-3) == pytest.approx(1.2475, abs=1e-4)
     lo = laws.pereira_exponent(0.34954e-3) / 0.34954 ** -0.005

@@ -78,7 +78,7 @@ def test_rotating_r_and_theta_together_rotates_force_and_moment(phi):
 
 
 def test_partial_patch_width_and_restoring_moment():
-    """2' tilt at an edge penetration of 0.01 mm: l = Delta r/|theta| = 17.2 mm (contact-laws.md section 10).
+    """2' tilt at an edge penetration of 0.01 mm: l = Delta r/|theta| = 17.2 mm (docs/reference/contact-laws.md section 10).
     Edge 1 (x = +l0/2) pushed +y by theta_z > 0: force -y, moment Mz < 0 restores the tilt."""
     th = 2 * ARCMIN
     edge_pen = 0.01e-3
@@ -94,7 +94,7 @@ def test_partial_patch_width_and_restoring_moment():
 
 
 def test_aligned_tilt_values_of_reference_note():
-    """contact-laws.md section 10 point-contact illustration (centre penetration, one-point rule,
+    """docs/reference/contact-laws.md section 10 point-contact illustration (centre penetration, one-point rule,
     full patch): e.g. 2' at 0.01 mm -> 97 321 N; 0.5' at 0.05 mm -> 301 122 N."""
     pen = np.array([0.01, 0.03, 0.05]) * 1e-3
     expected = {0.5: [61775, 174947, 301122], 1.0: [73454, 188088, 315669], 2.0: [97321, 214825, 345236]}

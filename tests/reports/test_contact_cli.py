@@ -32,7 +32,7 @@ def test_tilt_grid_and_table_output(capsys):
     text = capsys.readouterr().out
     assert "law: conformal" in text and "97320.8" in text and "50271.7" in text
     out = run_json(capsys, ["--penetration-mm", "0.01", "--tilt-arcmin", "2", "--penetration-at", "edge"])
-    assert out["points"][0]["contact_width_m"] == pytest.approx(0.0171887, rel=1e-5)   # contact-laws.md 10
+    assert out["points"][0]["contact_width_m"] == pytest.approx(0.0171887, rel=1e-5)   # docs/reference/contact-laws.md 10
     assert out["points"][0]["moment_Nm"] > 0
 
 

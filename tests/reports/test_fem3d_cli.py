@@ -22,7 +22,7 @@ def test_point_json_and_tilt_about_y(capsys):
     rc, out = _point(capsys, "0.01", "--tilt-arcmin", "2", "--tilt-axis", "y")
     assert rc == 0
     y = json.loads(out.out)
-    # same magnitudes, vectors rotated by 90 deg about x (contact-laws.md §1: M_y = -x F_z, M_z = x F_y)
+    # same magnitudes, vectors rotated by 90 deg about x (docs/reference/contact-laws.md §1: M_y = -x F_z, M_z = x F_y)
     assert y["force_N"] == pytest.approx(z["force_N"], rel=1e-12)
     assert z["force_y_N"] < 0 and abs(z["force_z_N"]) < 1e-9 * z["force_N"]
     assert y["force_z_N"] == pytest.approx(z["force_y_N"], rel=1e-12) and abs(y["force_y_N"]) < 1e-9 * y["force_N"]

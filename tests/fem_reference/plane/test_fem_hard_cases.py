@@ -23,7 +23,7 @@ def test_tiny_arc_skips_unresolving_levels_and_converges():
     assert 0 < np.degrees(rec["half_angle_rad"]) < np.degrees(np.arccos(0.05 / 0.0501))
     assert rec["force_error_rel"] < 1e-3
     # small-load stiffness: the force is below the linear extrapolation of the 0.001 mm point
-    # (the load-penetration curve stiffens, conformal law, contact-laws.md §3.1)
+    # (the load-penetration curve stiffens, conformal law, docs/reference/contact-laws.md §3.1)
     assert 0 < rec["force_n"] < 10.76e3 / 10
 
 
@@ -34,7 +34,7 @@ def test_mesh_too_coarse_for_the_arc_fails_clearly():
 
 
 def test_ten_times_the_clearance_converges_below_the_law_pole():
-    # Δr = 0.5 mm = 10 δ0: the infinite-plate law has its pole at Δr = 10.09 δ0 (contact-laws.md §3.1);
+    # Δr = 0.5 mm = 10 δ0: the infinite-plate law has its pole at Δr = 10.09 δ0 (docs/reference/contact-laws.md §3.1);
     # clamped rings are stiffer, so the FE arc stays below the pole angle 84.8°, and converges.
     rec = reference_point(Levels(clamped(), (4e-3, 2e-3, 1e-3)), 0.5e-3)
     assert np.degrees(rec["half_angle_rad"]) < 84.83

@@ -44,13 +44,13 @@ def test_clamped_equilibrium_and_contact_conditions(clamped_levels):
     assert np.all(sol.arc_pressure_pa >= 0)
     assert sol.kkt_residual < 1e-10
     # the contact arc is a bit smaller than the rigid-overlap arc: cos ε = δ0/(δ0+Δr)
-    # (Dai et al. 2025 Eq. 7): 33.56° at 0.01 mm; fem-notes prototype measured 32.8°.
+    # (Dai et al. 2025 Eq. 7): 33.56° at 0.01 mm; docs/reference/fem-notes.md prototype measured 32.8°.
     eps_rigid = np.degrees(np.arccos(0.05 / 0.06))
     assert 0.9 * eps_rigid < np.degrees(sol.half_angle_rad) < eps_rigid
 
 
 def test_clamped_matches_independent_prototype(clamped_levels):
-    # fem-notes.md (2026-11-21): an independent penalty/augmented-Lagrangian prototype measured
+    # docs/reference/fem-notes.md (2026-11-21): an independent penalty/augmented-Lagrangian prototype measured
     # 309.8 kN (Δr = 0.01 mm) and 2540.7 kN (0.05 mm) for this scene (plane strain, ×30 mm).
     m = clamped_levels[(2, 2e-3)]
     assert m.solve(1e-5).force_n == pytest.approx(309.8e3, rel=5e-3)
@@ -85,7 +85,7 @@ def persson_model():
 @pytest.mark.parametrize("penetration_mm", [0.0033, 0.012, 0.05, 0.3])
 def test_persson_load_vs_measured_angle_within_one_percent(persson_model, penetration_mm):
     # Persson (1964), Ciavarella & Decuzzi (2001): pin in a large plate, exact conformal law
-    # P = 2πE*δ0 l b²(1+b²)/(2 - ln(1+b²) - 2b⁴), b = tan(ε/2) (contact-laws.md §3.1), with ε the
+    # P = 2πE*δ0 l b²(1+b²)/(2 - ln(1+b²) - 2b⁴), b = tan(ε/2) (docs/reference/contact-laws.md §3.1), with ε the
     # contact half-angle measured in the FE solution. Penetrations chosen to span ε ≈ 10°..70°.
     sol = persson_model.solve(penetration_mm * 1e-3)
     eps = sol.half_angle_rad
@@ -121,7 +121,7 @@ def test_bad_penetration_is_rejected_with_name_and_unit(clamped_levels, bad):
 
 def test_named_boundaries_and_curved_p2_edges():
     # gmsh's second-order nodes lie on the exact circles (geometry-snapped P2), and every named
-    # boundary is found; P1 chords sag by h²/(8R) (fem-notes.md), P2 mid-side nodes do not.
+    # boundary is found; P1 chords sag by h²/(8R) (docs/reference/fem-notes.md), P2 mid-side nodes do not.
     from fem_reference.plane.mesh import build_mesh
 
     rm = build_mesh(table1_rings(), MeshSpec(h_contact_m=2e-3, order=2))

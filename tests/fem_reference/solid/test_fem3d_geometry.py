@@ -32,7 +32,7 @@ def test_untilted_gap_is_offset_circles():
     exact = np.sqrt(rs ** 2 + r ** 2 - 2 * rs * r * np.cos(phi)) - GEOM.bearing_outer_radius_m
     assert np.max(np.abs(g - exact)) < 1e-15
     assert g[0] == pytest.approx(GEOM.clearance_m - r, abs=1e-15)
-    # zero crossing = rigid-overlap half-angle cos(eps) = delta0/(delta0 + dr) (contact-laws.md §2)
+    # zero crossing = rigid-overlap half-angle cos(eps) = delta0/(delta0 + dr) (docs/reference/contact-laws.md §2)
     eps = math.acos(GEOM.clearance_m / r)
     crossing = np.interp(0.0, g, phi)
     assert crossing == pytest.approx(eps, abs=2e-3)
@@ -60,7 +60,7 @@ def test_tilted_gap_linear_in_x_and_law_width():
 
 
 def test_reduce_motion_tilt_about_y_is_rotated_canonical():
-    # contact-laws.md §1: lateral displacement at x is (y + x theta_z, z - x theta_y). Translation
+    # docs/reference/contact-laws.md §1: lateral displacement at x is (y + x theta_z, z - x theta_y). Translation
     # along +z with tilt about -y is the canonical case rotated by +90 deg about x.
     c = reduce_motion(0.0, 1e-4, -3e-4, 0.0)
     assert c.frame_angle_rad == pytest.approx(math.pi / 2)

@@ -70,7 +70,7 @@ def test_free_ends_between_plane_stress_and_plane_strain(small):
 def test_tilt_sign_symmetry_and_moment_convention(small):
     # Mirror about x = 0: tilt -theta gives the same force and the opposite moment. The contact
     # force on the bearing points to -y and, for theta > 0, sits at x > 0, so M_z = x F_y < 0
-    # (contact-laws.md §1 convention).
+    # (docs/reference/contact-laws.md §1 convention).
     a = solve_point(small, RigidMotion.from_penetration(GEOM, 0.01 * MM, 2 * ARCMIN))
     b = solve_point(small, RigidMotion.from_penetration(GEOM, 0.01 * MM, -2 * ARCMIN))
     assert a.force_n == pytest.approx(b.force_n, rel=1e-9)
@@ -84,7 +84,7 @@ def test_tilt_sign_symmetry_and_moment_convention(small):
 def test_partial_width_matches_law(small):
     # 2' at 0.005 mm: Dai et al. 2025 Eq. 11 gives l = Delta r_1/theta = 23.6 mm, the rigid-overlap
     # length. The elastic patch is somewhat shorter (as in 2D, where the contact arc is 32.8 deg
-    # against a rigid overlap of 33.6 deg at 0.01 mm; contact-laws.md §2).
+    # against a rigid overlap of 33.6 deg at 0.01 mm; docs/reference/contact-laws.md §2).
     r = solve_point(small, RigidMotion.from_penetration(GEOM, 0.005 * MM, 2 * ARCMIN))
     assert r.contact_width_law_m == pytest.approx(23.59 * MM, rel=1e-3)
     assert 0.85 * r.contact_width_law_m < r.contact_width_m < r.contact_width_law_m

@@ -1,4 +1,4 @@
-"""Constraint traps and hard cases of the loose-support dynamics (issue 7; contact-laws.md Q6–Q11).
+"""Constraint traps and hard cases of the loose-support dynamics (issue 7; docs/reference/contact-laws.md Q6–Q11).
 
 Sources: Dai et al. (2025) Eqs. 50–58 (stick rows, face-force split, 3a/3b lock); the paper's
 Table 4 rotor through the rotor model; expected values are identities (statics, kinematics)

@@ -1,7 +1,7 @@
 """Support law as the integrators see it, steady-state tool and the ``simulate`` job (issue 7).
 
 Sources: Dai et al. (2025) Eq. 1 (line contact at zero tilt) and Eq. 5 (conformal law,
-``contact.laws.conformal_force``); Table 4 c_c = 100 read as s/m (contact-laws.md Q6);
+``contact.laws.conformal_force``); Table 4 c_c = 100 read as s/m (docs/reference/contact-laws.md Q6);
 the exact periodic solution of a linear system for the spectrum bins.
 """
 from __future__ import annotations

@@ -250,10 +250,26 @@ def test_cli_writes_plots(tmp_path, capsys):
     assert cli.main(["campbell", "verify-overhung-disk", "--points", "4", "--plot", str(prefix)]) == 0
     capsys.readouterr()
     for ext in ("png", "svg"):
-        data = (tmp_path / f"camp.{ext}").read_bytes()
+        data = (tmp_path / f"camp-campbell.{ext}").read_bytes()
         assert len(data) > 1000
-    assert b"<svg" in (tmp_path / "camp.svg").read_bytes()
+    assert b"<svg" in (tmp_path / "camp-campbell.svg").read_bytes()
     assert not list(tmp_path.glob(".*.tmp"))          # atomic write left no temporary file
+
+
+def test_plot_prefix_shared_by_every_rotor_figure(tmp_path, capsys):
+    """One --plot PREFIX for campbell, unbalance (1X and 2X) and modes: each figure its own files, none overwritten."""
+    prefix = str(tmp_path / "r")
+    runs = [["campbell", "--points", "4"], ["unbalance", "--points", "4"], ["unbalance", "--points", "4", "--order", "2"],
+            ["modes"]]
+    for argv in runs:
+        assert cli.main([argv[0], "paper-table4", *argv[1:], "--plot", prefix]) == 0
+    capsys.readouterr()
+    svgs = {p.name: p.read_text(encoding="utf-8") for p in tmp_path.glob("*.svg")}
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        f"r-{what}.{ext}" for what in ("campbell", "unbalance", "misalignment", "modeshapes") for ext in ("png", "svg"))
+    assert "Campbell diagram" in svgs["r-campbell.svg"]          # the first figure survived the later runs
+    assert "unbalance response (1X)" in svgs["r-unbalance.svg"]
+    assert "misalignment response (2X)" in svgs["r-misalignment.svg"]
 
 
 def test_misalignment_offset_on_a_subdivided_mesh():

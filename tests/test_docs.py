@@ -1,0 +1,51 @@
+"""Documents the code cites exist in the repository; the licence and citation agree with pyproject.toml."""
+from __future__ import annotations
+
+import re
+import subprocess
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+REFERENCE_NOTES = ("contact-laws.md", "fem-notes.md")
+# Files outside this issue's reach that still cite a reference note by its bare name (the study
+# code belongs to issue 13's branch); each entry must still need the exception.
+PENDING_BARE = {"rotor/studies/steady_state.py"}
+
+
+def _tracked(*suffixes: str) -> list[Path]:
+    out = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True)
+    if out.returncode != 0:
+        pytest.skip("not a git checkout")
+    return [ROOT / p for p in out.stdout.split() if p.endswith(suffixes) and not p.startswith("docs/")
+            and (ROOT / p).is_file()]
+
+
+def test_every_cited_document_exists():
+    cited = {}
+    for path in _tracked(".py", ".toml", ".md"):
+        for m in re.finditer(r"(?<![\w/.-])(docs/[\w./-]+\.md)", path.read_text(encoding="utf-8")):
+            cited.setdefault(m.group(1), path.relative_to(ROOT))
+    assert {f"docs/reference/{n}" for n in REFERENCE_NOTES} <= cited.keys()
+    missing = {doc: str(where) for doc, where in cited.items() if not (ROOT / doc).is_file()}
+    assert not missing, missing
+
+
+def test_reference_notes_are_cited_by_their_repository_path():
+    bare = re.compile(r"(?<![\w/-])(?:" + "|".join(re.escape(n) for n in REFERENCE_NOTES) + ")")
+    offenders = {str(p.relative_to(ROOT)) for p in _tracked(".py", ".toml")
+                 if p != Path(__file__).resolve() and bare.search(p.read_text(encoding="utf-8"))}
+    assert offenders == PENDING_BARE, sorted(offenders)
+
+
+def test_licence_and_citation_agree_with_pyproject():
+    assert PROJECT["license"] == "MIT"
+    assert (ROOT / "LICENSE").read_text(encoding="utf-8").startswith("MIT License\n")
+    cff = (ROOT / "CITATION.cff").read_text(encoding="utf-8")
+    assert re.search(rf"^version: {re.escape(PROJECT['version'])}$", cff, re.M)
+    assert re.search(r"^license: MIT$", cff, re.M)
+    assert "doi: 10.3390/act14090422" in cff      # Dai et al. (2025), the source of the model
+    assert "## Unreleased (" + PROJECT["version"] + ")" in (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
