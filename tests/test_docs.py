@@ -11,9 +11,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
 REFERENCE_NOTES = ("contact-laws.md", "fem-notes.md")
-# Files outside this issue's reach that still cite a reference note by its bare name (the study
-# code belongs to issue 13's branch); each entry must still need the exception.
-PENDING_BARE = {"rotor/studies/steady_state.py"}
+# Files allowed to cite a reference note by its bare name (none left); each entry must still need it.
+PENDING_BARE: set[str] = set()
 
 
 def _tracked(*suffixes: str) -> list[Path]:

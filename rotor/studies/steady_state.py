@@ -252,7 +252,7 @@ class SteadyResult:
     t : (N,) s, time of the spectrum record (N = revolutions × samples_per_rev)
     q, v : (N, c) displacement (m) and velocity (m/s) of the channels
     u : (N, 4) relative bearing − support (y, z m; θy, θz rad)
-    r1, r2 : (N,) relative edge offsets (m), contact-laws.md §8
+    r1, r2 : (N,) relative edge offsets (m), docs/reference/contact-laws.md §8
     modes : (N, 2) end-face modes (1 stick / 0 slip)
     f_contact : (N, 4) radial contact force/moment on the bearing (N, N m)
     revolutions : int, length of the record (a multiple of ``period``)
