@@ -252,13 +252,16 @@ def run_status(root: str | os.PathLike) -> dict:
         out["why"] = "no readable sweep.json: not a study directory"
         return out
     out["tasks"] = len(tasks)
-    out["done"] = sum((root / "points" / f"{k}.json").exists() for k in tasks)
+    missing = [k for k in tasks if not (root / "points" / f"{k}.json").exists()]
+    out["done"] = len(tasks) - len(missing)
     try:
         state = json.loads((root / STATUS_FILE).read_text(encoding="utf-8")).get("state", "unknown")
     except (OSError, ValueError, AttributeError):
         state = "complete" if out["done"] == out["tasks"] else "unknown"   # a run from before status files
     if state != "complete" or out["done"] < out["tasks"] or not tasks:
-        out["why"] = f"state {state}, {out['done']} of {out['tasks']} points"
+        out["why"] = f"state {state}, {out['done']} of {out['tasks']} points" + (
+            "; " + ", ".join(f"{k} (missing)" for k in missing[:5]) + (" …" if len(missing) > 5 else "")
+            if missing else "")
         return out
     out["complete"] = True
     return out

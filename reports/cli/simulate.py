@@ -64,6 +64,9 @@ def _parser() -> argparse.ArgumentParser:
                         "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
                         "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
                         "amplitudes of --dofs in the summary")
+    p.add_argument("--max-revs", type=count(1, 100000), default=8000,
+                   help="--steady: transient cap in revolutions (default 8000: at the paper's point A the end faces "
+                        "creep for about 2 000 revolutions before the ring settles)")
     p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
     return p
 
@@ -184,7 +187,7 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     # decay, subharmonic periods); its own record is one period only: the kept revolutions are
     # integrated below from its end state so that every field of the trajectory is written
     opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
-                              spectrum_revs=1)
+                              spectrum_revs=1, max_revs=int(args.max_revs))
     q_start, v_start = linear_initial_state(system, 0.0)
     ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
     conv = ss.convergence

@@ -151,3 +151,18 @@ def test_ignoring_tilt_markedly_lowers_the_harmonics(mesh):
     _, h0 = point(mesh, 10500.0, tilt_ignored=True)
     for c in ("disk2.y", "s.y"):
         assert np.sum(h0[c][2:5]) < 0.7 * np.sum(h[c][2:5]), (c, np.sum(h0[c][2:5]), np.sum(h[c][2:5]))
+
+
+def test_simulate_steady_at_point_a_shows_2f_highest_at_the_support(tmp_path):
+    """The command an engineer types (issue: `simulate --speed-rpm 4500 --steady` on paper-table4): the
+    support's 2X/1X y velocity >= 0.05 and above disk 1's, the steady state periodic, both faces stuck."""
+    import json
+
+    from reports.cli import main
+
+    assert main(["simulate", "--speed-rpm", "4500", "--steady", "--out", str(tmp_path)]) == 0
+    s = json.loads((tmp_path / "simulate-summary.json").read_text())
+    v = s["velocity_amplitudes_mm_s_1X_to_5X"]
+    ratio = {k: v[k][1] / v[k][0] for k in ("disk1.y", "disk2.y", "s.y")}
+    assert s["steady_converged"] and s["stick_fraction_right"] == s["stick_fraction_left"] == 1.0
+    assert ratio["s.y"] >= 0.05 and ratio["s.y"] > ratio["disk1.y"], ratio   # measured 0.336 vs 0.015
