@@ -222,11 +222,15 @@ class GalleryDirective(Directive):
         out: list[nodes.Node] = []
         for path in example_files():
             text = path.read_text(encoding="utf-8")
-            doc = ast.get_docstring(ast.parse(text)) or path.stem
+            tree = ast.parse(text)
+            doc = ast.get_docstring(tree) or path.stem
+            if ast.get_docstring(tree):          # the docstring is shown as text above the code, not twice
+                text = "\n".join(text.splitlines()[tree.body[0].end_lineno:]).lstrip("\n") + "\n"
             title, _, body = doc.partition("\n")
             self.state.document.settings.record_dependencies.add(str(path))
             lines = _heading(title.strip(), "-") + body.strip().splitlines() + [""]
-            lines += [f"Run it: ``python docs/examples/{path.name}`` (tested by ``tests/docs/test_gallery.py``).", ""]
+            lines += [f"Run it from the repository root: ``python docs/examples/{path.name}`` (checked by "
+                      "``tests/docs/test_gallery.py``).", ""]
             sec = _parse_rst(self, lines)[0]
             block = nodes.literal_block(text=text)
             block["language"] = "python"
