@@ -91,3 +91,15 @@ def test_api_and_gallery_pages(site):
     gallery = _text(site, "gallery.html")
     for path in example_files():
         assert f"docs/examples/{path.name}" in gallery
+
+
+def test_tests_cited_by_the_pages_exist():
+    """A test the hand-written pages name as evidence (``test_...``) is defined in tests/."""
+    cited = set()
+    for page in DOCS.glob("*.rst"):
+        cited |= set(re.findall(r"``(test_\w+)``", page.read_text(encoding="utf-8")))
+    assert len(cited) >= 5
+    defined = set()
+    for path in (ROOT / "tests").rglob("test_*.py"):
+        defined |= set(re.findall(r"^def (test_\w+)", path.read_text(encoding="utf-8"), re.M))
+    assert cited <= defined, sorted(cited - defined)
