@@ -57,8 +57,6 @@ _CITED_PATH = re.compile(r"(?<![\w/.-])((?:contact|sweep|fem_reference|rotor|rep
 NOT_IN_CHECKOUT = {
     "contact/_build.json": "written into the wheel at build time (build_backend/ringcontact_build.py)",
     "docs/examples/exNN.py": "DESIGN.md quotes scikit-fem's layout, not a file of this repository",
-    "reports/accuracy.py": "PENDING: reports/accuracy/markdown.py writes it into accuracy-table2.md; the module "
-                           "is the package reports/accuracy/ (fixing it regenerates the published report)",
 }
 
 
