@@ -33,10 +33,9 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from contact.errors import FailedPointsError, InputError, RingContactError
+from contact.package_data import shipped
 from contact.units import check_positive
-from reports.cli._edge import Parser, count, fail, in_dir, out_dir, out_file, quantity
-
-PUBLISHED = "reports/published"     # relative to the working directory (the repository root in a checkout)
+from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, out_file, quantity
 
 
 def _common(p: argparse.ArgumentParser, out: str):
@@ -396,11 +395,11 @@ def _sensitivity(args) -> int:
         _timing(out, s, wall, args)
     # the hand-written reading of the published numbers lives in reports/notes/ and is appended, so the
     # published file stays regenerable by this command alone
-    reading = Path(__file__).resolve().parents[1] / "notes" / "study-sensitivity-reading.md"
+    reading = shipped("reports", "notes", "study-sensitivity-reading.md")
     files = rep.publish(out, Path(args.to), variants, scene=args.scene,
                         timing=rep.timing_text(out, {t.key for t in sens.study_tasks(variants, scene=args.scene)}),
                         code=_points_code(out, code_revision()),
-                        extra=reading.read_text(encoding="utf-8") if reading.exists() else "")
+                        extra=reading.read_text(encoding="utf-8") if reading.is_file() else "")
     for f in files:
         print(f"  wrote {f}")
     return 0
