@@ -12,6 +12,7 @@ Sub-studies (each resumable: points already in ``--out`` are reused, corrupt one
     ringcontact study publish  --cascade runs/fig12 --notilt runs/fig16 …   # study-* into reports/published
     ringcontact study export   runs/fig12 --format netcdf|csv          # speed x station x harmonic dataset
     ringcontact study sensitivity --out runs/sensitivity             # §5 findings vs the unstated inputs (slow)
+    ringcontact study redraw   [--from reports/published]            # study figures from the committed CSVs
 
 Engineer units at the edge (``_rpm``, ``_mm``); results in SI (see sweep.store for the file
 layout). Figures (PNG + SVG) go to ``--figures`` (default: ``<out>/figures``).
@@ -119,6 +120,11 @@ def _parser() -> argparse.ArgumentParser:
                         help=f"the '{k}' study on the converged mesh (with --elements): study-findings.md")
     pb.add_argument("--elements", type=count(1, 64), default=2, help="elements per segment of the converged-mesh studies")
     pb.add_argument("--out", "--to", dest="to", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")
+    rd = sub.add_parser("redraw", help="the study figures again from the committed CSV tables (no study rerun): "
+                                       "study-sensitivity, study-params-*, study-cascade*")
+    rd.add_argument("--from", dest="src", type=in_dir, default=PUBLISHED,
+                    help=f"folder of the study-*.csv tables (default {PUBLISHED})")
+    rd.add_argument("--out", "--to", dest="to", type=out_dir, default=None, help="output directory (default: --from)")
     return p
 
 
@@ -187,6 +193,11 @@ def _sweep(tasks, out: Path, args, description: dict):
 def _run(args) -> int:
     if args.study == "publish":
         return _publish(args)
+    if args.study == "redraw":
+        from reports.studies.redraw import redraw
+        for f in redraw(args.src, args.to if args.to is not None else args.src):
+            print(f"  wrote {f}")
+        return 0
     if args.study == "export":
         return _export(args)
     if args.study == "sensitivity":
