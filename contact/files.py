@@ -77,19 +77,21 @@ def sha256_bytes(data: bytes) -> str:
 def write_run_files(out: str | os.PathLike, prefix: str, files: dict[str, bytes], summary: dict) -> Path:
     """Write one run's ``files`` (name -> content, each named ``<prefix>.*``) and its summary as one unit.
 
-    Order: the old ``<prefix>-summary.json`` is removed, then every old ``<prefix>.*`` file (stale
-    companions of an earlier run, whatever their suffix); the new files are written to temporary
-    names and renamed into place; the summary (``summary`` plus ``"files": {name: {"sha256",
-    "bytes"}}``) is written last, atomically. Returns the summary's path.
+    Order: the old ``<prefix>-summary.json`` is removed, then the old run's files (the names about to
+    be written and every ``<prefix>.*`` file the old summary describes: stale companions, never a
+    user's other file) and stale temporaries; the new files are written to temporary names and
+    renamed into place; the summary (``summary`` plus ``"files": {name: {"sha256", "bytes"}}``) is
+    written last, atomically. Returns the summary's path.
     """
     out = Path(out)
     if any(not name.startswith(prefix + ".") or "/" in name for name in files):
         raise ValueError(f"run files must be named {prefix}.*: {sorted(files)}")
     summary_path = out / f"{prefix}-summary.json"
     out.mkdir(parents=True, exist_ok=True)
+    stale = set(files) | _described(summary_path, prefix)
     _discard([summary_path])                                   # from here on the old run is incomplete
-    _discard([p for pattern in (f"{prefix}.*", f".{prefix}.*.tmp", f".{prefix}-summary.json.*.tmp")
-              for p in out.glob(pattern) if p.is_file()])
+    _discard([out / name for name in sorted(stale)] + [p for pattern in (f".{prefix}.*.tmp", f".{prefix}-summary.json.*.tmp")
+                                                       for p in out.glob(pattern) if p.is_file()])
     temporaries = {}
     try:
         for name, data in files.items():
@@ -101,6 +103,16 @@ def write_run_files(out: str | os.PathLike, prefix: str, files: dict[str, bytes]
         raise
     described = {name: {"sha256": sha256_bytes(data), "bytes": len(data)} for name, data in files.items()}
     return atomic_write_text(summary_path, json.dumps({**summary, "files": described}, indent=2) + "\n")
+
+
+def _described(summary_path: Path, prefix: str) -> set[str]:
+    """Names of the ``<prefix>.*`` files an existing summary describes (none if it is unreadable)."""
+    try:
+        described = json.loads(summary_path.read_text(encoding="utf-8")).get("files", {})
+    except (OSError, ValueError, AttributeError):
+        return set()
+    return {n for n in described if isinstance(n, str) and n.startswith(prefix + ".") and "/" not in n
+            and "\\" not in n and n not in (".", "..")} if isinstance(described, dict) else set()
 
 
 def check_run_files(out: str | os.PathLike, prefix: str) -> dict:

@@ -34,6 +34,7 @@ JOBS = {
     "fem-report": (["fem-report"], [("reports.fem2d", "write_report")]),
     "fem-paper": (["fem-paper", "--quiet"], [("reports.fem2d_paper", "write_report")]),
     "fem3d report": (["fem3d", "report"], [("reports.fem3d", "write_report")]),
+    "rotor report": (["rotor", "report"], [("reports.rotor_linear", "build_reports")]),
 }
 
 
@@ -42,7 +43,7 @@ def test_report_jobs_default_to_the_working_directory(job, tmp_path, monkeypatch
     argv, replaced = JOBS[job]
     seen: list[Path] = []
     for module, name in replaced:
-        _record(monkeypatch, module, name, seen, result=[] if name == "run" else None)
+        _record(monkeypatch, module, name, seen, result=[] if name in ("run", "build_reports") else None)
     import fem_reference.paper_setup as paper_setup
     monkeypatch.setattr(paper_setup, "run", lambda *a, **k: [])      # the study itself is not under test
     monkeypatch.chdir(tmp_path)
@@ -57,6 +58,8 @@ def test_report_jobs_default_to_the_working_directory(job, tmp_path, monkeypatch
 def test_study_publish_and_sensitivity_default_to_the_same_folder(tmp_path, monkeypatch):
     from reports.cli import study
     monkeypatch.chdir(tmp_path)
-    for argv in (["publish"], ["sensitivity", "--report-only"]):
+    (tmp_path / PUBLISHED).mkdir(parents=True)              # study redraw reads from there: it must exist
+    for argv in (["publish"], ["sensitivity", "--report-only"], ["redraw"]):
         args = study._parser().parse_args(argv)
-        assert args.to == Path(PUBLISHED) and not args.to.is_absolute(), argv
+        where = args.src if argv == ["redraw"] else args.to
+        assert where == Path(PUBLISHED) and not where.is_absolute(), argv

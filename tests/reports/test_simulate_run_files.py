@@ -37,8 +37,9 @@ def test_an_interruption_at_any_write_or_rename_leaves_no_mismatched_pair(tmp_pa
     # the calls write_run_files makes for RUN_B: 2 temporaries + the summary's (3), or 2 renames + the summary's (3)
     for k in range(3):
         out = tmp_path / f"{where}-{k}"
-        write_run_files(out, "simulate", RUN_A, {"run": "A"})
-        (out / "simulate.old-extra").write_bytes(b"a companion an earlier version wrote")
+        write_run_files(out, "simulate", {**RUN_A, "simulate.old-extra": b"a companion run B does not write"},
+                        {"run": "A"})
+        (out / "simulate.py").write_bytes(b"a user's file of the same prefix, described by no summary")
         calls = {"n": 0}
         real = cf._temporary if where == "_temporary" else os.replace
 
@@ -55,9 +56,10 @@ def test_an_interruption_at_any_write_or_rename_leaves_no_mismatched_pair(tmp_pa
         assert calls["n"] == k + 1
         assert _state(out) == "none", f"interrupted at {where} #{k + 1}: a summary survived"
         # run A's files are gone with its summary (no stale companion a reader could pair), no temporary left
-        left = {p.name: p.read_bytes() for p in out.iterdir()}
+        left = {p.name: p.read_bytes() for p in out.iterdir() if p.name != "simulate.py"}
         assert all(RUN_B.get(name) == data for name, data in left.items()), sorted(left)
         assert not (out / "simulate.old-extra").exists()
+        assert (out / "simulate.py").exists()                  # not a companion: left alone
         assert not list(out.glob(".*.tmp"))
         # the next uninterrupted run is complete and describes exactly its own files
         write_run_files(out, "simulate", RUN_B, {"run": "B"})

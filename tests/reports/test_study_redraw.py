@@ -136,11 +136,11 @@ def test_cascade_order_labels_are_1x_to_5x_above_the_plot_area(tmp_path, monkeyp
                 assert ax.bbox.x0 - 1 <= box.x0 and box.x1 <= ax.bbox.x1 + 1
 
 
-HARMONIC_F = re.compile(r"(?<![A-Za-z0-9_.:%{\\])[1-5]f(?=[\s_–\-,/)(\].+*|'\"`;:]|$)|\{h\}f[_\" ]|_[1-5]f_")
-PAPER_QUOTES = re.compile(r"harmonic frequenc(y|ies) [1-5]f")
+HARMONIC_F = re.compile(r"(?<![A-Za-z0-9_.:%{\\])[1-5]f(?=[\s_–\-,/)(\].+*|'\"`;:]|$)|\{h\}f[_\" ]|_[1-5]f(_|\b)")
+PAPER_QUOTES = re.compile(r"harmonic frequenc(y|ies) [1-5]f(, [1-5]f)*")   # quoted from Dai et al. (2025)
 
 
-@pytest.mark.parametrize("folder,pattern", [("reports", "**/*.py"), ("rotor/studies", "*.py"),
+@pytest.mark.parametrize("folder,pattern", [("reports", "**/*.py"), ("rotor/studies", "*.py"), ("tests/rotor/studies", "*.py"),
                                             ("reports/published", "study-*.md"), ("reports/published", "study-*.csv"),
                                             ("reports/notes", "*.md")])
 def test_one_naming_of_harmonic_orders(folder, pattern):

@@ -83,7 +83,7 @@ def _misalignment(mesh):
 
 
 @pytest.mark.parametrize("mesh", list(MESHES))
-def test_larger_misalignment_raises_2f(mesh):
+def test_larger_misalignment_raises_2X(mesh):
     """Dai 2025 §5.3.2, Fig. 19: 'the amplitudes of the harmonic frequencies 2f, 3f significantly
     increase' with the misalignment δ = 0.5, 1, 2 mm (10 500 rpm): the 2X part."""
     for c in LOC:
@@ -94,7 +94,7 @@ def test_larger_misalignment_raises_2f(mesh):
 @pytest.mark.parametrize("mesh", ["paper", _xfail("converged", (
     "Not at disk 1 on the converged mesh (10 500 rpm, 3X y velocity in mm/s for δ = 0.5/1/2 mm): disk 1 "
     "0.0126/0.0157/0.0085 (falls at 2 mm), disk 2 0.247/0.390/0.424 and support 0.365/0.571/0.617 rise"))])
-def test_larger_misalignment_raises_3f(mesh):
+def test_larger_misalignment_raises_3X(mesh):
     """Dai 2025 §5.3.2, Fig. 19 (g–i): 3X increases with the misalignment at disk 1, disk 2 and the 3# bearing."""
     for c in LOC:
         three = [h[c][2] for h in _misalignment(mesh)]
