@@ -34,6 +34,7 @@ import numpy as np
 
 from contact.errors import DatasetError
 from contact.files import atomic_write_text
+from contact.package_data import location
 
 SCHEMA = "ringcontact/reference-dataset"
 VERSION = 1
@@ -158,8 +159,9 @@ def read_dataset(path, kind: str | None = None) -> ReferenceDataset:
     """Read and validate a dataset file (see module docstring for what is checked).
 
     ``kind`` (``"2d"`` or ``"3d"``) refuses a dataset of the other kind with a :class:`DatasetError`.
+    ``path`` is a file path or a shipped entry (:mod:`contact.package_data`).
     """
-    path = Path(path)
+    path = location(path)
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:

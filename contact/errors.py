@@ -38,3 +38,9 @@ class DatasetError(RingContactError, OSError):
 
 class OutsideDomainError(RingContactError, ValueError):
     """A law was asked for a value where it has no solution."""
+
+
+class OutputError(RingContactError, OSError):
+    """An output could not be written after the computing (disk full, folder removed meanwhile)."""
+
+    exit_status = 1

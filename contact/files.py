@@ -1,13 +1,24 @@
-"""Atomic file writing: never leave a half-written result file.
+"""Atomic file writing: never leave a half-written result file, nor a summary beside another run's data.
 
 Files get the mode an ordinary ``open()`` would give them (0666 less the umask: 0644 usually),
 not the 0600 of the temporary file they are written through.
+
+:func:`write_run_files` writes a run's files as one unit (``simulate.csv``, ``simulate.npz`` and the
+``simulate-summary.json`` describing them): the old summary and old files of the same prefix go
+first, the new files are written to temporary names and renamed, and the summary comes last,
+carrying the SHA-256 of every file it describes. Interrupted anywhere, the folder holds either a
+complete run or files without a summary, never a summary beside files of another run;
+:func:`check_run_files` tells which.
 """
 from __future__ import annotations
 
+import hashlib
+import json
 import os
 import tempfile
 from pathlib import Path
+
+from contact.errors import DatasetError
 
 
 def _umask() -> int:
@@ -20,6 +31,17 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
     """Write ``data`` to a temporary file beside ``path`` (``.NAME.*.tmp``), fsync, then rename over ``path``
     (mode 0666 less the umask, as ``open()`` gives)."""
     path = Path(path)
+    tmp = _temporary(path, data)
+    try:
+        os.replace(tmp, path)
+    except BaseException:
+        _discard([tmp])
+        raise
+    return path
+
+
+def _temporary(path: Path, data: bytes) -> str:
+    """``data`` written and synced to a temporary file beside ``path`` (mode as ``open()`` gives); its name."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
@@ -28,14 +50,93 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
             fh.flush()
             os.fchmod(fh.fileno(), 0o666 & ~_umask())
             os.fsync(fh.fileno())
-        os.replace(tmp, path)
     except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        _discard([tmp])
         raise
-    return path
+    return tmp
+
+
+def _discard(paths) -> None:
+    for p in paths:
+        try:
+            os.unlink(p)
+        except FileNotFoundError:
+            pass
 
 
 def atomic_write_text(path: str | os.PathLike, text: str) -> Path:
     """Text version of :func:`atomic_write_bytes` (UTF-8)."""
     return atomic_write_bytes(path, text.encode("utf-8"))
+
+
+def sha256_bytes(data: bytes) -> str:
+    """Hex SHA-256 of ``data``."""
+    return hashlib.sha256(data).hexdigest()
+
+
+def write_run_files(out: str | os.PathLike, prefix: str, files: dict[str, bytes], summary: dict) -> Path:
+    """Write one run's ``files`` (name -> content, each named ``<prefix>.*``) and its summary as one unit.
+
+    Order: the old ``<prefix>-summary.json`` is removed, then the old run's files (the names about to
+    be written and every ``<prefix>.*`` file the old summary describes: stale companions, never a
+    user's other file) and stale temporaries; the new files are written to temporary names and
+    renamed into place; the summary (``summary`` plus ``"files": {name: {"sha256", "bytes"}}``) is
+    written last, atomically. Returns the summary's path.
+    """
+    out = Path(out)
+    if any(not name.startswith(prefix + ".") or "/" in name for name in files):
+        raise ValueError(f"run files must be named {prefix}.*: {sorted(files)}")
+    summary_path = out / f"{prefix}-summary.json"
+    out.mkdir(parents=True, exist_ok=True)
+    stale = set(files) | _described(summary_path, prefix)
+    _discard([summary_path])                                   # from here on the old run is incomplete
+    _discard([out / name for name in sorted(stale)] + [p for pattern in (f".{prefix}.*.tmp", f".{prefix}-summary.json.*.tmp")
+                                                       for p in out.glob(pattern) if p.is_file()])
+    temporaries = {}
+    try:
+        for name, data in files.items():
+            temporaries[name] = _temporary(out / name, data)
+        for name, tmp in temporaries.items():
+            os.replace(tmp, out / name)
+    except BaseException:
+        _discard(temporaries.values())
+        raise
+    described = {name: {"sha256": sha256_bytes(data), "bytes": len(data)} for name, data in files.items()}
+    return atomic_write_text(summary_path, json.dumps({**summary, "files": described}, indent=2) + "\n")
+
+
+def _described(summary_path: Path, prefix: str) -> set[str]:
+    """Names of the ``<prefix>.*`` files an existing summary describes (none if it is unreadable)."""
+    try:
+        described = json.loads(summary_path.read_text(encoding="utf-8")).get("files", {})
+    except (OSError, ValueError, AttributeError):
+        return set()
+    return {n for n in described if isinstance(n, str) and n.startswith(prefix + ".") and "/" not in n
+            and "\\" not in n and n not in (".", "..")} if isinstance(described, dict) else set()
+
+
+def check_run_files(out: str | os.PathLike, prefix: str) -> dict:
+    """The summary of the run in ``out``, after checking that the files it describes are the ones present.
+
+    Raises
+    ------
+    DatasetError
+        no summary (the run was interrupted or never ran), or a described file missing or changed.
+    """
+    out = Path(out)
+    path = out / f"{prefix}-summary.json"
+    try:
+        summary = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise DatasetError(f"{path}: no complete run here (no readable summary: {exc})") from None
+    described = summary.get("files")
+    if not isinstance(described, dict) or not described:
+        raise DatasetError(f"{path}: the summary lists no files (written by an older version?)")
+    for name, want in described.items():
+        try:
+            data = (out / name).read_bytes()
+        except OSError:
+            raise DatasetError(f"{path}: {name} is missing: the run is incomplete") from None
+        if sha256_bytes(data) != want.get("sha256"):
+            raise DatasetError(f"{path}: {name} is not the file this summary describes (checksum differs)")
+    return summary

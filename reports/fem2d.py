@@ -1,7 +1,7 @@
 """Report of the committed 2D reference dataset + its verification (``ringcontact fem-report``).
 
-Writes ``reports/published/fem2d-reference.{md,csv,png,svg}`` from
-``fem_reference/data/fem2d-reference.json`` (no FE solves, except the Lamé check, ~1 s):
+Writes ``fem2d-reference.{md,csv,png,svg}`` (into ``reports/published/`` of the working directory by
+default) from ``fem_reference/data/fem2d-reference.json`` (no FE solves, except the Lamé check, ~1 s):
 
 * per scene: force, contact half-angle, peak pressure, Richardson error, observed order, DOFs,
   iterations and wall time of every committed point;
@@ -21,8 +21,6 @@ from contact.dataset import read_dataset
 from contact.files import atomic_write_bytes, atomic_write_text
 from fem_reference.plane.geometry import STEEL
 from fem_reference.verify import composite_modulus, conformal_force, lame_fem
-
-OUT = Path(__file__).resolve().parent / "published"
 
 
 def persson_rows(ds) -> list[dict]:

@@ -14,8 +14,6 @@ import numpy as np
 from contact.files import atomic_write_bytes, atomic_write_text
 from fem_reference.paper_setup import PAPER_DR_MM, PAPER_FEM_KN
 
-REPORT_DIR = Path(__file__).resolve().parent / "published"
-
 
 def write_csv(rows: list[dict], out_dir: Path) -> None:
     """``fem2d-paper-setup.csv``: the paper's implied loads, then every row (loads, largest deviation, shape)."""
@@ -134,7 +132,7 @@ def write_markdown(rows: list[dict], out_dir: Path) -> None:
     atomic_write_text(out_dir / "fem2d-paper-setup.md", "\n".join(_table_lines(rows) + _findings_lines(rows)) + "\n")
 
 
-def write_report(rows: list[dict], out_dir: Path = REPORT_DIR) -> None:
+def write_report(rows: list[dict], out_dir: Path) -> None:
     """All four files of the study's rows (:func:`fem_reference.paper_setup.run`) into ``out_dir``."""
     out_dir = Path(out_dir)
     write_csv(rows, out_dir)

@@ -14,15 +14,13 @@ from contact.errors import RingContactError
 from contact.files import atomic_write_bytes, atomic_write_text
 from contact.units import ARCMIN, MM
 
-OUT = Path(__file__).resolve().parent / "published"
-DATASET_2D = Path(__file__).resolve().parents[1] / "fem_reference" / "data" / "fem2d-reference.json"
-
 
 def _plane_strain_check(penetrations_m) -> list[dict]:
     """3D forces with axially fixed end faces (= plane strain) and free ends vs the 2D references."""
     from contact.dataset import read_dataset
     from fem_reference.solid.geometry import RigidMotion, RingPair3D
     from fem_reference.solid.mesh import MeshLevel3D
+    from fem_reference.plane.sweep import DATASET_PATH as DATASET_2D    # the shipped 2D dataset
     from fem_reference.solid.solve import build_compliance, solve_point
 
     geom = RingPair3D()

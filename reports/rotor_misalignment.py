@@ -76,7 +76,7 @@ def misalignment_report(out: Path) -> list[Path]:
                      f"{r['3# bearing (support)']:.4f} |")
     best = MISALIGNMENT_EXCITATIONS[0]
     rb = rows[best]
-    lines += ["", f"The paper's picture at point A (2f with f at every station, relatively highest at the 3# "
+    lines += ["", f"The paper's picture at point A (2X with 1X at every station, relatively highest at the 3# "
               f"bearing) needs a 2X that shows on a spectrum at all three stations. `{best}` gives "
               f"{rb['disk 1']:.3f} / {rb['disk 2']:.3f} / {rb['3# bearing (support)']:.3f}; "
               f"`opposed-at-centring-surfaces` keeps disk 1 at {rows['opposed-at-centring-surfaces']['disk 1']:.4f} "

@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 
 from contact.errors import InputError
-from reports.studies.common import pyplot, save, write_csv
+from reports.sensitivity_figure import figure, per_speed_ratios  # noqa: F401 (re-exported)
+from reports.studies.common import write_csv
 from rotor.studies import sensitivity as sens
 from sweep import ResultStore, load_sweep
 
@@ -38,9 +39,9 @@ def _median(xs):
 
 def key_ratios(table: sens.AmplitudeTable, *, require_periodic: bool = True) -> dict:
     """The deciding ratios of each finding, median over the speeds where the cases compared are
-    periodic (``nan`` where none): clearance 2f, 3f A(0.03 mm)/A(0.08 mm) at disk 2 and the support
-    (displacement; > 1 is the paper's direction); misalignment 3f A(2 mm)/A(0.5 mm) (displacement;
-    > 1 is the paper's direction) and the 1f spread; tilt Σ3f–5f without/with tilt (velocity;
+    periodic (``nan`` where none): clearance 2X, 3X A(0.03 mm)/A(0.08 mm) at disk 2 and the support
+    (displacement; > 1 is the paper's direction); misalignment 3X A(2 mm)/A(0.5 mm) (displacement;
+    > 1 is the paper's direction) and the 1X spread; tilt Σ3X–5X without/with tilt (velocity;
     ≤ 0.7 is 'markedly lower')."""
     out = {}
     j2, js_ = table.locations.index("disk2.y"), table.locations.index("s.y")
@@ -55,21 +56,21 @@ def key_ratios(table: sens.AmplitudeTable, *, require_periodic: bool = True) -> 
     m = ok(("clear0.03", "base", "clear0.08"))
     a, b = table.amp("q", "clear0.03")[m], table.amp("q", "clear0.08")[m]
     for h in (2, 3):
-        out[f"clear_{h}f_disk2"] = _median(a[:, h - 1, j2] / b[:, h - 1, j2])
-        out[f"clear_{h}f_support"] = _median(a[:, h - 1, js_] / b[:, h - 1, js_])
+        out[f"clear_{h}X_disk2"] = _median(a[:, h - 1, j2] / b[:, h - 1, j2])
+        out[f"clear_{h}X_support"] = _median(a[:, h - 1, js_] / b[:, h - 1, js_])
     m = ok(("mis0.5", "base", "mis2"))
     a, c, b = table.amp("q", "mis0.5")[m], table.amp("q", "base")[m], table.amp("q", "mis2")[m]
     for h in (2, 3):
-        out[f"mis_{h}f_disk2"] = _median(b[:, h - 1, j2] / a[:, h - 1, j2])
-        out[f"mis_{h}f_support"] = _median(b[:, h - 1, js_] / a[:, h - 1, js_])
+        out[f"mis_{h}X_disk2"] = _median(b[:, h - 1, j2] / a[:, h - 1, j2])
+        out[f"mis_{h}X_support"] = _median(b[:, h - 1, js_] / a[:, h - 1, js_])
     one = np.stack([a[:, 0, :], c[:, 0, :], b[:, 0, :]])
-    out["mis_1f_spread_max"] = float((one.max(axis=0) / one.min(axis=0) - 1).max()) if m.any() else math.nan
+    out["mis_1X_spread_max"] = float((one.max(axis=0) / one.min(axis=0) - 1).max()) if m.any() else math.nan
     m = ok(("base", "notilt"))
     a, b = table.amp("v", "base")[m], table.amp("v", "notilt")[m]
     out["tilt_disk2"] = _median(b[:, 2:5, j2].sum(axis=1) / a[:, 2:5, j2].sum(axis=1))
     out["tilt_support"] = _median(b[:, 2:5, js_].sum(axis=1) / a[:, 2:5, js_].sum(axis=1))
     base = table.amp("v", "base")
-    out["base_3to5f_over_1f_disk2"] = _median(base[:, 2:5, j2].sum(axis=1) / base[:, 0, j2])
+    out["base_3Xto5X_over_1X_disk2"] = _median(base[:, 2:5, j2].sum(axis=1) / base[:, 0, j2])
     return out
 
 
@@ -102,11 +103,11 @@ POINT_LOCATIONS = (("disk2.y", "disk2"), ("s.y", "support"))
 
 
 def point_rows(tabs: dict, variants) -> tuple[list, list]:
-    """Header and rows of every (variant, speed, case): periodic, contact fraction, and the 1f–5f
+    """Header and rows of every (variant, speed, case): periodic, contact fraction, and the 1X–5X
     amplitudes at disk 2 and the support, displacement (µm) and y velocity (mm/s)."""
     header = ["variant", "speed_rpm", "case", "periodic", "contact_fraction"]
     for _, lab in POINT_LOCATIONS:
-        header += [f"{lab}_{h}f_um" for h in sens.ORDERS] + [f"{lab}_{h}f_mm_s" for h in sens.ORDERS]
+        header += [f"{lab}_{h}X_um" for h in sens.ORDERS] + [f"{lab}_{h}X_mm_s" for h in sens.ORDERS]
     out = []
     for v in variants:
         t = tabs.get(v.name)
@@ -134,76 +135,6 @@ def write_csv_rows(path: Path, rws: list) -> Path:
 
 def _fmt(x, d=3):
     return "–" if not np.isfinite(x) else f"{x:.{d}g}"
-
-
-def per_speed_ratios(table: sens.AmplitudeTable) -> dict:
-    """Per speed, the deciding ratio of each finding at disk 2 and whether every compared case is
-    periodic: ``{finding: (ratios (S,), periodic (S,) bool)}``; clearance 3f(0.03)/3f(0.08) and
-    misalignment 3f(2)/3f(0.5) of the displacement, tilt Σ3f–5f off/on of the y velocity."""
-    j = table.locations.index("disk2.y")
-    out = {}
-    for f, (a, b, q, sl) in {"clearance": ("clear0.03", "clear0.08", "q", slice(2, 3)),
-                             "misalignment": ("mis2", "mis0.5", "q", slice(2, 3)),
-                             "tilt": ("notilt", "base", "v", slice(2, 5))}.items():
-        num = table.amp(q, a)[:, sl, j].sum(axis=1)
-        den = table.amp(q, b)[:, sl, j].sum(axis=1)
-        cases = {"clearance": ("clear0.03", "base", "clear0.08"), "misalignment": ("mis0.5", "base", "mis2"),
-                 "tilt": ("base", "notilt")}[f]
-        per = np.all([table.ok(c) for c in cases], axis=0)
-        out[f] = (num / np.maximum(den, 1e-300), per)
-    return out
-
-
-def figure(tabs: dict, variants, prefix: Path) -> list:
-    """Deciding ratio of each finding per variant and speed at disk 2 (log scale); filled markers:
-    every compared case periodic; the paper's side shaded."""
-    plt = pyplot()
-    names = [v.name for v in variants if v.name in tabs]
-    panels = [("clearance", "3f(δ0 = 0.03 mm) / 3f(δ0 = 0.08 mm), disk 2\n(displacement; > 1 = paper, Fig. 18)", 1.0, "above"),
-              ("misalignment", "3f(δ = 2 mm) / 3f(δ = 0.5 mm), disk 2\n(displacement; > 1 = paper, Fig. 19)", 1.0, "above"),
-              ("tilt", "Σ3f–5f tilt ignored / with tilt, disk 2\n(y velocity; ≤ 0.7 = paper, Fig. 16)", sens.MARKEDLY, "below")]
-    fig, axes = plt.subplots(1, 3, figsize=(14, 0.3 * len(names) + 2.0), sharey=True)
-    cmap = plt.get_cmap("plasma")
-    speeds = np.array(sens.SPEEDS_RPM)
-    for ax, (f, lab, thr, side) in zip(axes, panels):
-        allr = []
-        for i, n in enumerate(names):
-            t = tabs[n]
-            r, per = per_speed_ratios(t)[f]
-            coll = (np.asarray(t.contact_fraction)[t.cases.index("base")] > 0 if t.contact_fraction is not None
-                    else np.ones(len(r), bool))
-            for k, (x, ok, rpm) in enumerate(zip(r, per, t.speeds_rpm)):
-                if not np.isfinite(x) or x <= 0:
-                    continue
-                col = cmap((rpm - speeds.min()) / max(np.ptp(speeds), 1.0) * 0.85)
-                dy = (k - len(t.speeds_rpm) / 2) * 0.08
-                ax.scatter([x], [i + dy], s=20, marker="o" if coll[k] else "s", facecolors=col if ok else "none", edgecolors=col,
-                           linewidths=1.0, zorder=3)
-                allr.append(x)
-        ax.set_xscale("log")
-        lo = min(min(allr, default=thr) / 1.5, thr / 2)
-        hi = max(max(allr, default=thr) * 1.5, thr * 2)
-        ax.axvline(thr, color="k", lw=0.8)
-        if side == "above":
-            ax.axvspan(thr, hi, color="tab:green", alpha=0.08)
-        else:
-            ax.axvspan(lo, thr, color="tab:green", alpha=0.08)
-        ax.set_xlim(lo, hi)
-        ax.set_xlabel(lab + "  (–)", fontsize=8)
-        ax.grid(True, axis="x", which="both", alpha=0.3)
-    axes[0].set_yticks(np.arange(len(names)))
-    axes[0].set_yticklabels(names, fontsize=7)
-    axes[0].invert_yaxis()
-    for rpm in speeds:
-        col = cmap((rpm - speeds.min()) / max(np.ptp(speeds), 1.0) * 0.85)
-        axes[2].scatter([], [], s=20, color=col, label=f"{rpm:.0f} rpm")
-    axes[2].scatter([], [], s=20, facecolors="none", edgecolors="k", label="not all periodic")
-    axes[2].scatter([], [], s=20, marker="s", color="k", label="reference case\ndoes not collide")
-    axes[2].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
-    fig.suptitle("Sensitivity of Dai et al. (2025) §5 findings to the inputs Table 4 does not give "
-                 "(Table 4 rotor; green: the paper's side)", fontsize=9)
-    fig.tight_layout()
-    return save(fig, prefix)
 
 
 def _regimes(t) -> str:
@@ -246,13 +177,13 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
          "including non-periodic points (their 16-revolution amplitudes are not on exact bins); 'collision' only at "
          "the periodic speeds where the reference case collides (the paper attributes all three findings to the "
          "collision between bearing and support).",
-         "* Clearance (Fig. 18): 2f and 3f of the y **displacement** strictly decrease 0.03 → 0.05 → 0.08 mm at "
-         "disk 2 and the 3# bearing support. Misalignment (Fig. 19): 1f within 5 % and 2f, 3f strictly increase "
-         "0.5 → 1 → 2 mm at disk 1, disk 2 and the support (displacement). Tilt (Fig. 16 vs 12): Σ3f–5f of the y "
+         "* Clearance (Fig. 18): 2X and 3X of the y **displacement** strictly decrease 0.03 → 0.05 → 0.08 mm at "
+         "disk 2 and the 3# bearing support. Misalignment (Fig. 19): 1X within 5 % and 2X, 3X strictly increase "
+         "0.5 → 1 → 2 mm at disk 1, disk 2 and the support (displacement). Tilt (Fig. 16 vs 12): Σ3X–5X of the y "
          "**velocity** without tilt ≤ 0.7 × with tilt at disk 2 and the support. Each is also evaluated in the other "
          "quantity (CSV).",
-         "* Ratios in the table: medians over the compared speeds — clearance 3f(0.03)/3f(0.08) at disk 2 "
-         "(> 1 is the paper's direction), misalignment 3f(2)/3f(0.5) at disk 2 (> 1), tilt Σ3–5f off/on at disk 2 "
+         "* Ratios in the table: medians over the compared speeds — clearance 3X(0.03)/3X(0.08) at disk 2 "
+         "(> 1 is the paper's direction), misalignment 3X(2)/3X(0.5) at disk 2 (> 1), tilt Σ3X–5X off/on at disk 2 "
          "(≤ 0.7).",
          "* 'base regime by speed': the reference case at each speed (ascending): '–' no contact (support stuck or "
          "slipping), 'I' contact part of the time (collisions), 'C' contact throughout; '*' not periodic.", ""]
@@ -297,8 +228,8 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
         verdicts[v.name] = per
         n6 = int(np.all(np.asarray(t.periodic), axis=0).sum())
         part = "" if len(t.speeds_rpm) == len(sens.SPEEDS_RPM) else f" (partial: {len(t.speeds_rpm)} speeds)"
-        L.append(f"| {v.name}{part} | {_regimes(t)} | {_cell(per['clearance_q'], allp['clearance_q'], coll['clearance_q'], '3f ratio ' + _fmt(kr['clear_3f_disk2']))} "
-                 f"| {_cell(per['misalignment_q'], allp['misalignment_q'], coll['misalignment_q'], '3f ratio ' + _fmt(kr['mis_3f_disk2']) + ', 1f spread ' + _fmt(100 * kr['mis_1f_spread_max'], 2) + ' %')} "
+        L.append(f"| {v.name}{part} | {_regimes(t)} | {_cell(per['clearance_q'], allp['clearance_q'], coll['clearance_q'], '3X ratio ' + _fmt(kr['clear_3X_disk2']))} "
+                 f"| {_cell(per['misalignment_q'], allp['misalignment_q'], coll['misalignment_q'], '3X ratio ' + _fmt(kr['mis_3X_disk2']) + ', 1X spread ' + _fmt(100 * kr['mis_1X_spread_max'], 2) + ' %')} "
                  f"| {_cell(per['tilt_v'], allp['tilt_v'], coll['tilt_v'], 'off/on ' + _fmt(kr['tilt_disk2']))} "
                  f"| {int(t.ok('base').sum())}/{len(t.speeds_rpm)} / {n6}/{len(t.speeds_rpm)} |")
     L += [""]
@@ -324,9 +255,9 @@ def publish(out, to, variants, *, extra: str = "", timing: dict | None = None, c
     text += "\n## Conclusion (generated from the verdicts above)\n\n" + conclusion(tabs, variants) + "\n"
     if extra:
         text += "\n" + extra.strip() + "\n"
-    files += figure(tabs, variants, to / "study-sensitivity")
+    files += figure(tabs, variants, to / "study-sensitivity", scene=scene)
     text += "\nFiles: `study-sensitivity.csv` (every variant × finding × quantity, verdicts and ratios), " \
-            "`study-sensitivity-points.csv` (every variant × speed × case: periodic, contact fraction, 1f–5f at " \
+            "`study-sensitivity-points.csv` (every variant × speed × case: periodic, contact fraction, 1X–5X at " \
             "disk 2 and the support in µm and mm/s), `study-sensitivity.png/.svg` (the deciding ratios per " \
             "variant and speed).\n"
     files.append(atomic_write_text(to / "study-sensitivity.md", text))
@@ -371,7 +302,7 @@ def timing_text(out, keys=None) -> dict:
 
 
 #: which finding each key ratio decides, and the paper's side of it
-_DECIDING = {"clearance": ("clear_3f_disk2", 1.0, "above"), "misalignment": ("mis_3f_disk2", 1.0, "above"),
+_DECIDING = {"clearance": ("clear_3X_disk2", 1.0, "above"), "misalignment": ("mis_3X_disk2", 1.0, "above"),
              "tilt": ("tilt_disk2", sens.MARKEDLY, "below")}
 
 
@@ -397,9 +328,9 @@ def conclusion(tabs: dict, variants) -> str:
     _, tot = _trends({n: tabs[n] for n in names})
     if tot["c3"][1]:
         L.append("")
-        L.append(f"Over every variant and speed where all compared cases collide (all points, disk 2): 2f fell with "
-                 f"δ0 in {tot['c2'][0]}/{tot['c2'][1]} and 3f in {tot['c3'][0]}/{tot['c3'][1]}; 2f rose with δ in "
-                 f"{tot['m2'][0]}/{tot['m2'][1]} and 3f in {tot['m3'][0]}/{tot['m3'][1]}; Σ3f–5f was ≥ 30 % lower "
+        L.append(f"Over every variant and speed where all compared cases collide (all points, disk 2): 2X fell with "
+                 f"δ0 in {tot['c2'][0]}/{tot['c2'][1]} and 3X in {tot['c3'][0]}/{tot['c3'][1]}; 2X rose with δ in "
+                 f"{tot['m2'][0]}/{tot['m2'][1]} and 3X in {tot['m3'][0]}/{tot['m3'][1]}; Σ3X–5X was ≥ 30 % lower "
                  f"without tilt in {tot['t'][0]}/{tot['t'][1]}.")
     L.append("")
     L.append("Where each finding comes closest (periodic speeds where the reference case collides, the paper's "
@@ -422,7 +353,7 @@ def conclusion(tabs: dict, variants) -> str:
             x, y = t.amp("q", "base")[m, :3], b.amp("q", "base")[m, :3]
             if float(np.max(np.abs(x - y) / np.maximum(y, 1e-12))) <= 0.02:
                 flat.append(n)
-        L.append("* No effect (reference-case 1f–3f within 2 % of the scene's at every speed where both are periodic): "
+        L.append("* No effect (reference-case 1X–3X within 2 % of the scene's at every speed where both are periodic): "
                  + (", ".join(f"`{n}`" for n in flat) if flat else "none") + ".")
     return "\n".join(L)
 
@@ -437,8 +368,8 @@ def _trends(tabs: dict):
     collide at that speed (the paper's mechanism); disk 2, displacement (velocity for tilt)."""
     speeds = sorted({float(s) for t in tabs.values() for s in t.speeds_rpm})
     tot = {k: [0, 0] for k in ("c2", "c3", "m2", "m3", "t")}
-    L = ["| speed (rpm) | variants with collision in all compared cases | 2f falls with δ0 (paper) | 3f falls with δ0 "
-         "(paper) | 2f rises with δ (paper) | 3f rises with δ (paper) | Σ3f–5f ≥ 30 % lower without tilt (paper) |",
+    L = ["| speed (rpm) | variants with collision in all compared cases | 2X falls with δ0 (paper) | 3X falls with δ0 "
+         "(paper) | 2X rises with δ (paper) | 3X rises with δ (paper) | Σ3X–5X ≥ 30 % lower without tilt (paper) |",
          "|---|---|---|---|---|---|---|"]
     for s in speeds:
         cnt = {k: [0, 0] for k in ("c2", "c3", "m2", "m3", "t")}

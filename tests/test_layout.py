@@ -8,7 +8,9 @@ import graph (imports inside functions included) and checks the rules of the lay
 - a layer imports only layers below it: contact < sweep < fem_reference, rotor < reports;
   inside rotor: model < linear, dynamics < studies;
 - ``rotor/`` is split into stage sub-packages and holds no loose modules;
-- one sweep module: the resumable-store and progress machinery is defined only in ``sweep/``.
+- one sweep module: the resumable-store and progress machinery is defined only in ``sweep/``;
+- package data is located through importlib.resources: no module names its own ``__file__`` except
+  the few listed in :data:`OWN_FILE_USES` (source stamps, checkout detection, git), once each.
 """
 from __future__ import annotations
 
@@ -174,3 +176,38 @@ def test_one_sweep_module():
                 defined.setdefault(node.name, []).append(name)
     outside = {k: [m for m in v if not m.startswith("sweep")] for k, v in defined.items()}
     assert {k: v for k, v in outside.items() if v} == {}
+
+
+# The modules that may name their own file, and why: none of them locates data shipped in the package
+# (calibrated laws, scenes, datasets, notes: read through importlib.resources, contact/package_data.py).
+OWN_FILE_USES = {
+    "contact.compiled_cache": "which .py sources belong to the suite, for the numba cache's source stamps",
+    "contact.stamp": "a source checkout (pyproject.toml beside the packages) or an installed wheel",
+    "sweep.provenance": "the git repository of a source checkout, for code_revision",
+}
+
+
+def _own_file_lines(tree: ast.AST) -> list[int]:
+    """Lines naming ``__file__`` (a name or an attribute), except as the first argument of
+    ``compiled_with(__file__, ...)`` (the numba cache's stamp of the module's own source)."""
+    stamped = {id(n.args[0]) for n in ast.walk(tree)
+               if isinstance(n, ast.Call) and getattr(n.func, "id", getattr(n.func, "attr", None)) == "compiled_with"
+               and n.args and isinstance(n.args[0], ast.Name) and n.args[0].id == "__file__"}
+    return sorted({n.lineno for n in ast.walk(tree) if id(n) not in stamped and (
+        (isinstance(n, ast.Name) and n.id == "__file__") or (isinstance(n, ast.Attribute) and n.attr == "__file__"))})
+
+
+def test_package_data_is_read_through_importlib_resources():
+    uses = {name: _own_file_lines(ast.parse(path.read_text())) for name, path in MODULES.items()}
+    offenders = {name: lines for name, lines in uses.items() if lines and name not in OWN_FILE_USES}
+    assert offenders == {}, "locate shipped data with contact.package_data.shipped(...), not __file__"
+    # each allowed module names its file once (its stated use), so a data read added beside it fails too
+    assert {name: len(uses[name]) for name in OWN_FILE_USES} == {name: 1 for name in OWN_FILE_USES}
+
+
+def test_the_own_file_check_finds_a_data_read():
+    bad = ('SCENES = Path(__file__).resolve().parents[1] / "scenes"\n'
+           'NOTES = os.path.join(os.path.dirname(__file__), "notes")\nx = sys.modules[__name__].__file__\n')
+    assert _own_file_lines(ast.parse(bad)) == [1, 2, 3]
+    assert _own_file_lines(ast.parse("compiled_with(__file__, ['contact._kernel'])\n")) == []
+    assert _own_file_lines(ast.parse("compiled_with(__file__, [])\nROOT = Path(__file__).parent\n")) == [2]

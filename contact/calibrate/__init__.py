@@ -71,7 +71,7 @@ from __future__ import annotations
 from contact.calibrate.check import check_calibrations
 from contact.calibrate.families import (FAMILIES, KERNEL_LAW_CODE, LINEAR_FAMILIES, PARAMETERS, SceneGeometry,
                                         conformal_compliance_force, family_force, foundation_shape)
-from contact.calibrate.fit import (DATA_3D_DIR, DATASET_2D, REPO_ROOT, SELECTION_GAIN, FamilyFit, calibrate_dataset,
+from contact.calibrate.fit import (DATA_3D_DIR, DATASET_2D, SELECTION_GAIN, FamilyFit, calibrate_dataset,
                                    calibrate_scene, committed_datasets, dataset_provenance, fit_family, scene_geometry,
                                    scene_points, select_family)
 from contact.calibrate.law import SCHEMA, VERSION, CalibratedLaw, CalibratedSupportParams
@@ -80,7 +80,7 @@ from contact.errors import DatasetError, InputError
 
 __all__ = [
     "CALIBRATED_DIR", "DATASET_2D", "DATA_3D_DIR", "FAMILIES", "KERNEL_LAW_CODE", "LINEAR_FAMILIES", "PARAMETERS",
-    "REPO_ROOT", "SCHEMA", "SELECTION_GAIN", "VERSION", "CalibratedLaw", "CalibratedSupportParams", "DatasetError",
+    "SCHEMA", "SELECTION_GAIN", "VERSION", "CalibratedLaw", "CalibratedSupportParams", "DatasetError",
     "FamilyFit", "InputError", "SceneGeometry", "available", "calibrate_dataset", "calibrate_scene",
     "check_calibrations", "committed_datasets", "conformal_compliance_force", "dataset_provenance", "family_force",
     "fit_family", "foundation_shape", "load_calibrated", "scene_geometry", "scene_points", "select_family",

@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -19,10 +18,11 @@ from contact.calibrate.families import (FAMILIES, LINEAR_FAMILIES, PARAMETERS, S
 from contact.calibrate.law import CalibratedLaw
 from contact.dataset import ReferenceDataset, read_dataset
 from contact.errors import DatasetError, InputError
+from contact.package_data import entries, location, shipped, shipped_name
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-DATASET_2D = REPO_ROOT / "fem_reference" / "data" / "fem2d-reference.json"
-DATA_3D_DIR = REPO_ROOT / "fem_reference" / "data" / "3d"
+#: the shipped reference datasets (read through importlib.resources, see contact.package_data)
+DATASET_2D = shipped("fem_reference", "data", "fem2d-reference.json")
+DATA_3D_DIR = shipped("fem_reference", "data", "3d")
 SELECTION_GAIN = 2.0          # a k+1-parameter family must at least halve the held-out RMS error
 
 
@@ -181,13 +181,10 @@ def scene_points(dataset: ReferenceDataset, scene: str) -> tuple[np.ndarray, np.
             np.array([p.get("force_error_rel", 0.0) for p in pts], dtype=float))
 
 
-def dataset_provenance(path: Path, ds: ReferenceDataset) -> dict:
-    doc = json.loads(Path(path).read_text(encoding="utf-8"))
-    try:
-        rel = str(Path(path).resolve().relative_to(REPO_ROOT))
-    except ValueError:
-        rel = str(path)
-    return {"path": rel, "points_sha256": doc["points_sha256"], "created_utc": ds.metadata.get("created_utc"),
+def dataset_provenance(path, ds: ReferenceDataset) -> dict:
+    """Where a law's dataset came from: its shipped name (``fem_reference/data/…``) or path, checksum, stamps."""
+    doc = json.loads(location(path).read_text(encoding="utf-8"))
+    return {"path": shipped_name(path), "points_sha256": doc["points_sha256"], "created_utc": ds.metadata.get("created_utc"),
             "code_revision": ds.metadata.get("code_revision")}
 
 
@@ -222,15 +219,15 @@ def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | 
     return law, fits
 
 
-def committed_datasets() -> list[Path]:
-    """The committed reference datasets to calibrate on: the 2D one and every 3D one present."""
-    return [DATASET_2D] + sorted(DATA_3D_DIR.glob("*.json")) if DATA_3D_DIR.is_dir() else [DATASET_2D]
+def committed_datasets() -> list:
+    """The committed reference datasets to calibrate on: the 2D one and every 3D one present (shipped entries)."""
+    return [DATASET_2D] + entries(DATA_3D_DIR, ".json")
 
 
 def calibrate_dataset(path=DATASET_2D) -> list[CalibratedLaw]:
     """One calibrated law per scene (with zero-tilt points) of a dataset file."""
     ds = read_dataset(path)
-    info = dataset_provenance(Path(path), ds)
+    info = dataset_provenance(path, ds)
     out = []
     for scene in ds.scenes():
         pts = [p for p in ds.select(scene=scene) if float(p.get("tilt_rad", 0.0)) == 0.0 and p["penetration_m"] > 0]

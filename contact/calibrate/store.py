@@ -8,13 +8,15 @@ from contact.calibrate.fit import calibrate_dataset, committed_datasets
 from contact.calibrate.law import CalibratedLaw
 from contact.errors import DatasetError
 from contact.files import atomic_write_text
+from contact.package_data import entries, location, shipped, stem
 
-CALIBRATED_DIR = Path(__file__).resolve().parents[1] / "calibrated"
+#: the calibrated laws shipped in the package (read through importlib.resources, see contact.package_data)
+CALIBRATED_DIR = shipped("contact", "calibrated")
 
 
 def available(directory=CALIBRATED_DIR) -> list[str]:
-    """Names of the stored calibrated laws."""
-    return sorted(p.stem for p in Path(directory).glob("*.json"))
+    """Names of the stored calibrated laws (in ``directory``: the shipped ones by default)."""
+    return [stem(e) for e in entries(directory, ".json")]
 
 
 def load_calibrated(name: str, directory=CALIBRATED_DIR) -> CalibratedLaw:
@@ -27,14 +29,14 @@ def load_calibrated(name: str, directory=CALIBRATED_DIR) -> CalibratedLaw:
     DatasetError
         unknown name (listing the available ones) or an unreadable/malformed file.
     """
-    directory = Path(directory)
-    path = directory / f"{name}.json"
-    if not path.exists():
+    directory = location(directory)
+    path = directory.joinpath(f"{name}.json")
+    if not path.is_file():
         matches = [n for n in available(directory) if any(n == f"{name}-{fam}" for fam in FAMILIES)]
         if len(matches) != 1:
             raise DatasetError(f"calibrated law {name!r} not found in {directory} (available: "
                                f"{', '.join(available(directory)) or 'none'})")
-        path = directory / f"{matches[0]}.json"
+        path = directory.joinpath(f"{matches[0]}.json")
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
@@ -47,10 +49,13 @@ def _calibrate_all(paths) -> list[CalibratedLaw]:
     return [law for p in paths for law in calibrate_dataset(p)]
 
 
-def write_calibrations(paths=None, directory=CALIBRATED_DIR) -> list[Path]:
-    """Refit every scene of the datasets (default: all committed) and write ``<directory>/<name>.json``.
+def write_calibrations(paths, directory) -> list[Path]:
+    """Refit every scene of the datasets (``None``: all committed) and write ``<directory>/<name>.json``.
 
-    A stored file of the same scene and dataset kind but another family is removed.
+    ``directory`` has no default: the shipped folder is read-only data (``ringcontact calibrate``
+    writes ``contact/calibrated`` relative to the working directory, the package's copy when run
+    from the repository root). A stored file of the same scene and dataset kind but another family
+    is removed.
     """
     directory = Path(directory)
     out = []

@@ -40,14 +40,15 @@ import numpy as np
 
 from contact.dataset import read_dataset, write_dataset
 from contact.errors import InputError
+from contact.package_data import shipped
 from fem_reference.plane.contact_solver import ArcNotResolvedError
 from fem_reference.plane.mesh import MeshSpec
 from fem_reference.plane.solve import ContactModel
 from fem_reference.scenes import Scene, by_name
 from sweep import ResultStore, Task, code_revision, machine, package_versions, revision_label, run_sweep, utc_stamp
 
-DATA_DIR = Path(__file__).resolve().parents[1] / "data"
-DATASET_PATH = DATA_DIR / "fem2d-reference.json"
+#: the shipped 2D dataset (read through importlib.resources, see contact.package_data)
+DATASET_PATH = shipped("fem_reference", "data", "fem2d-reference.json")
 DEFAULT_SCENES = ("clamped", "clamped-stress", "persson-40")
 DEFAULT_PENETRATIONS_MM = (0.001, 0.002, 0.003, 0.005, 0.0075, 0.01, 0.015, 0.02, 0.025, 0.03, 0.04, 0.05)
 DEFAULT_LEVELS_M = (4e-3, 2e-3, 1e-3, 0.5e-3, 0.25e-3)   # finer ones only where needed (see reference_point)
@@ -381,7 +382,7 @@ def _metadata(scenes: list[Scene], levels_m, order: int, load_start: float) -> d
     }
 
 
-def regenerate(path=DATASET_PATH, **kw) -> Path:
+def regenerate(path, **kw) -> Path:
     """Run the default sweep and write it (atomically) to ``path``."""
     meta, points = sweep_dataset(**kw)
     return write_dataset(path, meta, COLUMNS, points)

@@ -35,6 +35,7 @@ import numpy as np
 
 from contact.dataset import read_dataset, write_dataset
 from contact.errors import ConvergenceError, DatasetError, InputError
+from contact.package_data import shipped
 from contact.units import ARCMIN, MM
 from fem_reference.solid.geometry import RigidMotion, RingPair3D
 from fem_reference.solid.mesh import DEFAULT_LEVELS, LEVELS, MeshLevel3D
@@ -43,8 +44,8 @@ from fem_reference.solid.solve import (SCENES, ContactCompliance, build_complian
 from sweep import (ResultStore, Task, as_executor, code_revision, local_pool, machine, package_versions,
                    revision_label, run_sweep, utc_stamp)
 
-DATA_DIR = Path(__file__).resolve().parents[1] / "data" / "3d"
-DATASET_PATH = DATA_DIR / "fem3d-reference.json"
+#: the shipped 3D dataset (read through importlib.resources, see contact.package_data)
+DATASET_PATH = shipped("fem_reference", "data", "3d", "fem3d-reference.json")
 DEFAULT_TILTS_ARCMIN = (0.0, 0.5, 1.0, 2.0, 30.0)
 DEFAULT_PENETRATIONS_MM = (0.005, 0.01, 0.02, 0.03, 0.04, 0.05)
 CODE_VERSION = "fem3d-1"      # bump when the compliance computation changes (invalidates the cache)
@@ -384,7 +385,7 @@ def _jsonable(row: dict) -> dict:
     return out
 
 
-def regenerate(path=DATASET_PATH, **kw) -> Path:
+def regenerate(path, **kw) -> Path:
     """Run the sweep and write the dataset (atomically) to ``path``."""
     meta, points = sweep_dataset(**kw)
     return write_dataset(path, meta, COLUMNS, points)

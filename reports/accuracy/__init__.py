@@ -54,7 +54,7 @@ def table3() -> dict:
 
 def compute(dataset_path=cal.DATASET_2D) -> tuple[list[dict], dict]:
     ds = read_dataset(dataset_path)
-    info = cal.dataset_provenance(Path(dataset_path), ds)
+    info = cal.dataset_provenance(dataset_path, ds)
     tables = []
     for scene in ds.scenes():
         try:

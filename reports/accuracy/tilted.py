@@ -5,7 +5,6 @@ from __future__ import annotations
 import csv
 import io
 import math
-from pathlib import Path
 
 import numpy as np
 
@@ -13,6 +12,7 @@ from contact import calibrate as cal
 from contact import laws, tilt
 from contact.dataset import ReferenceDataset, read_dataset
 from contact.loose_support import loose_support_force
+from contact.package_data import entries, location, shipped_name
 from contact.units import ARCMIN, MM
 from reports.accuracy.common import PAPER_TABLE3_PCT, PENETRATIONS_MM
 
@@ -25,11 +25,9 @@ T3_METHODS = {
 }
 
 
-def _rel(path: Path) -> str:
-    try:
-        return str(Path(path).resolve().relative_to(cal.REPO_ROOT))
-    except ValueError:
-        return str(path)
+def _rel(path) -> str:
+    """A dataset's name in the reports: ``fem_reference/data/…`` when shipped, else the path."""
+    return shipped_name(path)
 
 
 def _paper_t3(tilt_arcmin: float, pen_mm: float):
@@ -78,9 +76,13 @@ def table3_rows(ds: ReferenceDataset, scene: str, law: cal.CalibratedLaw) -> lis
     return rows
 
 
-def table3(data_dir: Path) -> dict:
-    """Table 3-style comparison from every committed 3D dataset (centre penetration, tilt about z)."""
-    paths = sorted(data_dir.glob("*.json")) if data_dir.is_dir() else []
+def table3(data_dir) -> dict:
+    """Table 3-style comparison from every committed 3D dataset (centre penetration, tilt about z).
+
+    ``data_dir``: a folder path or a shipped entry (:data:`contact.calibrate.DATA_3D_DIR`).
+    """
+    data_dir = location(data_dir)
+    paths = entries(data_dir, ".json")
     rel = _rel(data_dir)
     if not paths:
         return {"have_data": False, "rows": [], "ok": None, "laws": [], "lines": [
@@ -118,7 +120,7 @@ def _find(srows: list[dict], tl: float, pm: float) -> dict | None:
     return next((r for r in srows if round(r["tilt_arcmin"], 6) == tl and round(r["penetration_mm"], 9) == pm), None)
 
 
-def _t3_scene_lines(path: Path, scene: str, law: cal.CalibratedLaw, chosen, srows: list[dict]) -> list[str]:
+def _t3_scene_lines(path, scene: str, law: cal.CalibratedLaw, chosen, srows: list[dict]) -> list[str]:
     """One 3D scene: its calibration, the force table per tilt and method, moments and widths, systematic notes."""
     tilts = sorted({round(r["tilt_arcmin"], 6) for r in srows})
     pens = sorted({round(r["penetration_mm"], 9) for r in srows})

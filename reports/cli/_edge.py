@@ -22,6 +22,11 @@ from pathlib import Path
 from contact import plausible
 from contact.errors import RingContactError
 
+#: where the report jobs write by default, relative to the working directory (the committed copy when run
+#: from the repository root; never the installed package's folder): ``report``, ``study publish``,
+#: ``fem-report``, ``fem-paper``, ``fem3d report`` share it
+PUBLISHED = "reports/published"
+
 _ARG = re.compile(r"^argument ([^:]+): (.*)$", re.S)
 
 

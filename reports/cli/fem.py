@@ -22,11 +22,10 @@ import numpy as np
 
 from contact.errors import InputError, RingContactError
 from contact.units import MM
-from reports.cli._edge import Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys
+from reports.cli._edge import PUBLISHED, Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys
 
 #: where the jobs write by default: relative to the working directory (the repository root in a checkout)
 DATASET_OUT = "fem_reference/data/fem2d-reference.json"
-REPORT_OUT = "reports/published"
 
 
 def _point_parser(prog: str, help_: str) -> argparse.ArgumentParser:
@@ -111,7 +110,7 @@ def check_main(argv: list[str]) -> int:
     from fem_reference.plane.sweep import DATASET_PATH, check_against_committed
 
     ap = Parser(prog="ringcontact fem-check", description="recompute committed points, compare")
-    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="2D dataset (default: the packaged one)")
+    ap.add_argument("--path", type=in_file, default=DATASET_PATH, help="2D dataset (default: the packaged one)")
     ap.add_argument("--points", type=count(1, 50, "points"), default=3, help="points per scene (1-50)")
     ap.add_argument("--scene", action="append", help="only this scene (repeatable)")
     ap.add_argument("--tol", type=quantity("tol"), default=1e-6, help="relative difference that counts as a change")
@@ -141,8 +140,8 @@ def report_main(argv: list[str] | None = None) -> int:
     from reports.fem2d import write_report
 
     ap = Parser(prog="ringcontact fem-report", description="report of the committed 2D FEM dataset")
-    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="2D dataset (default: the packaged one)")
-    ap.add_argument("--out", type=out_dir, default=REPORT_OUT, help=f"output directory (default {REPORT_OUT})")
+    ap.add_argument("--path", type=in_file, default=DATASET_PATH, help="2D dataset (default: the packaged one)")
+    ap.add_argument("--out", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")
     args = ap.parse_args(argv)
     try:
         read_dataset(args.path, kind="2d")
@@ -159,7 +158,7 @@ def paper_main(argv: list[str] | None = None) -> int:
 
     ap = Parser(prog="ringcontact fem-paper", description=paper_setup.__doc__.splitlines()[0])
     ap.add_argument("--h-mm", type=quantity("h_mm"), default=2.0, help="contact element size [mm]")
-    ap.add_argument("--out", type=out_dir, default=REPORT_OUT, help=f"output directory (default {REPORT_OUT})")
+    ap.add_argument("--out", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     args = ap.parse_args(argv)
     try:

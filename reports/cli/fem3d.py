@@ -20,11 +20,10 @@ import sys
 
 from contact.errors import RingContactError
 from contact.units import ARCMIN, MM
-from reports.cli._edge import Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys
+from reports.cli._edge import PUBLISHED, Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys
 
 SCENES_3D = ("clamped", "clamped-axially-fixed-ends")     # fem_reference.solid.solve.SCENES
 DATASET_OUT = "fem_reference/data/3d/fem3d-reference.json"
-REPORT_OUT = "reports/published"
 
 
 def _levels():
@@ -140,7 +139,7 @@ def check_main(argv: list[str]) -> int:
     from fem_reference.solid.sweep import DATASET_PATH, check_against_committed
 
     ap = Parser(prog="ringcontact fem3d check", description="recompute committed 3D points, compare")
-    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="3D dataset (default: the packaged one)")
+    ap.add_argument("--path", type=in_file, default=DATASET_PATH, help="3D dataset (default: the packaged one)")
     ap.add_argument("--points", type=count(1, 50, "points"), default=3, help="points to recompute (1-50)")
     ap.add_argument("--cached", action="store_true", help="reuse cached mesh levels instead of rebuilding them")
     ap.add_argument("--tol", type=quantity("tol"), default=1e-6, help="relative difference that counts as a change")
@@ -171,13 +170,13 @@ def report_main(argv: list[str]) -> int:
     from reports.fem3d import write_report
 
     ap = Parser(prog="ringcontact fem3d report", description="report of the committed 3D dataset")
-    ap.add_argument("--path", type=in_file, default=str(DATASET_PATH), help="3D dataset (default: the packaged one)")
-    ap.add_argument("--out", "--out-dir", dest="out", type=out_dir, default=REPORT_OUT,
-                    help=f"output directory (default {REPORT_OUT})")
+    ap.add_argument("--path", type=in_file, default=DATASET_PATH, help="3D dataset (default: the packaged one)")
+    ap.add_argument("--out", "--out-dir", dest="out", type=out_dir, default=PUBLISHED,
+                    help=f"output directory (default {PUBLISHED})")
     args = ap.parse_args(argv)
     try:
         ds = read_dataset(args.path, kind="3d")
-        md = write_report(ds, Path(args.path).name, Path(args.out))
+        md = write_report(ds, args.path.name, Path(args.out))
     except RingContactError as exc:
         return fail("ringcontact fem3d report", exc)
     print(f"wrote {md} (+ .csv, .png, .svg)")

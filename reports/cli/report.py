@@ -13,9 +13,9 @@ import time
 from pathlib import Path
 
 from contact.errors import RingContactError
-from reports.cli._edge import Parser, fail, out_dir
+from reports.cli._edge import PUBLISHED, Parser, fail, out_dir
 
-DEFAULT_OUT = Path("reports/published")   # relative to the working directory (the repository root in a checkout)
+DEFAULT_OUT = Path(PUBLISHED)   # relative to the working directory (the repository root in a checkout)
 
 # name -> (module with a build(out_dir) function, one-line description). Order = run order.
 BUILDERS: dict[str, tuple[str, str]] = {

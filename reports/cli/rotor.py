@@ -26,7 +26,7 @@ import sys
 import numpy as np
 
 from contact.errors import RingContactError
-from reports.cli._edge import Parser, count, fail, out_dir, out_prefix, quantity
+from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
 
 RPM = 30 / math.pi
 
@@ -262,7 +262,7 @@ def _parser() -> argparse.ArgumentParser:
     sp.add_argument("--out", type=out_dir, default="response-out", help="output directory (default response-out)")
     sp.set_defaults(func=cmd_response)
     sp = sub.add_parser("report", help="regenerate reports/published/rotor-* (figures and tables)")
-    sp.add_argument("--out", type=out_dir, default="reports/published", help="output directory")
+    sp.add_argument("--out", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")
     sp.set_defaults(func=cmd_report)
     return p
 

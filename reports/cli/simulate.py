@@ -10,8 +10,11 @@ or, for one steady-state point (transient detected and discarded, then 64 kept r
 
 writes ``runs/b/simulate.csv`` (time, named DOFs, relative edge offsets r1/r2, relative tilts,
 stick/slip of each end face, contact flags), ``runs/b/simulate.npz`` (full state) and
-``runs/b/simulate-summary.json``; every file is written atomically. Engineer units at the edge
-(``_rpm``, ``_mm``, ``_n``), SI inside.
+``runs/b/simulate-summary.json``, as one unit (:func:`contact.files.write_run_files`): the previous
+run's ``simulate.*`` files and summary are removed first, the new files written to temporary names and
+renamed, the summary last with the SHA-256 of each file it describes (``"files"``), so an interrupted
+run never leaves one run's CSV beside another's summary. Engineer units at the edge (``_rpm``, ``_mm``,
+``_n``), SI inside.
 """
 from __future__ import annotations
 
@@ -25,8 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-from contact.errors import InputError, RingContactError
-from contact.files import atomic_write_bytes, atomic_write_text
+from contact.errors import InputError, OutputError, RingContactError
+from contact.files import write_run_files
 from contact.units import check_positive
 from reports.cli._edge import Parser, count, fail, out_dir, quantity
 from rotor.dynamics import constraints as cons
@@ -109,7 +112,7 @@ def _run(args) -> int:
     r1, r2 = cons.edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
     d0 = sup.law.clearance_m if sup is not None else math.inf
     out = Path(args.out)
-    _write_trajectory(out, tr, system, names, idx, r1, r2, d0)
+    files = _trajectory_files(tr, system, names, idx, r1, r2, d0)
     summary = {"scene": scene.name, "speed_rpm": args.speed_rpm, "revolutions": args.revolutions,
                "scheme": tr.scheme, "dt_s": dt, "steps": n_steps,
                "wall_s": round(compiled["compile_s"] + run_s, 3), "compile_s": round(compiled["compile_s"], 3),
@@ -121,7 +124,13 @@ def _run(args) -> int:
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
                "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
                **validity_summary(float(max(r1.max(), r2.max()) - d0), validity_m), **extra}
-    atomic_write_text(out / "simulate-summary.json", json.dumps(summary, indent=2) + "\n")
+    # one unit: the old run's files go, the new ones are renamed into place, the summary (with their
+    # checksums) comes last; an interrupted run leaves no summary beside another run's CSV
+    try:
+        write_run_files(out, "simulate", files, summary)
+    except OSError as exc:
+        raise OutputError(f"--out = {args.out}: the run's files could not be written ({exc.strerror or exc}); "
+                          "the folder holds no summary, so no complete run") from None
     print(json.dumps(summary, indent=2))
     if summary.get("beyond_law_validity"):
         print(f"ringcontact simulate: warning: the largest edge penetration {summary['max_edge_penetration_mm']:.4g} mm "
@@ -208,8 +217,9 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     return tr, dt, n_steps, extra
 
 
-def _write_trajectory(out: Path, tr, system, names: list[str], idx: list[int], r1, r2, d0: float) -> None:
-    """``simulate.csv`` (time, the named DOFs, edge offsets, tilts, stick/slip, contact flags) and ``simulate.npz``."""
+def _trajectory_files(tr, system, names: list[str], idx: list[int], r1, r2, d0: float) -> dict[str, bytes]:
+    """The contents of ``simulate.csv`` (time, the named DOFs, edge offsets, tilts, stick/slip, contact flags)
+    and ``simulate.npz`` (full state)."""
     cols = {"t_s": tr.t}
     for n, i in zip(names, idx):
         cols[f"{n}_m" if n.split(".")[-1] in ("y", "z") else f"{n}_rad"] = tr.q[:, i]
@@ -219,11 +229,10 @@ def _write_trajectory(out: Path, tr, system, names: list[str], idx: list[int], r
     buf = io.StringIO()
     buf.write(",".join(cols) + "\n")
     np.savetxt(buf, np.column_stack(list(cols.values())), delimiter=",", fmt="%.9g")
-    atomic_write_text(out / "simulate.csv", buf.getvalue())
     b = io.BytesIO()
     np.savez_compressed(b, t=tr.t, q=tr.q, v=tr.v, u=tr.u, w=tr.w, f_contact=tr.f_contact, face_force=tr.face_force,
                         modes=tr.modes, dof_names=np.array(system.dof_names))
-    atomic_write_bytes(out / "simulate.npz", b.getvalue())
+    return {"simulate.csv": buf.getvalue().encode("utf-8"), "simulate.npz": b.getvalue()}
 
 
 def _law(args, scene, clearance_m):

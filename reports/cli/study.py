@@ -12,6 +12,7 @@ Sub-studies (each resumable: points already in ``--out`` are reused, corrupt one
     ringcontact study publish  --cascade runs/fig12 --notilt runs/fig16 …   # study-* into reports/published
     ringcontact study export   runs/fig12 --format netcdf|csv          # speed x station x harmonic dataset
     ringcontact study sensitivity --out runs/sensitivity             # §5 findings vs the unstated inputs (slow)
+    ringcontact study redraw   [--from reports/published]            # study figures from the committed CSVs
 
 Engineer units at the edge (``_rpm``, ``_mm``); results in SI (see sweep.store for the file
 layout). Figures (PNG + SVG) go to ``--figures`` (default: ``<out>/figures``).
@@ -33,10 +34,9 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from contact.errors import FailedPointsError, InputError, RingContactError
+from contact.package_data import shipped
 from contact.units import check_positive
-from reports.cli._edge import Parser, count, fail, in_dir, out_dir, out_file, quantity
-
-PUBLISHED = "reports/published"     # relative to the working directory (the repository root in a checkout)
+from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, out_file, quantity
 
 
 def _common(p: argparse.ArgumentParser, out: str):
@@ -120,6 +120,11 @@ def _parser() -> argparse.ArgumentParser:
                         help=f"the '{k}' study on the converged mesh (with --elements): study-findings.md")
     pb.add_argument("--elements", type=count(1, 64), default=2, help="elements per segment of the converged-mesh studies")
     pb.add_argument("--out", "--to", dest="to", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")
+    rd = sub.add_parser("redraw", help="the study figures again from the committed CSV tables (no study rerun): "
+                                       "study-sensitivity, study-params-*, study-cascade*")
+    rd.add_argument("--from", dest="src", type=in_dir, default=PUBLISHED,
+                    help=f"folder of the study-*.csv tables (default {PUBLISHED})")
+    rd.add_argument("--out", "--to", dest="to", type=out_dir, default=None, help="output directory (default: --from)")
     return p
 
 
@@ -188,6 +193,11 @@ def _sweep(tasks, out: Path, args, description: dict):
 def _run(args) -> int:
     if args.study == "publish":
         return _publish(args)
+    if args.study == "redraw":
+        from reports.studies.redraw import redraw
+        for f in redraw(args.src, args.to if args.to is not None else args.src):
+            print(f"  wrote {f}")
+        return 0
     if args.study == "export":
         return _export(args)
     if args.study == "sensitivity":
@@ -396,11 +406,11 @@ def _sensitivity(args) -> int:
         _timing(out, s, wall, args)
     # the hand-written reading of the published numbers lives in reports/notes/ and is appended, so the
     # published file stays regenerable by this command alone
-    reading = Path(__file__).resolve().parents[1] / "notes" / "study-sensitivity-reading.md"
+    reading = shipped("reports", "notes", "study-sensitivity-reading.md")
     files = rep.publish(out, Path(args.to), variants, scene=args.scene,
                         timing=rep.timing_text(out, {t.key for t in sens.study_tasks(variants, scene=args.scene)}),
                         code=_points_code(out, code_revision()),
-                        extra=reading.read_text(encoding="utf-8") if reading.exists() else "")
+                        extra=reading.read_text(encoding="utf-8") if reading.is_file() else "")
     for f in files:
         print(f"  wrote {f}")
     return 0

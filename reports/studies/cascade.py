@@ -5,39 +5,47 @@ from pathlib import Path
 
 import numpy as np
 
-from reports.studies.common import LOCATIONS, channel_column, harmonic_table, load_points, pyplot, save, write_csv
+from reports.studies.common import (LOCATIONS, channel_column, harmonic_table, load_points, pyplot, read_csv_rows,
+                                    require_columns, save, write_csv)
 
 
-def _cascade_axes(ax, points, get, unit_scale, label, floor_rel=1e-4):
+def _cascade_axes(ax, spectra, label, floor_rel=1e-4):
+    """One cascade: dots at (frequency, speed) coloured and sized by amplitude, order lines labelled 1X–5X.
+
+    ``spectra``: ``[(speed_rpm, orders (K,), amplitudes (K,), periodic)]`` in the unit of ``label``; orders are
+    multiples of the rotation frequency (fractional ones too, from a full spectrum). Speeds without a periodic
+    steady state are marked × on the right edge. The order labels sit on a top axis, outside the data.
+    """
     plt = pyplot()
     from matplotlib.colors import LogNorm
 
-    xs, ys, cs = [], [], []
-    for p in points:
-        rpm = p.params["speed_rpm"]
-        if rpm <= 0:
-            continue
-        f = rpm / 60.0
-        amp = get(p) * unit_scale
-        orders = p.arrays["spec_orders"]
-        xs.append(orders * f)
-        ys.append(np.full(orders.shape, rpm))
-        cs.append(amp)
-    if not xs:
+    spectra = [s for s in spectra if s[0] > 0]
+    if not spectra:
         return None
-    x, y, c = np.concatenate(xs), np.concatenate(ys), np.concatenate(cs)
-    top = c.max() if c.size else 1.0
+    x = np.concatenate([np.asarray(o, float) * rpm / 60.0 for rpm, o, _, _ in spectra])
+    y = np.concatenate([np.full(len(o), rpm, float) for rpm, o, _, _ in spectra])
+    c = np.concatenate([np.asarray(a, float) for _, _, a, _ in spectra])
+    top = c.max() if c.size and c.max() > 0 else 1.0
     keep = c > top * floor_rel
     order = np.argsort(c[keep])
     sc = ax.scatter(x[keep][order], y[keep][order], c=c[keep][order], s=6 + 30 * (c[keep][order] / top) ** 0.5,
                     norm=LogNorm(vmin=top * floor_rel, vmax=top), cmap="viridis", linewidths=0,
                     rasterized=True)  # thousands of dots: raster inside the SVG, axes stay vector
-    rmax = max(p.params["speed_rpm"] for p in points)
+    rmax = max(s[0] for s in spectra)
+    ymax = rmax * 1.02
     for k in range(1, 6):
-        ax.plot([0, k * rmax / 60], [0, rmax], ":", color="0.6", lw=0.7)
-        ax.annotate(f"{k}f", (min(k * rmax / 60, 5.4 * rmax / 60), min(rmax, 5.4 * rmax / k)), fontsize=7, color="0.4")
-    ax.set_xlim(0, 5.5 * rmax / 60)
-    ax.set_ylim(0, rmax * 1.02)
+        ax.plot([0, k * ymax / 60], [0, ymax], ":", color="0.6", lw=0.7)
+    xmax = 5.5 * rmax / 60
+    ax.set_xlim(0, xmax)
+    ax.set_ylim(0, ymax)
+    top_axis = ax.secondary_xaxis("top")
+    top_axis.set_xticks([k * ymax / 60 for k in range(1, 6)], [f"{k}X" for k in range(1, 6)], fontsize=7)
+    top_axis.tick_params(length=2, pad=1, colors="0.35")
+    irregular = [s[0] for s in spectra if not s[3]]
+    ax.plot(np.full(len(irregular), xmax), irregular, "x", color="tab:red", ms=4, clip_on=False,
+            label="no periodic steady state" if irregular else None)
+    if irregular:
+        ax.legend(fontsize=7, loc="lower right")
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("rotor speed (rpm)")
     ax.set_title(label, fontsize=9)
@@ -45,24 +53,67 @@ def _cascade_axes(ax, points, get, unit_scale, label, floor_rel=1e-4):
     return sc
 
 
+def cascade_plots(velocity: dict, tilt: dict, figs: Path, prefix: str, title: str, source: str = "") -> list[Path]:
+    """``<prefix>`` (y velocity at disk 1, disk 2, the support: Figs. 12/16) and ``<prefix>-tilt`` (Fig. 17).
+
+    ``velocity``: ``{location label: spectra}`` in mm/s; ``tilt``: ``{"θy": spectra, "θz": spectra}`` in mrad;
+    spectra as :func:`_cascade_axes` takes them. ``source`` is a note under the titles (what was drawn).
+    """
+    plt = pyplot()
+    sub = f"\n{source}" if source else ""
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.9), constrained_layout=True)
+    for ax, (lab, spectra) in zip(axes, velocity.items()):
+        _cascade_axes(ax, spectra, f"{lab}: y-velocity amplitude (mm/s)")
+    fig.suptitle((title or "Steady-state spectrum cascades (y velocity), Table 4 rotor") + sub, fontsize=10)
+    files = save(fig, Path(figs) / prefix)
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.9), constrained_layout=True)
+    for ax, (axis, spectra) in zip(axes, tilt.items()):
+        _cascade_axes(ax, spectra, f"bearing − support: relative tilt {axis} (mrad)")
+    fig.suptitle("Relative angular deflection between bearing and support (paper Fig. 17)" + sub, fontsize=10)
+    return files + save(fig, Path(figs) / f"{prefix}-tilt")
+
+
+CSV_SOURCE = "harmonics 1X–5X (tilt 1X–3X) from {name}; broadband content between them is not in the CSV"
+
+
+def cascade_redraw(csv_path, figs, prefix: str, title: str = ""):
+    """The cascades of :func:`cascade_plots` from a committed ``study-cascade*.csv`` (harmonic orders only).
+
+    The CSV is read and checked now (DatasetError if unreadable or lacking a column); the returned
+    function draws and returns the files written.
+    """
+    rows = read_csv_rows(csv_path)
+    vel = [f"{c}_v{o}X_mm_s" for c in ("disk1", "disk2", "support") for o in range(1, 6)]
+    tilt = [f"tilt_{a}_{o}X_mrad" for a in ("y", "z") for o in range(1, 4)]
+    require_columns(csv_path, rows, ["speed_rpm", "converged"] + vel + tilt)
+    try:
+        numbers = [[float(r[c]) for c in ["speed_rpm"] + vel + tilt] for r in rows]
+    except ValueError as exc:
+        from contact.errors import DatasetError
+        raise DatasetError(f"{csv_path}: a cell is not a number ({exc})") from None
+
+    def spectra(cols):
+        orders = np.arange(1, len(cols) + 1, dtype=float)
+        at = [1 + (vel + tilt).index(c) for c in cols]
+        return [(n[0], orders, np.array([n[i] for i in at]), r["converged"] == "1") for n, r in zip(numbers, rows)]
+    velocity = {lab: spectra(vel[5 * j:5 * j + 5]) for j, (_, lab) in enumerate(LOCATIONS)}
+    tilts = {"θy": spectra(tilt[:3]), "θz": spectra(tilt[3:])}
+    return lambda: cascade_plots(velocity, tilts, figs, prefix, title, CSV_SOURCE.format(name=Path(csv_path).name))
+
+
 def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "") -> list[Path]:
     """Velocity-y spectrum cascades at disk 1, disk 2, 3# bearing (Fig. 12 / 16), the relative-tilt
-    cascade (Fig. 17), and ``<prefix>.csv`` with 1X–5X per speed, convergence and regime."""
-    plt = pyplot()
+    cascade (Fig. 17) from the full spectra of the study, and ``<prefix>.csv`` with 1X–5X per speed,
+    convergence and regime."""
     figs = Path(figs)
     points = load_points(out, tasks)
-    files = []
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), constrained_layout=True)
-    for ax, (ch, lab) in zip(axes, LOCATIONS):
-        _cascade_axes(ax, points, lambda p, ch=ch: p.arrays["spec_v"][:, channel_column(p, ch)], 1e3,
-                      f"{lab}: y-velocity amplitude (mm/s)")
-    fig.suptitle(title or "Steady-state spectrum cascades (y velocity), Table 4 rotor", fontsize=10)
-    files += save(fig, figs / prefix)
-    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.6), constrained_layout=True)
-    for ax, (k, lab) in zip(axes, ((2, "relative tilt θy (mrad)"), (3, "relative tilt θz (mrad)"))):
-        _cascade_axes(ax, points, lambda p, k=k: p.arrays["spec_u"][:, k], 1e3, f"bearing − support: {lab}")
-    fig.suptitle("Relative angular deflection between bearing and support (paper Fig. 17)", fontsize=10)
-    files += save(fig, figs / f"{prefix}-tilt")
+
+    def spectra(get):
+        return [(p.params["speed_rpm"], p.arrays["spec_orders"], get(p) * 1e3, bool(p.info["converged"]))
+                for p in points]
+    velocity = {lab: spectra(lambda p, ch=ch: p.arrays["spec_v"][:, channel_column(p, ch)]) for ch, lab in LOCATIONS}
+    tilts = {"θy": spectra(lambda p: p.arrays["spec_u"][:, 2]), "θz": spectra(lambda p: p.arrays["spec_u"][:, 3])}
+    files = cascade_plots(velocity, tilts, figs, prefix, title)
     rpm, V = harmonic_table(points, "v")
     _, U = harmonic_table(points, "u", channels=("θy", "θz"), orders=(1, 2, 3))
     header = ["speed_rpm", "converged", "period_revs", "regime", "contact_fraction", "stick_fraction",
@@ -116,17 +167,17 @@ def cascade_note(points, notilt=None, timing=None) -> str:
     share1 = V[:, :, 0] / np.maximum(V.sum(axis=2), 1e-30)
     hi3 = V[hi][:, :, 2:5].sum(axis=2)
     lines += ["| statement of the paper | ours | agrees? |", "|---|---|---|"]
-    lines.append(f"| Response primarily at f | 1f is {100 * np.median(share1[rpm > 0]):.1f} % (median over speeds and "
-                 f"locations) of the 1f–5f sum; lowest {100 * share1[rpm > 0].min():.1f} % | yes |")
+    lines.append(f"| Response primarily at 1X | 1X is {100 * np.median(share1[rpm > 0]):.1f} % (median over speeds and "
+                 f"locations) of the 1X–5X sum; lowest {100 * share1[rpm > 0].min():.1f} % | yes |")
     lo = (rpm > 0) & (rpm < 9000)
     r2 = V[lo][:, :, 1] / V[lo][:, :, 0]
-    lines.append(f"| 2f present (misalignment) | 2f/1f below 9 000 rpm: disk 1 median {_fmt(np.median(r2[:, 0]))}, "
+    lines.append(f"| 2X present (misalignment) | 2X/1X below 9 000 rpm: disk 1 median {_fmt(np.median(r2[:, 0]))}, "
                  f"disk 2 {_fmt(np.median(r2[:, 1]))}, support {_fmt(np.median(r2[:, 2]))} | "
                  f"{'yes' if np.median(r2[:, 2]) >= 0.05 else 'yes (small)'} |")
     if hi.any():
         r = hi3 / np.maximum(hi3[:, [0]], 1e-30)
-        lines.append(f"| At high speed 3f–5f significant at disk 2 and the 3# bearing, more than at disk 1 | "
-                     f"sum 3f–5f ≥ 9 000 rpm, ratio to disk 1: disk 2 median {_fmt(np.median(r[:, 1]))}, support "
+        lines.append(f"| At high speed 3X–5X significant at disk 2 and the 3# bearing, more than at disk 1 | "
+                     f"sum 3X–5X ≥ 9 000 rpm, ratio to disk 1: disk 2 median {_fmt(np.median(r[:, 1]))}, support "
                      f"median {_fmt(np.median(r[:, 2]))}; largest at disk 2 {_fmt(hi3[:, 1].max() * 1e3, 'mm/s')} "
                      f"({rpm[hi][np.argmax(hi3[:, 1])]:.0f} rpm) | "
                      f"{'yes' if np.median(r[:, 1]) > 1 and np.median(r[:, 2]) > 1 else 'no'} |")
@@ -137,12 +188,12 @@ def cascade_note(points, notilt=None, timing=None) -> str:
             a = np.array([V[rpm == s][0, :, 2:5].sum(axis=1) for s in common])
             b = np.array([V0[rpm0 == s][0, :, 2:5].sum(axis=1) for s in common])
             ratio = b / np.maximum(a, 1e-30)
-            lines.append(f"| Fig. 16: harmonics markedly reduced when tilt is ignored | sum 3f–5f tilt-ignored / "
+            lines.append(f"| Fig. 16: harmonics markedly reduced when tilt is ignored | sum 3X–5X tilt-ignored / "
                          f"with tilt, median over {common.size} speeds ≥ 9 000 rpm: disk 1 {_fmt(np.median(ratio[:, 0]))}, "
                          f"disk 2 {_fmt(np.median(ratio[:, 1]))}, support {_fmt(np.median(ratio[:, 2]))} | "
                          f"{'yes' if np.median(ratio[:, 1:]) < 0.7 else 'no'} |")
     tmax = U[:, :, 0].max() * 1e3
-    lines.append(f"| Fig. 17: relative tilt grows at high speed, with the harmonics | 1f relative tilt (max of θy, θz): "
+    lines.append(f"| Fig. 17: relative tilt grows at high speed, with the harmonics | 1X relative tilt (max of θy, θz): "
                  f"{_fmt(U[lo][:, :, 0].max() * 1e3, 'mrad')} below 9 000 rpm, up to {_fmt(tmax, 'mrad')} above | "
                  f"{'yes' if tmax > 2 * U[lo][:, :, 0].max() * 1e3 else 'no'} (magnitude set by the assumed support tilt stiffness) |")
     lines += ["", "Files: `study-cascade.png/.svg` (Fig. 12), `study-cascade-tilt.png/.svg` (Fig. 17), "

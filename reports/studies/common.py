@@ -43,6 +43,39 @@ def write_csv(path: Path, header: list[str], rows) -> Path:
     return atomic_write_text(path, buf.getvalue())
 
 
+def read_csv_rows(path) -> list[dict]:
+    """The rows of a CSV written by :func:`write_csv` (or committed beside the reports) as dicts of strings.
+
+    Raises
+    ------
+    DatasetError
+        unreadable file, no header, or a row whose length differs from the header's.
+    """
+    from contact.errors import DatasetError
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise DatasetError(f"{path}: cannot read ({exc})") from None
+    table = list(csv.reader(io.StringIO(text)))
+    if not table or not table[0]:
+        raise DatasetError(f"{path}: empty, no header")
+    header = table[0]
+    bad = [i + 2 for i, r in enumerate(table[1:]) if len(r) != len(header)]
+    if bad:
+        raise DatasetError(f"{path}: line {bad[0]} has a different number of cells than the header")
+    return [dict(zip(header, r)) for r in table[1:]]
+
+
+def require_columns(path, rows: list[dict], columns) -> None:
+    """Refuse (DatasetError) a CSV without rows or lacking any of ``columns``."""
+    from contact.errors import DatasetError
+    if not rows:
+        raise DatasetError(f"{path}: no rows")
+    missing = [c for c in columns if c not in rows[0]]
+    if missing:
+        raise DatasetError(f"{path}: lacks the column(s) {', '.join(missing)}")
+
+
 def load_points(out, tasks=None) -> list:
     """Verified points of a sweep in task order; a missing, damaged or stale point (of ``tasks``, else of
     the sweep's ``sweep.json``) is refused with a DatasetError naming each, so nothing is published short."""

@@ -17,7 +17,7 @@ POINT_A_RPM = 4500.0
 
 
 def point_a(points) -> tuple[str, str]:
-    """§5.1, Fig. 13: at 4 500 rpm 2f accompanies f, relatively highest at the 3# bearing, and the
+    """§5.1, Fig. 13: at 4 500 rpm 2X accompanies 1X, relatively highest at the 3# bearing, and the
     support moves with the rotor (no relative movement)."""
     p = next((q for q in points if abs(q.params["speed_rpm"] - POINT_A_RPM) < 1), None)
     if p is None:
@@ -25,23 +25,23 @@ def point_a(points) -> tuple[str, str]:
     _, V = harmonic_table([p], "v")
     r = V[0, :, 1] / V[0, :, 0]
     stuck = p.info["stick_fraction"]
-    text = (f"2f/1f disk 1 {r[0]:.3f}, disk 2 {r[1]:.3f}, support {r[2]:.3f}; end faces stuck {100 * stuck:.0f} % "
+    text = (f"2X/1X disk 1 {r[0]:.3f}, disk 2 {r[1]:.3f}, support {r[2]:.3f}; end faces stuck {100 * stuck:.0f} % "
             f"of the time ({p.info['label']}, max r/δ0 {p.info['max_r_over_clearance']:.3f}, "
             f"{'periodic' if p.info['converged'] else 'not periodic'} after {p.info['transient_revs']} revolutions)")
     ok2 = r[2] >= 0.05 and r[2] > r[0]
-    verdict = "yes" if ok2 and stuck == 1.0 else "partly (2f yes; the faces slip)" if ok2 else "no"
+    verdict = "yes" if ok2 and stuck == 1.0 else "partly (2X yes; the faces slip)" if ok2 else "no"
     return text, verdict
 
 
 def harmonics_near_support(cascade) -> tuple[str, str]:
-    """§5.1, Fig. 12: at high speed 3f–5f are significant at disk 2 and the 3# bearing, more than at disk 1."""
+    """§5.1, Fig. 12: at high speed 3X–5X are significant at disk 2 and the 3# bearing, more than at disk 1."""
     rpm, V = harmonic_table(cascade, "v")
     hi = rpm >= HIGH_RPM
     if not hi.any():
         return "no high-speed points", "n/a"
     s = V[hi][:, :, 2:5].sum(axis=2)
     r = s / np.maximum(s[:, [0]], 1e-30)
-    text = (f"sum 3f–5f over disk 1, median over {int(hi.sum())} speeds ≥ 9 000 rpm: disk 2 {np.median(r[:, 1]):.3g}, "
+    text = (f"sum 3X–5X over disk 1, median over {int(hi.sum())} speeds ≥ 9 000 rpm: disk 2 {np.median(r[:, 1]):.3g}, "
             f"support {np.median(r[:, 2]):.3g}; largest at the support {s[:, 2].max() * 1e3:.3g} mm/s "
             f"({rpm[hi][np.argmax(s[:, 2])]:.0f} rpm)")
     return text, "yes" if np.median(r[:, 1]) > 1 and np.median(r[:, 2]) > 1 else "no"
@@ -60,7 +60,7 @@ def tilt_ignored(cascade, notilt) -> tuple[str, str]:
     b = np.array([V0[rpm0 == s][0, :, 2:5].sum(axis=1) for s in common])
     ratio = b / np.maximum(a, 1e-30)
     med = np.median(ratio, axis=0)
-    text = (f"sum 3f–5f tilt ignored / with tilt, median over {len(common)} speeds ≥ 9 000 rpm: disk 1 "
+    text = (f"sum 3X–5X tilt ignored / with tilt, median over {len(common)} speeds ≥ 9 000 rpm: disk 1 "
             f"{med[0]:.3g}, disk 2 {med[1]:.3g}, support {med[2]:.3g}")
     return text, "yes" if med[1] < 0.7 and med[2] < 0.7 else "partly (lower, not markedly)" if med[1:].max() < 1 else "no"
 
@@ -74,9 +74,9 @@ def _groups(params, key):
 
 
 def _trend(params, key, sign):
-    """Per order (1f, 2f, 3f): fraction of high speeds (periodic at every value) where disk 2 and the
+    """Per order (1X, 2X, 3X): fraction of high speeds (periodic at every value) where disk 2 and the
     support change monotonically with the parameter in direction ``sign`` (+1 rising), and the largest
-    1f change (%)."""
+    1X change (%)."""
     groups = _groups(params, key)
     vals = sorted(groups)
     speeds = sorted(set.intersection(*(set(g) for g in groups.values())))
@@ -92,39 +92,39 @@ def _trend(params, key, sign):
 
 
 def clearance(params) -> tuple[str, str]:
-    """§5.3.1, Fig. 18: at high speed 2f and 3f decrease as the clearance grows."""
+    """§5.3.1, Fig. 18: at high speed 2X and 3X decrease as the clearance grows."""
     if not params or len(_groups(params, "clearance_m")) < 2:
         return "no clearance study", "n/a"
     vals, n, mono, _ = _trend(params, "clearance_m", -1)
-    text = (f"δ0 = {' / '.join(f'{v * 1e3:g}' for v in vals)} mm: at {n} periodic speeds ≥ 9 000 rpm, 2f falls "
-            f"monotonically with δ0 at disk 2 and the support at {100 * mono[1]:.0f} % of them, 3f at {100 * mono[2]:.0f} %")
-    return text, "yes" if min(mono[1:]) >= 0.5 and n else "partly (3f)" if mono[2] >= 0.5 else \
-        "partly (2f)" if mono[1] >= 0.5 else "no"
+    text = (f"δ0 = {' / '.join(f'{v * 1e3:g}' for v in vals)} mm: at {n} periodic speeds ≥ 9 000 rpm, 2X falls "
+            f"monotonically with δ0 at disk 2 and the support at {100 * mono[1]:.0f} % of them, 3X at {100 * mono[2]:.0f} %")
+    return text, "yes" if min(mono[1:]) >= 0.5 and n else "partly (3X)" if mono[2] >= 0.5 else \
+        "partly (2X)" if mono[1] >= 0.5 else "no"
 
 
 def misalignment(params) -> tuple[str, str]:
-    """§5.3.2, Fig. 19: as δ grows, f stays essentially unchanged while 2f and 3f increase."""
+    """§5.3.2, Fig. 19: as δ grows, 1X stays essentially unchanged while 2X and 3X increase."""
     if not params or len(_groups(params, "misalignment_m")) < 2:
         return "no misalignment study", "n/a"
     vals, n, mono, one = _trend(params, "misalignment_m", +1)
-    text = (f"δ = {' / '.join(f'{v * 1e3:g}' for v in vals)} mm: at {n} periodic speeds ≥ 9 000 rpm, 2f rises "
-            f"monotonically at disk 2 and the support at {100 * mono[1]:.0f} % of them, 3f at {100 * mono[2]:.0f} %; "
-            f"1f changes by up to {one:.1f} %")
+    text = (f"δ = {' / '.join(f'{v * 1e3:g}' for v in vals)} mm: at {n} periodic speeds ≥ 9 000 rpm, 2X rises "
+            f"monotonically at disk 2 and the support at {100 * mono[1]:.0f} % of them, 3X at {100 * mono[2]:.0f} %; "
+            f"1X changes by up to {one:.1f} %")
     ok = mono[1] >= 0.5 and mono[2] >= 0.5
-    return text, "yes" if ok and one <= 5 else "partly (2f, 3f rise; 1f moves more than a few %)" if ok else \
-        "partly (2f)" if mono[1] >= 0.5 else "no"
+    return text, "yes" if ok and one <= 5 else "partly (2X, 3X rise; 1X moves more than a few %)" if ok else \
+        "partly (2X)" if mono[1] >= 0.5 else "no"
 
 
 def findings_rows(cascade=None, notilt=None, params=None, point=None) -> list[tuple[str, str, str]]:
     """``[(finding, our numbers, verdict)]`` for the five Section 5 findings."""
-    rows = [("Point A (Fig. 13): 2f with f, highest at the 3# bearing; support moves with the rotor",
+    rows = [("Point A (Fig. 13): 2X with 1X, highest at the 3# bearing; support moves with the rotor",
              *(point_a(point) if point else ("no point study", "n/a"))),
-            ("High speed (Fig. 12): 3f–5f at disk 2 and the 3# bearing, more than at disk 1",
+            ("High speed (Fig. 12): 3X–5X at disk 2 and the 3# bearing, more than at disk 1",
              *(harmonics_near_support(cascade) if cascade else ("no cascade", "n/a"))),
             ("§5.2 (Fig. 16): ignoring the tilt markedly reduces the harmonics",
              *(tilt_ignored(cascade, notilt) if cascade else ("no cascade", "n/a"))),
-            ("§5.3.1 (Fig. 18): smaller clearance, larger 2f and 3f at high speed", *clearance(params)),
-            ("§5.3.2 (Fig. 19): larger misalignment, larger 2f and 3f, f unchanged", *misalignment(params))]
+            ("§5.3.1 (Fig. 18): smaller clearance, larger 2X and 3X at high speed", *clearance(params)),
+            ("§5.3.2 (Fig. 19): larger misalignment, larger 2X and 3X, 1X unchanged", *misalignment(params))]
     return rows
 
 

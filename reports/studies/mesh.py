@@ -68,7 +68,7 @@ def findings_note(paper: dict, converged: dict, elements: int) -> str:
     for tag, runs in (("paper's mesh", paper), (f"{elements} elements/segment", converged)):
         if runs.get("cascade"):
             lines.append(f"- {tag}: {_bands(runs['cascade'])}.")
-    lines += ["", "## Points A and B", "", "1f / 2f / (3f+4f+5f) y-velocity amplitudes in mm/s.", "",
+    lines += ["", "## Points A and B", "", "1X / 2X / (3X+4X+5X) y-velocity amplitudes in mm/s.", "",
               "| mesh | speed (rpm) | regime | disk 1 | disk 2 | 3# bearing | periodic |", "|---|---|---|---|---|---|---|"]
     lines += _point_rows("paper", paper.get("point") or []) + _point_rows(f"{elements}/segment", converged.get("point") or [])
     lines += ["", "What changes with the mesh: the third forward critical speed moves from "
@@ -93,7 +93,7 @@ def _agreement(a, b) -> str:
 
 
 def findings_figure(paper: dict, converged: dict, elements: int, prefix: Path) -> list[Path]:
-    """Sum of 3f–5f (y velocity) against speed at disk 2 and the support, both meshes, tilt on and off."""
+    """Sum of 3X–5X (y velocity) against speed at disk 2 and the support, both meshes, tilt on and off."""
     plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True, sharey=True)
     for ax, j, lab in zip(axes, (1, 2), ("disk 2", "3# bearing (support)")):
@@ -109,7 +109,7 @@ def findings_figure(paper: dict, converged: dict, elements: int, prefix: Path) -
                             label=f"{tag}, {'tilt' if kind == 'cascade' else 'tilt ignored'}")
                 ax.semilogy(rpm[~ok], np.maximum(s[~ok], 1e-6), "x", color=color, ms=4)
         ax.set_xlabel("rotor speed (rpm)")
-        ax.set_title(f"{lab}: sum of 3f–5f (x: not periodic)", fontsize=9)
+        ax.set_title(f"{lab}: sum of 3X–5X (x: not periodic)", fontsize=9)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("y-velocity amplitude (mm/s)")
     axes[1].legend(fontsize=7)

@@ -5,62 +5,108 @@ from pathlib import Path
 
 import numpy as np
 
-from reports.studies.common import LOCATIONS, harmonic_table, load_points, pyplot, save, write_csv
+from reports.studies.common import LOCATIONS, harmonic_table, load_points, pyplot, read_csv_rows, save, write_csv
+
+
+#: amplitudes at or below this are drawn as "below floor" marks on the lower edge, not as points of the
+#: curve: 1e-6 µm (1 pm) is where the old figures clipped exact zeros (0 rpm, a stuck support's 3X)
+FLOOR_UM = 1e-6
+ORDERS = (1, 2, 3)
+COLUMNS = [f"{c}_{o}X_um" for c in ("disk1", "disk2", "support") for o in ORDERS]
 
 
 def amplitude_grid(groups: dict, label, title: str):
+    """3 × 3 grid, harmonic order (rows) × location (columns), one curve per group value.
+
+    ``groups``: ``{value: (speeds_rpm (P,), amplitudes_um (P, 3 locations, 3 orders))}``. Amplitudes at
+    or below :data:`FLOOR_UM` break the curve and are marked ``v`` on the lower edge ("below floor"),
+    so a zero is never drawn as a dip.
+    """
     plt = pyplot()
+    from matplotlib.transforms import blended_transform_factory
+
     fig, axes = plt.subplots(3, 3, figsize=(13, 9.5), constrained_layout=True, sharex=True)
-    for val, pts in sorted(groups.items(), key=lambda kv: kv[0]):
-        rpm, A = harmonic_table(pts, "q", orders=(1, 2, 3))
+    for n, (val, (rpm, A)) in enumerate(sorted(groups.items(), key=lambda kv: kv[0])):
+        colour = f"C{n}"
         for i in range(3):
             for j, (_, lab) in enumerate(LOCATIONS):
                 ax = axes[i, j]
-                ax.semilogy(rpm, np.maximum(A[:, j, i] * 1e6, 1e-6), "-o", ms=2.5, lw=1, label=label(val))
-                ax.set_title(f"{i + 1}f, {lab}", fontsize=9)
-                ax.set_ylabel("displacement amplitude (µm)")
+                a = np.asarray(A[:, j, i], dtype=float)
+                low = ~(a > FLOOR_UM)
+                ax.semilogy(rpm, np.where(low, np.nan, a), "-o", ms=2.5, lw=1, color=colour, label=label(val))
+                edge = blended_transform_factory(ax.transData, ax.transAxes)
+                ax.plot(rpm[low], np.full(int(low.sum()), 0.015 + 0.03 * n), "v", ms=4, color=colour,
+                        transform=edge, clip_on=False)
+                ax.set_title(f"{i + 1}X, {lab}", fontsize=9)
+                ax.set_ylabel(f"{i + 1}X displacement amplitude (µm)", fontsize=8)
                 if i == 2:
                     ax.set_xlabel("rotor speed (rpm)")
+    axes[0, 0].plot([], [], "v", color="0.3", ms=4, label=f"below floor ({FLOOR_UM:g} µm, e.g. zero)")
     axes[0, 0].legend(fontsize=8)
     fig.suptitle(title, fontsize=10)
     return fig
 
 
+def grids_from_rows(rows: list[dict]) -> tuple[dict, dict]:
+    """``(by clearance, by misalignment)`` of :func:`amplitude_grid` groups from ``study-params.csv`` rows.
+
+    The reference rows (the scene's clearance and misalignment) belong to both groups: a row is in the
+    clearance group when its misalignment is the reference one, and the other way round. Values in m.
+    """
+    if not rows:
+        return {}, {}
+    ref = next((r for r in rows if r["key"].startswith("base-")), rows[0])
+    ref_c, ref_m = float(ref["clearance_mm"]), float(ref["misalignment_mm"])
+
+    def group(by: str, fixed: str, fixed_value: float) -> dict:
+        g = {}
+        for r in rows:
+            if float(r[fixed]) == fixed_value:
+                g.setdefault(float(r[by]) * 1e-3, []).append(r)
+        out = {}
+        for v, rs in g.items():
+            rs = sorted(rs, key=lambda r: float(r["speed_rpm"]))
+            amps = np.array([[float(r[c]) for c in COLUMNS] for r in rs]).reshape(len(rs), 3, 3)
+            out[v] = (np.array([float(r["speed_rpm"]) for r in rs]), amps)
+        return out if len(out) > 1 else {}
+    return group("clearance_mm", "misalignment_mm", ref_m), group("misalignment_mm", "clearance_mm", ref_c)
+
+
+CLEARANCE_TITLE = "Harmonic amplitudes vs speed, several clearances (paper Fig. 18)"
+MISALIGNMENT_TITLE = "Harmonic amplitudes vs speed, several misalignments (paper Fig. 19)"
+
+
+def params_grids(rows: list[dict], figs: Path, prefix: str = "study-params") -> list[Path]:
+    """``<prefix>-clearance`` and ``<prefix>-misalignment`` figures from ``study-params.csv`` rows."""
+    byc, bym = grids_from_rows(rows)
+    files = []
+    if byc:
+        files += save(amplitude_grid(byc, lambda v: f"δ0 = {v * 1e3:g} mm", CLEARANCE_TITLE), Path(figs) / f"{prefix}-clearance")
+    if bym:
+        files += save(amplitude_grid(bym, lambda v: f"δ = {v * 1e3:g} mm", MISALIGNMENT_TITLE),
+                      Path(figs) / f"{prefix}-misalignment")
+    return files
+
+
 def params_figures(out, figs, *, tasks=None, prefix: str = "study-params") -> list[Path]:
-    """1X/2X/3X displacement amplitude vs speed for several clearances (Fig. 18) and misalignments (Fig. 19)."""
+    """1X/2X/3X displacement amplitude vs speed for several clearances (Fig. 18) and misalignments (Fig. 19),
+    drawn from the rows of ``<prefix>.csv`` (written first), as ``study redraw`` draws them."""
     figs = Path(figs)
     pts = load_points(out, tasks)
-    files = []
-    base = [p for p in pts if "clearance_m" not in p.params and "misalignment_m" not in p.params]
-
-    def grouped(key):
-        g = {}
-        for p in [q for q in pts if key in q.params] + base:
-            g.setdefault(p.info[key], []).append(p)
-        return {k: sorted(v, key=lambda p: p.params["speed_rpm"]) for k, v in g.items()}
-
-    byc = grouped("clearance_m") if any("clearance_m" in p.params for p in pts) else {}
-    if byc:
-        fig = amplitude_grid(byc, lambda v: f"δ0 = {v * 1e3:g} mm", "Harmonic amplitudes vs speed, several clearances (paper Fig. 18)")
-        files += save(fig, figs / f"{prefix}-clearance")
-    bym = grouped("misalignment_m") if any("misalignment_m" in p.params for p in pts) else {}
-    if bym:
-        fig = amplitude_grid(bym, lambda v: f"δ = {v * 1e3:g} mm", "Harmonic amplitudes vs speed, several misalignments (paper Fig. 19)")
-        files += save(fig, figs / f"{prefix}-misalignment")
     rows = []
     for p in pts:
-        rpm, A = harmonic_table([p], "q", orders=(1, 2, 3))
-        rows.append([p.key, p.info["clearance_m"] * 1e3, p.info["misalignment_m"] * 1e3, rpm[0], p.info["label"], int(p.info["converged"])] + list((A[0] * 1e6).ravel()))
-    files.append(write_csv(figs / f"{prefix}.csv", ["key", "clearance_mm", "misalignment_mm", "speed_rpm", "regime",
-                                                    "converged"] + [f"{c}_{o}X_um" for c in ("disk1", "disk2", "support")
-                                                                    for o in (1, 2, 3)], rows))
-    return files
+        rpm, A = harmonic_table([p], "q", orders=ORDERS)
+        rows.append([p.key, p.info["clearance_m"] * 1e3, p.info["misalignment_m"] * 1e3, rpm[0], p.info["label"],
+                     int(p.info["converged"])] + list((A[0] * 1e6).ravel()))
+    header = ["key", "clearance_mm", "misalignment_mm", "speed_rpm", "regime", "converged"] + COLUMNS
+    csv_path = write_csv(figs / f"{prefix}.csv", header, rows)
+    return params_grids(read_csv_rows(csv_path), figs, prefix) + [csv_path]
 
 
 def params_note(points) -> str:
     """Markdown: Figs. 18-19 trends over the high-speed range, from our numbers."""
     lines = ["# Harmonic amplitudes vs speed for several clearances and misalignments (paper Figs. 18–19)", "",
-             "Displacement amplitudes (µm) of 1f, 2f, 3f at disk 1, disk 2 and the 3# bearing support, "
+             "Displacement amplitudes (µm) of 1X, 2X, 3X at disk 1, disk 2 and the 3# bearing support, "
              "`ringcontact study params`. Trend checks below use the speeds ≥ 9 000 rpm (the paper's 'high speed').", ""]
     base = [p for p in points if "clearance_m" not in p.params and "misalignment_m" not in p.params]
     for key, name, unit in (("clearance_m", "clearance δ0", "mm"), ("misalignment_m", "misalignment δ", "mm")):
@@ -70,8 +116,8 @@ def params_note(points) -> str:
         if len(groups) < 2:
             continue
         vals = sorted(groups)
-        lines += [f"## {name}", "", "| " + name + f" ({unit}) | median 1f disk 1 (µm) | median 2f disk 2 | median 3f disk 2 "
-                  "| median 2f support | median 3f support | periodic points |", "|---|---|---|---|---|---|---|"]
+        lines += [f"## {name}", "", "| " + name + f" ({unit}) | median 1X disk 1 (µm) | median 2X disk 2 | median 3X disk 2 "
+                  "| median 2X support | median 3X support | periodic points |", "|---|---|---|---|---|---|---|"]
         med = {}
         for v in vals:
             pts = sorted(groups[v], key=lambda p: p.params["speed_rpm"])
@@ -86,9 +132,9 @@ def params_note(points) -> str:
         if key == "clearance_m":
             ok2 = med[lo_v][1:, 1].min() > med[hi_v][1:, 1].max()
             ok3 = med[lo_v][1:, 2].min() > med[hi_v][1:, 2].max()
-            lines += ["", f"Paper: at high speed 2f and 3f decrease as the clearance increases. Ours (medians, "
-                      f"smallest vs largest clearance, disk 2 and support): 2f {'decreases' if ok2 else 'does not decrease'}, "
-                      f"3f {'decreases' if ok3 else 'does not decrease'} → {'agrees' if ok2 and ok3 else 'does not agree'}.", ""]
+            lines += ["", f"Paper: at high speed 2X and 3X decrease as the clearance increases. Ours (medians, "
+                      f"smallest vs largest clearance, disk 2 and support): 2X {'decreases' if ok2 else 'does not decrease'}, "
+                      f"3X {'decreases' if ok3 else 'does not decrease'} → {'agrees' if ok2 and ok3 else 'does not agree'}.", ""]
         else:
             one = np.array([med[v][:, 0] for v in vals])
             spread = (one.max(axis=0) / one.min(axis=0) - 1) * 100
@@ -104,10 +150,10 @@ def params_note(points) -> str:
                 if r_ > 0 and len(d) == len(vals) and all(p.info["converged"] for p in d.values()):
                     a1 = np.array([harmonic_table([d[v]], "q", orders=(1,))[1][0, :, 0] for v in vals])
                     worst = max(worst, float((a1.max(axis=0) / a1.min(axis=0) - 1).max() * 100))
-            lines += ["", f"Speed by speed, where every δ has a periodic steady state: 1f varies by at most {worst:.1f} % "
+            lines += ["", f"Speed by speed, where every δ has a periodic steady state: 1X varies by at most {worst:.1f} % "
                       "across δ (the median spread above includes the non-periodic high-speed points).", ""]
-            lines += ["", f"Paper: as δ increases, f stays essentially unchanged while 2f and 3f increase. Ours: 1f "
-                      f"median spread across δ {spread.max():.1f} % (largest location), 2f {'increases' if ok2 else 'does not increase monotonically'}, "
-                      f"3f {'increases' if ok3 else 'does not increase monotonically'} → "
+            lines += ["", f"Paper: as δ increases, 1X stays essentially unchanged while 2X and 3X increase. Ours: 1X "
+                      f"median spread across δ {spread.max():.1f} % (largest location), 2X {'increases' if ok2 else 'does not increase monotonically'}, "
+                      f"3X {'increases' if ok3 else 'does not increase monotonically'} → "
                       f"{'agrees' if ok2 and ok3 and spread.max() < 5 else 'partly' if ok2 else 'does not agree'}.", ""]
     return "\n".join(lines)

@@ -83,8 +83,8 @@ def point_note(points) -> str:
              "`ringcontact study point` (4 500 and 10 500 rpm): deflection over one revolution (static misalignment "
              "removed), orbits, time histories and y-velocity spectra at disk 1, disk 2 and the 3# bearing support, "
              "and the relative edge offsets r1, r2 against the clearance.", "",
-             "| speed (rpm) | regime | contact (% time) | periodic (period) | 2f/1f disk 1 | 2f/1f support | "
-             "(3f+4f+5f)/1f disk 1 | disk 2 | support | max r/δ0 |", "|---|---|---|---|---|---|---|---|---|---|"]
+             "| speed (rpm) | regime | contact (% time) | periodic (period) | 2X/1X disk 1 | 2X/1X support | "
+             "(3X+4X+5X)/1X disk 1 | disk 2 | support | max r/δ0 |", "|---|---|---|---|---|---|---|---|---|---|"]
     for p in points:
         _, V = harmonic_table([p], "v")
         v = V[0]
@@ -92,9 +92,9 @@ def point_note(points) -> str:
                      f"{p.info['converged']} ({p.info['period_revs']}) | {v[0, 1] / v[0, 0]:.2e} | {v[2, 1] / v[2, 0]:.2e} | "
                      f"{v[0, 2:].sum() / v[0, 0]:.2e} | {v[1, 2:].sum() / v[1, 0]:.2e} | {v[2, 2:].sum() / v[2, 0]:.2e} | "
                      f"{p.info['max_r_over_clearance']:.3f} |")
-    lines += ["", "Paper, point A (Fig. 13): near-circular orbits, spectra dominated by f with 2f from misalignment, "
-              "the support moving with the rotor (no relative motion), 2f relatively higher at the 3# bearing. "
-              "Paper, point B (Figs. 14–15): non-circular orbits, 3f–5f besides f and 2f, more pronounced near the "
+    lines += ["", "Paper, point A (Fig. 13): near-circular orbits, spectra dominated by 1X with 2X from misalignment, "
+              "the support moving with the rotor (no relative motion), 2X relatively higher at the 3# bearing. "
+              "Paper, point B (Figs. 14–15): non-circular orbits, 3X–5X besides 1X and 2X, more pronounced near the "
               "loose support; r1, r2 fluctuate periodically about δ0 (periodic contact and separation).", "",
               _ours(points), ""]
     return "\n".join(lines)
@@ -112,7 +112,7 @@ def _ours(points) -> str:
             f"slips on its end faces {100 * (1 - p.info['stick_fraction']):.0f} % of the time"
         out.append(f"at {p.params['speed_rpm']:.0f} rpm the support {moves}, the ring touches the bore "
                    f"{100 * p.info['contact_fraction']:.0f} % of the time (max r/δ0 {p.info['max_r_over_clearance']:.3f}); "
-                   f"2f/1f is {r2[2] / max(r2[0], 1e-30):.1f}× larger at the support than at disk 1, and (3f+4f+5f)/1f "
+                   f"2X/1X is {r2[2] / max(r2[0], 1e-30):.1f}× larger at the support than at disk 1, and (3X+4X+5X)/1X "
                    f"{r35[2] / max(r35[0], 1e-30):.1f}× larger")
     return "Ours: " + "; ".join(out) + "."
 

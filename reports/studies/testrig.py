@@ -46,7 +46,7 @@ def testrig_note(points) -> str:
     lines = ["# Test rig (Table 5 scene) at the paper's speed steps (Figs. 27–28 trends)", "",
              "`ringcontact study testrig`: steady state at 3 600 and 5 500 rpm, clearance 0.01/0.05 mm (δ = 1 mm) "
              "and misalignment 1/3 mm (δ0 = 0.05 mm). The rig's shaft geometry is assumed (scene comments).", "",
-             "| speed (rpm) | δ0 (mm) | δ (mm) | regime | contact % | sum 2f–5f disk 2 (mm/s) | sum 2f–5f support (mm/s) |",
+             "| speed (rpm) | δ0 (mm) | δ (mm) | regime | contact % | sum 2X–5X disk 2 (mm/s) | sum 2X–5X support (mm/s) |",
              "|---|---|---|---|---|---|---|"]
     res = {}
     for p in sorted(points, key=lambda p: (p.params["speed_rpm"], p.params["clearance_m"], p.params["misalignment_m"])):

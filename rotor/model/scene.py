@@ -1,10 +1,9 @@
 """Rotor scenes: TOML files in engineer units, loaded into frozen dataclasses in SI units.
 
-A scene file names every quantity with its unit (``x_mm``, ``stiffness_n_per_m``,
-``unbalance_g_mm``); :func:`load_scene` converts to SI and validates ranges. Any bad field
-(missing, negative, inner diameter ≥ outer, unknown unit, unknown name) raises one
-:class:`~contact.errors.InputError` naming the file, the table entry, the field, its value
-and unit. An unreadable or non-TOML file raises :class:`~contact.errors.DatasetError`.
+A scene file names every quantity with its unit (``x_mm``, ``stiffness_n_per_m``, ``unbalance_g_mm``);
+:func:`load_scene` converts to SI and validates ranges. Any bad field (missing, negative, inner diameter ≥
+outer, unknown unit, unknown name) raises one :class:`~contact.errors.InputError` naming the file, the table
+entry, the field, its value and unit. An unreadable or non-TOML file raises :class:`~contact.errors.DatasetError`.
 
 File layout (see ``rotor/scenes/*.toml`` for complete examples)::
 
@@ -38,9 +37,10 @@ from pathlib import Path
 from typing import Any, Callable
 
 from contact.errors import DatasetError, InputError
+from contact.package_data import entries, shipped, stem
 from contact.plausible import check_field as _plausible
 
-SCENE_DIR = Path(__file__).resolve().parents[1] / "scenes"
+SCENE_DIR = shipped("rotor", "scenes")       # the bundled scenes, through importlib.resources (contact.package_data)
 SCHEMA = "ringcontact.rotor-scene/1"
 _DOF_INPUT = {"y": "y", "z": "z", "θy": "θy", "θz": "θz", "theta_y": "θy", "theta_z": "θz"}
 
@@ -557,17 +557,17 @@ def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
                  loose_support=loose, misalignment=mis, analysis=analysis, path=origin)
 
 
-def scene_path(path_or_name: str | Path) -> Path:
-    """Resolve a file path, or a bare name of a bundled scene (``"paper-table4"``)."""
+def scene_path(path_or_name: str | Path):
+    """Resolve a file path, or a bare name of a bundled scene (``"paper-table4"``: a shipped entry)."""
     p = Path(path_or_name)
     if p.suffix == ".toml" or p.exists() or p.parent != Path("."):
         return p
-    return SCENE_DIR / f"{path_or_name}.toml"
+    return SCENE_DIR.joinpath(f"{path_or_name}.toml")
 
 
 def bundled_scenes() -> list[str]:
     """Names of the scenes shipped in ``rotor/scenes``."""
-    return sorted(p.stem for p in SCENE_DIR.glob("*.toml"))
+    return [stem(e) for e in entries(SCENE_DIR, ".toml")]
 
 
 def load_scene(path_or_name: str | Path) -> Scene:
@@ -582,7 +582,7 @@ def load_scene(path_or_name: str | Path) -> Scene:
     try:
         data = path.read_bytes()
     except OSError as exc:
-        hint = f" (bundled scenes: {', '.join(bundled_scenes())})" if path.parent == SCENE_DIR else ""
+        hint = f" (bundled scenes: {', '.join(bundled_scenes())})" if path.name != Path(path_or_name).name else ""
         raise DatasetError(f"scene file {str(path)!r}: cannot read: {exc.strerror or exc}{hint}") from None
     try:
         doc = tomllib.loads(data.decode("utf-8"))

@@ -3,12 +3,12 @@
 Dai et al. 2025 (Actuators 14:422), Section 5, state three qualitative findings that our Table 4
 rotor does not reproduce with the scene's documented assumptions (issue 8):
 
-1. **clearance** (§5.3.1, Fig. 18): at high speed (9 000–18 000 rpm) the 2f and 3f amplitudes of
+1. **clearance** (§5.3.1, Fig. 18): at high speed (9 000–18 000 rpm) the 2X and 3X amplitudes of
    the lateral displacement *decrease* as the clearance δ0 grows (0.03 → 0.05 → 0.08 mm);
-2. **misalignment** (§5.3.2, Fig. 19): as the misalignment δ grows (0.5 → 1 → 2 mm) the 1f
-   amplitudes stay essentially unchanged while 2f and 3f increase;
+2. **misalignment** (§5.3.2, Fig. 19): as the misalignment δ grows (0.5 → 1 → 2 mm) the 1X
+   amplitudes stay essentially unchanged while 2X and 3X increase;
 3. **tilt** (§5.2, Fig. 16 vs Fig. 12): ignoring the angular deflection at the loose support
-   "markedly" reduces the harmonics 3f–5f (of the y velocity, the paper's cascades).
+   "markedly" reduces the harmonics 3X–5X (of the y velocity, the paper's cascades).
 
 This module builds scene *variants* — the loaded scene with named inputs replaced
 (:func:`apply_overrides`, :func:`dataclasses.replace`, re-assembled by :func:`rotor.model.assembly.assemble`)
@@ -223,7 +223,7 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
     The reference case ('base': δ0 = 0.05 mm, δ = 1 mm, tilt on) starts from the misalignment
     offset at rest; every other case starts from its end state (continuation).
 
-    Arrays (SI): ``harm_q`` (C, 5, L) displacement amplitudes of 1f–5f (m) at :data:`LOCATIONS`,
+    Arrays (SI): ``harm_q`` (C, 5, L) displacement amplitudes of 1X–5X (m) at :data:`LOCATIONS`,
     ``harm_v`` (C, 5, L) y-velocity (m/s), ``harm_u`` (C, 5, 4) relative bearing − support motion
     (m, rad), ``periodic`` (C,) bool, ``contact_fraction`` (C,). Info: per case convergence,
     period, regime, transient revolutions and wall time.
@@ -293,7 +293,7 @@ class AmplitudeTable:
     """Harmonic amplitudes of one variant over speed, every case.
 
     speeds_rpm : (S,) ; cases : case names (C) ; locations : (L) channel names
-    q : (C, S, 5, L) displacement amplitudes of 1f–5f (m) ; v : same for the y velocity (m/s)
+    q : (C, S, 5, L) displacement amplitudes of 1X–5X (m) ; v : same for the y velocity (m/s)
     periodic : (C, S) bool, the steady state was found periodic
     contact_fraction : (C, S) fraction of the record with contact (–)
     """
@@ -347,7 +347,7 @@ def table_from_points(points) -> AmplitudeTable:
 HOLD_FRACTION = 2.0 / 3.0
 #: 'markedly lower' harmonics without tilt: at most this fraction of the tilted ones (30 % lower)
 MARKEDLY = 0.7
-#: '1f remains essentially unchanged' across δ: largest/smallest − 1 at most this
+#: '1X remains essentially unchanged' across δ: largest/smallest − 1 at most this
 ONE_F_SPREAD = 0.05
 
 
@@ -391,7 +391,7 @@ def _mask(table, cases, require_periodic, require_contact=False):
 
 def clearance_finding(table: AmplitudeTable, quantity: str = "q", *, require_periodic: bool = True,
                       require_contact: bool = False, locations=("disk2.y", "s.y"), orders=(2, 3)) -> Finding:
-    """Dai 2025 §5.3.1: at high speed 2f and 3f decrease as δ0 grows (0.03 → 0.05 → 0.08 mm).
+    """Dai 2025 §5.3.1: at high speed 2X and 3X decrease as δ0 grows (0.03 → 0.05 → 0.08 mm).
 
     Per speed: strictly ``A(0.03) > A(0.05) > A(0.08)`` for every order in ``orders`` at every
     location in ``locations`` (disk 2 and the support, where the paper's harmonics are)."""
@@ -405,7 +405,7 @@ def clearance_finding(table: AmplitudeTable, quantity: str = "q", *, require_per
             j = table.locations.index(loc)
             for h in orders:
                 a = [float(x[s, h - 1, j]) for x in A]
-                nums[f"{h}f {loc}"] = a
+                nums[f"{h}X {loc}"] = a
                 good &= a[0] > a[1] > a[2]
         rows.append({"speed_rpm": float(table.speeds_rpm[s]), "holds": bool(good), "amps": nums})
     return _verdict("clearance", quantity, rows)
@@ -413,25 +413,25 @@ def clearance_finding(table: AmplitudeTable, quantity: str = "q", *, require_per
 
 def misalignment_finding(table: AmplitudeTable, quantity: str = "q", *, require_periodic: bool = True,
                          require_contact: bool = False, locations=LOCATIONS, spread: float = ONE_F_SPREAD) -> Finding:
-    """Dai 2025 §5.3.2: as δ grows (0.5 → 1 → 2 mm) 1f stays essentially unchanged (spread
-    ≤ ``spread``) while 2f and 3f increase (strictly), at every location."""
+    """Dai 2025 §5.3.2: as δ grows (0.5 → 1 → 2 mm) 1X stays essentially unchanged (spread
+    ≤ ``spread``) while 2X and 3X increase (strictly), at every location."""
     cases = ("mis0.5", "base", "mis2")
     A = [table.amp(quantity, c) for c in cases]
     m = _mask(table, cases, require_periodic, require_contact)
     rows = []
     for s in np.flatnonzero(m):
         nums, good = {}, True
-        parts = {"1f flat": True, "2f up": True, "3f up": True}
+        parts = {"1X flat": True, "2X up": True, "3X up": True}
         for loc in locations:
             j = table.locations.index(loc)
             one = [float(x[s, 0, j]) for x in A]
             sp = max(one) / min(one) - 1 if min(one) > 0 else math.inf
-            parts["1f flat"] &= sp <= spread
-            nums[f"1f spread {loc}"] = sp
+            parts["1X flat"] &= sp <= spread
+            nums[f"1X spread {loc}"] = sp
             for h in (2, 3):
                 a = [float(x[s, h - 1, j]) for x in A]
-                nums[f"{h}f {loc}"] = a
-                parts[f"{h}f up"] &= a[0] < a[1] < a[2]
+                nums[f"{h}X {loc}"] = a
+                parts[f"{h}X up"] &= a[0] < a[1] < a[2]
         good = all(parts.values())
         rows.append({"speed_rpm": float(table.speeds_rpm[s]), "holds": bool(good), "parts": parts, "amps": nums})
     return _verdict("misalignment", quantity, rows)
@@ -439,7 +439,7 @@ def misalignment_finding(table: AmplitudeTable, quantity: str = "q", *, require_
 
 def tilt_finding(table: AmplitudeTable, quantity: str = "v", *, require_periodic: bool = True,
                  require_contact: bool = False, locations=("disk2.y", "s.y"), markedly: float = MARKEDLY) -> Finding:
-    """Dai 2025 §5.2: ignoring the tilt markedly lowers the harmonics: Σ 3f–5f without tilt
+    """Dai 2025 §5.2: ignoring the tilt markedly lowers the harmonics: Σ 3X–5X without tilt
     ≤ ``markedly`` × with tilt at every location in ``locations`` (y velocity by default, as the
     paper's Figs. 12/16)."""
     cases = ("base", "notilt")
@@ -453,7 +453,7 @@ def tilt_finding(table: AmplitudeTable, quantity: str = "v", *, require_periodic
         for loc in locations:
             j = table.locations.index(loc)
             on, off = float(A[0][s, 2:5, j].sum()), float(A[1][s, 2:5, j].sum())
-            nums[f"3-5f {loc}"] = [on, off]
+            nums[f"3X–5X {loc}"] = [on, off]
             good &= off <= markedly * on
         rows.append({"speed_rpm": float(table.speeds_rpm[s]), "holds": bool(good), "amps": nums})
     return _verdict("tilt", quantity, rows)

@@ -19,6 +19,7 @@ from contact import calibrate as cal
 from contact.dataset import read_dataset
 from contact.errors import DatasetError, InputError
 from contact.loose_support import loose_support_force, loose_support_jacobian
+from contact.package_data import shipped
 
 PAPER_TABLE2_CONFORMAL_PCT = (12.01, 0.79, 4.37, 5.59, 5.69)   # Dai et al. (2025) Table 2
 TABLE2_PEN_M = np.array([0.01, 0.02, 0.03, 0.04, 0.05]) * 1e-3
@@ -105,7 +106,8 @@ def test_stored_calibrations_match_a_refit_of_the_committed_dataset():
     assert cal.check_calibrations() == []
     for name in cal.available():
         law = cal.load_calibrated(name)
-        source = cal.REPO_ROOT / law.dataset["path"]
+        package, *parts = law.dataset["path"].split("/")      # the shipped name, e.g. fem_reference/data/…
+        source = shipped(package, *parts)
         assert source in cal.committed_datasets()
         assert law.dataset["points_sha256"] == json.loads(source.read_text())["points_sha256"]
 

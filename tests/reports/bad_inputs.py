@@ -221,6 +221,12 @@ def _study_cases() -> list:
           ("study sensitivity --report-only empty", [*b, "--report-only", "--report-out", "{tmp}/r"], None)]
     c += _out_cases("study sensitivity", ["study", "sensitivity", "--no-progress", "--variants", "nosuch"], "--out",
                     ["/proc/ringcontact-sens"])
+    for name in ("missing", "file", "dir", "redraw_ragged", "redraw_no_column", "redraw_text", "redraw_header_only",
+                 "redraw_negative"):
+        c.append((f"study redraw --from {name}", ["study", "redraw", "--from", "{" + name + "}"], None))
+    c += _out_cases("study redraw", ["study", "redraw", "--from", "{redraw_text}"], "--out", UNWRITABLE_DIRS)
+    c += [("study redraw --from EMPTY", ["study", "redraw", "--from", ""], None),
+          ("study redraw extra", ["study", "redraw", "now"], None)]
     c += [("study nosuch", ["study", "nosuch"], None), ("study no sub", ["study"], None)]
     return c
 
@@ -289,7 +295,32 @@ def make_inputs(root: Path) -> dict[str, str]:
         p[k] = root / f"{k}.toml"
         p[k].write_text(text)
     p["nosuch_scene"] = "no-such-scene"
+    _redraw_inputs(root, p)
     return {k: str(v) for k, v in p.items()}
+
+
+def _redraw_inputs(root: Path, p: dict) -> None:
+    """Folders of broken study-*.csv tables for ``study redraw --from`` (each refused before drawing)."""
+    published = ROOT / "reports" / "published"
+    points = (published / "study-sensitivity-points.csv").read_text().splitlines()
+    params = (published / "study-params.csv").read_text().splitlines()
+    cascade = (published / "study-cascade.csv").read_text().splitlines()
+    text_row = cascade[1].split(",")
+    text_row[cascade[0].split(",").index("disk1_v1X_mm_s")] = "ten"
+    negative_row = points[1].split(",")[:5] + ["-1"] * (len(points[0].split(",")) - 5)
+    bad = {"redraw_ragged": {"study-params.csv": "\n".join(params[:2] + [params[2].rsplit(",", 2)[0]]) + "\n"},
+           "redraw_no_column": {"study-cascade.csv": "speed_rpm,converged\n0,1\n"},
+           "redraw_text": {"study-cascade.csv": cascade[0] + "\n" + ",".join(text_row) + "\n"},
+           "redraw_header_only": {"study-sensitivity-points.csv": points[0] + "\n"},
+           # a good table beside a bad one: nothing is drawn from the good one either
+           "redraw_negative": {"study-params.csv": "\n".join(params[:3]) + "\n",
+                               "study-sensitivity-points.csv": points[0] + "\n" + ",".join(negative_row) + "\n"}}
+    for name, tables in bad.items():
+        d = root / name
+        d.mkdir(exist_ok=True)
+        for fname, text in tables.items():
+            (d / fname).write_text(text)
+        p[name] = d
 
 
 PRELOAD = ("reports.cli.law", "reports.cli.fem", "reports.cli.fem3d", "reports.cli.rotor", "reports.cli.simulate",

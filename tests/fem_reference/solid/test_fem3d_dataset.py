@@ -18,7 +18,7 @@ TINY = [MeshLevel3D("t0", 8, 4, 2), MeshLevel3D("t1", 12, 6, 2), MeshLevel3D("t2
 
 @pytest.fixture(scope="module")
 def ds():
-    if not DATASET_PATH.exists():
+    if not DATASET_PATH.is_file():
         pytest.fail(f"committed 3D dataset missing: {DATASET_PATH}")
     return read_dataset(DATASET_PATH)
 

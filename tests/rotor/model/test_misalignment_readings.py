@@ -82,7 +82,7 @@ def test_legacy_reading_acts_only_through_its_moment_pair():
 
 
 def test_point_a_2x_shows_most_at_the_support_on_the_default_reading():
-    """Text of Fig. 13: at point A 2f accompanies f everywhere and is relatively highest at the
+    """Text of Fig. 13: at point A 2X accompanies f everywhere and is relatively highest at the
     3# bearing. Linear forced response (support stuck), y displacement 2X/1X scaled to velocity."""
     ratio = _ratio_2x_1x(_model("inertial-at-joint"))
     assert ratio["s"] >= 0.05 and ratio["s"] > ratio["4"] > ratio["2"]

@@ -55,21 +55,21 @@ def _xfail(mesh, reason):
 
 
 @pytest.mark.parametrize("mesh", list(MESHES))
-def test_point_a_2f_from_misalignment_highest_at_the_support_which_moves_with_the_rotor(mesh):
-    """Dai 2025 §5.1, Fig. 13 (4 500 rpm): spectra dominated by f, with 2f 'caused by misalignment';
-    the support moves with the rotor (no relative movement); 2f relatively higher at the 3# bearing."""
+def test_point_a_2X_from_misalignment_highest_at_the_support_which_moves_with_the_rotor(mesh):
+    """Dai 2025 §5.1, Fig. 13 (4 500 rpm): spectra dominated by f, with 2X 'caused by misalignment';
+    the support moves with the rotor (no relative movement); 2X relatively higher at the 3# bearing."""
     res1, h1 = point(mesh, 4500.0)
     res0, h0 = point(mesh, 4500.0, misalignment_m=0.0)
     assert res1.regime()["stick_fraction"] == 1.0          # both end faces stuck at every sample
     r = {c: h1[c][1] / h1[c][0] for c in LOC}
     assert r["s.y"] >= 0.05 and r["s.y"] > r["disk2.y"] > r["disk1.y"] > 1e-3, r
-    for c in LOC:                                          # no misalignment: 2f/1f 1e4 times smaller at least
+    for c in LOC:                                          # no misalignment: 2X/1X 1e4 times smaller at least
         assert h0[c][1] / h0[c][0] <= 1e-4 * r[c], c       # (measured 1.9e-6 at the support against 0.34)
 
 
 @pytest.mark.parametrize("mesh", list(MESHES))
-def test_high_speed_3f_to_5f_stronger_at_disk2_and_support_than_at_disk1(mesh):
-    """Dai 2025 §5.1, Figs. 12, 14h–j (10 500 rpm): 3f, 4f, 5f appear, more pronounced closer to the
+def test_high_speed_3X_to_5X_stronger_at_disk2_and_support_than_at_disk1(mesh):
+    """Dai 2025 §5.1, Figs. 12, 14h–j (10 500 rpm): 3X, 4X, 5X appear, more pronounced closer to the
     loose support, where the bearing meets the support."""
     res, h = point(mesh, 10500.0)
     assert res.regime()["contact_fraction"] > 0.0
@@ -83,32 +83,32 @@ def _misalignment(mesh):
 
 
 @pytest.mark.parametrize("mesh", list(MESHES))
-def test_larger_misalignment_raises_2f(mesh):
+def test_larger_misalignment_raises_2X(mesh):
     """Dai 2025 §5.3.2, Fig. 19: 'the amplitudes of the harmonic frequencies 2f, 3f significantly
-    increase' with the misalignment δ = 0.5, 1, 2 mm (10 500 rpm): the 2f part."""
+    increase' with the misalignment δ = 0.5, 1, 2 mm (10 500 rpm): the 2X part."""
     for c in LOC:
         two = [h[c][1] for h in _misalignment(mesh)]
         assert two[0] < two[1] < two[2] and two[2] / two[0] > 2.0, c  # the 2X excitation is linear in δ (Eq. 34)
 
 
 @pytest.mark.parametrize("mesh", ["paper", _xfail("converged", (
-    "Not at disk 1 on the converged mesh (10 500 rpm, 3f y velocity in mm/s for δ = 0.5/1/2 mm): disk 1 "
+    "Not at disk 1 on the converged mesh (10 500 rpm, 3X y velocity in mm/s for δ = 0.5/1/2 mm): disk 1 "
     "0.0126/0.0157/0.0085 (falls at 2 mm), disk 2 0.247/0.390/0.424 and support 0.365/0.571/0.617 rise"))])
-def test_larger_misalignment_raises_3f(mesh):
-    """Dai 2025 §5.3.2, Fig. 19 (g–i): 3f increases with the misalignment at disk 1, disk 2 and the 3# bearing."""
+def test_larger_misalignment_raises_3X(mesh):
+    """Dai 2025 §5.3.2, Fig. 19 (g–i): 3X increases with the misalignment at disk 1, disk 2 and the 3# bearing."""
     for c in LOC:
         three = [h[c][2] for h in _misalignment(mesh)]
         assert three[0] < three[1] < three[2], (c, three)
 
 
 @pytest.mark.parametrize("mesh", [
-    _xfail("paper", "Not at the support on the paper's mesh (10 500 rpm, 1f y velocity in mm/s for δ = 0.5/1/2 mm): "
+    _xfail("paper", "Not at the support on the paper's mesh (10 500 rpm, 1X y velocity in mm/s for δ = 0.5/1/2 mm): "
                     "disk 1 14.05/14.04/13.71 (2.4 %), disk 2 8.13/8.13/8.36 (2.8 %), support 8.96/8.92/8.06 (11 %): "
                     "at 2 mm the bearing is pressed on the support all the time (contact 100 %)"),
-    _xfail("converged", "Not at disk 2 and the support on the converged mesh (10 500 rpm, 1f y velocity in mm/s "
+    _xfail("converged", "Not at disk 2 and the support on the converged mesh (10 500 rpm, 1X y velocity in mm/s "
                         "for δ = 0.5/1/2 mm): disk 1 19.14/19.22/19.63 (2.6 %), disk 2 6.36/6.39/6.84 (7.4 %), "
                         "support 23.8/24.2/25.2 (5.9 %)")])
-def test_larger_misalignment_leaves_1f_within_a_few_percent(mesh):
+def test_larger_misalignment_leaves_1X_within_a_few_percent(mesh):
     """Dai 2025 §5.3.2, Fig. 19: 'the amplitudes of the rotational frequency f at different positions
     remain essentially unchanged' (read as within 3 %)."""
     for c in LOC:
@@ -121,26 +121,26 @@ def _clearance(mesh):
 
 
 @pytest.mark.parametrize("mesh", list(MESHES))
-def test_smaller_clearance_raises_3f_at_high_speed(mesh):
-    """Dai 2025 §5.3.1, Fig. 18: at high speed 3f decreases as the clearance grows (0.03, 0.05, 0.08 mm)."""
+def test_smaller_clearance_raises_3X_at_high_speed(mesh):
+    """Dai 2025 §5.3.1, Fig. 18: at high speed 3X decreases as the clearance grows (0.03, 0.05, 0.08 mm)."""
     for c in ("disk2.y", "s.y"):
         amps = [h[c][2] for h in _clearance(mesh)]
         assert amps[0] > amps[1] > amps[2], (c, amps)
 
 
 @pytest.mark.parametrize("mesh", [_xfail("paper", (
-    "Flat on the paper's mesh (10 500 rpm, 2f y velocity in mm/s for δ0 = 0.03/0.05/0.08 mm): disk 2 "
-    "0.4056/0.4023/0.4028, support 0.3904/0.3898/0.3901 (within 1 %, not monotone); 3f does fall with δ0 "
+    "Flat on the paper's mesh (10 500 rpm, 2X y velocity in mm/s for δ0 = 0.03/0.05/0.08 mm): disk 2 "
+    "0.4056/0.4023/0.4028, support 0.3904/0.3898/0.3901 (within 1 %, not monotone); 3X does fall with δ0 "
     "(test above)")), "converged"])
-def test_smaller_clearance_raises_2f_at_high_speed(mesh):
-    """Dai 2025 §5.3.1, Fig. 18: at high speed 2f decreases as the clearance grows."""
+def test_smaller_clearance_raises_2X_at_high_speed(mesh):
+    """Dai 2025 §5.3.1, Fig. 18: at high speed 2X decreases as the clearance grows."""
     for c in ("disk2.y", "s.y"):
         amps = [h[c][1] for h in _clearance(mesh)]
         assert amps[0] > amps[1] > amps[2], (c, amps)
 
 
 @pytest.mark.parametrize("mesh", ["paper", _xfail("converged", (
-    "Lower, not markedly, on the converged mesh (10 500 rpm, sum of 3f-5f y velocity in mm/s, with / without "
+    "Lower, not markedly, on the converged mesh (10 500 rpm, sum of 3X-5X y velocity in mm/s, with / without "
     "tilt): disk 2 0.811/0.633 (-22 %); support 1.14/0.87 (-24 %); the paper's mesh "
     "loses them all (disk 2 0.060 -> < 0.001). Over 9 000-18 000 rpm it is the reverse: median off/on 0.35 at "
     "disk 2 on the converged mesh, 0.91 on the paper's (study-findings.md)"))])
@@ -153,7 +153,7 @@ def test_ignoring_tilt_markedly_lowers_the_harmonics(mesh):
         assert np.sum(h0[c][2:5]) < 0.7 * np.sum(h[c][2:5]), (c, np.sum(h0[c][2:5]), np.sum(h[c][2:5]))
 
 
-def test_simulate_steady_at_point_a_shows_2f_highest_at_the_support(tmp_path):
+def test_simulate_steady_at_point_a_shows_2X_highest_at_the_support(tmp_path):
     """The command an engineer types (issue: `simulate --speed-rpm 4500 --steady` on paper-table4): the
     support's 2X/1X y velocity >= 0.05 and above disk 1's, the steady state periodic, both faces stuck."""
     import json

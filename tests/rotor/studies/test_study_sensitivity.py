@@ -125,19 +125,19 @@ def _ci(name):
     return sens.CASE_NAMES.index(name)
 
 
-def test_clearance_finding_needs_strict_decrease_of_2f_and_3f_at_disk2_and_support():
-    """Dai 2025 §5.3.1: 2f, 3f decrease as δ0 grows 0.03 → 0.05 → 0.08 mm."""
+def test_clearance_finding_needs_strict_decrease_of_2X_and_3X_at_disk2_and_support():
+    """Dai 2025 §5.3.1: 2X, 3X decrease as δ0 grows 0.03 → 0.05 → 0.08 mm."""
     q, per = _table()
     for s in (0, 1):  # the paper's trend at two of three speeds
         q[_ci("clear0.03"), s, 1:3, 1:] = 1.2
         q[_ci("clear0.08"), s, 1:3, 1:] = 0.8
     f = sens.clearance_finding(_mk(q, per))
     assert (f.holds, f.n_pass, f.n_compared) == (True, 2, 3)  # 2/3 ≥ HOLD_FRACTION
-    q[_ci("clear0.08"), 1, 2, 2] = 1.0  # 3f at the support flat at one of them: that speed fails
+    q[_ci("clear0.08"), 1, 2, 2] = 1.0  # 3X at the support flat at one of them: that speed fails
     f = sens.clearance_finding(_mk(q, per))
     assert (f.holds, f.n_pass) == (False, 1)
-    assert f.per_speed[1]["amps"]["3f s.y"] == [1.2, 1.0, 1.0]
-    # the reverse trend (ours at 10 500 rpm for 3f) never holds
+    assert f.per_speed[1]["amps"]["3X s.y"] == [1.2, 1.0, 1.0]
+    # the reverse trend (ours at 10 500 rpm for 3X) never holds
     q2, _ = _table()
     q2[_ci("clear0.03"), :, 1:3, :] = 0.9
     assert not sens.clearance_finding(_mk(q2, per)).holds
@@ -155,23 +155,23 @@ def test_findings_only_compare_periodic_states_unless_asked():
     assert (g.n_pass, g.n_compared, g.holds) == (3, 3, True)
 
 
-def test_misalignment_finding_wants_flat_1f_and_rising_2f_3f_everywhere():
-    """Dai 2025 §5.3.2: f essentially unchanged, 2f and 3f increase with δ (0.5 → 1 → 2 mm)."""
+def test_misalignment_finding_wants_flat_1X_and_rising_2X_3X_everywhere():
+    """Dai 2025 §5.3.2: 1X essentially unchanged, 2X and 3X increase with δ (0.5 → 1 → 2 mm)."""
     q, per = _table()
     for name, a in (("mis0.5", 0.5), ("mis2", 2.0)):
         q[_ci(name), :, 1:3, :] = a
     assert sens.misalignment_finding(_mk(q, per)).holds
-    q[_ci("mis2"), :, 0, 0] = 1.06  # 1f at disk 1 moves 6 % > ONE_F_SPREAD
+    q[_ci("mis2"), :, 0, 0] = 1.06  # 1X at disk 1 moves 6 % > ONE_F_SPREAD
     f = sens.misalignment_finding(_mk(q, per))
-    assert not f.holds and not f.per_speed[0]["parts"]["1f flat"] and f.per_speed[0]["parts"]["3f up"]
+    assert not f.holds and not f.per_speed[0]["parts"]["1X flat"] and f.per_speed[0]["parts"]["3X up"]
     q[_ci("mis2"), :, 0, 0] = 1.04
-    q[_ci("mis2"), :, 2, 1] = 0.9  # 3f at disk 2 falls at 2 mm (as ours at 10 500 rpm)
+    q[_ci("mis2"), :, 2, 1] = 0.9  # 3X at disk 2 falls at 2 mm (as ours at 10 500 rpm)
     f = sens.misalignment_finding(_mk(q, per))
-    assert not f.holds and f.per_speed[0]["parts"] == {"1f flat": True, "2f up": True, "3f up": False}
+    assert not f.holds and f.per_speed[0]["parts"] == {"1X flat": True, "2X up": True, "3X up": False}
 
 
-def test_tilt_finding_threshold_is_30_percent_lower_3f_to_5f():
-    """Dai 2025 §5.2: 'markedly reduced' read as Σ3f–5f without tilt ≤ 0.7 × with tilt."""
+def test_tilt_finding_threshold_is_30_percent_lower_3X_to_5X():
+    """Dai 2025 §5.2: 'markedly reduced' read as Σ3X–5X without tilt ≤ 0.7 × with tilt."""
     q, per = _table()
     v = q.copy()
     v[_ci("notilt"), :, 2:5, :] = 0.69
@@ -179,7 +179,7 @@ def test_tilt_finding_threshold_is_30_percent_lower_3f_to_5f():
     assert not sens.tilt_finding(_mk(q, per, v), "q").holds  # displacement untouched: equal → no
     v[_ci("notilt"), :, 2:5, 2] = 0.71  # support only 29 % lower
     f = sens.tilt_finding(_mk(q, per, v))
-    assert not f.holds and f.per_speed[0]["amps"]["3-5f s.y"] == [pytest.approx(3.0), pytest.approx(2.13)]
+    assert not f.holds and f.per_speed[0]["amps"]["3X–5X s.y"] == [pytest.approx(3.0), pytest.approx(2.13)]
 
 
 def test_amplitude_table_rejects_bad_shapes_and_values():
@@ -202,9 +202,9 @@ def test_amplitude_table_rejects_bad_shapes_and_values():
 def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(tmp_path):
     """The reference variant at 10 500 rpm (the paper's point B), all six cases, via run_sweep with two
     processes; resumable (a second call reuses it) and its findings as tests/rotor/studies/test_study_paper.py
-    states them on the paper's mesh: without the tilt Σ3f–5f all but vanishes (the tilt-ignored state creeps on
+    states them on the paper's mesh: without the tilt Σ3X–5X all but vanishes (the tilt-ignored state creeps on
     its centred end face: not periodic within 1 500 revolutions, so the periodic-only verdict has nothing to
-    compare), 2f rises with δ."""
+    compare), 2X rises with δ."""
     from sweep import run_sweep
     from reports.sensitivity import tables
 
@@ -223,7 +223,7 @@ def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(t
     two = [t.amp("q", c)[0, 1] for c in ("mis0.5", "base", "mis2")]
     assert np.all(two[0] < two[1]) and np.all(two[1] < two[2])
     # the published study (reports/published/study-sensitivity-points.csv, computed on an earlier revision of
-    # the solver): same periodic flags, 1f-3f displacement at disk 2 and the support within 2 %
+    # the solver): same periodic flags, 1X-3X displacement at disk 2 and the support within 2 %
     import csv
     from pathlib import Path
 
@@ -236,7 +236,7 @@ def test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers(t
         for loc, lab in (("disk2.y", "disk2"), ("s.y", "support")):
             j = t.locations.index(loc)
             for h in (1, 2, 3):
-                assert t.amp("q", c)[0, h - 1, j] * 1e6 == pytest.approx(float(r[f"{lab}_{h}f_um"]), rel=0.02), (c, lab, h)
+                assert t.amp("q", c)[0, h - 1, j] * 1e6 == pytest.approx(float(r[f"{lab}_{h}X_um"]), rel=0.02), (c, lab, h)
 
 
 def test_collision_only_check_keeps_speeds_where_the_reference_case_collides():
@@ -293,7 +293,7 @@ def test_cli_report_only_writes_the_published_files_from_stored_points(tmp_path)
     pts = (to / "study-sensitivity-points.csv").read_text().splitlines()
     assert len(pts) == 1 + n * len(sens.CASE_NAMES)
     row = dict(zip(pts[0].split(","), [r for r in pts if ",clear0.03," in r][0].split(",")))
-    assert float(row["disk2_2f_um"]) == pytest.approx(1.2) and float(row["disk2_2f_mm_s"]) == pytest.approx(1.2)
+    assert float(row["disk2_2X_um"]) == pytest.approx(1.2) and float(row["disk2_2X_mm_s"]) == pytest.approx(1.2)
     for ext in ("png", "svg"):
         assert (to / f"study-sensitivity.{ext}").stat().st_size > 1000
     assert main(["sensitivity", "--report-only", "--out", str(tmp_path / "run"), "--to", str(to),

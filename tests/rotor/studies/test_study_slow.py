@@ -1,8 +1,8 @@
 """Full studies (``-m slow``): the paper's Figure 12 cascade and the run-up, end to end.
 
 Expected behaviour from Dai et al. 2025, §5.1 (Fig. 12, 13): at point A (4 500 rpm) the bearing
-moves with the support (no relative motion) and the response is f with 2f from misalignment,
-relatively highest at the 3# bearing; at high speed 3f–5f appear, more at disk 2 and the 3#
+moves with the support (no relative motion) and the response is f with 2X from misalignment,
+relatively highest at the 3# bearing; at high speed 3X–5X appear, more at disk 2 and the 3#
 bearing than at disk 1.
 """
 import numpy as np
@@ -26,11 +26,11 @@ def test_figure12_cascade_61_speeds_two_processes(tmp_path):
     rpm, V = harmonic_table(pts, "v")
     labels = np.array([p.info["label"] for p in pts])
     low = (rpm > 0) & (rpm < 9000)
-    assert np.all(V[low][:, :, 1] > 1e-5 * V[low][:, :, 0])   # 2f everywhere with δ = 1 mm
+    assert np.all(V[low][:, :, 1] > 1e-5 * V[low][:, :, 0])   # 2X everywhere with δ = 1 mm
     a = pts[int(np.argmin(np.abs(rpm - 4500)))]
     assert a.info["stick_fraction"] == 1.0                    # Fig. 13: at A the support moves with the rotor
     r2 = V[rpm == 4500][0, :, 1] / V[rpm == 4500][0, :, 0]
-    assert r2[2] >= 0.05 and r2[2] > r2[0]                    # ... and 2f is relatively higher at the support
+    assert r2[2] >= 0.05 and r2[2] > r2[0]                    # ... and 2X is relatively higher at the support
     hi = rpm >= 9000
     assert np.any(labels[hi] == "impact")                     # Fig. 15: collisions at high speed
     h3 = V[hi][:, :, 2:5].sum(axis=2)

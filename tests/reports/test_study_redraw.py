@@ -1,0 +1,153 @@
+"""The study figures: drawn again from the committed CSV tables, readable on their own, one harmonic naming.
+
+* ``study redraw`` draws the committed study-sensitivity, study-params-* and study-cascade* figures
+  byte for byte from the committed ``study-*.csv`` (so they are up to date with the numbers and the
+  plotting code), reading the CSV and Markdown files only;
+* the CSV adapters give back the numbers ``study publish`` plotted (round trip through the CSV);
+* the sensitivity figure names its rows in words with units and keeps its axis to ±2 decades, a ratio
+  beyond drawn on the edge; the params figures never draw a zero at the floor as a point of a curve;
+  the cascade order labels sit above the plot area, named 1X–5X;
+* no "1f"-style harmonic names are left in the study code and reports (quotes of the paper aside).
+"""
+from __future__ import annotations
+
+import hashlib
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from reports import sensitivity as rep
+from reports import sensitivity_figure as sf
+from reports.studies import cascade, params
+from reports.studies.common import write_csv
+from reports.studies.redraw import redraw
+from rotor.studies import sensitivity as sens
+
+ROOT = Path(__file__).resolve().parents[2]
+PUBLISHED = ROOT / "reports" / "published"
+FIGURES = [f"{stem}.{ext}" for stem in ("study-sensitivity", "study-params-clearance", "study-params-misalignment",
+                                        "study-cascade", "study-cascade-tilt", "study-cascade-notilt",
+                                        "study-cascade-notilt-tilt") for ext in ("png", "svg")]
+
+
+def _digest(paths) -> dict:
+    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in paths}
+
+
+def test_committed_study_figures_are_redrawn_byte_for_byte_from_the_committed_csv(tmp_path):
+    tables = sorted(PUBLISHED.glob("study-*.csv")) + sorted(PUBLISHED.glob("study-*.md"))
+    before = _digest(tables)
+    files = redraw(PUBLISHED, tmp_path)
+    assert sorted(f.name for f in files) == sorted(FIGURES)
+    stale = [f.name for f in files if f.read_bytes() != (PUBLISHED / f.name).read_bytes()]
+    assert stale == [], f"{stale} differ from a redraw: run `ringcontact study redraw` and look at them"
+    assert _digest(tables) == before
+
+
+def _capture(monkeypatch, module) -> list:
+    """Keep the figures ``module`` saves (instead of writing and closing them)."""
+    figs = []
+    monkeypatch.setattr(module, "save", lambda fig, prefix: figs.append(fig) or [Path(f"{prefix}.png")])
+    return figs
+
+
+def _table(seed: int = 1) -> sens.AmplitudeTable:
+    rng = np.random.default_rng(seed)
+    C, S, L = len(sens.CASE_NAMES), 3, len(sens.LOCATIONS)
+    q, v = rng.uniform(1e-7, 1e-5, (C, S, 5, L)), rng.uniform(1e-4, 1e-2, (C, S, 5, L))
+    q[sens.CASE_NAMES.index("clear0.03"), 0, 2, 1] = 1e5 * q[sens.CASE_NAMES.index("clear0.08"), 0, 2, 1]
+    return sens.AmplitudeTable(np.array([9000.0, 10500.0, 12000.0]), sens.CASE_NAMES, sens.LOCATIONS, q, v,
+                               rng.uniform(size=(C, S)) > 0.3, rng.uniform(size=(C, S)))
+
+
+def test_the_points_csv_gives_back_the_ratios_publish_plots(tmp_path):
+    variants = [sens.Variant("base", {}), sens.Variant("ks_theta-x0.01", {"ks_theta": 0.01})]
+    tabs = {"base": _table(1), "ks_theta-x0.01": _table(2)}
+    path = write_csv(tmp_path / "points.csv", *rep.point_rows(tabs, variants))
+    back, named = sf.tables_from_points_csv(path)
+    assert [v.name for v in named] == ["base", "ks_theta-x0.01"] and named[1].factors == {"ks_theta": 0.01}
+    for name, t in tabs.items():
+        want, got = sf.per_speed_ratios(t), sf.per_speed_ratios(back[name])
+        for finding in ("clearance", "misalignment", "tilt"):
+            np.testing.assert_allclose(got[finding][0], want[finding][0], rtol=2e-5)    # 6 digits in the CSV
+            np.testing.assert_array_equal(got[finding][1], want[finding][1])
+        np.testing.assert_allclose(back[name].contact_fraction, t.contact_fraction, rtol=1e-5)
+
+
+def test_sensitivity_rows_are_named_in_words_and_the_axis_keeps_to_two_decades(tmp_path, monkeypatch):
+    figs = _capture(monkeypatch, sf)
+    variants = [sens.Variant("base", {}), sens.Variant("ks-x10+muN-x0.2", {"ks": 10.0, "preload": 0.2})]
+    sf.figure({"base": _table(1), "ks-x10+muN-x0.2": _table(2)}, variants, tmp_path / "s")
+    (fig,) = figs
+    axes = fig.axes[:3]
+    labels = [t.get_text() for t in axes[0].get_yticklabels()]
+    assert labels[0] == "Table 4 rotor as published (reference)"
+    # paper-table4.toml: k_s = 1.5e7 N/m, μ = 0.3, preload 5 000 N
+    assert labels[1] == "support-to-ground stiffness & damping k_s ×10 → 150 MN/m\nend-face friction limit μN ×0.2 → 300 N"
+    assert not any(re.search(r"[a-z_]+-x\d", lab) for lab in labels)          # no row codes
+    for ax in axes:
+        assert "[ratio, –]" in ax.get_xlabel() and "disk 2" in ax.get_xlabel()
+        lo, hi = ax.get_xlim()
+        assert (lo, hi) == (-sf.DECADES - 0.25, sf.DECADES + 0.25)
+        xs = np.concatenate([c.get_offsets()[:, 0] for c in ax.collections if len(c.get_offsets())])
+        assert np.all(np.abs(xs) <= sf.DECADES + 0.12)
+    ticks = [t.get_text() for t in axes[0].get_xticklabels()]
+    assert ticks == ["≤ 1/100", "1/10", "1", "10", "≥ 100"]
+    # the 1e5 ratio of both tables (clearance, 9 000 rpm) is a triangle on the right edge of each row
+    edge = [c for c in axes[0].collections if len(c.get_offsets()) and c.get_offsets()[0, 0] == sf.DECADES + 0.12]
+    assert len(edge) == 2
+    assert sorted(round(float(c.get_offsets()[0, 1])) for c in edge) == [0, 2]   # rows at 0.5 and 1.725, 9 000 rpm 0.15 above
+
+
+def test_params_zeros_are_marked_below_the_floor_not_drawn_as_dips(monkeypatch):
+    rpm = np.array([0.0, 3000.0, 6000.0, 9000.0])
+    A = np.full((4, 3, 3), 2.0)
+    A[0] = 0.0                          # at rest: every harmonic is zero
+    A[2, 1, 2] = 0.0                    # a 3X at disk 2 that is exactly zero
+    fig = params.amplitude_grid({5e-5: (rpm, A)}, lambda v: f"δ0 = {v * 1e3:g} mm", "t")
+    ax = fig.axes[2 * 3 + 1]            # 3X, disk 2
+    curve = next(ln for ln in ax.get_lines() if ln.get_marker() == "o")
+    y = np.asarray(curve.get_ydata(), float)
+    assert np.isnan(y[0]) and np.isnan(y[2]) and np.all(y[[1, 3]] == 2.0)
+    below = next(ln for ln in ax.get_lines() if ln.get_marker() == "v")
+    assert list(below.get_xdata()) == [0.0, 6000.0]
+    assert ax.get_title() == "3X, disk 2" and "3X" in ax.get_ylabel()
+    assert any("below floor" in t.get_text() for t in fig.axes[0].get_legend().get_texts())
+
+
+def test_cascade_order_labels_are_1x_to_5x_above_the_plot_area(tmp_path, monkeypatch):
+    figs = _capture(monkeypatch, cascade)
+    draw = cascade.cascade_redraw(PUBLISHED / "study-cascade.csv", tmp_path, "c")
+    draw()
+    for fig in figs:
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        data_axes = [ax for ax in fig.axes if ax.get_label() != "<colorbar>" and ax.get_xlabel() == "frequency (Hz)"]
+        assert data_axes
+        for ax in data_axes:
+            top = next(c for c in ax.child_axes)
+            texts = [t for t in top.get_xticklabels() if t.get_text()]
+            assert [t.get_text() for t in texts] == ["1X", "2X", "3X", "4X", "5X"]
+            for t in texts:
+                box = t.get_window_extent(renderer)
+                assert box.y0 >= ax.bbox.y1 - 1 and box.y1 <= fig.bbox.y1      # outside the data, inside the figure
+                assert ax.bbox.x0 - 1 <= box.x0 and box.x1 <= ax.bbox.x1 + 1
+
+
+HARMONIC_F = re.compile(r"(?<![A-Za-z0-9_.:%{\\])[1-5]f(?=[\s_–\-,/)(\].+*|'\"`;:]|$)|\{h\}f[_\" ]|_[1-5]f(_|\b)")
+PAPER_QUOTES = re.compile(r"harmonic frequenc(y|ies) [1-5]f(, [1-5]f)*")   # quoted from Dai et al. (2025)
+
+
+@pytest.mark.parametrize("folder,pattern", [("reports", "**/*.py"), ("rotor/studies", "*.py"), ("tests/rotor/studies", "*.py"),
+                                            ("reports/published", "study-*.md"), ("reports/published", "study-*.csv"),
+                                            ("reports/notes", "*.md")])
+def test_one_naming_of_harmonic_orders(folder, pattern):
+    found = []
+    for path in sorted((ROOT / folder).glob(pattern)):
+        lines = path.read_text(encoding="utf-8").splitlines()
+        for i, line in enumerate(lines[:1] if path.suffix == ".csv" else lines):
+            if HARMONIC_F.search(PAPER_QUOTES.sub("", line)):
+                found.append(f"{path.relative_to(ROOT)}:{i + 1}: {line.strip()[:80]}")
+    assert found == [], "use 1X…5X for harmonic orders"
