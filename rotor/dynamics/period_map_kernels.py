@@ -1,0 +1,211 @@
+"""Compiled derivative of the production scheme's steps (:mod:`rotor.dynamics.period_map`).
+
+The step of :func:`rotor.dynamics.production_kernels.step_loop` maps ``(p, v, a)`` to the next
+``(p, v, a)``: a constant linear Newmark part, plus the support through the six condensed
+coordinates ``α`` (and two multipliers per stuck face) that the step solves by Newton. At the
+converged step ``R(x; α_lin, u_pre, w_pre) = 0`` (:func:`rotor.dynamics.production_kernels._residual`),
+so by the implicit function theorem ``dx = −R_x⁻¹ R_y dy`` with ``y = (α_lin, u_pre, w_pre)``
+(18 numbers, each ``Bᵀ``-projections of the predictor), and the full acceleration changes by
+``W dg`` (``g`` the 6 condensed forces): a rank-6 correction of the linear step. The sensitivity
+of the state to the 2 nr initial values is carried as three ``nr × 2nr`` blocks; a step costs
+one ``nr × 2nr × 2nr`` product (the linear part) and ``O(nr · 2nr)`` for the correction.
+
+The forces' partial Jacobians ``∂g/∂u`` and ``∂g/∂w`` come from the same compiled
+:func:`rotor.dynamics.production_kernels._forces` (called with ``βΔt² = 1, γΔt = 0`` and
+``βΔt² = 0, γΔt = 1``), the Newton matrix ``R_x`` from ``_residual``, so the derivative uses the
+support law's analytic Jacobian (:mod:`rotor.dynamics.kernels`) and nothing is differenced.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from contact.compiled_cache import compiled_with
+from rotor.dynamics.production_kernels import NC, _forces, _residual, _small_solve
+
+compiled_with(__file__, ["rotor.dynamics.production_kernels", "rotor.dynamics.constraints",
+                         "rotor.dynamics.kernels", "contact._kernel"])
+
+
+@njit(cache=True)
+def _scratch():
+    """Work arrays of ``_forces``/``_residual``: iterate, freeze flags and directions, forces, Jacobian,
+    face forces, condensed displacement and velocity."""
+    return (np.zeros(NC + 4), np.zeros(2, dtype=np.bool_), np.zeros((2, 2)), np.zeros(NC), np.zeros((NC, NC)),
+            np.zeros((2, 2)), np.zeros(NC), np.zeros(NC))
+
+
+@njit(cache=True)
+def force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg):
+    """``(∂g/∂u, ∂g/∂w)`` (NC × NC each) of the condensed forces at relative displacement ``u``
+    and velocity ``w`` (NC,), stuck faces' forces held (they are unknowns of their own)."""
+    x, freeze, fdir, g, Gu, phi, uu, ww = _scratch()
+    Gw = np.zeros((NC, NC))
+    _forces(x, u, w, 1.0, 0.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Gu, phi, uu, ww)
+    _forces(x, u, w, 0.0, 1.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Gw, phi, uu, ww)
+    return Gu, Gw
+
+
+@njit(cache=True)
+def consistent_acceleration_jacobian(p, v, Bt, MK, MD, WM, SM, P, modes, mu_N, a1, params, w_reg):
+    """``∂a/∂(p, v)`` (nr × 2nr) of the consistent acceleration of
+    :func:`rotor.dynamics.production_kernels._reproject` (and of the initial state,
+    :func:`rotor.dynamics.initial.initial_state`): ``a = M⁻¹(Q − D v − K p + Bᵀ g) + W_M Pᵀ φ`` with
+    the stuck faces' multipliers ``φ`` making their relative acceleration zero. ``MK = M⁻¹K``,
+    ``MD = M⁻¹D`` (reduced)."""
+    nr = p.shape[0]
+    u = Bt @ p
+    w = Bt @ v
+    Gu, Gw = force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg)
+    Af = np.empty((nr, 2 * nr))
+    Af[:, :nr] = -MK + WM @ (Gu @ Bt)
+    Af[:, nr:] = -MD + WM @ (Gw @ Bt)
+    # stuck faces: P_k Bt a = 0, i.e. (P S_M Pᵀ) φ = −P Bt a_free, P the stuck faces' maps stacked
+    Pall = np.zeros((4, NC))
+    m2 = 0
+    for k in range(2):
+        if modes[k] == 1:
+            Pall[m2:m2 + 2, :4] = P[k]
+            m2 += 2
+    if m2 == 0:
+        return Af
+    Pm = Pall[:m2].copy()
+    A = Pm @ SM @ Pm.T
+    C = Pm @ (Bt @ Af)
+    dphi = np.zeros((m2, 2 * nr))
+    col = np.zeros(m2)
+    for j in range(2 * nr):
+        A2 = A.copy()
+        b = -C[:, j].copy()
+        _small_solve(A2, b, m2, col)
+        dphi[:, j] = col
+    return Af + WM @ (Pm.T @ dphi)
+
+
+@njit(cache=True)
+def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt):
+    """``∂g/∂y`` (NC × 18) of the converged condensed forces with respect to
+    ``y = (α_lin, u_pre, w_pre)`` at the step's end state ``(u, w)`` and ``modes``."""
+    Gu, Gw = force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg)
+    m = NC   # unknowns: α and two multipliers per stuck face
+    for k in range(2):
+        if modes[k] == 1:
+            m += 2
+    MX = NC + 4
+    x, freeze, fdir, g, Jg, phi, uu, ww = _scratch()
+    alpha_lin = np.zeros(NC)
+    R = np.zeros(MX)
+    J = np.zeros((MX, MX))
+    # R_x at the converged point: the iterate α = 0 with (u_pre, w_pre) = (u, w) is that point
+    _residual(x, m, alpha_lin, u, w, S, P, modes, freeze, fdir, mu_N, a1, bdt2, gdt, params, w_reg,
+              g, Jg, phi, uu, ww, R, J)
+    Ry = np.zeros((MX, 3 * NC))
+    SGu = S @ Gu
+    SGw = S @ Gw
+    for r in range(NC):
+        Ry[r, r] = -1.0
+        for c in range(NC):
+            Ry[r, NC + c] = -SGu[r, c]
+            Ry[r, 2 * NC + c] = -SGw[r, c]
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            for rr in range(2):
+                for c in range(4):
+                    Ry[j + rr, 2 * NC + c] = P[k, rr, c] / gdt
+            j += 2
+    Dx = np.zeros((MX, 3 * NC))
+    col = np.zeros(MX)
+    J2 = np.zeros((MX, MX))
+    b = np.zeros(MX)
+    for c in range(3 * NC):
+        J2[:, :] = J
+        for r in range(m):
+            b[r] = -Ry[r, c]
+        _small_solve(J2, b, m, col)
+        for r in range(m):
+            Dx[r, c] = col[r]
+    # dg = Gu du + Gw dw + Σ_stuck P_kᵀ dφ_k, du = du_pre + βΔt² dα, dw = dw_pre + γΔt dα
+    du = np.zeros((NC, 3 * NC))
+    dw = np.zeros((NC, 3 * NC))
+    for r in range(NC):
+        du[r, NC + r] = 1.0
+        dw[r, 2 * NC + r] = 1.0
+        for c in range(3 * NC):
+            du[r, c] += bdt2 * Dx[r, c]
+            dw[r, c] += gdt * Dx[r, c]
+    Dg = Gu @ du + Gw @ dw
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            for r in range(4):
+                for c in range(3 * NC):
+                    Dg[r, c] += P[k, 0, r] * Dx[j, c] + P[k, 1, r] * Dx[j + 1, c]
+            j += 2
+    return Dg
+
+
+@njit(cache=True)
+def sensitivity_pass(rec_p, rec_v, rec_modes, Sa0, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N,
+                     a1, has_support, params, w_reg, onset_projection):
+    """Carry ``∂(p, v, a)/∂(p₀, v₀)`` along a recorded run of ``step_loop`` (every step recorded:
+    ``rec_p``, ``rec_v`` (N+1, nr), ``rec_modes`` (N+1, 2)). ``Sa0`` (nr × 2nr): ``∂a₀/∂(p₀, v₀)``.
+    ``AK = A⁻¹K``, ``AD = A⁻¹D`` (``A`` the Newmark matrix), ``MK = M⁻¹K``, ``MD = M⁻¹D``.
+
+    Each step is differentiated with the modes it ended in (no saltation at mode changes); a
+    step in which a face stuck is followed, as in ``step_loop``, by the consistent-acceleration
+    restart, differentiated too. Returns the ``(2nr × 2nr)`` monodromy ``∂(p_N, v_N)/∂(p₀, v₀)``."""
+    nr = rec_p.shape[1]
+    n_steps = rec_p.shape[0] - 1
+    ncol = 2 * nr
+    bdt2 = beta * dt * dt
+    gdt = gamma * dt
+    c1 = dt * dt * (0.5 - beta)
+    c2 = dt * (1.0 - gamma)
+    Sp = np.zeros((nr, ncol))
+    Sv = np.zeros((nr, ncol))
+    for i in range(nr):
+        Sp[i, i] = 1.0
+        Sv[i, nr + i] = 1.0
+    Sa = Sa0.copy()
+    Spv = np.empty((ncol, ncol))
+    Y = np.empty((3 * NC, ncol))
+    AKD = np.empty((nr, ncol))
+    AKD[:, :nr] = AK
+    AKD[:, nr:] = AD
+    modes = np.zeros(2, dtype=np.int64)
+    for n in range(n_steps):
+        Spp = Sp + dt * Sv + c1 * Sa
+        Svp = Sv + c2 * Sa
+        Spv[:nr] = Spp
+        Spv[nr:] = Svp
+        Sal = -(AKD @ Spv)
+        if has_support:
+            modes[0] = rec_modes[n + 1, 0]
+            modes[1] = rec_modes[n + 1, 1]
+            u = Bt @ rec_p[n + 1]
+            w = Bt @ rec_v[n + 1]
+            Dg = _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt)
+            Y[:NC] = Bt @ Sal
+            Y[NC:2 * NC] = Bt @ Spp
+            Y[2 * NC:] = Bt @ Svp
+            Sa = Sal + W @ (Dg @ Y)
+        else:
+            Sa = Sal
+        Sp = Spp + bdt2 * Sa
+        Sv = Svp + gdt * Sa
+        if has_support and onset_projection:
+            onset = False
+            for k in range(2):
+                if rec_modes[n + 1, k] == 1 and rec_modes[n, k] != 1:
+                    onset = True
+            if onset:
+                Ra = consistent_acceleration_jacobian(rec_p[n + 1], rec_v[n + 1], Bt, MK, MD, WM, SM, P, modes, mu_N,
+                                                      a1, params, w_reg)
+                Spv[:nr] = Sp
+                Spv[nr:] = Sv
+                Sa = Ra @ Spv
+    out = np.empty((ncol, ncol))
+    out[:nr] = Sp
+    out[nr:] = Sv
+    return out
