@@ -1,0 +1,196 @@
+"""Periodic orbits of the loose-support rotor by shooting on the production scheme's period map.
+
+The excitation (unbalance 1X, misalignment 2X) has the period of one revolution, ``T_1 = 2π/Ω``. An orbit
+of period ``k`` revolutions (``k = 1 … 8``) is a fixed point of the map ``Φ`` over ``k N`` steps of
+``Δt = T_1/N`` (a whole number ``N`` of steps per revolution, so that the discrete orbit repeats exactly),
+started at phase 0: Newton's method on the periodicity residual ``R(x) = Φ(x) − x`` with the Jacobian
+``M − I``, ``M`` the monodromy matrix (:mod:`rotor.studies.period_flow`). The start is the end of a short
+transient (:mod:`rotor.studies.steady_state` machinery: the same step choice and Poincaré section).
+
+Scaling and tolerance. Displacements and velocities are measured against the orbit's own scale, the
+peak-to-peak range of the reduced displacements and velocities over the last transient revolution
+(:func:`orbit_scales`); the orbit has converged when ``max_j |R_j|/s_j < tol``.
+
+Singular directions. A face stuck through the whole orbit leaves its sticking offset free: the orbits form
+a continuum, ``M`` has a multiplier exactly 1 and ``M − I`` is singular (:mod:`rotor.studies.floquet`). The
+Newton step is therefore the minimum-norm least-squares solution of the scaled system (singular values
+below ``rcond`` times the largest are dropped); it moves the state only across the continuum, and the number
+of directions dropped is reported (``singular_directions``). A step that increases the residual is halved
+(at most ``max_halvings`` times).
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from rotor.dynamics import constraints as cons
+from rotor.studies.floquet import FloquetResult, floquet
+from rotor.studies.period_flow import Flow, advance, block_scales, record, to_reduced
+from rotor.studies.steady_state import TRANSIENT_SAMPLES_PER_REV
+
+MAX_PERIOD_REVS = 8
+
+
+@dataclass(frozen=True)
+class ShootingOptions:
+    """Newton controls: ``tol`` (relative to the orbit scale, –), ``max_iter``, ``rcond`` (relative
+    singular-value cut of the minimum-norm step), ``max_halvings`` of a step that does not reduce the
+    residual, ``transient_revs`` before shooting, ``multiplier_tol`` (Floquet, –)."""
+
+    tol: float = 1e-9
+    max_iter: int = 25
+    rcond: float = 1e-9
+    max_halvings: int = 6
+    transient_revs: int = 16
+    multiplier_tol: float = 1e-6
+
+
+@dataclass(frozen=True)
+class ShootingResult:
+    """A periodic orbit (or the last Newton iterate when ``converged`` is False).
+
+    Attributes
+    ----------
+    state : (2 n_r,) reduced state ``[p, v]`` at ``t0_s`` (phase 0 of a revolution)
+    t0_s, period_s : float (s); period_revs : int; steps_per_rev : int
+    modes : end-face modes at ``t0_s`` (1 stick / 0 slip)
+    monodromy : (2 n_r, 2 n_r); floquet : FloquetResult
+    converged : bool; newton_iterations : int; residual : float, ``max |R_j|/s_j`` (–)
+    singular_directions : int, directions of ``M − I`` dropped by the minimum-norm step at the last iteration
+    scales : (2 n_r,) the orbit scales s_j (m, rad; m/s, rad/s); wall_s : float (s); backend : str
+    """
+
+    state: np.ndarray
+    t0_s: float
+    period_s: float
+    period_revs: int
+    steps_per_rev: int
+    modes: tuple
+    monodromy: np.ndarray
+    floquet: FloquetResult
+    converged: bool
+    newton_iterations: int
+    residual: float
+    singular_directions: int
+    scales: np.ndarray
+    wall_s: float
+    backend: str
+
+
+def orbit_scales(flow: Flow, p, v) -> np.ndarray:
+    """Scales (2 n_r,) from reduced displacement and velocity samples ``p``, ``v`` (rows = samples): the
+    largest peak-to-peak range of any displacement component, and of any velocity component, falling
+    back to :func:`rotor.studies.period_flow.block_scales` of the last sample for a motionless record."""
+    nr = flow.T.shape[1]
+    base = block_scales(flow, np.concatenate([p[-1], v[-1]]))
+    sp = float(np.ptp(p, axis=0).max()) or base[0]
+    sv = float(np.ptp(v, axis=0).max()) or base[-1]
+    return np.concatenate([np.full(nr, sp), np.full(nr, sv)])
+
+
+def min_norm_step(J, rhs, rcond: float) -> tuple[np.ndarray, int]:
+    """Minimum-norm least-squares solution of ``J dx = rhs`` and the number of singular values dropped."""
+    U, s, Vt = np.linalg.svd(J)
+    keep = s > rcond * s[0] if s.size and s[0] > 0 else np.zeros_like(s, bool)
+    dx = Vt[keep].T @ ((U[:, keep].T @ rhs) / s[keep])
+    return dx, int((~keep).sum())
+
+
+def newton_periodic(flow: Flow, state0, t0_s: float, n_steps: int, modes0, scales, options: ShootingOptions):
+    """Newton iterations on ``Φ(x) − x`` over ``n_steps`` steps. Returns
+    ``(state, MapResult at state, converged, iterations, residual, singular_directions)``."""
+    x = np.asarray(state0, float).copy()
+    modes = tuple(modes0)
+    r = advance(flow, x, t0_s, n_steps, modes)
+    res = float(np.max(np.abs(r.state - x) / scales))
+    singular = 0
+    it = 0
+    while res >= options.tol and it < options.max_iter:
+        it += 1
+        J = (r.monodromy - np.eye(len(x))) * (scales[None, :] / scales[:, None])   # scaled: D (M − I) D⁻¹
+        dz, singular = min_norm_step(J, -(r.state - x) / scales, options.rcond)
+        lam = 1.0
+        for _ in range(options.max_halvings + 1):
+            x_try = x + lam * dz * scales
+            r_try = advance(flow, x_try, t0_s, n_steps, r.modes if r.modes != modes else modes)
+            res_try = float(np.max(np.abs(r_try.state - x_try) / scales))
+            if math.isfinite(res_try) and res_try < res:
+                break
+            lam *= 0.5
+        else:
+            return x, r, False, it, res, singular
+        x, r, res, modes = x_try, r_try, res_try, r_try.modes
+    return x, r, res < options.tol, it, res, singular
+
+
+def shoot(flow: Flow, state0, *, t0_s: float, steps_per_rev: int, period_revs: int = 1, modes0=(cons.SLIP, cons.SLIP),
+          scales=None, options: ShootingOptions | None = None) -> ShootingResult:
+    """Newton shooting from ``state0`` (reduced, at ``t0_s``) for an orbit of ``period_revs`` revolutions of
+    ``steps_per_rev`` steps of ``flow.dt_s``. ``scales`` (2 n_r,): the orbit scale (default: block scales
+    of ``state0``)."""
+    opts = options or ShootingOptions()
+    if not 1 <= int(period_revs) <= MAX_PERIOD_REVS:
+        raise ValueError(f"period_revs = {period_revs}: must be 1 to {MAX_PERIOD_REVS} revolutions")
+    t_start = time.perf_counter()
+    s = block_scales(flow, state0) if scales is None else np.asarray(scales, float)
+    n = int(period_revs) * int(steps_per_rev)
+    x, r, ok, it, res, singular = newton_periodic(flow, state0, t0_s, n, modes0, s, opts)
+    period = n * flow.dt_s
+    fl = floquet(r.monodromy, period, tol=opts.multiplier_tol)
+    return ShootingResult(x, float(t0_s), period, int(period_revs), int(steps_per_rev), tuple(r.modes), r.monodromy,
+                          fl, bool(ok), it, res, singular, s, time.perf_counter() - t_start, flow.backend)
+
+
+def _poincare_order(P: np.ndarray, max_period: int) -> list[int]:
+    """Periods 1..max_period ordered for trial: those whose last Poincaré return ``|P_j − P_{j−k}|`` is
+    within 10× the smallest first (shortest period first), then the rest by that difference."""
+    ks = [k for k in range(1, max_period + 1) if k < len(P)]
+    if not ks:
+        return [1]
+    d = {k: float(np.abs(P[-1] - P[-1 - k]).max()) for k in ks}
+    dmin = min(d.values())
+    return sorted(ks, key=lambda k: (d[k] > 10.0 * dmin + 1e-300, d[k] if d[k] > 10.0 * dmin else k))
+
+
+def transient(flow: Flow, q0, v0, *, steps_per_rev: int, revs: int, modes0=(cons.STICK, cons.STICK)):
+    """``revs`` revolutions from the full ``(q0, v0)`` at t = 0: returns ``(state, modes, P, scales)`` — the
+    reduced end state (a whole revolution, phase 0), its face modes, the once-per-revolution reduced
+    displacements ``P`` (revs + 1, n_r) and the orbit scales of the last revolution (:func:`orbit_scales`)."""
+    sub = max(1, steps_per_rev // TRANSIENT_SAMPLES_PER_REV)
+    x0 = to_reduced(flow, q0, v0)
+    p, v, modes = record_reduced(flow, x0, 0.0, steps_per_rev * int(revs), modes0, sub)
+    per = steps_per_rev // sub
+    end = np.concatenate([p[-1], v[-1]])
+    return end, modes, p[::per], orbit_scales(flow, p[-per - 1:], v[-per - 1:])
+
+
+def record_reduced(flow: Flow, state, t0: float, n_steps: int, modes0, record_every: int):
+    """``(p, v, modes_end)``: reduced displacement and velocity samples every ``record_every`` steps (rows)
+    and the end-face modes at the end."""
+    tr = record(flow, state, t0, n_steps, modes0, record_every)
+    red = np.array([to_reduced(flow, q, v) for q, v in zip(tr.q, tr.v)])
+    nr = flow.T.shape[1]
+    return red[:, :nr], red[:, nr:], tuple(int(m) for m in tr.modes[-1])
+
+
+def shoot_from_transient(flow: Flow, q0, v0, *, steps_per_rev: int, period_revs: int | None = None,
+                         options: ShootingOptions | None = None, modes0=(cons.STICK, cons.STICK)) -> ShootingResult:
+    """A short transient from the full ``(q0, v0)`` at t = 0, then :func:`shoot`. ``period_revs`` None: the
+    periods 1..8 are tried in the order the transient's Poincaré returns suggest (:func:`_poincare_order`)
+    until one converges; the result of the last try is returned if none does. ``wall_s`` includes the
+    transient."""
+    opts = options or ShootingOptions()
+    t_start = time.perf_counter()
+    x, modes, P, scales = transient(flow, q0, v0, steps_per_rev=steps_per_rev, revs=opts.transient_revs, modes0=modes0)
+    t0 = opts.transient_revs * steps_per_rev * flow.dt_s
+    order = [int(period_revs)] if period_revs is not None else _poincare_order(P, MAX_PERIOD_REVS)
+    res = None
+    for k in order:
+        res = shoot(flow, x, t0_s=t0, steps_per_rev=steps_per_rev, period_revs=k, modes0=modes, scales=scales,
+                    options=opts)
+        if res.converged:
+            break
+    return replace(res, wall_s=time.perf_counter() - t_start)
