@@ -99,42 +99,37 @@ def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt
     # R_x at the converged point: the iterate α = 0 with (u_pre, w_pre) = (u, w) is that point
     _residual(x, m, alpha_lin, u, w, S, P, modes, freeze, fdir, mu_N, a1, bdt2, gdt, params, w_reg,
               g, Jg, phi, uu, ww, R, J)
-    Ry = np.zeros((MX, 3 * NC))
-    SGu = S @ Gu
-    SGw = S @ Gw
+    # −R_y: R_α = α − α_lin − S g(u_pre + βΔt² α, w_pre + γΔt α), R_stuck = P_k w / (γΔt)
+    mRy = np.zeros((m, 3 * NC))
     for r in range(NC):
-        Ry[r, r] = -1.0
+        mRy[r, r] = 1.0
         for c in range(NC):
-            Ry[r, NC + c] = -SGu[r, c]
-            Ry[r, 2 * NC + c] = -SGw[r, c]
+            su = 0.0
+            sw = 0.0
+            for k in range(NC):
+                su += S[r, k] * Gu[k, c]
+                sw += S[r, k] * Gw[k, c]
+            mRy[r, NC + c] = su
+            mRy[r, 2 * NC + c] = sw
     j = NC
     for k in range(2):
         if modes[k] == 1:
             for rr in range(2):
                 for c in range(4):
-                    Ry[j + rr, 2 * NC + c] = P[k, rr, c] / gdt
+                    mRy[j + rr, 2 * NC + c] = -P[k, rr, c] / gdt
             j += 2
-    Dx = np.zeros((MX, 3 * NC))
-    col = np.zeros(MX)
-    J2 = np.zeros((MX, MX))
-    b = np.zeros(MX)
-    for c in range(3 * NC):
-        J2[:, :] = J
-        for r in range(m):
-            b[r] = -Ry[r, c]
-        _small_solve(J2, b, m, col)
-        for r in range(m):
-            Dx[r, c] = col[r]
+    Dx = np.linalg.solve(J[:m, :m], mRy)
     # dg = Gu du + Gw dw + Σ_stuck P_kᵀ dφ_k, du = du_pre + βΔt² dα, dw = dw_pre + γΔt dα
-    du = np.zeros((NC, 3 * NC))
-    dw = np.zeros((NC, 3 * NC))
+    Dg = np.zeros((NC, 3 * NC))
     for r in range(NC):
-        du[r, NC + r] = 1.0
-        dw[r, 2 * NC + r] = 1.0
+        for c in range(NC):
+            Dg[r, NC + c] = Gu[r, c]
+            Dg[r, 2 * NC + c] = Gw[r, c]
         for c in range(3 * NC):
-            du[r, c] += bdt2 * Dx[r, c]
-            dw[r, c] += gdt * Dx[r, c]
-    Dg = Gu @ du + Gw @ dw
+            s = 0.0
+            for k in range(NC):
+                s += (bdt2 * Gu[r, k] + gdt * Gw[r, k]) * Dx[k, c]
+            Dg[r, c] += s
     j = NC
     for k in range(2):
         if modes[k] == 1:
@@ -162,38 +157,50 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, Sa0, dt, beta, gamma, AK, AD, MK, 
     gdt = gamma * dt
     c1 = dt * dt * (0.5 - beta)
     c2 = dt * (1.0 - gamma)
-    Sp = np.zeros((nr, ncol))
-    Sv = np.zeros((nr, ncol))
-    for i in range(nr):
-        Sp[i, i] = 1.0
-        Sv[i, nr + i] = 1.0
-    Sa = Sa0.copy()
-    Spv = np.empty((ncol, ncol))
-    Y = np.empty((3 * NC, ncol))
+    # Spv = ∂(p, v)/∂x0 (rows: p then v), Sa = ∂a/∂x0; Pre = the predictor's sensitivity
+    Spv = np.zeros((ncol, ncol))
+    for i in range(ncol):
+        Spv[i, i] = 1.0
+    Sa = np.ascontiguousarray(Sa0).copy()
+    Pre = np.empty((ncol, ncol))
+    Sal = np.empty((nr, ncol))
     AKD = np.empty((nr, ncol))
     AKD[:, :nr] = AK
     AKD[:, nr:] = AD
+    E = np.zeros((3 * NC, ncol))      # y = E · predictor: α_lin = −Bt A⁻¹[K D], u_pre = Bt p_pre, w_pre = Bt v_pre
+    E[:NC] = -(Bt @ AKD)
+    E[NC:2 * NC, :nr] = Bt
+    E[2 * NC:, nr:] = Bt
+    Y = np.empty((3 * NC, ncol))
+    Z = np.empty((NC, ncol))
     modes = np.zeros(2, dtype=np.int64)
     for n in range(n_steps):
-        Spp = Sp + dt * Sv + c1 * Sa
-        Svp = Sv + c2 * Sa
-        Spv[:nr] = Spp
-        Spv[nr:] = Svp
-        Sal = -(AKD @ Spv)
+        for i in range(nr):
+            for c in range(ncol):
+                sa = Sa[i, c]
+                Pre[i, c] = Spv[i, c] + dt * Spv[nr + i, c] + c1 * sa
+                Pre[nr + i, c] = Spv[nr + i, c] + c2 * sa
+        np.dot(AKD, Pre, Sal)
         if has_support:
             modes[0] = rec_modes[n + 1, 0]
             modes[1] = rec_modes[n + 1, 1]
             u = Bt @ rec_p[n + 1]
             w = Bt @ rec_v[n + 1]
             Dg = _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt)
-            Y[:NC] = Bt @ Sal
-            Y[NC:2 * NC] = Bt @ Spp
-            Y[2 * NC:] = Bt @ Svp
-            Sa = Sal + W @ (Dg @ Y)
+            np.dot(E, Pre, Y)
+            np.dot(Dg, Y, Z)
+            np.dot(W, Z, Sa)
+            for i in range(nr):
+                for c in range(ncol):
+                    Sa[i, c] -= Sal[i, c]
         else:
-            Sa = Sal
-        Sp = Spp + bdt2 * Sa
-        Sv = Svp + gdt * Sa
+            for i in range(nr):
+                for c in range(ncol):
+                    Sa[i, c] = -Sal[i, c]
+        for i in range(nr):
+            for c in range(ncol):
+                Spv[i, c] = Pre[i, c] + bdt2 * Sa[i, c]
+                Spv[nr + i, c] = Pre[nr + i, c] + gdt * Sa[i, c]
         if has_support and onset_projection:
             onset = False
             for k in range(2):
@@ -202,10 +209,5 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, Sa0, dt, beta, gamma, AK, AD, MK, 
             if onset:
                 Ra = consistent_acceleration_jacobian(rec_p[n + 1], rec_v[n + 1], Bt, MK, MD, WM, SM, P, modes, mu_N,
                                                       a1, params, w_reg)
-                Spv[:nr] = Sp
-                Spv[nr:] = Sv
-                Sa = Ra @ Spv
-    out = np.empty((ncol, ncol))
-    out[:nr] = Sp
-    out[nr:] = Sv
-    return out
+                np.dot(Ra, Spv, Sa)
+    return Spv

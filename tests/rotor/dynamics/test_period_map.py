@@ -191,6 +191,8 @@ def _table4_window(n_steps, **over):
     ("one face stuck, one slipping", {}, 100, (0, 1), 1e-7),
     ("both faces slipping", dict(mu=0.01, clearance_m=5e-5), 100, (0, 0), 1e-6),
     ("ring in contact with the clearance", dict(clearance_m=1e-6), 100, None, 1e-7),
+    ("tilt ignored (one face), slipping, contact", dict(clearance_m=1e-6, tilt_ignored=True, mu=0.01), 100, (0, 0),
+     1e-7),
 ])
 def test_table4_monodromy_equals_finite_differences(case, over, n_steps, want_modes, rel):
     """Away from stick/slip switches the map is smooth; its finite-difference error falls as rel²
