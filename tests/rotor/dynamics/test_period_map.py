@@ -234,3 +234,32 @@ def test_bad_inputs_are_refused(linear_map):
         period_map(pm, x0, 0.0, 0)
     with pytest.raises(InputError, match="dt_s"):
         period_map_setup(pm.system, -1.0)
+
+
+# --------------------------------------------------------------------------- Jeffcott rotor in a clearance ring
+
+
+@pytest.mark.parametrize("speed_rad_s, guess_m", [(500.0, 3e-5), (680.0, 2e-4)])
+def test_jeffcott_circular_orbit_is_a_fixed_point_and_its_monodromy_equals_finite_differences(speed_rad_s, guess_m):
+    """The frictionless clearance Jeffcott rotor (rotor.studies.jeffcott) whirls on an exact circle of the
+    scheme: radius from the closed form with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N),
+    complex amplitude X = m e Ω² / (k − m Ω'² + f(r)/r + i c Ω'). The period map returns it, and its monodromy
+    (contact law's Jacobian through every step) equals central differences."""
+    from rotor.studies.jeffcott import JeffcottParams, closed_form_radius, contact_force_N, jeffcott_system
+
+    p, n = JeffcottParams(), 256
+    r = closed_form_radius(p, speed_rad_s, guess_m, steps_per_rev=n)
+    assert r > 2 * p.clearance_m                                       # in contact all round
+    wp = speed_rad_s * math.tan(math.pi / n) / (math.pi / n)
+    f = float(contact_force_N(p, r)[0])
+    X = p.mass_kg * p.eccentricity_m * speed_rad_s ** 2 / (p.stiffness_N_m - p.mass_kg * wp ** 2 + f / r
+                                                            + 1j * p.damping_N_s_m * wp)
+    q, v = np.array([X.real, X.imag, 0.0, 0.0]), np.array([(1j * wp * X).real, (1j * wp * X).imag, 0.0, 0.0])
+    pm = period_map_setup(jeffcott_system(p, speed_rad_s), 2 * math.pi / speed_rad_s / n, TIGHT)
+    x0 = reduced_state(pm, q, v)
+    res = period_map(pm, x0, 0.0, n, modes0=(0, 0))
+    assert res.events == 0
+    assert np.abs(res.state - x0).max() <= 1e-12 * np.abs(x0).max()
+    Mfd, s, events = _fd_monodromy(pm, x0, 0.0, n, (0, 0), 1e-6)
+    assert events == 0
+    assert _scaled_error(res.monodromy, Mfd, s) < 1e-6
