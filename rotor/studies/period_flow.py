@@ -65,11 +65,14 @@ class Flow:
 
 @dataclass(frozen=True)
 class MapResult:
-    """``state`` (2 n_r,) after the steps, ``monodromy`` (2 n_r, 2 n_r) or None, end-face ``modes``."""
+    """``state`` (2 n_r,) after the steps, ``monodromy`` (2 n_r, 2 n_r) or None, end-face ``modes``, and
+    ``events``: end-face mode changes met (the initial stick test's included); the exact back-end's monodromy
+    has no saltation term at such a switch, so it is exact only with ``events == 0``."""
 
     state: np.ndarray
     monodromy: np.ndarray | None
     modes: tuple
+    events: int = 0
 
 
 def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto") -> Flow:
@@ -125,11 +128,14 @@ def advance(flow: Flow, state, t0: float, n_steps: int, modes0=(cons.STICK, cons
         r = pmod.period_map(flow.handle, np.asarray(state, float), float(t0), int(n_steps), modes0=tuple(modes0),
                             jacobian=jacobian)
         return MapResult(np.asarray(r.state, float), None if not jacobian else np.asarray(r.monodromy, float),
-                         tuple(int(m) for m in r.modes))
-    tr = _run(flow, state, t0, n_steps, modes0)
+                         tuple(int(m) for m in r.modes), int(r.events))
+    tr = _run(flow, state, t0, n_steps, modes0, 1)
     end = np.concatenate([flow.T.T @ tr.q[-1], flow.T.T @ tr.v[-1]])
     mono = monodromy_fd(flow, state, t0, n_steps, modes0) if jacobian else None
-    return MapResult(end, mono, tuple(int(m) for m in tr.modes[-1]))
+    nf = flow.reduced.support.faces()[2] if flow.reduced.support is not None else 0
+    events = int(sum(int(modes0[k]) != int(tr.modes[0, k]) for k in range(nf)))
+    events += int(np.count_nonzero(np.diff(tr.modes[:, :nf].astype(np.int64), axis=0)))
+    return MapResult(end, mono, tuple(int(m) for m in tr.modes[-1]), events)
 
 
 def block_scales(flow: Flow, state) -> np.ndarray:

@@ -60,6 +60,8 @@ class ShootingResult:
     monodromy : (2 n_r, 2 n_r); floquet : FloquetResult
     converged : bool; newton_iterations : int; residual : float, ``max |R_j|/s_j`` (–)
     singular_directions : int, directions of ``M − I`` dropped by the minimum-norm step at the last iteration
+    events : int, end-face mode changes over the converged period (the monodromy, hence the multipliers, of
+        the exact back-end is exact only with 0, :mod:`rotor.studies.period_flow`)
     scales : (2 n_r,) the orbit scales s_j (m, rad; m/s, rad/s); wall_s : float (s); backend : str
     """
 
@@ -75,6 +77,7 @@ class ShootingResult:
     newton_iterations: int
     residual: float
     singular_directions: int
+    events: int
     scales: np.ndarray
     wall_s: float
     backend: str
@@ -141,7 +144,7 @@ def shoot(flow: Flow, state0, *, t0_s: float, steps_per_rev: int, period_revs: i
     period = n * flow.dt_s
     fl = floquet(r.monodromy, period, tol=opts.multiplier_tol)
     return ShootingResult(x, float(t0_s), period, int(period_revs), int(steps_per_rev), tuple(r.modes), r.monodromy,
-                          fl, bool(ok), it, res, singular, s, time.perf_counter() - t_start, flow.backend)
+                          fl, bool(ok), it, res, singular, int(r.events), s, time.perf_counter() - t_start, flow.backend)
 
 
 def _poincare_order(P: np.ndarray, max_period: int) -> list[int]:

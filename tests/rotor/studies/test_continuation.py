@@ -1,0 +1,86 @@
+"""Pseudo-arclength continuation (rotor.studies.continuation) over the Jeffcott verification rotor's whole
+response curve, against its closed form (rotor.studies.jeffcott: ((k − mΩ'²) r + f(r − δ0))² + (cΩ' r)² =
+(m e Ω²)², with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N) in inertia and damping)."""
+import math
+
+import numpy as np
+import pytest
+
+from rotor.studies.continuation import ContinuationOptions, continue_branch, speed_problem
+from rotor.studies.jeffcott import (JeffcottParams, closed_form_folds, closed_form_radius, closed_form_speeds,
+                                    jeffcott_system, warped_frequency)
+
+P = JeffcottParams()
+N = 64
+SCALES = np.concatenate([np.full(4, 1e-4), np.full(4, 0.06)])    # m, m/s: orbit radii up to ~4.6e-4 m
+
+
+@pytest.fixture(scope="module", params=["auto", "fd"])
+def branch(request):
+    """150 → 900 rad/s from rest: lower-left, upper, middle (unstable), lower-right branches."""
+    pb = speed_problem(lambda w: jeffcott_system(P, w), N, backend=request.param, modes0=(0, 0))
+    return continue_branch(pb, np.zeros(8), 150.0, 900.0, scales=SCALES, lam_scale=100.0,
+                           options=ContinuationOptions(ds=0.1, ds_max=0.4))
+
+
+def _curve_distance(w, r):
+    """Relative distance of (Ω, r) from the closed-form curve: the smaller of the speed error at fixed radius
+    and the radius error at fixed speed (each well conditioned where the other is not: folds, peak)."""
+    speeds = closed_form_speeds(P, r, N)
+    d_w = float(np.min(np.abs(speeds - w)) / w) if len(speeds) else math.inf
+    if d_w < 1e-7:
+        return d_w
+    return min(d_w, abs(closed_form_radius(P, w, r, N) - r) / r)
+
+
+def test_branch_follows_the_closed_form_through_both_folds(branch):
+    assert branch.stop == "end reached"
+    w = branch.parameters()
+    r = np.array([math.hypot(p.state[0], p.state[1]) for p in branch.points])
+    worst = max(_curve_distance(wi, ri) for wi, ri in zip(w, r))
+    assert worst < 1e-6
+    # circular: speed Ω' r at every point
+    speed = np.array([math.hypot(p.state[4], p.state[5]) for p in branch.points])
+    assert np.allclose(speed, warped_frequency(w, N) * r, rtol=1e-6)
+    # the curve is covered: from below the clearance to the top near 45 δ0, back down, and beyond the folds
+    assert r.min() < P.clearance_m and r.max() > 44 * P.clearance_m and w[-1] >= 900.0
+    assert np.count_nonzero(np.diff(np.sign(np.diff(w)))) == 2            # speed turns twice: two folds
+
+
+def test_fold_speeds_match_the_warped_closed_form(branch):
+    folds = [b for b in branch.bifurcations if b.kind == "fold"]
+    expected = closed_form_folds(P, N)
+    assert len(folds) == 2
+    got = sorted(b.parameter for b in folds)
+    for g, (w_cf, _) in zip(got, expected):
+        assert abs(g / w_cf - 1) < 1e-3                                # the must-show bound (0.1 %)
+        assert abs(g / w_cf - 1) < 1e-7                                # what the located folds give
+    unwarped = closed_form_folds(P)
+    assert abs(got[0] / unwarped[0][0] - 1) > 5e-4                     # the warping is larger than the bound
+
+
+def test_middle_branch_is_unstable_with_a_real_multiplier_above_one(branch):
+    folds = sorted(b.index for b in branch.bifurcations if b.kind == "fold")
+    i_down, i_up = folds                                                # jump-down fold first (upper branch end)
+    middle = branch.points[i_down:i_up]
+    assert len(middle) >= 5
+    for p in middle:
+        mu = p.floquet.multipliers
+        real_above = mu[(np.abs(mu.imag) < 1e-9) & (mu.real > 1 + 1e-6)]
+        assert len(real_above) == 1 and not p.floquet.stable
+    # the upper branch (between the contact onset and the jump-down fold) is stable
+    upper = [p for p in branch.points[:i_down] if math.hypot(*p.state[:2]) > 10 * P.clearance_m]
+    assert len(upper) >= 5 and all(p.floquet.stable for p in upper)
+    # the lower branch below the clearance is stable too (linear rotor, ζ = 0.05)
+    assert all(p.floquet.stable for p in branch.points if math.hypot(*p.state[:2]) < P.clearance_m)
+
+
+def test_neimark_sacker_on_the_lower_right_branch(branch):
+    """Past the jump-up fold the lower branch has a complex pair outside the unit circle, found as a
+    Neimark-Sacker point within 0.01 % of the fold; the branch's last point is still NS-unstable. In the frame
+    whirling with the orbit the contact spring is stiffer radially (f') than tangentially (f/r), like an
+    asymmetric shaft, which is unstable between its two critical speeds: a non-synchronous whirl grows."""
+    ns = [b for b in branch.bifurcations if b.kind == "neimark_sacker"]
+    w_up = closed_form_folds(P, N)[0][0]
+    assert ns and all(abs(b.parameter / w_up - 1) < 1e-4 for b in ns)
+    assert branch.points[-1].floquet.n_out_complex == 2
