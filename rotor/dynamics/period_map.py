@@ -33,6 +33,7 @@ the monodromy's eigenvalues over N steps are its N-th powers, ``exp(λT) + O(Δt
 from __future__ import annotations
 
 import dataclasses
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,8 +42,9 @@ from contact.errors import InputError
 from contact.loose_support import N_PARAMS
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.condense import Condensed, condense, expand
-from rotor.dynamics.period_map_kernels import consistent_acceleration_jacobian, sensitivity_pass
+from rotor.dynamics.period_map_kernels import sensitivity_pass
 from rotor.dynamics.production import Prepared, prepare, simulate_production
+from rotor.dynamics.production import warm_up as production_warm_up
 from rotor.dynamics.system import NewmarkOptions, RotorSystem, Trajectory, check_time_step
 
 
@@ -203,14 +205,30 @@ def _monodromy(pm: PeriodMap, tr: Trajectory, rec_p, rec_v) -> np.ndarray:
     """``∂(p_N, v_N)/∂(p₀, v₀)`` along the every-step record ``tr`` (reduced ``rec_p``, ``rec_v``)."""
     pre, opts = pm.prepared, pm.options
     modes = np.ascontiguousarray(tr.modes.astype(np.int64))
-    has_sup = pm.reduced.support is not None
-    rp, rv = np.ascontiguousarray(rec_p), np.ascontiguousarray(rec_v)
-    Sa0 = consistent_acceleration_jacobian(rp[0], rv[0], pre.Bt, pm.MK, pm.MD, pre.WM, pre.SM, pre.P, modes[0],
-                                           pre.limits, pre.a1, pm.params, opts.w_reg) if has_sup else \
-        -np.hstack([pm.MK, pm.MD])
-    return sensitivity_pass(rp, rv, modes, np.ascontiguousarray(Sa0), pm.dt, opts.beta, opts.gamma, pm.AK, pm.AD,
-                            pm.MK, pm.MD, pre.Bt, pre.W, pre.S, pre.WM, pre.SM, pre.P, pre.limits, pre.a1, has_sup,
-                            pm.params, opts.w_reg, bool(opts.consistent_stick_onset))
+    return sensitivity_pass(np.ascontiguousarray(rec_p), np.ascontiguousarray(rec_v), modes, pm.dt, opts.beta,
+                            opts.gamma, pm.AK, pm.AD, pm.MK, pm.MD, pre.Bt, pre.W, pre.S, pre.WM, pre.SM, pre.P,
+                            pre.limits, pre.a1, pm.reduced.support is not None, pm.params, opts.w_reg,
+                            bool(opts.consistent_stick_onset))
+
+
+def warm_up() -> dict:
+    """Compile (or load from the on-disk cache, :mod:`contact.compiled_cache`) production's step loop and
+    the sensitivity pass now, so that a later :func:`period_map` times the work alone.
+
+    Returns
+    -------
+    dict
+        ``compile_s`` (s, wall time of the compiles or cache loads) and ``from_cache`` (True if the
+        sensitivity pass came from the disk cache).
+    """
+    t0 = time.perf_counter()
+    production_warm_up()
+    if not sensitivity_pass.signatures:
+        f1, f2 = np.zeros((1, 2)), np.zeros((2, 2))
+        sensitivity_pass(f1, f1.copy(), np.zeros((1, 2), np.int64), 1.0, 0.25, 0.5, f2, f2, f2, f2, np.zeros((6, 2)),
+                         np.zeros((2, 6)), np.zeros((6, 6)), np.zeros((2, 6)), np.zeros((6, 6)), np.zeros((2, 2, 4)),
+                         np.zeros(2), 0.0, False, np.zeros(N_PARAMS), 1e-6, True)
+    return {"compile_s": time.perf_counter() - t0, "from_cache": bool(sum(sensitivity_pass.stats.cache_hits.values()))}
 
 
 _SAMPLED = ("t", "q", "v", "a", "u", "w", "f_contact", "f_elastic", "face_force", "modes", "newton_iters", "passes")

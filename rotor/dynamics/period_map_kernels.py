@@ -141,11 +141,12 @@ def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt
 
 
 @njit(cache=True)
-def sensitivity_pass(rec_p, rec_v, rec_modes, Sa0, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N,
+def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N,
                      a1, has_support, params, w_reg, onset_projection):
     """Carry ``∂(p, v, a)/∂(p₀, v₀)`` along a recorded run of ``step_loop`` (every step recorded:
-    ``rec_p``, ``rec_v`` (N+1, nr), ``rec_modes`` (N+1, 2)). ``Sa0`` (nr × 2nr): ``∂a₀/∂(p₀, v₀)``.
-    ``AK = A⁻¹K``, ``AD = A⁻¹D`` (``A`` the Newmark matrix), ``MK = M⁻¹K``, ``MD = M⁻¹D``.
+    ``rec_p``, ``rec_v`` (N+1, nr), ``rec_modes`` (N+1, 2)), starting from the consistent initial
+    acceleration's ``∂a₀/∂(p₀, v₀)`` (:func:`consistent_acceleration_jacobian` with the modes after the
+    initial stick test, ``rec_modes[0]``). ``AK = A⁻¹K``, ``AD = A⁻¹D`` (``A`` the Newmark matrix), ``MK = M⁻¹K``, ``MD = M⁻¹D``.
 
     Each step is differentiated with the modes it ended in (no saltation at mode changes); a
     step in which a face stuck is followed, as in ``step_loop``, by the consistent-acceleration
@@ -161,7 +162,16 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, Sa0, dt, beta, gamma, AK, AD, MK, 
     Spv = np.zeros((ncol, ncol))
     for i in range(ncol):
         Spv[i, i] = 1.0
-    Sa = np.ascontiguousarray(Sa0).copy()
+    modes = np.zeros(2, dtype=np.int64)
+    if has_support:
+        modes[0] = rec_modes[0, 0]
+        modes[1] = rec_modes[0, 1]
+        Sa = consistent_acceleration_jacobian(rec_p[0], rec_v[0], Bt, MK, MD, WM, SM, P, modes, mu_N, a1, params,
+                                              w_reg)
+    else:
+        Sa = np.empty((nr, ncol))
+        Sa[:, :nr] = -MK
+        Sa[:, nr:] = -MD
     Pre = np.empty((ncol, ncol))
     Sal = np.empty((nr, ncol))
     AKD = np.empty((nr, ncol))
@@ -173,7 +183,6 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, Sa0, dt, beta, gamma, AK, AD, MK, 
     E[2 * NC:, nr:] = Bt
     Y = np.empty((3 * NC, ncol))
     Z = np.empty((NC, ncol))
-    modes = np.zeros(2, dtype=np.int64)
     for n in range(n_steps):
         for i in range(nr):
             for c in range(ncol):

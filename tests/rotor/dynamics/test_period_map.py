@@ -263,3 +263,18 @@ def test_jeffcott_circular_orbit_is_a_fixed_point_and_its_monodromy_equals_finit
     Mfd, s, events = _fd_monodromy(pm, x0, 0.0, n, (0, 0), 1e-6)
     assert events == 0
     assert _scaled_error(res.monodromy, Mfd, s) < 1e-6
+
+
+def test_warm_up_compiles_the_signature_real_runs_use(linear_map):
+    """warm_up's argument types are those of a real run: one signature after both, with and without support."""
+    from rotor.dynamics import period_map as pmod
+    from rotor.dynamics.period_map_kernels import sensitivity_pass
+
+    info = pmod.warm_up()
+    assert info["compile_s"] >= 0.0 and isinstance(info["from_cache"], bool)
+    _, pm, x0 = linear_map
+    period_map(pm, x0, 0.0, 4)
+    system = _system()
+    pm4 = period_map_setup(system, 2 * math.pi / system.omega_rad_s / STEPS_PER_REV)
+    period_map(pm4, reduced_state(pm4, *linear_initial_state(system)), 0.0, 4)
+    assert len(sensitivity_pass.signatures) == 1, sensitivity_pass.signatures
