@@ -14,8 +14,13 @@ and returns the end state and ``∂ state_N / ∂ state_0``.
   (rank-6 correction per step). Stuck faces are differentiated as the scheme imposes them (end-of-step
   relative face velocity zero, the multipliers unknowns); slipping faces through the regularised
   friction ``−μN w/√(|w|² + w_reg²)``, which is smooth. A step in which a face changes mode is
-  differentiated with the modes it ended in: **no saltation matrix** at stick/slip switches, so the
-  monodromy is exact only when ``PeriodMapResult.events == 0``.
+  differentiated with the modes it ended in (and through the stick-onset restart). In this scheme a
+  switch falls on a step boundary, so while a perturbation leaves every switch in its step the map is
+  smooth and the monodromy is its exact derivative (tested against central differences through
+  revolutions with switches). There is **no saltation matrix**: a perturbation that moves a switch by a
+  step makes the map jump instead (the discrete trace of the continuous system's saltation), which the
+  derivative does not see; ``PeriodMapResult.events`` counts the switches so a caller knows when
+  that can happen.
 * **Initial acceleration**: as production, ``a₀`` is the consistent acceleration at ``(p₀, v₀, t₀)``
   (equilibrium with the stuck faces' relative acceleration zero, :func:`rotor.dynamics.initial.initial_state`);
   its derivative enters the monodromy, so the map is a function of ``(p₀, v₀)`` alone.
@@ -81,8 +86,10 @@ class PeriodMapResult:
     """Result of :func:`period_map`.
 
     state : (2 nr,) ``[p, v]`` at ``t0 + n_steps Δt`` (m, rad; m/s, rad/s in reduced coordinates).
-    monodromy : (2 nr, 2 nr) ``∂ state / ∂ state0`` or None (``jacobian=False``); exact for the
-        scheme when ``events == 0`` (no saltation at stick/slip switches).
+    monodromy : (2 nr, 2 nr) ``∂ state / ∂ state0`` or None (``jacobian=False``): the exact derivative
+        of the scheme's map as long as every stick/slip switch stays in its step; no saltation term for
+        a switch that moves (see the module docstring), so with ``events > 0`` it is the derivative of
+        the smooth piece the state lies on.
     modes : (2,) int64 face modes at the end (1 stick, 0 slip), to pass as the next ``modes0``.
     phi_face : (2, 2) end-face forces at the end (N): stuck faces' multipliers, slip forces.
     trajectory : :class:`rotor.dynamics.system.Trajectory` (full DOFs, as ``simulate_production``
