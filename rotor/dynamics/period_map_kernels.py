@@ -177,11 +177,7 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, B
     AKD = np.empty((nr, ncol))
     AKD[:, :nr] = AK
     AKD[:, nr:] = AD
-    E = np.zeros((3 * NC, ncol))      # y = E · predictor: α_lin = −Bt A⁻¹[K D], u_pre = Bt p_pre, w_pre = Bt v_pre
-    E[:NC] = -(Bt @ AKD)
-    E[NC:2 * NC, :nr] = Bt
-    E[2 * NC:, nr:] = Bt
-    Y = np.empty((3 * NC, ncol))
+    Y = np.empty((3 * NC, ncol))      # ∂y: α_lin = Bt a_lin, u_pre = Bt p_pre, w_pre = Bt v_pre
     Z = np.empty((NC, ncol))
     for n in range(n_steps):
         for i in range(nr):
@@ -196,7 +192,12 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, B
             u = Bt @ rec_p[n + 1]
             w = Bt @ rec_v[n + 1]
             Dg = _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt)
-            np.dot(E, Pre, Y)
+            np.dot(Bt, Sal, Y[:NC])
+            np.dot(Bt, Pre[:nr], Y[NC:2 * NC])
+            np.dot(Bt, Pre[nr:], Y[2 * NC:])
+            for r in range(NC):
+                for c in range(ncol):
+                    Y[r, c] = -Y[r, c]
             np.dot(Dg, Y, Z)
             np.dot(W, Z, Sa)
             for i in range(nr):
