@@ -5,8 +5,9 @@
 and returns the end state and ``∂ state_N / ∂ state_0``.
 
 * **Stepping** is production's own compiled loop (:func:`rotor.dynamics.production_kernels.step_loop`,
-  through ``simulate_production``, every step recorded), so the end state is production's
-  bit for bit (same predictor, condensed Newton, active-set and stick rules, stick-onset restart).
+  through ``simulate_production``, every step recorded), so the end state is production's to
+  round-off (same predictor, condensed Newton, active-set and stick rules, stick-onset restart; only
+  the way back from the recorded ``q = T p`` to ``p`` rounds differently).
 * **Derivative** is carried afterwards along the recorded steps
   (:func:`rotor.dynamics.period_map_kernels.sensitivity_pass`): the linear Newmark part is a
   constant matrix, the support enters through the six condensed coordinates that Newton solved,
@@ -32,8 +33,9 @@ the state is ``[p, v]`` with ``v = Tᵀ q̇``, ``2 nr`` numbers (``nr = PeriodMa
 
 For the Newmark average-acceleration rule (β = 1/4, γ = 1/2) on a linear system the step is the
 trapezoidal rule, whose amplification of an eigenvalue ``λ`` is the Cayley map
-``(1 + λΔt/2)/(1 − λΔt/2)`` (Hairer & Wanner 1996, stability function of the trapezoidal rule), so
-the monodromy's eigenvalues over N steps are its N-th powers, ``exp(λT) + O(Δt²)``.
+``(1 + λΔt/2)/(1 − λΔt/2)`` (Hairer & Wanner 1996, *Solving Ordinary Differential Equations II*, the
+trapezoidal rule's stability function), so the monodromy's eigenvalues over N steps are its N-th
+powers, ``exp(λT) + O(Δt²)``.
 """
 from __future__ import annotations
 

@@ -2,7 +2,8 @@
 
 Checked against: (1) production itself (the map's end state is simulate_production's); (2) a
 central finite-difference monodromy of the same map (linear rotors, and the Table 4 scene at
-10 500 rpm with stuck, slipping and contacting support); (3) on a linear rotor, the closed form of
+10 500 rpm with stuck, slipping and contacting support, and through stick/slip switches; the
+frictionless clearance Jeffcott rotor on its exact discrete circular orbit); (3) on a linear rotor, the closed form of
 the average-acceleration Newmark map: the trapezoidal rule's Cayley map
 ``((1 + λΔt/2)/(1 − λΔt/2))^N`` of the first-order system's eigenvalues λ (Hairer & Wanner 1996,
 stability function of the trapezoidal rule), which tends to ``exp(λT)`` at second order in Δt.
