@@ -5,10 +5,12 @@ The step of :func:`rotor.dynamics.production_kernels.step_loop` maps ``(p, v, a)
 coordinates ``α`` (and two multipliers per stuck face) that the step solves by Newton. At the
 converged step ``R(x; α_lin, u_pre, w_pre) = 0`` (:func:`rotor.dynamics.production_kernels._residual`),
 so by the implicit function theorem ``dx = −R_x⁻¹ R_y dy`` with ``y = (α_lin, u_pre, w_pre)``
-(18 numbers, each ``Bᵀ``-projections of the predictor), and the full acceleration changes by
+(18 numbers, projections ``B`` of the predictor), and the full acceleration changes by
 ``W dg`` (``g`` the 6 condensed forces): a rank-6 correction of the linear step. The sensitivity
-of the state to the 2 nr initial values is carried as three ``nr × 2nr`` blocks; a step costs
-one ``nr × 2nr × 2nr`` product (the linear part) and ``O(nr · 2nr)`` for the correction.
+of the state to the 2 nr initial values is carried as ``∂(p, v)`` (2nr × 2nr) and ``∂a`` (nr × 2nr);
+a step costs one ``nr × 2nr × 2nr`` product (the linear part, ``A⁻¹[K D]`` on the predictor) and
+``O(18 · nr · 2nr)`` for the correction (measured on the Table 4 rotor, nr = 26: the monodromy
+costs about 1.5 times the map itself, ``reports/published/perf-period-map.md``).
 
 The forces' partial Jacobians ``∂g/∂u`` and ``∂g/∂w`` come from the same compiled
 :func:`rotor.dynamics.production_kernels._forces` (called with ``βΔt² = 1, γΔt = 0`` and
