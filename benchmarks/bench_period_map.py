@@ -108,7 +108,7 @@ def report(rows: list[dict], load0, load1, repeats: int, compile_info: dict) -> 
         f"Load average at start {load0[0]:.2f}/{load0[1]:.2f}/{load0[2]:.2f}, at end "
         f"{load1[0]:.2f}/{load1[1]:.2f}/{load1[2]:.2f} (shared machine, 2 cores); {platform.machine()}, "
         f"Python {platform.python_version()}.", "",
-        "| steps/rev | n_r | production (ms) | map (ms) | map + monodromy (ms) | monodromy / map | FD monodromy (ms) "
+        "| steps/rev | n_r | production (ms) | map (ms) | map + monodromy (ms) | (map + monodromy) / map | FD monodromy (ms) "
         "| FD / exact | stick/slip events | largest multiplier |",
         "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
