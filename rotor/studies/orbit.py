@@ -23,7 +23,7 @@ import numpy as np
 from rotor.dynamics.initial import linear_initial_state
 from rotor.studies.continuation import Branch, ContinuationOptions, continue_branch, speed_problem
 from rotor.studies.floquet import FloquetResult
-from rotor.studies.period_flow import Flow, make_flow, record
+from rotor.studies.period_flow import Flow, make_flow, record, to_full
 from rotor.studies.shooting import ShootingOptions, ShootingResult, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
 
@@ -45,6 +45,8 @@ class OrbitResult:
         period, or the finite-difference back-end (the step-Jacobian monodromy has no saltation term at a
         stick/slip switch, :mod:`rotor.dynamics.period_map`, so with events its multipliers are approximate)
     backend : str; shooting : ShootingResult (the reduced state, monodromy, scales)
+    q_m, v_m_s : (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring
+        speed
     """
 
     speed_rpm: float
@@ -63,6 +65,8 @@ class OrbitResult:
     wall_s: float
     backend: str
     shooting: ShootingResult
+    q_m: np.ndarray
+    v_m_s: np.ndarray
 
     @property
     def multipliers_exact(self) -> bool:
@@ -116,9 +120,10 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     q0, v0 = linear_initial_state(system, 0.0) if start is None else start
     res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options)
     amps = velocity_amplitudes(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
+    q, v = to_full(flow, res.state, 0.0)
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
                        res.floquet, amps, res.newton_iterations, res.residual, res.transient_revs, res.events,
-                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res)
+                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v)
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,55 @@
+"""orbit() on the Table 4 rotor (Dai et al. 2025) at 10 500 rpm, against the transient steady state that
+``simulate --steady`` reports (rotor.studies.steady_state from the linear periodic solution)."""
+import numpy as np
+import pytest
+
+from rotor.dynamics.initial import linear_initial_state
+from rotor.dynamics.production import warm_up
+from rotor.studies.orbit import orbit
+from rotor.studies.steady_state import steady_state, point_system
+
+SPEED = 10500.0
+
+
+@pytest.fixture(scope="module")
+def transient():
+    warm_up()
+    _, model, system = point_system("paper-table4", SPEED)
+    q0, v0 = linear_initial_state(system, 0.0)
+    return steady_state(system, model, q0=q0, v0=v0)
+
+
+def _worst(o, ss):
+    h = ss.harmonics("v")
+    return max(float(np.max(np.abs(np.array(o.velocity_amplitudes_mm_s_1X_to_5X[n]) * 1e-3 - h[:, j]) / h[:, j]))
+               for j, n in enumerate(ss.channels))
+
+
+def test_shooting_from_the_transient_state_reproduces_its_harmonics(transient):
+    """From the transient's end state: Newton converges (1e-9 of the orbit scale) on a period of one
+    revolution, and the 1X-5X velocity amplitudes at every station equal the transient's to 1e-4 (measured
+    3.5e-5, the transient's own Poincaré tolerance being 1e-4)."""
+    assert transient.convergence.converged and transient.convergence.period == 1
+    o = orbit("paper-table4", SPEED, start=(transient.q_end, transient.v_end))
+    assert o.converged and o.residual < 1e-9 and o.period_revs == 1
+    assert set(o.velocity_amplitudes_mm_s_1X_to_5X) == set(transient.channels)
+    assert _worst(o, transient) < 1e-4
+    assert o.stable
+
+
+def test_a_stuck_face_makes_a_continuum_of_orbits(transient):
+    """The right face slips part of each revolution and the left one sticks throughout, so the left face's
+    sticking offset is free: two multipliers exactly 1 (n_neutral = 2). Shooting from the linear start after
+    a shorter transient converges to another member of that continuum: an exact periodic orbit whose
+    harmonics differ from the long transient's by more than its tolerance, its 1X by less than 1e-3."""
+    o = orbit("paper-table4", SPEED)
+    assert o.converged and o.residual < 1e-9 and o.period_revs == 1
+    assert o.floquet.n_neutral == 2 and o.stable
+    assert o.events > 0 and not o.multipliers_exact        # stick/slip switches: no saltation term
+    h = transient.harmonics("v")
+    one_x = max(abs(o.velocity_amplitudes_mm_s_1X_to_5X[n][0] * 1e-3 / h[0, j] - 1)
+                for j, n in enumerate(transient.channels))
+    assert one_x < 1e-3
+    assert _worst(o, transient) > 1e-3
+    d = o.as_dict()
+    assert d["stable"] is True and len(d["multipliers"]) == o.shooting.state.size
