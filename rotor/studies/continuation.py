@@ -81,6 +81,13 @@ def speed_problem(system_at_speed: Callable, steps_per_rev: int, **kw) -> Proble
     return Problem(system_at_speed, lambda w: w, steps_per_rev, **kw)
 
 
+def parameter_problem(system_at: Callable, speed_rad_s: float, steps_per_rev: int, name: str, **kw) -> Problem:
+    """Continuation in a scalar scene parameter λ (``name`` with its unit, e.g. ``clearance_m``,
+    ``misalignment_m``) at the fixed spin speed ``speed_rad_s``: ``system_at(λ) -> RotorSystem``."""
+    w = float(speed_rad_s)
+    return Problem(system_at, lambda lam: w, steps_per_rev, name=name, **kw)
+
+
 @dataclass(frozen=True)
 class BranchPoint:
     """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector

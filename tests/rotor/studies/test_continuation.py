@@ -6,9 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from rotor.studies.continuation import ContinuationOptions, continue_branch, speed_problem
+from rotor.studies.continuation import ContinuationOptions, continue_branch, parameter_problem, speed_problem
 from rotor.studies.jeffcott import (JeffcottParams, closed_form_folds, closed_form_radius, closed_form_speeds,
-                                    jeffcott_system, warped_frequency)
+                                    contact_force_N, jeffcott_system, warped_frequency)
+from rotor.studies.shooting import shoot_from_transient
 
 P = JeffcottParams()
 N = 64
@@ -84,3 +85,40 @@ def test_neimark_sacker_on_the_lower_right_branch(branch):
     w_up = closed_form_folds(P, N)[0][0]
     assert ns and all(abs(b.parameter / w_up - 1) < 1e-4 for b in ns)
     assert branch.points[-1].floquet.n_out_complex == 2
+
+
+def _roots_in_radius(w, clearance_m):
+    """Number of orbit radii of the warped closed form at speed w and clearance (sign changes of the
+    residual on a 0.14 %-spaced logarithmic grid of radii, 1 µm to 1 mm)."""
+    rs = np.geomspace(1e-6, 1e-3, 5000)
+    wp = float(warped_frequency(w, N))
+    f = contact_force_N(P, rs, clearance_m)
+    g = ((P.stiffness_N_m - P.mass_kg * wp ** 2) * rs + f) ** 2 + (P.damping_N_s_m * wp * rs) ** 2 \
+        - (P.mass_kg * P.eccentricity_m * w ** 2) ** 2
+    return int(np.count_nonzero(np.diff(np.sign(g))))
+
+
+def test_continuation_in_clearance_at_fixed_speed():
+    """At 680 rad/s (between the speed folds) the clearance is the parameter, 6 to 40 µm: the branch stays on
+    the closed form (1e-6; the Pereira law's exponent itself depends on the clearance) and turns twice; at
+    each located fold the closed form's number of radii changes by two within ±0.1 % of the clearance."""
+    w = 680.0
+    pb = parameter_problem(lambda c: jeffcott_system(P, w, clearance_m=c), w, N, "clearance_m", modes0=(0, 0))
+    start = shoot_from_transient(pb.flow(6e-6), np.zeros(4), np.zeros(4), steps_per_rev=N, period_revs=1,
+                                 modes0=(0, 0))
+    br = continue_branch(pb, start.state, 6e-6, 4e-5, scales=SCALES, lam_scale=1e-5,
+                         options=ContinuationOptions(ds=0.1, ds_max=0.4))
+    assert br.stop == "end reached"
+    for p in br.points:
+        r = math.hypot(*p.state[:2])
+        speeds = closed_form_speeds(P, r, N, clearance_m=p.parameter)
+        d = float(np.min(np.abs(speeds - w)) / w) if len(speeds) else math.inf
+        if d >= 1e-6:
+            d = abs(closed_form_radius(P, w, r, N, clearance_m=p.parameter) - r) / r
+        assert d < 1e-6
+    folds = [b.parameter for b in br.bifurcations if b.kind == "fold"]
+    assert len(folds) == 2
+    for c in folds:
+        assert abs(_roots_in_radius(w, c * (1 - 1e-3)) - _roots_in_radius(w, c * (1 + 1e-3))) == 2
+    mid = 0.5 * sum(folds)                       # between the folds: three radii, no change
+    assert _roots_in_radius(w, mid * (1 - 1e-3)) == _roots_in_radius(w, mid * (1 + 1e-3)) == 3
