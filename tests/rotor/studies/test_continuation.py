@@ -122,3 +122,37 @@ def test_continuation_in_clearance_at_fixed_speed():
         assert abs(_roots_in_radius(w, c * (1 - 1e-3)) - _roots_in_radius(w, c * (1 + 1e-3))) == 2
     mid = 0.5 * sum(folds)                       # between the folds: three radii, no change
     assert _roots_in_radius(w, mid * (1 - 1e-3)) == _roots_in_radius(w, mid * (1 + 1e-3)) == 3
+
+
+@pytest.mark.slow
+def test_period_doubling_on_table4_and_the_doubled_branch():
+    """Table 4 rotor (Dai et al. 2025) from 10 600 rpm up: a real multiplier passes −1 near 10 626 rpm (the
+    complex pair near −1 meets the real axis outside the circle). Past it the multiplier is checked with the
+    finite-difference monodromy (no face mode change over the period there, so both derivatives are the
+    scheme's). Branch switching gives orbits of two revolutions that are not of one: x(2T) = x(0) to 1e-9 of the
+    orbit scale while x(T) − x(0) is of order 1e-2, starting within 0.05 % of the located speed."""
+    from rotor.studies.continuation import switch_period_doubling
+    from rotor.studies.orbit import branch
+    from rotor.studies.period_flow import advance, make_flow, monodromy_fd
+    from rotor.studies.steady_state import point_system
+
+    b = branch("paper-table4", 10600.0, 10680.0, options=ContinuationOptions(max_points=12), amplitudes=False)
+    pds = [x for x in b.branch.bifurcations if x.kind == "period_doubling"]
+    assert len(pds) == 1 and 10600 < pds[0].parameter * 30 / math.pi < 10680
+    n, modes, scales = b.start.steps_per_rev, b.start.shooting.modes, b.start.shooting.scales
+    after = b.branch.points[pds[0].index]
+    sysm = point_system("paper-table4", after.parameter * 30 / math.pi)[2]
+    flow_fd = make_flow(sysm, 2 * math.pi / after.parameter / n, "fd")
+    mu = np.linalg.eigvals(monodromy_fd(flow_fd, after.state, 0.0, n, modes))
+    assert np.min(mu.real[np.abs(mu.imag) < 1e-9]) < -1.0
+    pb = speed_problem(lambda w: point_system("paper-table4", w * 30 / math.pi)[2], n, modes0=modes)
+    b2 = switch_period_doubling(pb, b.branch, pds[0], 10700 * math.pi / 30, scales=scales,
+                                lam_scale=8 * math.pi / 30, options=ContinuationOptions(max_points=4))
+    assert b2.period_revs == 2 and len(b2.points) >= 3
+    assert abs(b2.points[1].parameter / pds[0].parameter - 1) < 5e-4
+    for p in b2.points[1:]:
+        fl = pb.flow(p.parameter)
+        x1 = advance(fl, p.state, 0.0, n, modes, jacobian=False).state
+        x2 = advance(fl, x1, n * fl.dt_s, n, modes, jacobian=False).state
+        assert np.max(np.abs(x2 - p.state) / scales) < 1e-9
+        assert np.max(np.abs(x1 - p.state) / scales) > 1e-3
