@@ -181,3 +181,26 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
         pts.append(d)
     bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index} for b in br.bifurcations)
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
+
+
+def cascade(scene: str, speeds_rpm, *, steps_per_rev: int | None = None, backend: str = "auto",
+            options: ShootingOptions | None = None, **overrides) -> tuple:
+    """:func:`orbit` at each speed of ``speeds_rpm`` (rpm, > 0) in order, each started from the previous
+    converged orbit (2 transient revolutions before Newton) or, after a failure and at the first speed, from
+    the linear periodic solution with the full transient rounds. Returns the :class:`OrbitResult` of every
+    speed; ``converged`` False marks a speed where no orbit of 1..8 revolutions was found within
+    ``max_transient_revs`` (quasi-periodic or chaotic; the neighbours' multipliers say which way it was
+    left: a complex pair outside the circle, Neimark-Sacker, or a real one below −1, period doubling)."""
+    opts = options or ShootingOptions()
+    warm = ShootingOptions(**{**opts.__dict__, "transient_revs": 2})
+    out, prev = [], None
+    for s in speeds_rpm:
+        kw = dict(steps_per_rev=steps_per_rev, backend=backend, **overrides)
+        res = None
+        if prev is not None:
+            res = orbit(scene, s, start=(prev.q_m, prev.v_m_s), options=warm, period_revs=prev.period_revs, **kw)
+        if res is None or not res.converged:
+            res = orbit(scene, s, options=opts, **kw)
+        out.append(res)
+        prev = res if res.converged else None
+    return tuple(out)

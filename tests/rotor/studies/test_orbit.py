@@ -53,3 +53,24 @@ def test_a_stuck_face_makes_a_continuum_of_orbits(transient):
     assert _worst(o, transient) > 1e-3
     d = o.as_dict()
     assert d["stable"] is True and len(d["multipliers"]) == o.shooting.state.size
+
+
+def test_cascade_warm_starts_each_speed_from_the_previous_orbit():
+    """Three speeds where the faces keep their modes over the period (exact multipliers): every orbit
+    converges; after the first, each starts from its neighbour with 2 transient revolutions only."""
+    from rotor.studies.orbit import cascade
+
+    res = cascade("paper-table4", [11400.0, 11700.0, 12000.0])
+    assert all(r.converged and r.period_revs == 1 for r in res)
+    assert res[0].transient_revs >= 16 and all(r.transient_revs == 2 for r in res[1:])
+    assert all(r.multipliers_exact and r.stable for r in res)
+
+
+def test_a_small_orbit_on_a_large_offset_converges_at_the_noise_floor():
+    """300 rpm: a 0.24 µm orbit on a 1 mm misalignment offset, 4 480 steps per revolution (contact step
+    limit). Newton stalls near 2e-9 of the orbit scale, above tol (1e-9) and below accept_tol (1e-7): the
+    orbit is accepted and its residual reported; both faces stick throughout (4 neutral multipliers)."""
+    o = orbit("paper-table4", 300.0, period_revs=1)
+    assert o.converged and o.steps_per_rev > 256
+    assert o.residual < 1e-7
+    assert o.floquet.n_neutral == 4
