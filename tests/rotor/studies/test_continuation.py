@@ -1,6 +1,11 @@
 """Pseudo-arclength continuation (rotor.studies.continuation) over the Jeffcott verification rotor's whole
-response curve, against its closed form (rotor.studies.jeffcott: ((k − mΩ'²) r + f(r − δ0))² + (cΩ' r)² =
-(m e Ω²)², with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N) in inertia and damping)."""
+response curve, against its closed form (derived in rotor/studies/jeffcott.py: ((k − mΩ'²) r + f(r − δ0))² +
+(cΩ' r)² = (m e Ω²)², with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N) in inertia and damping).
+
+The rotor (JeffcottParams defaults): m = 1 kg, k = 1e5 N/m (ω_n = 316.2 rad/s), c = 31.62 N s/m (ζ = 0.05),
+e = 20 µm, clearance δ0 = 10 µm, ring width 10 mm, Pereira et al. (2015) law with E = 10 MPa (f ∝ pen^1.25),
+c_c = 50 s/m (inactive on a circle), N = 64 steps per revolution. Closed-form folds (warped): 623.645 rad/s
+(r = 7.39 δ0, jump-up) and 726.368 rad/s (r = 45.5 δ0, jump-down); unwarped 624.336 and 727.172 rad/s."""
 import math
 
 import numpy as np
