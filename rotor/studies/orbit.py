@@ -20,11 +20,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contact.errors import InputError
+from contact.units import check_positive
 from rotor.dynamics.initial import linear_initial_state
 from rotor.studies.continuation import Branch, ContinuationOptions, continue_branch, speed_problem
 from rotor.studies.floquet import FloquetResult
 from rotor.studies.period_flow import Flow, make_flow, record, to_full
-from rotor.studies.shooting import ShootingOptions, ShootingResult, shoot_from_transient
+from rotor.studies.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
 
 ORDERS = (1, 2, 3, 4, 5)
@@ -114,6 +116,9 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     ``(q0, v0)`` at t = 0 instead of the linear periodic solution (e.g. a neighbouring speed's orbit).
     """
     t_start = time.perf_counter()
+    check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)    # an orbit needs a period: no zero speed
+    if period_revs is not None and not (int(period_revs) == period_revs and 1 <= period_revs <= MAX_PERIOD_REVS):
+        raise InputError(f"period_revs = {period_revs}: must be a whole number of revolutions, 1 to {MAX_PERIOD_REVS}")
     _, model, system = point_system(scene, speed_rpm, **_overrides(overrides))
     n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
     flow = make_flow(system, 2.0 * math.pi / (system.omega_rad_s * n), backend)
@@ -153,6 +158,10 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     ``amplitudes``: record each point's 1X-5X velocity amplitudes (one extra period per point).
     """
     t_start = time.perf_counter()
+    check_positive("rpm_start", rpm_start, "rpm", upper=1e5)
+    check_positive("rpm_end", rpm_end, "rpm", upper=1e5)
+    if rpm_start == rpm_end:
+        raise InputError(f"rpm_end = {rpm_end:g} rpm: must differ from rpm_start = {rpm_start:g} rpm")
     ov = _overrides(overrides)
     _, model, sys_lo = point_system(scene, min(rpm_start, rpm_end), **ov)
     n = int(steps_per_rev or step_per_rev(sys_lo, SteadyStateOptions()))

@@ -74,3 +74,17 @@ def test_a_small_orbit_on_a_large_offset_converges_at_the_noise_floor():
     assert o.converged and o.steps_per_rev > 256
     assert o.residual < 1e-7
     assert o.floquet.n_neutral == 4
+
+
+def test_bad_requests_are_refused_in_one_line():
+    from contact.errors import InputError
+    from rotor.studies.orbit import branch
+
+    with pytest.raises(InputError, match="speed_rpm"):
+        orbit("paper-table4", 0.0)
+    with pytest.raises(InputError, match="period_revs"):
+        orbit("paper-table4", 10500.0, period_revs=9)
+    with pytest.raises(InputError, match="rpm_end"):
+        branch("paper-table4", 10500.0, 10500.0)
+    with pytest.raises(InputError, match="rpm_start"):
+        branch("paper-table4", -1.0, 10500.0)
