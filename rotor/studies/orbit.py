@@ -43,9 +43,10 @@ class OrbitResult:
     velocity_amplitudes_mm_s_1X_to_5X : dict, ``<station>.<y|z>`` -> five amplitudes (mm/s)
     newton_iterations : int; residual : float (–, relative to the orbit scale); transient_revs : int
     events : int, end-face mode changes over the period; singular_directions : int; wall_s : float (s)
-    multipliers_exact : bool, the monodromy is the scheme's exact derivative: no face mode change over the
-        period, or the finite-difference back-end (the step-Jacobian monodromy has no saltation term at a
-        stick/slip switch, :mod:`rotor.dynamics.period_map`, so with events its multipliers are approximate)
+    switch_free : bool, no end-face mode change over the period. With switches the monodromy is still the
+        exact derivative of the scheme's map while every switch stays in its step, but a perturbation that
+        moves a switch by a step makes the map jump (the discrete trace of the continuous system's saltation,
+        :mod:`rotor.dynamics.period_map`), which the multipliers do not see
     backend : str; shooting : ShootingResult (the reduced state, monodromy, scales)
     q_m, v_m_s : (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring
         speed
@@ -71,8 +72,8 @@ class OrbitResult:
     v_m_s: np.ndarray
 
     @property
-    def multipliers_exact(self) -> bool:
-        return self.events == 0 or self.backend == "fd"
+    def switch_free(self) -> bool:
+        return self.events == 0
 
     def as_dict(self) -> dict:
         """JSON-ready summary, keys with units."""
@@ -83,7 +84,7 @@ class OrbitResult:
                 "velocity_amplitudes_mm_s_1X_to_5X": self.velocity_amplitudes_mm_s_1X_to_5X,
                 "newton_iterations": self.newton_iterations, "residual": self.residual,
                 "transient_revs": self.transient_revs, "face_mode_changes": self.events,
-                "singular_directions": self.singular_directions, "multipliers_exact": self.multipliers_exact,
+                "singular_directions": self.singular_directions, "switch_free": self.switch_free,
                 "wall_s": self.wall_s, "backend": self.backend}
 
 

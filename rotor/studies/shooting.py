@@ -69,8 +69,8 @@ class ShootingResult:
     monodromy : (2 n_r, 2 n_r); floquet : FloquetResult
     converged : bool; newton_iterations : int; residual : float, ``max |R_j|/s_j`` (–)
     singular_directions : int, directions of ``M − I`` dropped by the minimum-norm step at the last iteration
-    events : int, end-face mode changes over the converged period (the monodromy, hence the multipliers, of
-        the exact back-end is exact only with 0, :mod:`rotor.studies.period_flow`)
+    events : int, end-face mode changes over the converged period (with switches the map is only piecewise
+        smooth: the multipliers hold while no switch moves by a step, :mod:`rotor.studies.period_flow`)
     scales : (2 n_r,) the orbit scales s_j (m, rad; m/s, rad/s); wall_s : float (s); backend : str
     transient_revs : int, revolutions integrated before the converged Newton (:func:`shoot_from_transient`)
     """

@@ -45,7 +45,7 @@ def test_a_stuck_face_makes_a_continuum_of_orbits(transient):
     o = orbit("paper-table4", SPEED)
     assert o.converged and o.residual < 1e-9 and o.period_revs == 1
     assert o.floquet.n_neutral == 2 and o.stable
-    assert o.events > 0 and not o.multipliers_exact        # stick/slip switches: no saltation term
+    assert o.events > 0 and not o.switch_free              # the right face switches stick/slip in the period
     h = transient.harmonics("v")
     one_x = max(abs(o.velocity_amplitudes_mm_s_1X_to_5X[n][0] * 1e-3 / h[0, j] - 1)
                 for j, n in enumerate(transient.channels))
@@ -56,14 +56,14 @@ def test_a_stuck_face_makes_a_continuum_of_orbits(transient):
 
 
 def test_cascade_warm_starts_each_speed_from_the_previous_orbit():
-    """Three speeds where the faces keep their modes over the period (exact multipliers): every orbit
+    """Three speeds where the faces keep their modes over the period (a smooth map): every orbit
     converges; after the first, each starts from its neighbour with 2 transient revolutions only."""
     from rotor.studies.orbit import cascade
 
     res = cascade("paper-table4", [11400.0, 11700.0, 12000.0])
     assert all(r.converged and r.period_revs == 1 for r in res)
     assert res[0].transient_revs >= 16 and all(r.transient_revs == 2 for r in res[1:])
-    assert all(r.multipliers_exact and r.stable for r in res)
+    assert all(r.switch_free and r.stable for r in res)
 
 
 def test_a_small_orbit_on_a_large_offset_converges_at_the_noise_floor():
