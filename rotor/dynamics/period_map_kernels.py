@@ -1,0 +1,225 @@
+"""Compiled derivative of the production scheme's steps (:mod:`rotor.dynamics.period_map`).
+
+The step of :func:`rotor.dynamics.production_kernels.step_loop` maps ``(p, v, a)`` to the next
+``(p, v, a)``: a constant linear Newmark part, plus the support through the six condensed
+coordinates ``α`` (and two multipliers per stuck face) that the step solves by Newton. At the
+converged step ``R(x; α_lin, u_pre, w_pre) = 0`` (:func:`rotor.dynamics.production_kernels._residual`),
+so by the implicit function theorem ``dx = −R_x⁻¹ R_y dy`` with ``y = (α_lin, u_pre, w_pre)``
+(18 numbers, projections ``B`` of the predictor), and the full acceleration changes by
+``W dg`` (``g`` the 6 condensed forces): a rank-6 correction of the linear step. The sensitivity
+of the state to the 2 nr initial values is carried as ``∂(p, v)`` (2nr × 2nr) and ``∂a`` (nr × 2nr);
+a step costs one ``nr × 2nr × 2nr`` product (the linear part, ``A⁻¹[K D]`` on the predictor) and
+``O(18 · nr · 2nr)`` for the correction (measured on the Table 4 rotor, nr = 26: the monodromy
+costs about 1.5 times the map itself, ``reports/published/perf-period-map.md``).
+
+The forces' partial Jacobians ``∂g/∂u`` and ``∂g/∂w`` come from the same compiled
+:func:`rotor.dynamics.production_kernels._forces` (called with ``βΔt² = 1, γΔt = 0`` and
+``βΔt² = 0, γΔt = 1``), the Newton matrix ``R_x`` from ``_residual``, so the derivative uses the
+support law's analytic Jacobian (:mod:`rotor.dynamics.kernels`) and nothing is differenced.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from contact.compiled_cache import compiled_with
+from rotor.dynamics.production_kernels import NC, _forces, _residual, _small_solve
+
+compiled_with(__file__, ["rotor.dynamics.production_kernels", "rotor.dynamics.constraints",
+                         "rotor.dynamics.kernels", "contact._kernel"])
+
+
+@njit(cache=True)
+def _scratch():
+    """Work arrays of ``_forces``/``_residual``: iterate, freeze flags and directions, forces, Jacobian,
+    face forces, condensed displacement and velocity."""
+    return (np.zeros(NC + 4), np.zeros(2, dtype=np.bool_), np.zeros((2, 2)), np.zeros(NC), np.zeros((NC, NC)),
+            np.zeros((2, 2)), np.zeros(NC), np.zeros(NC))
+
+
+@njit(cache=True)
+def force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg):
+    """``(∂g/∂u, ∂g/∂w)`` (NC × NC each) of the condensed forces at relative displacement ``u``
+    and velocity ``w`` (NC,), stuck faces' forces held (they are unknowns of their own)."""
+    x, freeze, fdir, g, Gu, phi, uu, ww = _scratch()
+    Gw = np.zeros((NC, NC))
+    _forces(x, u, w, 1.0, 0.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Gu, phi, uu, ww)
+    _forces(x, u, w, 0.0, 1.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Gw, phi, uu, ww)
+    return Gu, Gw
+
+
+@njit(cache=True)
+def consistent_acceleration_jacobian(p, v, Bt, MK, MD, WM, SM, P, modes, mu_N, a1, params, w_reg):
+    """``∂a/∂(p, v)`` (nr × 2nr) of the consistent acceleration of
+    :func:`rotor.dynamics.production_kernels._reproject` (and of the initial state,
+    :func:`rotor.dynamics.initial.initial_state`): ``a = M⁻¹(Q − D v − K p + Bᵀ g) + W_M Pᵀ φ`` with
+    the stuck faces' multipliers ``φ`` making their relative acceleration zero. ``MK = M⁻¹K``,
+    ``MD = M⁻¹D`` (reduced)."""
+    nr = p.shape[0]
+    u = Bt @ p
+    w = Bt @ v
+    Gu, Gw = force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg)
+    Af = np.empty((nr, 2 * nr))
+    Af[:, :nr] = -MK + WM @ (Gu @ Bt)
+    Af[:, nr:] = -MD + WM @ (Gw @ Bt)
+    # stuck faces: P_k Bt a = 0, i.e. (P S_M Pᵀ) φ = −P Bt a_free, P the stuck faces' maps stacked
+    Pall = np.zeros((4, NC))
+    m2 = 0
+    for k in range(2):
+        if modes[k] == 1:
+            Pall[m2:m2 + 2, :4] = P[k]
+            m2 += 2
+    if m2 == 0:
+        return Af
+    Pm = Pall[:m2].copy()
+    A = Pm @ SM @ Pm.T
+    C = Pm @ (Bt @ Af)
+    dphi = np.zeros((m2, 2 * nr))
+    col = np.zeros(m2)
+    for j in range(2 * nr):
+        A2 = A.copy()
+        b = -C[:, j].copy()
+        _small_solve(A2, b, m2, col)
+        dphi[:, j] = col
+    return Af + WM @ (Pm.T @ dphi)
+
+
+@njit(cache=True)
+def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt):
+    """``∂g/∂y`` (NC × 18) of the converged condensed forces with respect to
+    ``y = (α_lin, u_pre, w_pre)`` at the step's end state ``(u, w)`` and ``modes``."""
+    Gu, Gw = force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg)
+    m = NC   # unknowns: α and two multipliers per stuck face
+    for k in range(2):
+        if modes[k] == 1:
+            m += 2
+    MX = NC + 4
+    x, freeze, fdir, g, Jg, phi, uu, ww = _scratch()
+    alpha_lin = np.zeros(NC)
+    R = np.zeros(MX)
+    J = np.zeros((MX, MX))
+    # R_x at the converged point: the iterate α = 0 with (u_pre, w_pre) = (u, w) is that point
+    _residual(x, m, alpha_lin, u, w, S, P, modes, freeze, fdir, mu_N, a1, bdt2, gdt, params, w_reg,
+              g, Jg, phi, uu, ww, R, J)
+    # −R_y: R_α = α − α_lin − S g(u_pre + βΔt² α, w_pre + γΔt α), R_stuck = P_k w / (γΔt)
+    mRy = np.zeros((m, 3 * NC))
+    for r in range(NC):
+        mRy[r, r] = 1.0
+        for c in range(NC):
+            su = 0.0
+            sw = 0.0
+            for k in range(NC):
+                su += S[r, k] * Gu[k, c]
+                sw += S[r, k] * Gw[k, c]
+            mRy[r, NC + c] = su
+            mRy[r, 2 * NC + c] = sw
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            for rr in range(2):
+                for c in range(4):
+                    mRy[j + rr, 2 * NC + c] = -P[k, rr, c] / gdt
+            j += 2
+    Dx = np.linalg.solve(J[:m, :m], mRy)
+    # dg = Gu du + Gw dw + Σ_stuck P_kᵀ dφ_k, du = du_pre + βΔt² dα, dw = dw_pre + γΔt dα
+    Dg = np.zeros((NC, 3 * NC))
+    for r in range(NC):
+        for c in range(NC):
+            Dg[r, NC + c] = Gu[r, c]
+            Dg[r, 2 * NC + c] = Gw[r, c]
+        for c in range(3 * NC):
+            s = 0.0
+            for k in range(NC):
+                s += (bdt2 * Gu[r, k] + gdt * Gw[r, k]) * Dx[k, c]
+            Dg[r, c] += s
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            for r in range(4):
+                for c in range(3 * NC):
+                    Dg[r, c] += P[k, 0, r] * Dx[j, c] + P[k, 1, r] * Dx[j + 1, c]
+            j += 2
+    return Dg
+
+
+@njit(cache=True)
+def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N,
+                     a1, has_support, params, w_reg, onset_projection):
+    """Carry ``∂(p, v, a)/∂(p₀, v₀)`` along a recorded run of ``step_loop`` (every step recorded:
+    ``rec_p``, ``rec_v`` (N+1, nr), ``rec_modes`` (N+1, 2)), starting from the consistent initial
+    acceleration's ``∂a₀/∂(p₀, v₀)`` (:func:`consistent_acceleration_jacobian` with the modes after the
+    initial stick test, ``rec_modes[0]``). ``AK = A⁻¹K``, ``AD = A⁻¹D`` (``A`` the Newmark matrix), ``MK = M⁻¹K``, ``MD = M⁻¹D``.
+
+    Each step is differentiated with the modes it ended in (no saltation at mode changes); a
+    step in which a face stuck is followed, as in ``step_loop``, by the consistent-acceleration
+    restart, differentiated too. Returns the ``(2nr × 2nr)`` monodromy ``∂(p_N, v_N)/∂(p₀, v₀)``."""
+    nr = rec_p.shape[1]
+    n_steps = rec_p.shape[0] - 1
+    ncol = 2 * nr
+    bdt2 = beta * dt * dt
+    gdt = gamma * dt
+    c1 = dt * dt * (0.5 - beta)
+    c2 = dt * (1.0 - gamma)
+    # Spv = ∂(p, v)/∂x0 (rows: p then v), Sa = ∂a/∂x0; Pre = the predictor's sensitivity
+    Spv = np.zeros((ncol, ncol))
+    for i in range(ncol):
+        Spv[i, i] = 1.0
+    modes = np.zeros(2, dtype=np.int64)
+    if has_support:
+        modes[0] = rec_modes[0, 0]
+        modes[1] = rec_modes[0, 1]
+        Sa = consistent_acceleration_jacobian(rec_p[0], rec_v[0], Bt, MK, MD, WM, SM, P, modes, mu_N, a1, params,
+                                              w_reg)
+    else:
+        Sa = np.empty((nr, ncol))
+        Sa[:, :nr] = -MK
+        Sa[:, nr:] = -MD
+    Pre = np.empty((ncol, ncol))
+    Sal = np.empty((nr, ncol))
+    AKD = np.empty((nr, ncol))
+    AKD[:, :nr] = AK
+    AKD[:, nr:] = AD
+    Y = np.empty((3 * NC, ncol))      # ∂y: α_lin = Bt a_lin, u_pre = Bt p_pre, w_pre = Bt v_pre
+    Z = np.empty((NC, ncol))
+    for n in range(n_steps):
+        for i in range(nr):
+            for c in range(ncol):
+                sa = Sa[i, c]
+                Pre[i, c] = Spv[i, c] + dt * Spv[nr + i, c] + c1 * sa
+                Pre[nr + i, c] = Spv[nr + i, c] + c2 * sa
+        np.dot(AKD, Pre, Sal)
+        if has_support:
+            modes[0] = rec_modes[n + 1, 0]
+            modes[1] = rec_modes[n + 1, 1]
+            u = Bt @ rec_p[n + 1]
+            w = Bt @ rec_v[n + 1]
+            Dg = _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt)
+            np.dot(Bt, Sal, Y[:NC])
+            np.dot(Bt, Pre[:nr], Y[NC:2 * NC])
+            np.dot(Bt, Pre[nr:], Y[2 * NC:])
+            for r in range(NC):
+                for c in range(ncol):
+                    Y[r, c] = -Y[r, c]
+            np.dot(Dg, Y, Z)
+            np.dot(W, Z, Sa)
+            for i in range(nr):
+                for c in range(ncol):
+                    Sa[i, c] -= Sal[i, c]
+        else:
+            for i in range(nr):
+                for c in range(ncol):
+                    Sa[i, c] = -Sal[i, c]
+        for i in range(nr):
+            for c in range(ncol):
+                Spv[i, c] = Pre[i, c] + bdt2 * Sa[i, c]
+                Spv[nr + i, c] = Pre[nr + i, c] + gdt * Sa[i, c]
+        if has_support and onset_projection:
+            onset = False
+            for k in range(2):
+                if rec_modes[n + 1, k] == 1 and rec_modes[n, k] != 1:
+                    onset = True
+            if onset:
+                Ra = consistent_acceleration_jacobian(rec_p[n + 1], rec_v[n + 1], Bt, MK, MD, WM, SM, P, modes, mu_N,
+                                                      a1, params, w_reg)
+                np.dot(Ra, Spv, Sa)
+    return Spv

@@ -1,0 +1,365 @@
+"""Branches of periodic orbits by pseudo-arclength continuation in speed or any scalar scene parameter.
+
+Unknowns ``y = (x, λ)``: the reduced state at phase 0 (:mod:`rotor.studies.shooting`) and the parameter.
+Equations ``R(x, λ) = Φ_λ(x) − x = 0`` plus the arclength condition ``τ·(y − y_pred) = 0`` (Keller 1977),
+all in scaled variables (``x_j/s_j``, ``λ/λ_s``). The predictor steps ``ds`` along the unit tangent ``τ``;
+the corrector is Newton on the bordered system ``[[D(M − I)D⁻¹, D ∂R/∂λ λ_s], [τᵀ]]`` solved in the
+minimum-norm sense. A face stuck through the whole period makes the orbits a continuum (multipliers exactly
+1, :mod:`rotor.studies.floquet`): a branch is then a family, not a curve, and its null directions (singular
+values of the scaled ``M − I`` below :data:`NEUTRAL_TOL`) enter as phase conditions ``v·(y − y_prev) = 0``,
+so that each point stays at the previous point's place in the continuum and the tangent has no component
+along it. Step control:
+``ds`` grows ×1.5 after a corrector of ≤ 3 iterations, shrinks ×0.6 after ≥ 7, is halved and retried on
+failure (no convergence, or an iterate the scheme cannot step: beyond the contact law's domain), down to
+``ds_min``.
+
+Time scaling. The period depends on the speed, so every orbit keeps ``N`` steps per revolution with
+``Δt = 2π/(Ω N)`` (a speed parameter) or the scene's fixed speed (any other parameter). The parameter
+derivative ``∂R/∂λ`` is a central finite difference of the map, ``h = 10⁻⁶ |λ|`` (it rebuilds the system,
+the step and the load at ``λ ± h``; an analytic derivative would need the period map's sensitivity to Δt
+and to the load, which the period map does not carry).
+
+Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign;
+period doubling, Neimark–Sacker, and branch points (a real multiplier through +1 with no turn: a pitchfork)
+where the count of multipliers outside the unit circle changes (:func:`rotor.studies.floquet.crossing`). Each is located by regula falsi on
+the arclength between the two points, on its test quantity (``dλ/ds``, or ``|μ| − 1`` of the largest multiplier
+of the crossing kind), every trial a corrected orbit. :func:`switch_period_doubling` starts the doubled-period branch at a period doubling from the
+eigenvector of the multiplier −1.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from contact.errors import ConvergenceError, InputError, OutsideDomainError
+from rotor.dynamics import constraints as cons
+from rotor.studies.floquet import FloquetResult, crossing, floquet
+from rotor.studies.period_flow import Flow, advance, make_flow
+from rotor.studies.shooting import ShootingOptions, min_norm_step, shoot
+
+#: relative step of the parameter finite difference
+PARAM_REL_STEP = 1e-6
+#: singular values of the scaled ``M − I`` below this fraction of the largest are a continuum's directions
+NEUTRAL_TOL = 1e-8
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A family of period maps over a scalar parameter λ.
+
+    Attributes
+    ----------
+    system_at : callable ``λ -> RotorSystem``
+    speed_at : callable ``λ -> Ω`` (rad/s): the speed whose revolution sets the period
+    steps_per_rev : int; period_revs : int (1..8); backend : "auto", "fd" or "exact"
+    modes0 : end-face modes the orbits start from
+    name : str, the parameter's name with its unit (``speed_rad_s``, ``clearance_m``)
+    """
+
+    system_at: Callable
+    speed_at: Callable
+    steps_per_rev: int
+    period_revs: int = 1
+    backend: str = "auto"
+    modes0: tuple = (cons.SLIP, cons.SLIP)
+    name: str = "speed_rad_s"
+
+    def flow(self, lam: float) -> Flow:
+        return make_flow(self.system_at(lam), 2.0 * math.pi / (self.speed_at(lam) * self.steps_per_rev), self.backend)
+
+    @property
+    def n_steps(self) -> int:
+        return self.steps_per_rev * self.period_revs
+
+
+def speed_problem(system_at_speed: Callable, steps_per_rev: int, **kw) -> Problem:
+    """Continuation in the spin speed (λ = Ω, rad/s): ``system_at_speed(Ω) -> RotorSystem``."""
+    return Problem(system_at_speed, lambda w: w, steps_per_rev, **kw)
+
+
+def parameter_problem(system_at: Callable, speed_rad_s: float, steps_per_rev: int, name: str, **kw) -> Problem:
+    """Continuation in a scalar scene parameter λ (``name`` with its unit, e.g. ``clearance_m``,
+    ``misalignment_m``) at the fixed spin speed ``speed_rad_s``: ``system_at(λ) -> RotorSystem``."""
+    w = float(speed_rad_s)
+    return Problem(system_at, lambda lam: w, steps_per_rev, name=name, **kw)
+
+
+@dataclass(frozen=True)
+class BranchPoint:
+    """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector
+    ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent)."""
+
+    parameter: float
+    state: np.ndarray
+    floquet: FloquetResult
+    iterations: int
+    residual: float
+    dlam_ds: float
+
+
+@dataclass(frozen=True)
+class Bifurcation:
+    """``kind`` ("fold", "branch_point", "period_doubling", "neimark_sacker") between points ``index − 1`` and ``index``,
+    at the interpolated ``parameter``; ``multiplier`` the critical one at point ``index``."""
+
+    kind: str
+    index: int
+    parameter: float
+    multiplier: complex
+
+
+@dataclass(frozen=True)
+class Branch:
+    """Points and bifurcations of one branch, ``period_revs``, why it stopped (``stop``), ``wall_s``."""
+
+    points: tuple
+    bifurcations: tuple
+    period_revs: int
+    stop: str
+    wall_s: float
+
+    def parameters(self) -> np.ndarray:
+        return np.array([p.parameter for p in self.points])
+
+
+@dataclass(frozen=True)
+class ContinuationOptions:
+    """``ds`` initial/min/max arclength steps (scaled units), corrector ``tol`` (–) and ``max_iter``,
+    ``max_points``, ``back_margin`` (stop when a branch turns back beyond the start by this fraction of the
+    range), ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet)."""
+
+    ds: float = 0.05
+    ds_min: float = 1e-5
+    ds_max: float = 0.5
+    tol: float = 1e-9
+    max_iter: int = 10
+    max_points: int = 400
+    back_margin: float = 0.5
+    rcond: float = 1e-10
+    multiplier_tol: float = 1e-6
+
+
+class _Evaluator:
+    """``R``, ``M`` and ``∂R/∂λ`` at (x, λ) in scaled variables, with the flow cached per λ."""
+
+    def __init__(self, problem: Problem, scales: np.ndarray, lam_scale: float):
+        self.pb, self.s, self.ls = problem, scales, lam_scale
+        self._flows: dict = {}
+
+    def flow(self, lam):
+        if lam not in self._flows:
+            if len(self._flows) > 8:
+                self._flows.clear()
+            self._flows[lam] = self.pb.flow(lam)
+        return self._flows[lam]
+
+    def __call__(self, x, lam, jacobian=True):
+        r = advance(self.flow(lam), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=jacobian)
+        R = (r.state - x) / self.s
+        if not jacobian:
+            return R, None, None
+        h = PARAM_REL_STEP * max(abs(lam), 1e-12)
+        Rp = advance(self.flow(lam + h), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=False).state
+        Rm = advance(self.flow(lam - h), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=False).state
+        Rl = (Rp - Rm) / (2.0 * h) / self.s * self.ls
+        J = np.hstack([(r.monodromy - np.eye(len(x))) * (self.s[None, :] / self.s[:, None]), Rl[:, None]])
+        return R, J, r.monodromy
+
+
+def _neutral(J, tol: float = NEUTRAL_TOL) -> np.ndarray:
+    """Phase rows ``(k, n + 1)``: the directions ``v`` with ``D(M − I)D⁻¹ v = 0`` (singular values below
+    ``tol`` times the largest) padded with a zero parameter entry: a stuck face's continuum of orbits."""
+    _, s, vt = np.linalg.svd(J[:, :-1])
+    rows = vt[s < tol * s[0]]
+    return np.hstack([rows, np.zeros((len(rows), 1))])
+
+
+def _tangent(J, prev, rcond, phase=None):
+    """Unit tangent: the minimum-norm solution of ``[J; P; prevᵀ] τ = [0; 0; 1]``, normalised (``P`` the
+    phase rows: no motion along the continuum)."""
+    rows = [J] + ([phase] if phase is not None and len(phase) else []) + [prev[None, :]]
+    A = np.vstack(rows)
+    b = np.zeros(A.shape[0])
+    b[-1] = 1.0
+    t, _ = min_norm_step(A, b, rcond)
+    return t / np.linalg.norm(t)
+
+
+def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, anchor=None):
+    """Newton on ``[R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or None.
+    The phase rows ``P`` keep the orbit's place in a stuck face's continuum that of ``anchor``."""
+    y = y_pred.copy()
+    has_phase = phase is not None and len(phase)
+    for it in range(1, opts.max_iter + 1):
+        x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+        try:
+            R, J, M = ev(x, lam)
+        except (OutsideDomainError, ConvergenceError, InputError):   # an iterate the scheme cannot step
+            return None
+        res = float(np.max(np.abs(R)))
+        if not math.isfinite(res):
+            return None
+        A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
+        rhs = -np.concatenate([R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else []))
+        dy, _ = min_norm_step(A, rhs, opts.rcond)
+        y = y + dy
+        if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
+            return y - dy, J, M, it, res
+    return None
+
+
+def _point(ev, y, J, M, it, res, tau, opts) -> BranchPoint:
+    lam = y[-1] * ev.ls
+    period = ev.pb.n_steps * ev.flow(lam).dt_s
+    return BranchPoint(float(lam), y[:-1] * ev.s, floquet(M, period, tol=opts.multiplier_tol), it, res,
+                       float(tau[-1]))
+
+
+def _test(kind: str, pt: BranchPoint) -> float:
+    """The quantity that changes sign at a bifurcation of ``kind``: ``dλ/ds`` (fold) or ``|μ| − 1`` of the
+    largest multiplier of that kind (real negative: period doubling; complex: Neimark–Sacker; real positive:
+    branch point)."""
+    if kind == "fold":
+        return pt.dlam_ds
+    mu = pt.floquet.multipliers
+    real = np.abs(mu.imag) <= 1e-9 * np.maximum(1.0, np.abs(mu))
+    neutral = np.abs(mu - 1.0) <= pt.floquet.tol
+    if kind == "period_doubling":
+        pick = mu[real & (mu.real < 0)]
+    elif kind == "branch_point":
+        pick = mu[real & (mu.real > 0) & ~neutral]
+    else:
+        pick = mu[~real]
+    return float(np.abs(pick).max()) - 1.0 if len(pick) else -1.0
+
+
+def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, opts, phase, n_iter: int = 8) -> float:
+    """Parameter of a bifurcation between ``a`` (at ``y0``, tangent ``tau0``) and ``b`` (a step ``ds`` on):
+    regula falsi (Illinois) on the arclength ``σ`` in ``[0, ds]``, each trial corrected on the hyperplane
+    ``τ0·(y − y0 − σ τ0) = 0``, until the bracket is below 10⁻⁶ ds; linear interpolation if a corrector fails."""
+    lo, hi, flo, fhi = 0.0, ds, _test(kind, a), _test(kind, b)
+    lam = b.parameter
+    side = 0
+    for _ in range(n_iter):
+        if flo == fhi:
+            break
+        sig = lo - flo * (hi - lo) / (fhi - flo)
+        got = _correct(ev, y0 + sig * tau0, tau0, opts, phase, y0)
+        if got is None:
+            return a.parameter + (b.parameter - a.parameter) * min(max(-flo / (fhi - flo), 0.0), 1.0)
+        y, J, M, it, res = got
+        pt = _point(ev, y, J, M, it, res, _tangent(J, tau0, opts.rcond, _neutral(J)), opts)
+        lam, f = pt.parameter, _test(kind, pt)
+        if f * flo > 0:
+            lo, flo = sig, f
+            fhi = fhi / 2 if side == -1 else fhi
+            side = -1
+        else:
+            hi, fhi = sig, f
+            flo = flo / 2 if side == 1 else flo
+            side = 1
+        if hi - lo < 1e-6 * ds:
+            break
+    return float(lam)
+
+
+def _events(ev, prev: BranchPoint, new: BranchPoint, index: int, y0, tau0, ds, opts, phase) -> list:
+    """Bifurcations between ``prev`` and ``new``. A real multiplier through +1 without a turn of the
+    parameter is a branch point (a pitchfork: symmetry breaking, e.g. a planar orbit starting to whirl)."""
+    fold = prev.dlam_ds * new.dlam_ds < 0
+    kinds = ["fold"] if fold else []
+    kind = crossing(prev.floquet, new.floquet)
+    if kind == "fold" and not fold:
+        kind = "branch_point"
+    if kind is not None and kind not in kinds:
+        kinds.append(kind)
+    return [Bifurcation(k, index, _refine(ev, y0, tau0, ds, k, prev, new, opts, phase), new.floquet.critical)
+            for k in kinds]
+
+
+def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, scales, lam_scale: float | None = None,
+                    options: ContinuationOptions | None = None, tangent0=None) -> Branch:
+    """Follow the branch through the orbit near ``state0`` at ``lam0`` until the parameter passes ``lam_end``.
+
+    ``scales`` (2 n_r,): state scales (m, rad; m/s, rad/s); ``lam_scale``: parameter scale (default
+    ``|lam_end − lam0|/10``). ``tangent0`` (scaled, 2 n_r + 1): start direction instead of the branch's own
+    (branch switching). The first point is corrected at fixed ``lam0`` by :func:`rotor.studies.shooting.shoot`.
+    """
+    opts = options or ContinuationOptions()
+    t_start = time.perf_counter()
+    s = np.asarray(scales, float)
+    ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
+    ev = _Evaluator(problem, s, ls)
+    first = shoot(ev.flow(lam0), state0, t0_s=0.0, steps_per_rev=problem.steps_per_rev, period_revs=problem.period_revs,
+                  modes0=problem.modes0, scales=s, options=ShootingOptions(tol=opts.tol, rcond=opts.rcond))
+    if not first.converged:
+        return Branch((), (), problem.period_revs, f"no orbit at the start ({problem.name} = {lam0:g})",
+                      time.perf_counter() - t_start)
+    y = np.concatenate([first.state / s, [lam0 / ls]])
+    R, J, M = ev(first.state, lam0)
+    direction = math.copysign(1.0, lam_end - lam0)
+    guide = np.zeros(len(y))
+    guide[-1] = direction
+    phase = _neutral(J)
+    if tangent0 is None:
+        tau = _tangent(J, guide, opts.rcond, phase)
+    else:
+        tau = np.asarray(tangent0, float) / np.linalg.norm(tangent0)
+    points = [_point(ev, y, J, M, 0, float(np.max(np.abs(R))), tau, opts)]
+    bifs: list = []
+    ds, stop = opts.ds, "max_points"
+    while len(points) < opts.max_points:
+        y_prev = y
+        got = _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        if got is None:
+            ds *= 0.5
+            if ds < opts.ds_min:
+                stop = "step below ds_min"
+                break
+            continue
+        y, J, M, it, res = got
+        phase_new = _neutral(J)
+        tau_new = _tangent(J, tau, opts.rcond, phase_new)
+        pt = _point(ev, y, J, M, it, res, tau_new, opts)
+        bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
+        phase = phase_new
+        points.append(pt)
+        tau = tau_new
+        ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
+        if (pt.parameter - lam_end) * direction >= 0:
+            stop = "end reached"
+            break
+        if (lam0 - pt.parameter) * direction > opts.back_margin * abs(lam_end - lam0):
+            stop = "turned back beyond the start"
+            break
+    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, time.perf_counter() - t_start)
+
+
+def switch_period_doubling(problem: Problem, branch: Branch, bif: Bifurcation, lam_end: float, *, scales,
+                           lam_scale: float | None = None, options: ContinuationOptions | None = None) -> Branch:
+    """The doubled-period branch born at the period doubling ``bif`` of ``branch``.
+
+    At the point after the crossing the monodromy has a real multiplier near −1 with eigenvector ``φ``;
+    for the map over two periods it is a multiplier near +1 and the new branch leaves the old one along
+    ``(φ, 0)`` (a pitchfork of the doubled map). The continuation of period ``2 period_revs`` starts at the
+    old orbit with that tangent, so its first corrector works on the hyperplane ``φ·(y − y_pred) = 0`` a
+    step ``ds`` away from the old branch, where only the new branch crosses; it runs towards ``lam_end``.
+    """
+    pt = branch.points[bif.index]
+    mu, vec = np.linalg.eig(_monodromy_at(problem, pt))
+    j = int(np.argmin(np.abs(mu + 1.0)))
+    s = np.asarray(scales, float)
+    phi = np.real(vec[:, j]) / s
+    phi /= np.linalg.norm(phi)
+    doubled = Problem(problem.system_at, problem.speed_at, problem.steps_per_rev, 2 * problem.period_revs,
+                      problem.backend, problem.modes0, problem.name)
+    return continue_branch(doubled, pt.state, pt.parameter, lam_end, scales=s, lam_scale=lam_scale, options=options,
+                           tangent0=np.concatenate([phi, [0.0]]))
+
+
+def _monodromy_at(problem: Problem, pt: BranchPoint) -> np.ndarray:
+    return advance(problem.flow(pt.parameter), pt.state, 0.0, problem.n_steps, problem.modes0).monodromy
