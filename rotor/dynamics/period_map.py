@@ -87,20 +87,29 @@ class PeriodMap:
 class PeriodMapResult:
     """Result of :func:`period_map`.
 
-    state : (2 nr,) ``[p, v]`` at ``t0 + n_steps Δt`` (m, rad; m/s, rad/s in reduced coordinates).
-    monodromy : (2 nr, 2 nr) ``∂ state / ∂ state0`` or None (``jacobian=False``): the exact derivative
+    Attributes
+    ----------
+    state : numpy.ndarray
+        (2 nr,) ``[p, v]`` at ``t0 + n_steps Δt`` (m, rad; m/s, rad/s in reduced coordinates).
+    monodromy : numpy.ndarray or None
+        (2 nr, 2 nr) ``∂ state / ∂ state0``, None with ``jacobian=False``: the exact derivative
         of the scheme's map as long as every stick/slip switch stays in its step; no saltation term for
         a switch that moves (see the module docstring), so with ``events > 0`` it is the derivative of
         the smooth piece the state lies on.
-    modes : (2,) int64 face modes at the end (1 stick, 0 slip), to pass as the next ``modes0``.
-    phi_face : (2, 2) end-face forces at the end (N): stuck faces' multipliers, slip forces.
-    trajectory : :class:`rotor.dynamics.system.Trajectory` (full DOFs, as ``simulate_production``
-        with ``record_every``) or None.
-    events : number of face mode changes met: the initial stick test's changes of ``modes0`` plus
+    modes : numpy.ndarray
+        (2,) int64 face modes at the end (1 stick, 0 slip), to pass as the next ``modes0``.
+    phi_face : numpy.ndarray
+        (2, 2) end-face forces at the end (N): stuck faces' multipliers, slip forces.
+    trajectory : rotor.dynamics.system.Trajectory or None
+        Full DOFs, as ``simulate_production`` with ``record_every``, or None.
+    events : int
+        Number of face mode changes met: the initial stick test's changes of ``modes0`` plus
         the changes from step to step.
-    unconverged_steps : steps accepted at the least residual (see ``simulate_production``); the
+    unconverged_steps : int
+        Steps accepted at the least residual (see ``simulate_production``); the
         derivative of such a step is only approximate.
-    t : float, end time (s).
+    t : float
+        End time (s).
     """
 
     state: np.ndarray

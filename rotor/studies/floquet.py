@@ -27,9 +27,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: default tolerance on |μ| (and on |μ − 1| for a neutral multiplier)
+#: default tolerance on ``|μ|`` (and on ``|μ − 1|`` for a neutral multiplier)
 MULTIPLIER_TOL = 1e-6
-#: a multiplier is real when |Im μ| <= REAL_TOL · max(1, |μ|)
+#: a multiplier is real when ``|Im μ| <= REAL_TOL · max(1, |μ|)``
 REAL_TOL = 1e-9
 
 

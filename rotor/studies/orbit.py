@@ -38,18 +38,45 @@ class OrbitResult:
 
     Attributes
     ----------
-    speed_rpm : float; period_revs : int; period_s : float (s); steps_per_rev : int
-    converged : bool, Newton met its tolerance; stable : bool; floquet : FloquetResult
-    velocity_amplitudes_mm_s_1X_to_5X : dict, ``<station>.<y|z>`` -> five amplitudes (mm/s)
-    newton_iterations : int; residual : float (–, relative to the orbit scale); transient_revs : int
-    events : int, end-face mode changes over the period; singular_directions : int; wall_s : float (s)
-    switch_free : bool, no end-face mode change over the period. With switches the monodromy is still the
+    speed_rpm : float
+        Speed (rpm).
+    period_revs : int
+        Period in revolutions.
+    period_s : float
+        Period (s).
+    steps_per_rev : int
+        Newmark steps per revolution.
+    converged : bool
+        Newton met its tolerance.
+    stable : bool
+        Every non-neutral Floquet multiplier inside the unit circle.
+    floquet : rotor.studies.floquet.FloquetResult
+        Multipliers and their classification.
+    velocity_amplitudes_mm_s_1X_to_5X : dict
+        ``<station>.<y|z>`` -> five amplitudes (mm/s).
+    newton_iterations : int
+        Newton iterations of the last shooting round.
+    residual : float
+        Periodicity residual relative to the orbit scale (–).
+    transient_revs : int
+        Revolutions of transient before Newton converged.
+    events : int
+        End-face mode changes over the period.
+    singular_directions : int
+        Directions dropped by the minimum-norm Newton step.
+    wall_s : float
+        Wall time (s).
+    switch_free : bool
+        No end-face mode change over the period. With switches the monodromy is still the
         exact derivative of the scheme's map while every switch stays in its step, but a perturbation that
         moves a switch by a step makes the map jump (the discrete trace of the continuous system's saltation,
-        :mod:`rotor.dynamics.period_map`), which the multipliers do not see
-    backend : str; shooting : ShootingResult (the reduced state, monodromy, scales)
-    q_m, v_m_s : (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring
-        speed
+        :mod:`rotor.dynamics.period_map`), which the multipliers do not see.
+    backend : str
+        Monodromy backend used (exact or finite differences).
+    shooting : rotor.studies.shooting.ShootingResult
+        The reduced state, its monodromy and scales.
+    q_m, v_m_s : numpy.ndarray
+        (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring speed.
     """
 
     speed_rpm: float
