@@ -238,5 +238,5 @@ EDGE_LEVELS = ("E0", "E1", "E2")
 EDGE_CHECK_LEVEL = "E3"
 # 27-node hexahedra (full 3D rings, the same graded section), the independent check of the
 # harmonic model on the Table 3 points (reports/published/fem3d-reference.md).
-LEVELS.update(_family("H", [(24, 8, 2), (32, 12, 3), (48, 16, 4)], 10.0, method="hex"))
+LEVELS.update(_family("H", [(48, 6, 2), (68, 8, 3), (96, 12, 4)], 10.0, method="hex"))
 HEX_LEVELS = ("H0", "H1", "H2")
