@@ -234,7 +234,7 @@ def solve_point(comp: ContactCompliance, motion: RigidMotion, *, candidate_margi
     edges = ("both" if any_x[0] and any_x[-1] else "+x" if any_x[-1] else "-x" if any_x[0] else "none")
     phi_act = np.broadcast_to(mp.vertices[:, None], active.shape)[active & plus[:, None]]
     minus = comp.force_weights_m2 < 0
-    f_minus = -2.0 * float(lam_all[minus] @ comp.force_weights_m2[minus])
+    f_minus = -2.0 * float(lam_all[minus] @ comp.force_weights_m2[minus]) + 0.0     # no -0.0
     return PointResult3D(
         penetration_m=motion.translation_m - geom.clearance_m, tilt_rad=motion.tilt_rad, level=comp.level.name,
         force_n=-fy_bearing, moment_z_nm=mz,
