@@ -79,6 +79,8 @@ def measure(repeats: int, pen_mm: float, tilt_arcmin: float, old_tree: Path) -> 
             with tempfile.TemporaryDirectory() as cache:
                 res[name]["cold"].append(run_point(tree, Path(cache), pen_mm, tilt_arcmin, threads))
                 res[name]["cached"].append(run_point(tree, Path(cache), pen_mm, tilt_arcmin, threads))
+            print(f"{name}: cold {res[name]['cold'][-1]['wall_process_s']:.1f} s, cached "
+                  f"{res[name]['cached'][-1]['wall_process_s']:.2f} s (load {os.getloadavg()[0]:.1f})", flush=True)
     return res
 
 
