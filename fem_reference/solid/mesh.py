@@ -225,13 +225,13 @@ def _family(prefix: str, counts, axial_ratio: float, method: str = "fourier", or
 # Reference levels (measured, docs/reference/fem-notes.md "3D"): every count grows by about sqrt(2)
 # per level (angular multiplier elements over [0, pi], axial and radial section elements, and the
 # harmonics kept, 2 n_phi = about 6 per angular hat width: 200 instead of 570 harmonics changed no
-# force or moment by 1e-5). Axial grading toward the ring edges 30 (edge element 0.36 mm on Q0,
-# 0.08 mm on Q3), radial grading toward the contact surfaces 20 (the high harmonics decay within
+# force or moment by 1e-5). Axial grading toward the ring edges 30 (edge element 0.25 mm on Q0,
+# 0.10 mm on Q3), radial grading toward the contact surfaces 20 (the high harmonics decay within
 # R/n of the surface). Q3 is the finer solve every committed point is checked against.
 LEVELS: dict[str, MeshLevel3D] = _family("Q", [(64, 12, 5), (90, 18, 7), (128, 24, 10), (180, 34, 14)], 30.0)
 DEFAULT_LEVELS = ("Q0", "Q1", "Q2")
 CHECK_LEVEL = "Q3"
-# Graded hard toward the ring edges (edge elements 0.064 mm on E0 to 0.012 mm on E3) for edge-only
+# Graded hard toward the ring edges (edge elements 0.05 mm on E0 to 0.02 mm on E3) for edge-only
 # contact whose patch (about 0.5 mm at -0.04 mm, 10') is much shorter than l0.
 LEVELS.update(_family("E", [(64, 16, 5), (90, 22, 7), (128, 32, 10), (180, 44, 14)], 150.0))
 EDGE_LEVELS = ("E0", "E1", "E2")
