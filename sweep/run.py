@@ -80,9 +80,21 @@ def die_with_parent(parent_pid: int, period_s: float = 0.5) -> None:
                      name="ringcontact-parent-watch").start()
 
 
-def local_pool(max_workers: int) -> cf.ProcessPoolExecutor:
-    """The default executor: ``max_workers`` processes that die with this one (:func:`die_with_parent`)."""
-    return cf.ProcessPoolExecutor(max_workers=max_workers, initializer=die_with_parent, initargs=(os.getpid(),))
+def local_pool(max_workers: int, threads_per_worker: int | None = None) -> cf.ProcessPoolExecutor:
+    """The default executor: ``max_workers`` processes that die with this one (:func:`die_with_parent`).
+
+    With ``threads_per_worker`` the workers are started fresh (``spawn``) with the BLAS/OpenMP
+    thread variables set to that number before numpy loads in them (:mod:`contact.threads`; the
+    variables are set in this process's environment, which the workers inherit); without it they
+    are forked as before and inherit this process's threading."""
+    if threads_per_worker is None:
+        return cf.ProcessPoolExecutor(max_workers=max_workers, initializer=die_with_parent, initargs=(os.getpid(),))
+    import multiprocessing
+
+    from contact.threads import set_thread_env
+    set_thread_env(threads_per_worker, override=True)
+    return cf.ProcessPoolExecutor(max_workers=max_workers, initializer=die_with_parent, initargs=(os.getpid(),),
+                                  mp_context=multiprocessing.get_context("spawn"))
 
 
 def as_executor(executor):

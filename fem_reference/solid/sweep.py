@@ -1,16 +1,11 @@
 """3D reference points with error estimates, executor-based resumable sweeps, the 3D dataset.
 
-A reference point (penetration at the mid-plane, tilt) is solved on the three mesh levels of
-:data:`fem_reference.solid.mesh.LEVELS`; the finest value is reported with the observed order and an
-error estimate from generalised Richardson extrapolation for unequal refinement ratios
-(Richardson 1911; Celik et al. 2008, J. Fluids Eng. 130:078001, the "GCI" procedure), with the
-representative size ``h = N_dofs^(-1/3)``:
-
-* monotone contracting sequence: order ``p`` from ``(f1-f2)/(f2-f3) = r32^p (r21^p - 1)/(r32^p - 1)``
-  (solved by bisection), error of the finest ``|f2 - f3|/(r32^p - 1)`` with ``p`` clipped to [0.5, 2]
-  (trilinear elements: an observed order above 2 is a pre-asymptotic accident and is not credited);
-* otherwise (oscillating, or not yet asymptotic): order reported as ``None`` and the error
-  estimate is the last change ``|f2 - f3|`` (conservative for a contracting sequence).
+A reference point (penetration at the mid-plane, tilt) is solved on the three levels of
+:data:`fem_reference.solid.mesh.DEFAULT_LEVELS`; the finest value is reported with an error
+estimate from Richardson extrapolation (:mod:`fem_reference.solid.richardson`), and the point is
+also solved on the finer check level :data:`fem_reference.solid.mesh.CHECK_LEVEL`
+(``force_finer_n``, ``moment_finer_nm``): tests/fem_reference/solid/test_fem3d_dataset.py asserts
+that each stated error bounds the difference to that finer solve.
 
 Compute layout: the expensive part of a mesh level (assembly, factorisation, contact compliance,
 see solve3d) depends only on the mesh and the scene, so it is built once per level, cached on
@@ -24,6 +19,7 @@ interrupted sweep resumes where it stopped.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import dataclasses
 import hashlib
 import json
 import math
@@ -38,18 +34,20 @@ from contact.errors import ConvergenceError, DatasetError, InputError
 from contact.package_data import shipped
 from contact.units import ARCMIN, MM
 from fem_reference.solid.geometry import RigidMotion, RingPair3D
-from fem_reference.solid.mesh import DEFAULT_LEVELS, LEVELS, MeshLevel3D
+from fem_reference.solid.mesh import CHECK_LEVEL, DEFAULT_LEVELS, LEVELS, MeshLevel3D
+from fem_reference.solid.richardson import ASSUMED_ORDERS, apply_orders, pooled_orders, richardson3
 from fem_reference.solid.solve import (SCENES, ContactCompliance, build_compliance, load_compliance,
                                        save_compliance, solve_point)
 from sweep import (ResultStore, Task, as_executor, code_revision, local_pool, machine, package_versions,
                    revision_label, run_sweep, utc_stamp)
+from contact.threads import thread_share
 
 #: the shipped 3D dataset (read through importlib.resources, see contact.package_data)
 DATASET_PATH = shipped("fem_reference", "data", "3d", "fem3d-reference.json")
 DEFAULT_TILTS_ARCMIN = (0.0, 0.5, 1.0, 2.0, 30.0)
 DEFAULT_PENETRATIONS_MM = (0.005, 0.01, 0.02, 0.03, 0.04, 0.05)
-CODE_VERSION = "fem3d-1"      # bump when the compliance computation changes (invalidates the cache)
-MIN_ACTIVE_LINES = 3          # axial node lines in contact needed for a reference point
+CODE_VERSION = "fem3d-2"      # bump when the compliance computation changes (invalidates the cache)
+MIN_ACTIVE_LINES = 3          # axial multiplier lines in contact needed for a reference point
 # provenance of the dataset: the packages recorded, the sources whose changes mark the revision dirty
 PACKAGES = {"numpy": "numpy", "scipy": "scipy", "scikit-fem": "skfem", "gmsh": "gmsh", "meshio": "meshio"}
 SOURCES = ("fem_reference", "contact/dataset.py", "sweep")
@@ -64,51 +62,11 @@ COLUMNS = {
     "load_centre_x_m": "m", "edges_loaded": "-", "sides": "-", "force_minus_y_side_n": "N",
     "half_angle_rad": "rad", "peak_pressure_pa": "Pa",
     "pressure_phi_rad": "rad", "pressure_x_m": "m", "pressure_map_pa": "Pa",
+    "force_finer_n": "N", "moment_finer_nm": "N*m", "finer_level": "-",
     "ndofs": "-", "ndofs_levels": "-", "n_pairs": "-", "n_active": "-", "iterations": "-", "lcp_method": "-",
-    "wall_s": "s", "wall_levels_s": "s", "levels": "-", "element_order": "-",
+    "level_build_s": "s", "level_load_s": "s", "solve_s": "s", "wall_s": "s",
+    "levels": "-", "element_order": "-", "method": "-",
 }
-
-
-# ----------------------------------------------------------------------------------------------
-# Richardson with unequal ratios
-
-def richardson3(values, ndofs) -> dict:
-    """Observed order and error estimate of the finest of three values (coarse -> fine).
-
-    Parameters
-    ----------
-    values : sequence of 3 floats
-    ndofs : sequence of 3 ints
-        DOFs of each level; ``h = ndofs^(-1/3)``.
-
-    Returns
-    -------
-    dict with ``value``, ``order`` (None if not monotone), ``error_abs``, ``extrapolated``.
-    """
-    f1, f2, f3 = (float(v) for v in values)
-    h1, h2, h3 = (float(n) ** (-1.0 / 3.0) for n in ndofs)
-    r21, r32 = h1 / h2, h2 / h3
-    d1, d2 = f1 - f2, f2 - f3
-    if d2 == 0.0:
-        return {"value": f3, "order": None, "error_abs": 0.0, "extrapolated": f3}
-    if d1 * d2 > 0 and abs(d1) > abs(d2):
-        target = d1 / d2
-
-        def ratio(p):
-            return r32 ** p * (r21 ** p - 1.0) / (r32 ** p - 1.0)
-
-        lo, hi = 1e-3, 12.0
-        if ratio(lo) < target < ratio(hi):
-            for _ in range(80):
-                mid = 0.5 * (lo + hi)
-                lo, hi = (mid, hi) if ratio(mid) < target else (lo, mid)
-            p = 0.5 * (lo + hi)
-        else:
-            p = hi if target >= ratio(hi) else lo
-        pc = min(max(p, 0.5), 2.0)
-        err = abs(d2) / (r32 ** pc - 1.0)
-        return {"value": f3, "order": p, "error_abs": err, "extrapolated": f3 - math.copysign(err, d2)}
-    return {"value": f3, "order": None, "error_abs": abs(d2), "extrapolated": f3}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -159,52 +117,75 @@ _LOADED: dict[str, ContactCompliance] = {}
 
 
 def _load_cached(path: str) -> ContactCompliance:
-    if path not in _LOADED:
-        if len(_LOADED) > 6:          # a worker keeps at most a few levels in memory
-            _LOADED.clear()
-        _LOADED[path] = load_compliance(path)
+    """A level kept in this process's memory (then ``load_s`` = 0), else read from the cache file."""
+    if path in _LOADED:
+        return dataclasses.replace(_LOADED[path], load_s=0.0)
+    if len(_LOADED) > 6:              # a worker keeps at most a few levels in memory
+        _LOADED.clear()
+    _LOADED[path] = load_compliance(path)
     return _LOADED[path]
 
 
 # ----------------------------------------------------------------------------------------------
 # one reference point
 
-def reference_point(comps: list[ContactCompliance], penetration_m: float, tilt_rad: float) -> dict:
-    """Solve one (penetration, tilt) on every level; the finest is reported with its error estimate.
+def _edge_resolution_check(comps, sols, penetration_m: float, tilt_rad: float) -> None:
+    """ConvergenceError if a level resolves the contact patch by fewer than MIN_ACTIVE_LINES axial lines."""
+    for c, s in zip(comps, sols):
+        if 0 < s.n_active_lines < MIN_ACTIVE_LINES:
+            h_edge = float(c.mortar_x.vertices[1] - c.mortar_x.vertices[0])
+            raise ConvergenceError(
+                f"contact patch not resolved on level {c.level.name}: {s.n_active_lines} axial line(s) in "
+                f"contact (width about {s.contact_width_m * 1e3:.2f} mm, law {s.contact_width_law_m * 1e3:.2f} mm; "
+                f"edge element {h_edge * 1e3:.2f} mm; need >= {MIN_ACTIVE_LINES} lines): use the edge-refined "
+                f"levels (EDGE_LEVELS, `fem3d point --edge-refined`) for penetration {penetration_m * 1e3:g} mm, "
+                f"tilt {tilt_rad / ARCMIN:g} arcmin")
 
-    Raises
-    ------
-    ConvergenceError
-        If any level fails (message names the level), or a level resolves the contact patch by
-        fewer than ``MIN_ACTIVE_LINES`` axial node lines (e.g. edge-only contact with width << l0
-        on a mesh not refined toward the edges): a number from such a mesh is not a reference.
-    """
-    geom = comps[-1].geom
-    motion = RigidMotion.from_penetration(geom, penetration_m, tilt_rad)
+
+def _solve_levels(comps, motion):
     sols = []
     for c in comps:
         try:
             sols.append(solve_point(c, motion))
         except ConvergenceError as exc:
             raise ConvergenceError(f"level {c.level.name} ({c.n_dofs} DOFs): {exc}") from exc
-    for c, s in zip(comps, sols):
-        if 0 < s.n_active_lines < MIN_ACTIVE_LINES:
-            h_edge = float(c.x_grid[1] - c.x_grid[0])
-            raise ConvergenceError(
-                f"contact patch not resolved on level {c.level.name}: {s.n_active_lines} axial node line(s) in "
-                f"contact (width about {s.contact_width_m * 1e3:.2f} mm, law {s.contact_width_law_m * 1e3:.2f} mm; "
-                f"edge element {h_edge * 1e3:.2f} mm; need >= {MIN_ACTIVE_LINES} lines): refine toward the ring "
-                f"edges (MeshLevel3D.axial_ratio / n_axial) for penetration {penetration_m * 1e3:g} mm, "
-                f"tilt {tilt_rad / ARCMIN:g} arcmin")
+    return sols
+
+
+def reference_point(comps: list[ContactCompliance], penetration_m: float, tilt_rad: float,
+                    check: ContactCompliance | None = None, orders: dict | None = None) -> dict:
+    """Solve one (penetration, tilt) on every level; the finest is reported with its error estimate.
+
+    ``check``, if given, is a finer level solved as well (``force_finer_n``, ``moment_finer_nm``):
+    the committed test that the stated errors bound the difference to a finer solve. ``orders``
+    (``{"force": p, "moment": p}``) is the convergence order the error estimate assumes
+    (default :data:`~fem_reference.solid.richardson.ASSUMED_ORDERS`).
+
+    Raises
+    ------
+    ConvergenceError
+        If any level fails (message names the level), or a level resolves the contact patch by
+        fewer than ``MIN_ACTIVE_LINES`` axial multiplier lines (edge-only contact with width << l0
+        on levels not refined toward the edges): a number from such a mesh is not a reference.
+    """
+    geom = comps[-1].geom
+    orders = ASSUMED_ORDERS if orders is None else orders
+    motion = RigidMotion.from_penetration(geom, penetration_m, tilt_rad)
+    sols = _solve_levels(comps, motion)
+    _edge_resolution_check(comps, sols, penetration_m, tilt_rad)
+    finer = _solve_levels([check], motion)[0] if check is not None else None
     fine = sols[-1]
     nd = [c.n_dofs for c in comps]
-    rf = richardson3([s.force_n for s in sols], nd)
-    rm = richardson3([s.moment_z_nm for s in sols], nd)
+    rf = richardson3([s.force_n for s in sols], nd, orders["force"])
+    rm = richardson3([s.moment_z_nm for s in sols], nd, orders["moment"])
     rows = np.flatnonzero(fine.pressure_pa.max(axis=1) > 0)
     keep = np.arange(0, 0) if rows.size == 0 else np.unique(np.concatenate(
         [rows, np.clip(rows + 1, 0, len(fine.phi_grid) - 1), np.clip(rows - 1, 0, len(fine.phi_grid) - 1)]))
     force = fine.force_n
     moment_rel = (rm["error_abs"] / abs(rm["value"])) if (tilt_rad != 0 and rm["value"] != 0) else None
+    used = list({c.level.name: c for c in comps + ([check] if check is not None else [])}.values())
+    solve_s = sum({c.level.name: s.solve_s for c, s in zip(comps, sols)}.values()) + (finer.solve_s if finer else 0.0)
+    load_s = sum(c.load_s for c in used)
     return {
         "scene": comps[-1].scene, "penetration_m": float(penetration_m), "offset_m": motion.translation_m,
         "tilt_rad": float(tilt_rad),
@@ -220,16 +201,23 @@ def reference_point(comps: list[ContactCompliance], penetration_m: float, tilt_r
         "half_angle_rad": fine.contact_half_angle_rad, "peak_pressure_pa": fine.peak_pressure_pa,
         "pressure_phi_rad": fine.phi_grid[keep], "pressure_x_m": fine.x_grid,
         "pressure_map_pa": [[float(f"{v:.6g}") for v in row] for row in fine.pressure_pa[keep]],
+        "force_finer_n": finer.force_n if finer is not None else None,
+        "moment_finer_nm": finer.moment_z_nm if finer is not None else None,
+        "finer_level": check.level.name if check is not None else None,
         "ndofs": fine.n_dofs, "ndofs_levels": nd, "n_pairs": fine.n_pairs, "n_active": fine.n_active,
         "iterations": fine.iterations, "lcp_method": fine.lcp_method,
-        "wall_s": fine.solve_s, "wall_levels_s": sum(s.solve_s for s in sols),
+        "level_build_s": sum(c.build_s for c in used), "level_load_s": load_s, "solve_s": solve_s,
+        "wall_s": load_s + solve_s,
         "levels": [c.level.name for c in comps], "element_order": comps[-1].level.order,
+        "method": comps[-1].level.method,
     }
 
 
-def point_task(paths: list[str], penetration_m: float, tilt_rad: float) -> tuple[dict, dict]:
+def point_task(paths: list[str], penetration_m: float, tilt_rad: float, check_path: str | None = None
+               ) -> tuple[dict, dict]:
     """One sweep point as a :class:`sweep.Task` function: no arrays, the dataset row as JSON ``info``."""
-    return {}, _jsonable(reference_point([_load_cached(p) for p in paths], penetration_m, tilt_rad))
+    check = _load_cached(check_path) if check_path else None
+    return {}, _jsonable(reference_point([_load_cached(p) for p in paths], penetration_m, tilt_rad, check))
 
 
 # ----------------------------------------------------------------------------------------------
@@ -279,8 +267,8 @@ def _failed(summary, tasks: list[Task], store: ResultStore) -> Exception:
 
 def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, scene: str = "clamped",
                   geom: RingPair3D | None = None, workers: int = 2, executor: cf.Executor | None = None,
-                  cache: Path | None = None, progress: bool | None = None, resume: bool = True
-                  ) -> tuple[dict, list[dict]]:
+                  cache: Path | None = None, progress: bool | None = None, resume: bool = True,
+                  check_level="auto") -> tuple[dict, list[dict]]:
     """Solve every (tilt, penetration) through an executor; returns (metadata, points).
 
     Parameters
@@ -295,6 +283,12 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
     resume : bool
         Reuse finished points kept in the store under the cache (:func:`point_store`) from an
         interrupted run of the same sweep.
+    check_level : key of LEVELS, MeshLevel3D, None or "auto"
+        The finer level every point is also solved on (``force_finer_n``, ``moment_finer_nm``);
+        "auto": :data:`~fem_reference.solid.mesh.CHECK_LEVEL` for the default levels, else none.
+
+    Local workers run with the BLAS/OpenMP threads of their share of the machine
+    (:func:`contact.threads.thread_share`), set before numpy loads in them.
 
     Raises the first failed point's exception once every other point is computed and kept.
     """
@@ -303,29 +297,40 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
     if penetrations_m is None:
         penetrations_m = [p * MM for p in DEFAULT_PENETRATIONS_MM]
     levels = _mesh_levels(level_names)
+    if check_level == "auto":
+        check_level = CHECK_LEVEL if tuple(level_names) == DEFAULT_LEVELS else None
+    check = None if check_level is None else _mesh_levels([levels[0], levels[1], check_level])[2]
     if scene not in SCENES:
         raise InputError(f"scene = {scene!r}: must be one of {sorted(SCENES)}")
     geom = geom or RingPair3D()
     cache = cache_dir() if cache is None else Path(cache)
     t0 = time.perf_counter()
     own = executor is None
-    ex = local_pool(workers) if own else as_executor(executor)  # local workers die with this process
+    # local workers die with this process and use their share of the cores for BLAS/OpenMP
+    ex = local_pool(workers, threads_per_worker=thread_share(workers)) if own else as_executor(executor)
     try:
-        paths, builds = _compliances(ex, geom, levels, scene, cache)
-        store = point_store(paths, cache)
+        paths, builds = _compliances(ex, geom, levels + ([check] if check else []), scene, cache)
+        check_path = str(paths.pop()) if check else None
+        store = point_store(paths + ([check_path] if check else []), cache)
         tasks = [Task(_point_key(float(d), float(t)), point_task,
-                      {"paths": [str(p) for p in paths], "penetration_m": float(d), "tilt_rad": float(t)})
+                      {"paths": [str(p) for p in paths], "penetration_m": float(d), "tilt_rad": float(t),
+                       "check_path": check_path})
                  for t in tilts_rad for d in penetrations_m]
         summary = run_sweep(tasks, store, executor=ex, progress=progress, label="fem3d sweep", resume=resume,
                             manifest={"sweep": "fem3d", "scene": scene, "geometry": geom.as_dict(),
-                                      "levels": [lv.as_dict() for lv in levels]})
+                                      "levels": [lv.as_dict() for lv in levels],
+                                      "check_level": check.as_dict() if check else None})
     finally:
         if own:
             ex.shutdown(wait=True, cancel_futures=True)
     if summary.failed:
         raise _failed(summary, tasks, store)
     points = [_row(store.load(t.key, t.params).info) for t in tasks]
+    orders = pooled_orders(points)
+    points = [apply_orders(p, orders) for p in points]
     meta = _metadata(geom, scene, levels, points, tilts_rad, penetrations_m, workers if own else "external executor")
+    meta["mesh"]["check_level"] = check.as_dict() if check else None
+    meta["error_orders"] = orders
     meta["timings"] = {"total_s": time.perf_counter() - t0, "compliance_build_s": builds}
     return meta, points
 
@@ -339,7 +344,8 @@ def _row(info: dict) -> dict:
 def _metadata(geom: RingPair3D, scene: str, levels: list[MeshLevel3D], points: list[dict], tilts_rad,
               penetrations_m, workers) -> dict:
     return {
-        "title": "3D tilted ring-in-ring FEM reference (scikit-fem hexahedra, frictionless node-to-node contact)",
+        "title": "3D tilted ring-in-ring FEM reference (circumferential harmonics on quadratic sections, "
+                 "frictionless mortar contact)",
         "created_utc": utc_stamp(),
         "code_revision": revision_label(code_revision(scope=SOURCES, untracked=True)),
         "package_versions": package_versions(PACKAGES),
@@ -347,12 +353,16 @@ def _metadata(geom: RingPair3D, scene: str, levels: list[MeshLevel3D], points: l
         "scenes": {scene: SCENES[scene]},
         "geometry": geom.as_dict(),
         "mesh": {"levels": [lv.as_dict() for lv in levels], "ndofs_levels": points[0]["ndofs_levels"] if points else [],
-                 "model": "half model z >= 0 (plane of load direction y and axis x), u_z = 0 on z = 0; "
-                          "mapped structured hexahedra, exact node pairing across the clearance"},
-        "solver": {"method": "rigid motion split off (strain-free); per-level SuperLU factor (COLAMD) and "
-                             "contact compliance G = B K^-1 B^T formed once; LCP g0 + G lam >= 0 solved exactly "
-                             "by primal-dual active set (NNLS fallback); complementarity verified on all pairs",
-                   "gap": "exact tilted cylinders (geometry3d.rigid_gap_m), elastic part linearised radially"},
+                 "model": "full rings of revolution; per level: 9-node quadratic (x, r) sections graded toward the "
+                          "ring edges and the contact surfaces, harmonics cos/sin(n phi) for n = 0 .. n_harmonics; "
+                          "contact pressure symmetric about z = 0 (half model of the multipliers, phi in [0, pi])"},
+        "solver": {"method": "rigid motion split off (strain-free); per level and harmonic one SuperLU factor "
+                             "(MMD on A'+A) of the section stiffness; mortar compliance A = sum_n (2/pi_n) J_n J_n^T "
+                             "(x) X_n of bilinear pressure multipliers formed once (fem_reference/solid/fourier.py); "
+                             "LCP b + A lam >= 0 solved exactly by primal-dual active set (NNLS fallback); "
+                             "complementarity verified on all multipliers",
+                   "gap": "exact tilted cylinders (geometry.rigid_gap_m) weighted by the multipliers (5-point Gauss "
+                          "per element and direction), elastic part linearised radially"},
         "sweep": {"tilts_rad": [float(t) for t in tilts_rad], "penetrations_m": [float(d) for d in penetrations_m],
                   "workers": workers},
         "definitions": {
@@ -365,11 +375,17 @@ def _metadata(geom: RingPair3D, scene: str, levels: list[MeshLevel3D], points: l
             "width_law_m": "Dai et al. 2025 Eq. 11: min(Delta r_edge/|theta|, l0)",
             "sides": "'+y', '-y' or 'both' (two-point contact on opposite generatrices)",
             "edges_loaded": "ring edges (x = +-l0/2) that carry load: 'none', '+x', '-x', 'both'",
-            "pressure_map_pa": "nodal contact force / tributary area on the support bore, rows = pressure_phi_rad "
-                               "(loaded rows only), columns = pressure_x_m",
-            "force_error_rel": "Richardson (unequal ratios, h = N^-1/3) estimate of the finest level's error",
-            "wall_s": "contact solve of the finest level on a ready compliance (s)",
-            "wall_levels_s": "contact solves of all three levels (s), compliances excluded (see timings)",
+            "pressure_map_pa": "contact pressure multipliers (bilinear, Pa) on the support bore, rows = "
+                               "pressure_phi_rad (loaded rows only), columns = pressure_x_m",
+            "force_error_rel": "1.25 |f2 - f3| / (r32^p - 1): Richardson estimate of the finest level's error with "
+                               "the order p pooled over the sweep (metadata error_orders; h = N^-1/3)",
+            "force_finer_n": "the same point on the finer check level (finer_level): |force_n - force_finer_n| "
+                             "<= force_error_rel*force_n is a committed test",
+            "level_build_s": "cold build time of the levels this point uses, check level included (s)",
+            "level_load_s": "time the computing process spent obtaining those levels: build, or cache read; 0 when "
+                            "already in its memory (s)",
+            "solve_s": "contact solves of all levels, check level included (s)",
+            "wall_s": "level_load_s + solve_s: the point's wall time in its process (s)",
         },
     }
 

@@ -1,14 +1,16 @@
 """Console job ``ringcontact fem3d`` of the 3D tilted-ring FEM reference (registered in reports/cli/__init__.py).
 
-    ringcontact fem3d point 0.02 --tilt-arcmin 2 [--tilt-axis z|y] [--level L2 | --levels] [--json]
+    ringcontact fem3d point 0.02 --tilt-arcmin 2 [--tilt-axis z|y] [--level Q2] [--edge-refined] [--json]
     ringcontact fem3d sweep [--out PATH] [--workers 2] [--fresh] [--scheduler ADDRESS]   regenerate the committed dataset
     ringcontact fem3d check [--points 3] [--cached]                recompute a few committed points
     ringcontact fem3d report                                       tables/figures into reports/published/
-    ringcontact fem3d vtu 0.02 --tilt-arcmin 2 --out p.vtu [--level L2]   contact pressure map for ParaView
+    ringcontact fem3d vtu 0.02 --tilt-arcmin 2 --out p.vtu [--level Q2]   contact pressure map for ParaView
 
 Engineer units at this edge only (mm, arcmin, kN, kN*m, MPa); everything inside is SI; JSON keys
 carry the SI unit symbol (``force_N``, ``moment_Nm``). Mesh levels are cached under
 ``RINGCONTACT_CACHE`` (default ``~/.cache/ringcontact/fem3d``); a corrupt cached level is rebuilt.
+BLAS/OpenMP threads: this process's share of the cores (contact/threads.py), set before numpy
+loads; ``RINGCONTACT_THREADS`` overrides it.
 Inputs are checked against their plausible ranges (:mod:`contact.plausible`) and outputs checked
 writable before anything is computed.
 """
@@ -18,9 +20,13 @@ import json
 import math
 import sys
 
-from contact.errors import RingContactError
-from contact.units import ARCMIN, MM
-from reports.cli._edge import PUBLISHED, Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys
+from contact.threads import set_thread_env, thread_share
+
+set_thread_env(thread_share(1))      # this process's share of the cores, before numpy loads (contact/threads.py)
+
+from contact.errors import RingContactError  # noqa: E402
+from contact.units import ARCMIN, MM  # noqa: E402
+from reports.cli._edge import PUBLISHED, Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys  # noqa: E402
 
 SCENES_3D = ("clamped", "clamped-axially-fixed-ends")     # fem_reference.solid.solve.SCENES
 DATASET_OUT = "fem_reference/data/3d/fem3d-reference.json"
@@ -45,8 +51,8 @@ def _fmt_point(rec: dict) -> str:
         f"contact          sides {rec['sides']}, edges loaded {rec['edges_loaded']}, "
         f"half-angle {math.degrees(rec['half_angle_rad']):.2f} deg, peak pressure {rec['peak_pressure_pa'] / 1e6:.1f} MPa",
         f"mesh             {rec['ndofs']} DOFs, {rec['n_pairs']} contact pairs ({rec['n_active']} active)",
-        f"solver           {rec['iterations']} active-set iterations ({rec['lcp_method']}), "
-        f"{rec['wall_s']:.3f} s on a ready mesh",
+        f"solver           {rec['iterations']} active-set iterations ({rec['lcp_method']}); levels "
+        f"{rec['level_load_s']:.2f} s (cold build {rec['level_build_s']:.2f} s), contact solves {rec['solve_s']:.3f} s",
     ]
     if "force_y_n" in rec:
         lines.append(f"vectors          F on bearing (y, z) = ({rec['force_y_n'] / 1e3:.3f}, {rec['force_z_n'] / 1e3:.3f}) kN,"
@@ -64,14 +70,16 @@ def point_main(argv: list[str]) -> int:
                          "(the rotated case: same magnitudes, vectors rotated, see docs/reference/contact-laws.md §1)")
     ap.add_argument("--scene", default="clamped", choices=SCENES_3D, help="boundary-condition scene")
     ap.add_argument("--level", default=None, choices=_levels(),
-                    help="one mesh level (L0, L1, L2, E0…) instead of the three-level estimate")
+                    help="one mesh level (Q0, Q1, Q2, E0…) instead of the three-level estimate")
     ap.add_argument("--edge-refined", action="store_true",
                     help="use the levels E0-E2 graded hard toward the ring edges (edge-only contact, width << l0)")
+    ap.add_argument("--check", action="store_true",
+                    help="also solve on the finer check level (Q3, or E3 with --edge-refined): force_finer_N, moment_finer_Nm")
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
     ap.add_argument("--json", action="store_true", help="print the full record as JSON (SI units)")
     args = ap.parse_args(argv)
     from fem_reference.solid.geometry import RingPair3D, reduce_motion, rotate_about_x
-    from fem_reference.solid.mesh import DEFAULT_LEVELS, EDGE_LEVELS, LEVELS
+    from fem_reference.solid.mesh import CHECK_LEVEL, DEFAULT_LEVELS, EDGE_CHECK_LEVEL, EDGE_LEVELS, LEVELS
     from fem_reference.solid.sweep import _jsonable, get_compliance, reference_point
 
     try:
@@ -90,10 +98,14 @@ def point_main(argv: list[str]) -> int:
             if n not in LEVELS:
                 raise RingContactError(f"level = {n!r}: must be one of {sorted(LEVELS)}")
         comps = [get_compliance(geom, LEVELS[n], args.scene, use_cache=not args.no_cache) for n in names]
+        check = None
+        if args.check and not args.level:
+            check = get_compliance(geom, LEVELS[EDGE_CHECK_LEVEL if args.edge_refined else CHECK_LEVEL], args.scene,
+                                   use_cache=not args.no_cache)
         m = canon.motion
         if len(comps) == 1:
-            comps = comps * 3      # no error estimate from one level: the differences are zero
-        rec = reference_point(comps, m.translation_m - geom.clearance_m, m.tilt_rad)
+            comps = comps * 3          # no error estimate from one level: the differences are zero
+        rec = reference_point(comps, m.translation_m - geom.clearance_m, m.tilt_rad, check)
         if args.level:
             rec["force_error_rel"] = rec["moment_error_rel"] = None
         fy, fz = rotate_about_x(-rec["force_n"], 0.0, canon.frame_angle_rad)
@@ -190,7 +202,7 @@ def vtu_main(argv: list[str]) -> int:
     ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="mid-plane penetration Δr = r − δ0 [mm]")
     ap.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), default=0.0, help="tilt about z [arcmin]")
     ap.add_argument("--scene", default="clamped", choices=SCENES_3D, help="boundary-condition scene")
-    ap.add_argument("--level", default="L2", choices=_levels(), help="mesh level (default L2, the finest reference level)")
+    ap.add_argument("--level", default="Q2", choices=_levels(), help="mesh level (default Q2, the finest reference level)")
     ap.add_argument("--out", type=out_file, required=True, help="output .vtu file")
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
     args = ap.parse_args(argv)
@@ -210,7 +222,7 @@ def vtu_main(argv: list[str]) -> int:
         comp = get_compliance(geom, LEVELS[args.level], args.scene, use_cache=not args.no_cache)
         motion = RigidMotion.from_penetration(geom, args.penetration_mm * MM, args.tilt_arcmin * ARCMIN)
         res = solve_point(comp, motion)
-        gap = rigid_gap_m(geom, motion, comp.phi, comp.x)
+        gap = rigid_gap_m(geom, motion, comp.lam_phi, comp.lam_x)
         path = write_pressure_vtu(args.out, res, geom, gap)
     except RingContactError as exc:
         return fail("ringcontact fem3d vtu", exc)

@@ -104,6 +104,8 @@ def _fem3d_cases() -> list:
         c += [(f"fem3d {sub} --level L9", [*b, "--level", "L9"], "L9"),
               (f"fem3d {sub} --scene nosuch", [*b, "--scene", "nosuch"], "nosuch")]
     c += [("fem3d point --tilt-axis x", ["fem3d", "point", "0.02", "--tilt-axis", "x"], None),
+          ("fem3d point --check --level Q9", ["fem3d", "point", "0.02", "--check", "--level", "Q9"], "Q9"),
+          ("fem3d point --check=yes", ["fem3d", "point", "0.02", "--check=yes"], None),
           ("fem3d vtu no --out", ["fem3d", "vtu", "0.02"], None),
           ("fem3d nosuch", ["fem3d", "nosuch"], None)]
     c += _out_cases("fem3d vtu", ["fem3d", "vtu", "0.02"], "--out", UNWRITABLE_FILES)

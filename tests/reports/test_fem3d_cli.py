@@ -10,7 +10,7 @@ from reports.cli import fem3d as cli3d
 
 
 def _point(capsys, *args):
-    rc = cli3d.main(["point", *args, "--level", "L0", "--no-cache", "--json"])
+    rc = cli3d.main(["point", *args, "--level", "Q0", "--no-cache", "--json"])
     out = capsys.readouterr()
     return rc, out
 
@@ -32,9 +32,9 @@ def test_point_json_and_tilt_about_y(capsys):
 
 
 @pytest.mark.parametrize("args, word", [
-    (["point", "0.01", "--scene", "nope", "--level", "L0"], "scene"),
+    (["point", "0.01", "--scene", "nope", "--level", "Q0"], "scene"),
     (["point", "0.01", "--level", "L9"], "level"),
-    (["point", "nan", "--level", "L0", "--no-cache"], "penetration"),
+    (["point", "nan", "--level", "Q0", "--no-cache"], "penetration"),
 ])
 def test_point_errors_are_clear(capsys, args, word):
     from reports.cli import main

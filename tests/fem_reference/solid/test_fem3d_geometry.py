@@ -107,20 +107,33 @@ def test_grading_symmetric_and_monotone():
     assert np.diff(r)[-1] / np.diff(r)[0] == pytest.approx(3.0)
 
 
-def test_mesh_vertices_on_exact_circles_and_paired():
+def test_mesh_nodes_on_exact_circles_and_paired():
+    # Full isoparametric rings: every one of the 27 nodes of the contact-surface elements lies on its
+    # circle (mid-edge and mid-face nodes moved out from the chords), the ring volume is the exact
+    # annulus volume pi (R_o^2 - R_i^2) l0 to O(h^4), and both rings share the axial node lines.
+    from skfem import Basis, ElementHex2
     lv = MeshLevel3D("t", 16, 6, 2)
     b, s = build_meshes(GEOM, lv)
     for ring in (b, s):
-        rad = np.hypot(ring.mesh.p[1], ring.mesh.p[2])
+        loc = ring.mesh.doflocs
+        rad = np.hypot(loc[1], loc[2])
         on = np.isclose(rad, ring.contact_radius_m, rtol=0, atol=1e-12)
-        assert on.sum() == (lv.n_phi + 1) * (lv.n_axial + 1)
-        assert ring.mesh.t.shape == (8, lv.n_phi * lv.n_axial * lv.n_radial)
-        assert np.all(ring.mesh.p[2] >= -1e-15)          # half model z >= 0
-    assert np.array_equal(b.phi_nodes, s.phi_nodes) and np.array_equal(b.x_nodes, s.x_nodes)
+        assert on.sum() == (2 * 2 * lv.n_phi) * (2 * lv.n_axial + 1)
+        assert ring.mesh.t.shape == (8, 2 * lv.n_phi * lv.n_axial * lv.n_radial)
+        r_in, r_out = sorted((ring.contact_radius_m, ring.held_radius_m))
+        vol = Basis(ring.mesh, ElementHex2(), intorder=4).dx.sum()
+        assert vol == pytest.approx(math.pi * (r_out ** 2 - r_in ** 2) * GEOM.width_m, rel=1e-5)
+    assert np.array_equal(b.x_nodes, s.x_nodes)
 
 
 def test_bad_level_is_named():
     with pytest.raises(InputError, match="n_phi"):
-        MeshLevel3D("bad", 15, 6, 2)
+        MeshLevel3D("bad", 1, 6, 2)
+    with pytest.raises(InputError, match="n_axial"):
+        MeshLevel3D("bad", 16, 5, 2)
+    with pytest.raises(InputError, match="method"):
+        MeshLevel3D("bad", 16, 6, 2, method="spectral")
+    with pytest.raises(InputError, match="n_harmonics"):
+        MeshLevel3D("bad", 16, 6, 2, method="fourier", n_harmonics=2)
     with pytest.raises(InputError, match="order"):
         MeshLevel3D("bad", 16, 6, 2, order=3)

@@ -18,7 +18,7 @@ from fem_reference.solid.export import bore_surface, write_pressure_vtu
 
 def test_vtu_pressure_integrates_to_the_solved_force(tmp_path, capsys):
     out = tmp_path / "p.vtu"
-    assert cli3d.main(["vtu", "0.02", "--tilt-arcmin", "2", "--level", "L0", "--no-cache", "--out", str(out)]) == 0
+    assert cli3d.main(["vtu", "0.02", "--tilt-arcmin", "2", "--level", "Q0", "--no-cache", "--out", str(out)]) == 0
     reported_kN = float(capsys.readouterr().out.split("(")[1].split(" kN")[0])
     m = meshio.read(out)
     p = m.point_data["contact_pressure_pa"]
@@ -67,10 +67,10 @@ def test_corrupt_cached_level_is_rebuilt(tmp_path):
     from fem_reference.solid.mesh import LEVELS
     from fem_reference.solid.sweep import compliance_path, get_compliance
 
-    geom, level = RingPair3D(), LEVELS["L0"]
+    geom, level = RingPair3D(), LEVELS["Q0"]
     path = compliance_path(geom, level, "clamped", tmp_path)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_bytes(b"PK\x03\x04 truncated")
     comp = get_compliance(geom, level, "clamped", cache=tmp_path)
-    assert comp.G.shape[0] == comp.G.shape[1] > 0
-    assert get_compliance(geom, level, "clamped", cache=tmp_path).G.shape == comp.G.shape   # the rewritten file loads
+    assert comp.A.shape[0] == comp.A.shape[1] > 0
+    assert get_compliance(geom, level, "clamped", cache=tmp_path).A.shape == comp.A.shape   # the rewritten file loads
