@@ -1,6 +1,6 @@
 """Error estimates of the 3D reference: Richardson extrapolation with unequal refinement ratios.
 
-The finest of three levels (coarse -> fine) is reported with the estimate
+The finest of three levels (coarse -> fine) is reported with the estimate::
 
     error = Fs |f2 - f3| / (r32^p - 1),     Fs = 1.25,   r32 = h2 / h3,   h = N_dofs^(-1/3),
 

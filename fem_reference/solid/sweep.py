@@ -275,7 +275,8 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
     ----------
     tilts_rad, penetrations_m : sequences of float
         Defaults :data:`DEFAULT_TILTS_ARCMIN` and :data:`DEFAULT_PENETRATIONS_MM` in SI.
-    level_names : three keys of :data:`~fem_reference.solid.mesh.LEVELS` or MeshLevel3D (coarse -> fine).
+    level_names : sequence of str or MeshLevel3D
+        Three levels (coarse -> fine), names from :data:`~fem_reference.solid.mesh.LEVELS`.
     workers : int
         Processes of the local pool (ignored if ``executor`` is given).
     executor : concurrent.futures.Executor, optional
@@ -283,10 +284,12 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
     resume : bool
         Reuse finished points kept in the store under the cache (:func:`point_store`) from an
         interrupted run of the same sweep.
-    check_level : key of LEVELS, MeshLevel3D, None or "auto"
+    check_level : str, MeshLevel3D or None
         The finer level every point is also solved on (``force_finer_n``, ``moment_finer_nm``);
         "auto": :data:`~fem_reference.solid.mesh.CHECK_LEVEL` for the default levels, else none.
 
+    Notes
+    -----
     Local workers run with the BLAS/OpenMP threads of their share of the machine
     (:func:`contact.threads.thread_share`), set before numpy loads in them.
 
