@@ -1,0 +1,221 @@
+"""Friction events inside the step: a slip velocity that reaches zero is located, and the step split there.
+
+Den Hartog's (1931) oscillator shows what the plain step misses: when a face's slip velocity
+reverses inside a step, Coulomb's force jumps from ``−μN ŵ`` to ``+μN ŵ`` at that instant, and the
+trapezoidal rule of Newmark's average acceleration spreads the jump over the step (impulse
+``h (f_n + f_n+1)/2`` instead of the exact one), an error of order ``h`` per reversal: the steady
+amplitude then converges at first order only, and, with no viscous damping, a free vibration at
+the natural frequency is never damped out. The same holds at a stick onset (the force jumps from
+``μN`` to the holding force). A release needs no location: the holding force reaches ``μN`` and
+the slip force starts at ``μN`` in the same direction, so the force is continuous there.
+
+The located step (:func:`_split_step`), for the faces that slip at the start of a step and whose
+velocity reverses or which stick at its end (:func:`_velocity_events`):
+
+1. the step is solved again with those faces' friction held at their start-of-step value
+   ``−μN ŵ_n`` (the slip continued past the event, a smooth motion);
+2. the event time is the root of that step's own velocity polynomial along ``ŵ_n``, the
+   quadratic of Newmark's linearly varying acceleration,
+   ``s(θh) = s_n + θh s'_n + (θh)² (s'_n+1 − s'_n)/(2h)`` (:func:`_event_fraction`);
+3. the step is split into two Newmark sub-steps at ``θh`` (each with its own factorised matrix,
+   :func:`_substep_matrices`): the first with the friction still held, then the friction state is
+   switched (:func:`_switch_at_event`: the face sticks if its consistent holding force is within
+   ``μN``, else it slips in the direction of that force, with ``μN``), the acceleration is restarted
+   from the consistent one (:func:`rotor.dynamics.production_kernels._consistent_acceleration`), and the
+   second sub-step runs the plain step with its active-set loop.
+
+One event per step is located (the earliest; faces with the same event time switch together);
+a second event in the same step is left to the plain rules. Switched on by
+``NewmarkOptions.locate_events``; the tests are in tests/rotor/dynamics/test_friction_events.py.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from contact.compiled_cache import compiled_with
+from rotor.dynamics.production_kernels import _consistent_acceleration, _load, _newmark_step
+
+compiled_with(__file__, ["rotor.dynamics.production_kernels", "rotor.dynamics.constraints", "rotor.dynamics.kernels",
+                         "contact._kernel"])
+
+SAME_EVENT = 1e-6   # event fractions closer than this (of the step) are one event
+
+
+@njit(cache=True)
+def _substep_matrices(h, Mr, Dr, Kr, Bt, beta, gamma):
+    """``A(h)⁻¹``, ``W = A⁻¹ Btᵀ`` and ``S = Bt W`` of a step of length ``h`` (s), with
+    ``A = M + γh D + βh² K`` (reduced coordinates, as :func:`rotor.dynamics.production.prepare`)."""
+    Ainv = np.linalg.inv(Mr + gamma * h * Dr + beta * h * h * Kr)
+    W = Ainv @ Bt.T
+    return Ainv, W, Bt @ W
+
+
+@njit(cache=True)
+def _event_fraction(s0, d0, d1, h):
+    """Fraction ``θ ∈ (0, 1]`` of the step at which ``s(θh) = s0 + θh d0 + (θh)² (d1 − d0)/(2h)``
+    vanishes (velocity along the start direction, m/s; ``d0, d1`` its rates at the ends, m/s²),
+    the first root after 0; −1 if ``s`` does not reach zero within the step (``s0 > 0``)."""
+    A = 0.5 * h * (d1 - d0)
+    B = h * d0
+    if s0 + B + A > 0.0:
+        return -1.0
+    lo = 0.0
+    hi = 1.0
+    th = s0 / (s0 - (s0 + B + A))
+    for _ in range(60):
+        f = s0 + th * (B + th * A)
+        if f > 0.0:
+            lo = th
+        else:
+            hi = th
+        df = B + 2.0 * A * th
+        nxt = th - f / df if df != 0.0 else 0.5 * (lo + hi)
+        if not (lo < nxt < hi):
+            nxt = 0.5 * (lo + hi)
+        if abs(nxt - th) <= 1e-15:
+            return nxt
+        th = nxt
+    return th
+
+
+@njit(cache=True)
+def _velocity_events(v, v_end, modes0, modes1, Bt, P, n_faces, w_stick, ev):
+    """Mark in ``ev`` (2,) the faces slipping at the start of the step (faster than ``w_stick``, m/s)
+    whose velocity reversed (``w_n+1 · w_n ≤ 0``) or which stuck by its end; returns how many."""
+    w0 = Bt @ v
+    w1 = Bt @ v_end
+    count = 0
+    for k in range(2):
+        ev[k] = False
+        if k >= n_faces or modes0[k] != 0:
+            continue
+        a0 = P[k, 0] @ w0[:4]
+        b0 = P[k, 1] @ w0[:4]
+        if a0 * a0 + b0 * b0 <= w_stick * w_stick:
+            continue
+        a1 = P[k, 0] @ w1[:4]
+        b1 = P[k, 1] @ w1[:4]
+        if modes1[k] == 1 or a0 * a1 + b0 * b1 <= 0.0:
+            ev[k] = True
+            count += 1
+    return count
+
+
+@njit(cache=True)
+def _switch_at_event(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, faces, mu_N, a1, params,
+                     w_reg):
+    """Friction state of the ``faces`` (bool (2,)) at the event, and the consistent acceleration.
+
+    Each of them is stuck if its consistent holding force is within ``μN``; otherwise it slips with the
+    force ``μN`` in that force's direction (held for the acceleration only) and is marked just released.
+    ``modes, phi_face, just_released`` are updated in place. Returns ``a``."""
+    freeze = np.zeros(2, dtype=np.bool_)
+    fdir = np.zeros((2, 2))
+    for k in range(2):
+        if faces[k]:
+            modes[k] = 1
+            just_released[k] = False
+    phi = phi_face.copy()
+    a = np.zeros_like(p)
+    for _ in range(3):
+        phi[:, :] = phi_face
+        a = _consistent_acceleration(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, freeze, fdir, mu_N, a1, params,
+                                     w_reg, phi)
+        changed = False
+        for k in range(2):
+            if faces[k] and modes[k] == 1:
+                nrm = math.sqrt(phi[k, 0] ** 2 + phi[k, 1] ** 2)
+                if nrm > mu_N[k] * (1.0 + 1e-12):
+                    modes[k] = 0
+                    freeze[k] = True
+                    fdir[k, 0] = mu_N[k] * phi[k, 0] / nrm
+                    fdir[k, 1] = mu_N[k] * phi[k, 1] / nrm
+                    just_released[k] = True
+                    changed = True
+        if not changed:
+            break
+    phi_face[:, :] = phi
+    return a
+
+
+@njit(cache=True)
+def _split_step(p, v, a, alpha, modes, phi_face, just_released, ev, t, h, Ainv, Dr, Kr, Bt, W, S, static, orders,
+                cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter,
+                w_reg, w_stick, max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, status):
+    """The step ``[t − h, t]`` from ``(p, v, a)`` with the event of the faces marked in ``ev`` located
+    (module docstring). ``modes, phi_face, just_released`` are the start-of-step ones; on success they
+    are updated in place to the end of the step.
+
+    Returns ``(located, p, v, a, alpha, Newton iterations, passes, largest ω_c h)``; ``located`` False
+    (nothing changed) when the held step's velocity does not reach zero."""
+    hold = np.zeros(2, dtype=np.bool_)
+    hold_dir = np.zeros((2, 2))
+    e = np.zeros((2, 2))
+    s0 = np.zeros(2)
+    d0 = np.zeros(2)
+    w0 = Bt @ v
+    for k in range(2):
+        if ev[k]:
+            for r in range(2):
+                e[k, r] = P[k, r] @ w0[:4]
+            s0[k] = math.sqrt(e[k, 0] ** 2 + e[k, 1] ** 2)
+            e[k] /= s0[k]
+            hold[k] = True
+            hold_dir[k] = -mu_N[k] * e[k]
+            d0[k] = e[k, 0] * (P[k, 0] @ alpha[:4]) + e[k, 1] * (P[k, 1] @ alpha[:4])
+    # 1. the step continued with the event faces' friction held
+    mc = modes.copy()
+    pc = phi_face.copy()
+    jc = just_released.copy()
+    _, _, _, alc, its, passes, wd, _ = _newmark_step(p, v, a, alpha, mc, pc, jc, t, h, Ainv, Dr, Kr, Bt, W, S, static,
+                                                     orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
+                                                     has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
+                                                     max_passes, stick_mean_weight, onset_projection, Minv, WM, SM,
+                                                     hold, hold_dir, status)
+    # 2. the event fraction of each face on that step's velocity polynomial; the earliest
+    th = np.full(2, 2.0)
+    theta = 2.0
+    for k in range(2):
+        if ev[k]:
+            d1 = e[k, 0] * (P[k, 0] @ alc[:4]) + e[k, 1] * (P[k, 1] @ alc[:4])
+            f = _event_fraction(s0[k], d0[k], d1, h)
+            if f >= 0.0:
+                th[k] = f
+                theta = min(theta, f)
+    if theta > 1.0:
+        return False, p, v, a, alpha, its, passes, wd
+    for k in range(2):
+        hold[k] = th[k] <= theta + SAME_EVENT
+    # 3. first sub-step, up to the event, friction held
+    h1 = theta * h
+    p1, v1, a_1, al1 = p, v, a, alpha
+    if h1 > 1e-12 * h:
+        Ainv1, W1, S1 = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
+        p1, v1, a_1, al1, i1, n1, wd1, _ = _newmark_step(p, v, a, alpha, modes, phi_face, just_released, t - h + h1, h1,
+                                                         Ainv1, Dr, Kr, Bt, W1, S1, static, orders, cosm, sinm, omega_f,
+                                                         P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma,
+                                                         tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
+                                                         onset_projection, Minv, WM, SM, hold, hold_dir, status)
+        its += i1
+        passes += n1
+        wd = max(wd, wd1)
+    # 4. the friction state switched at the event, consistent acceleration
+    Q1 = _load(t - h + h1, static, orders, cosm, sinm, omega_f)
+    a_1 = _switch_at_event(p1, v1, Q1, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N, a1,
+                           params, w_reg)
+    al1 = Bt @ a_1
+    # 5. second sub-step, the plain step from the event to t
+    h2 = h - h1
+    if h2 <= 1e-12 * h:
+        return True, p1, v1, a_1, al1, its, passes, wd
+    Ainv2, W2, S2 = _substep_matrices(h2, Mr, Dr, Kr, Bt, beta, gamma)
+    hold[:] = False
+    p2, v2, a2, al2, i2, n2, wd2, _ = _newmark_step(p1, v1, a_1, al1, modes, phi_face, just_released, t, h2, Ainv2, Dr,
+                                                    Kr, Bt, W2, S2, static, orders, cosm, sinm, omega_f, P, mu_N,
+                                                    n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter,
+                                                    w_reg, w_stick, max_passes, stick_mean_weight, onset_projection,
+                                                    Minv, WM, SM, hold, hold_dir, status)
+    return True, p2, v2, a2, al2, its + i2, passes + n2, max(wd, wd2)
