@@ -82,19 +82,21 @@ def _event_fraction(s0, d0, d1, h):
 
 
 @njit(cache=True)
-def _velocity_events(v, v_end, modes0, modes1, Bt, P, n_faces, w_stick, ev):
-    """Mark in ``ev`` (2,) the faces slipping at the start of the step (faster than ``w_stick``, m/s)
-    whose velocity reversed (``w_n+1 · w_n ≤ 0``) or which stuck by its end; returns how many."""
+def _velocity_events(v, v_end, modes0, modes1, released0, Bt, P, n_faces, w_min, ev):
+    """Mark in ``ev`` (2,) the faces slipping at the start of the step, faster than ``w_min`` (m/s; the
+    friction regularisation ``w_reg``, below which the slip direction is not defined) and not just
+    released (``released0``: they start from rest), whose velocity reversed (``w_n+1 · w_n ≤ 0``) or
+    which stuck by its end; returns how many."""
     w0 = Bt @ v
     w1 = Bt @ v_end
     count = 0
     for k in range(2):
         ev[k] = False
-        if k >= n_faces or modes0[k] != 0:
+        if k >= n_faces or modes0[k] != 0 or released0[k]:
             continue
         a0 = P[k, 0] @ w0[:4]
         b0 = P[k, 1] @ w0[:4]
-        if a0 * a0 + b0 * b0 <= w_stick * w_stick:
+        if a0 * a0 + b0 * b0 <= w_min * w_min:
             continue
         a1 = P[k, 0] @ w1[:4]
         b1 = P[k, 1] @ w1[:4]

@@ -4,8 +4,12 @@ numba ``njit`` functions on the condensed step: the contact and coupling forces 
 analytic Jacobian (:func:`_forces`), the residual of the condensed step (:func:`_residual`), its
 Newton solve with backtracking (:func:`_solve_support`), a hand-written Gaussian elimination for
 the ≤ 10×10 Newton systems (:func:`_small_solve`), the consistent acceleration after a stick onset
-(:func:`_reproject`) and the whole step loop (:func:`step_loop`). The equations are those of
-:mod:`rotor.dynamics.production`; the stick/slip rules are :mod:`rotor.dynamics.constraints`, compiled.
+(:func:`_reproject`, and :func:`_consistent_acceleration` with slipping faces' forces held, after a
+friction event), the load at a time (:func:`_load`) and one whole step with its active-set loop
+(:func:`_newmark_step`, of any length ``h`` with its own factorised matrices). The loop over the steps is
+:func:`rotor.dynamics.production_loop.step_loop`; the events located inside a step
+:mod:`rotor.dynamics.friction_events`. The equations are those of :mod:`rotor.dynamics.production`;
+the stick/slip rules are :mod:`rotor.dynamics.constraints`, compiled.
 """
 from __future__ import annotations
 

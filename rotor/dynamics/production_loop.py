@@ -54,7 +54,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             p, v, a, alpha, modes, phi_face, just_released, t, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm,
             omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
             max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, no_hold, hold_dir, status)
-        if locate and _velocity_events(v, vn, modes0, modes, Bt, P, n_faces, w_stick, ev) > 0:
+        if locate and _velocity_events(v, vn, modes0, modes, jr0, Bt, P, n_faces, w_reg, ev) > 0:
             done, ps, vs, as_, als, its2, passes2, wd2 = _split_step(
                 p, v, a, alpha, modes0, phi0, jr0, ev, t, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm,
                 omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
