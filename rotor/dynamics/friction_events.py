@@ -9,14 +9,14 @@ the natural frequency is never damped out. The same holds at a stick onset (the 
 ``μN`` to the holding force). A release needs no location: the holding force reaches ``μN`` and
 the slip force starts at ``μN`` in the same direction, so the force is continuous there.
 
-The located step (:func:`_split_step`), for the faces that slip at the start of a step and whose
-velocity reverses or which stick at its end (:func:`_velocity_events`):
+The located step (driven by :func:`rotor.dynamics.production_loop.step_loop`), for the faces that slip
+at the start of a step and whose velocity reverses or which stick at its end (:func:`_velocity_events`):
 
-1. the step is solved again with those faces' friction held at their start-of-step value
-   ``−μN ŵ_n`` (the slip continued past the event, a smooth motion);
+1. the step is solved again with those faces' friction held at its start-of-step value
+   ``−μN ŵ_n`` (:func:`_held_friction`; the slip continued past the event, a smooth motion);
 2. the event time is the root of that step's own velocity polynomial along ``ŵ_n``, the
    quadratic of Newmark's linearly varying acceleration,
-   ``s(θh) = s_n + θh s'_n + (θh)² (s'_n+1 − s'_n)/(2h)`` (:func:`_event_fraction`);
+   ``s(θh) = s_n + θh s'_n + (θh)² (s'_n+1 − s'_n)/(2h)`` (:func:`_event_time`, :func:`_event_fraction`);
 3. the step is split into two Newmark sub-steps at ``θh`` (each with its own factorised matrix,
    :func:`_substep_matrices`): the first with the friction still held, then the friction state is
    switched (:func:`_switch_at_event`: the face sticks if its consistent holding force is within
@@ -36,7 +36,7 @@ import numpy as np
 from numba import njit
 
 from contact.compiled_cache import compiled_with
-from rotor.dynamics.production_kernels import _consistent_acceleration, _load, _newmark_step
+from rotor.dynamics.production_kernels import _consistent_acceleration
 
 compiled_with(__file__, ["rotor.dynamics.production_kernels", "rotor.dynamics.constraints", "rotor.dynamics.kernels",
                          "contact._kernel"])
@@ -48,9 +48,9 @@ SAME_EVENT = 1e-6   # event fractions closer than this (of the step) are one eve
 def _substep_matrices(h, Mr, Dr, Kr, Bt, beta, gamma):
     """``A(h)⁻¹``, ``W = A⁻¹ Btᵀ`` and ``S = Bt W`` of a step of length ``h`` (s), with
     ``A = M + γh D + βh² K`` (reduced coordinates, as :func:`rotor.dynamics.production.prepare`)."""
-    Ainv = np.linalg.inv(Mr + gamma * h * Dr + beta * h * h * Kr)
-    W = Ainv @ Bt.T
-    return Ainv, W, Bt @ W
+    Ainv = np.ascontiguousarray(np.linalg.inv(Mr + gamma * h * Dr + beta * h * h * Kr))
+    W = np.ascontiguousarray(Ainv @ Bt.T)
+    return Ainv, W, np.ascontiguousarray(Bt @ W)
 
 
 @njit(cache=True)
@@ -144,80 +144,38 @@ def _switch_at_event(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just
 
 
 @njit(cache=True)
-def _split_step(p, v, a, alpha, modes, phi_face, just_released, ev, t, h, Ainv, Dr, Kr, Bt, W, S, static, orders,
-                cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter,
-                w_reg, w_stick, max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, status):
-    """The step ``[t − h, t]`` from ``(p, v, a)`` with the event of the faces marked in ``ev`` located
-    (module docstring). ``modes, phi_face, just_released`` are the start-of-step ones; on success they
-    are updated in place to the end of the step.
-
-    Returns ``(located, p, v, a, alpha, Newton iterations, passes, largest ω_c h)``; ``located`` False
-    (nothing changed) when the held step's velocity does not reach zero."""
-    hold = np.zeros(2, dtype=np.bool_)
-    hold_dir = np.zeros((2, 2))
-    e = np.zeros((2, 2))
-    s0 = np.zeros(2)
-    d0 = np.zeros(2)
+def _held_friction(v, alpha, ev, Bt, P, mu_N, e, s0, d0, hold, hold_dir):
+    """Start of a located step for the faces marked in ``ev``: the unit slip direction ``e[k]``, the speed
+    ``s0[k]`` (m/s) and its rate ``d0[k]`` along ``e[k]`` (m/s², from ``alpha = Bt a``), and the friction
+    held over the re-solved step, ``hold_dir[k] = −μN e[k]`` (N), ``hold[k]`` True. Arrays written in place."""
     w0 = Bt @ v
     for k in range(2):
+        hold[k] = ev[k]
         if ev[k]:
             for r in range(2):
                 e[k, r] = P[k, r] @ w0[:4]
             s0[k] = math.sqrt(e[k, 0] ** 2 + e[k, 1] ** 2)
-            e[k] /= s0[k]
-            hold[k] = True
-            hold_dir[k] = -mu_N[k] * e[k]
+            e[k, 0] /= s0[k]
+            e[k, 1] /= s0[k]
+            hold_dir[k, 0] = -mu_N[k] * e[k, 0]
+            hold_dir[k, 1] = -mu_N[k] * e[k, 1]
             d0[k] = e[k, 0] * (P[k, 0] @ alpha[:4]) + e[k, 1] * (P[k, 1] @ alpha[:4])
-    # 1. the step continued with the event faces' friction held
-    mc = modes.copy()
-    pc = phi_face.copy()
-    jc = just_released.copy()
-    _, _, _, alc, its, passes, wd, _ = _newmark_step(p, v, a, alpha, mc, pc, jc, t, h, Ainv, Dr, Kr, Bt, W, S, static,
-                                                     orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
-                                                     has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
-                                                     max_passes, stick_mean_weight, onset_projection, Minv, WM, SM,
-                                                     hold, hold_dir, status)
-    # 2. the event fraction of each face on that step's velocity polynomial; the earliest
+
+
+@njit(cache=True)
+def _event_time(alpha_held, ev, e, s0, d0, h, P, hold):
+    """Event fraction ``θ`` of the step (:func:`_event_fraction` of each face marked in ``ev``, from the held
+    step's end rate ``alpha_held = Bt a``), the earliest; ``hold`` (in place) keeps the faces whose event is
+    at ``θ`` (within ``SAME_EVENT``). Returns ``θ``, or 2 if no face's velocity reaches zero in the step."""
     th = np.full(2, 2.0)
     theta = 2.0
     for k in range(2):
         if ev[k]:
-            d1 = e[k, 0] * (P[k, 0] @ alc[:4]) + e[k, 1] * (P[k, 1] @ alc[:4])
+            d1 = e[k, 0] * (P[k, 0] @ alpha_held[:4]) + e[k, 1] * (P[k, 1] @ alpha_held[:4])
             f = _event_fraction(s0[k], d0[k], d1, h)
             if f >= 0.0:
                 th[k] = f
                 theta = min(theta, f)
-    if theta > 1.0:
-        return False, p, v, a, alpha, its, passes, wd
     for k in range(2):
-        hold[k] = th[k] <= theta + SAME_EVENT
-    # 3. first sub-step, up to the event, friction held
-    h1 = theta * h
-    p1, v1, a_1, al1 = p, v, a, alpha
-    if h1 > 1e-12 * h:
-        Ainv1, W1, S1 = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
-        p1, v1, a_1, al1, i1, n1, wd1, _ = _newmark_step(p, v, a, alpha, modes, phi_face, just_released, t - h + h1, h1,
-                                                         Ainv1, Dr, Kr, Bt, W1, S1, static, orders, cosm, sinm, omega_f,
-                                                         P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma,
-                                                         tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
-                                                         onset_projection, Minv, WM, SM, hold, hold_dir, status)
-        its += i1
-        passes += n1
-        wd = max(wd, wd1)
-    # 4. the friction state switched at the event, consistent acceleration
-    Q1 = _load(t - h + h1, static, orders, cosm, sinm, omega_f)
-    a_1 = _switch_at_event(p1, v1, Q1, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N, a1,
-                           params, w_reg)
-    al1 = Bt @ a_1
-    # 5. second sub-step, the plain step from the event to t
-    h2 = h - h1
-    if h2 <= 1e-12 * h:
-        return True, p1, v1, a_1, al1, its, passes, wd
-    Ainv2, W2, S2 = _substep_matrices(h2, Mr, Dr, Kr, Bt, beta, gamma)
-    hold[:] = False
-    p2, v2, a2, al2, i2, n2, wd2, _ = _newmark_step(p1, v1, a_1, al1, modes, phi_face, just_released, t, h2, Ainv2, Dr,
-                                                    Kr, Bt, W2, S2, static, orders, cosm, sinm, omega_f, P, mu_N,
-                                                    n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter,
-                                                    w_reg, w_stick, max_passes, stick_mean_weight, onset_projection,
-                                                    Minv, WM, SM, hold, hold_dir, status)
-    return True, p2, v2, a2, al2, its + i2, passes + n2, max(wd, wd2)
+        hold[k] = ev[k] and th[k] <= theta + SAME_EVENT
+    return theta

@@ -32,8 +32,8 @@ A runtime check records the largest ``ω_c Δt`` met, with ``ω_c² = k_t (B M�
 reported after the fact as well as refused up front (:func:`rotor.dynamics.system.check_time_step`).
 
 This module prepares the system (:func:`prepare`) and drives the run; the compiled routines
-(items 3 and 4) are in :mod:`rotor.dynamics.production_kernels` (one step) and
-:mod:`rotor.dynamics.production_loop` (the loop), the law kernel in :mod:`rotor.dynamics.kernels`. With
+(items 3 and 4) are in :mod:`rotor.dynamics.production_kernels` (forces, Newton) and
+:mod:`rotor.dynamics.production_loop` (the step and the loop), the law kernel in :mod:`rotor.dynamics.kernels`. With
 ``NewmarkOptions.locate_events`` a friction velocity reversal or stick onset is located inside the step
 and the step split there (:mod:`rotor.dynamics.friction_events`).
 """

@@ -5,8 +5,7 @@ analytic Jacobian (:func:`_forces`), the residual of the condensed step (:func:`
 Newton solve with backtracking (:func:`_solve_support`), a hand-written Gaussian elimination for
 the ≤ 10×10 Newton systems (:func:`_small_solve`), the consistent acceleration after a stick onset
 (:func:`_reproject`, and :func:`_consistent_acceleration` with slipping faces' forces held, after a
-friction event), the load at a time (:func:`_load`) and one whole step with its active-set loop
-(:func:`_newmark_step`, of any length ``h`` with its own factorised matrices). The loop over the steps is
+friction event), and the load at a time (:func:`_load`). The step loop is
 :func:`rotor.dynamics.production_loop.step_loop`; the events located inside a step
 :mod:`rotor.dynamics.friction_events`. The equations are those of :mod:`rotor.dynamics.production`;
 the stick/slip rules are :mod:`rotor.dynamics.constraints`, compiled.
@@ -333,9 +332,9 @@ def _consistent_acceleration(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, freeze
 
 
 @njit(cache=True)
-def _load(t, static, orders, cosm, sinm, omega_f):
-    """Reduced load ``Q(t)`` (N): static part plus the harmonic orders at time ``t`` (s)."""
-    Q = static.copy()
+def _load(t, static, orders, cosm, sinm, omega_f, Q):
+    """Reduced load ``Q(t)`` (N) written into ``Q``: static part plus the harmonic orders at time ``t`` (s)."""
+    Q[:] = static
     for h in range(orders.shape[0]):
         ph = orders[h] * omega_f * t
         cph = math.cos(ph)
@@ -343,157 +342,3 @@ def _load(t, static, orders, cosm, sinm, omega_f):
         for i in range(Q.shape[0]):
             Q[i] += cph * cosm[h, i] + sph * sinm[h, i]
     return Q
-
-
-@njit(cache=True)
-def _newmark_step(p, v, a, alpha, modes, phi_face, just_released, t, h, Ainv, Dr, Kr, Bt, W, S, static, orders,
-                  cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter,
-                  w_reg, w_stick, max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, hold, hold_dir,
-                  status):
-    """One step of :func:`rotor.dynamics.production.simulate_production`, of length ``h`` (s) ending at
-    ``t`` (s), from ``(p, v, a)`` (reduced coordinates; ``alpha = Bt a`` is Newton's first guess), with
-    ``Ainv, W, S`` factorised for this ``h``: predictor, condensed Newton with the active-set loop,
-    correction, stick-onset re-projection. ``modes, phi_face, just_released`` are updated in place;
-    ``status`` [2] counts least-residual steps, [3] stick-onset re-projections.
-
-    ``hold[k]`` (event location, :mod:`rotor.dynamics.friction_events`): the slipping face ``k`` keeps
-    the force ``hold_dir[k]`` (N) over the whole step and is not stick-tested (its mode is left as is).
-    All False gives the plain step.
-
-    Returns ``(p, v, a, alpha, Newton iterations, active-set passes, ω_c h at the new state, Q(t))``."""
-    bdt2 = beta * h * h
-    gdt = gamma * h
-    p_pre = p + h * v + h * h * (0.5 - beta) * a
-    v_pre = v + h * (1.0 - gamma) * a
-    Q = _load(t, static, orders, cosm, sinm, omega_f)
-    rhs = Q - Dr @ v_pre - Kr @ p_pre
-    a_lin = Ainv @ rhs
-    total_its = 0
-    passes = 0
-    onset = False
-    wd = 0.0
-    if not has_support:
-        a = a_lin
-        return p_pre + bdt2 * a, v_pre + gdt * a, a, alpha, total_its, passes, wd, Q
-    freeze = np.zeros(2, dtype=np.bool_)
-    freeze_dir = np.zeros((2, 2))
-    w_old = np.zeros((2, 2))
-    phi_old = np.zeros((2, 2))
-    tried = np.zeros(2, dtype=np.bool_)
-    stuck0 = np.zeros(2, dtype=np.bool_)
-    phi_c = np.zeros((2, 2))
-    alpha_lin = Bt @ a_lin
-    u_pre = Bt @ p_pre
-    w_pre = Bt @ v_pre
-    wv = Bt @ v
-    for k in range(2):
-        w_old[k] = P[k] @ wv[:4]
-        tried[k] = modes[k] == 1
-        stuck0[k] = modes[k] == 1
-        freeze[k] = hold[k]
-        if hold[k]:
-            freeze_dir[k, 0] = hold_dir[k, 0]
-            freeze_dir[k, 1] = hold_dir[k, 1]
-        phi_old[k, 0] = phi_face[k, 0]
-        phi_old[k, 1] = phi_face[k, 1]
-    g = np.zeros(NC)
-    while True:
-        passes += 1
-        alpha_new, g, phi, its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_face,
-                                                    freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
-                                                    tol, max_iter, w_reg)
-        total_its += its
-        if not ok:
-            # slip Newton stalls when the true answer is (near) stick: try stick on the
-            # slipping faces not yet tried in this step, else give up
-            flipped = False
-            for k in range(n_faces):
-                if modes[k] == 0 and not tried[k] and not hold[k]:
-                    modes[k] = 1
-                    tried[k] = True
-                    phi_face[k] = phi[k]
-                    flipped = True
-            if flipped and passes < max_passes + 4:
-                for k in range(2):
-                    freeze[k] = hold[k]
-                continue
-            # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
-            # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
-            status[2] += 1
-            alpha = alpha_new
-            for k in range(2):
-                phi_face[k] = phi[k]
-            break
-        alpha = alpha_new
-        if (freeze[0] and not hold[0]) or (freeze[1] and not hold[1]):
-            for k in range(2):
-                freeze[k] = hold[k]
-            continue
-        w_new = w_pre + gdt * alpha
-        changed = False
-        # a face trying stick in this step (slipping at its start) is tested on its holding
-        # force at the end of the step, the consistent multiplier (stick-onset re-projection),
-        # not on the trapezoidal one that carries the velocity jump (f_n+1 = 2 f̄ − f_n); the
-        # other face, if stuck, on its consistent multiplier too (the one the step will keep)
-        use_c = False
-        if onset_projection:
-            for k in range(2):
-                if modes[k] == 1 and not stuck0[k]:
-                    use_c = True
-        if use_c:
-            a_try = a_lin + W @ g
-            for k in range(2):
-                phi_c[k, 0] = phi[k, 0]
-                phi_c[k, 1] = phi[k, 1]
-            _reproject(p_pre + bdt2 * a_try, v_pre + gdt * a_try, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes,
-                       mu_N, a1, params, w_reg, phi_c)
-        for k in range(n_faces):
-            if hold[k]:
-                continue
-            wk = P[k] @ w_new[:4]
-            fk = phi[k]
-            if use_c and modes[k] == 1:
-                fk = phi_c[k]
-            nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N[k], 0.0 if just_released[k] else w_stick,
-                              tried[k], phi_old[k],
-                              stick_mean_weight if stuck0[k] else 0.0)
-            if nm != modes[k]:
-                changed = True
-                modes[k] = nm
-                if nm == 1:
-                    tried[k] = True
-                    phi_face[k] = phi[k]
-                else:
-                    nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
-                    freeze[k] = True
-                    if nrm > 0:
-                        freeze_dir[k] = mu_N[k] * fk / nrm
-                    else:
-                        freeze_dir[k] = 0.0
-        if not changed or passes >= max_passes:
-            for k in range(2):
-                phi_face[k] = phi[k]
-            break
-    a = a_lin + W @ g
-    if onset_projection:
-        for k in range(2):
-            if modes[k] == 1 and not stuck0[k]:
-                onset = True
-    # largest ω_c Δt met: radial tangent stiffness of the law at the new state
-    u_new = u_pre + bdt2 * alpha
-    w_new = w_pre + gdt * alpha
-    f, Ju, Jv = contact_kernel(u_new[:4], w_new[:4], params)
-    kt = -(Ju[0, 0] + Ju[1, 1])
-    if kt > 0:
-        wd = math.sqrt(kt * s_yy) * h
-    p = p_pre + bdt2 * a
-    v = v_pre + gdt * a
-    for k in range(2):
-        just_released[k] = onset_projection and modes[k] == 0 and stuck0[k]
-    if onset:
-        # a face stuck in this step: restart from the consistent acceleration (positions and
-        # velocities of the step kept), so the stuck multiplier does not ring
-        a = _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
-        alpha = Bt @ a
-        status[3] += 1
-    return p, v, a, alpha, total_its, passes, wd, Q
