@@ -6,7 +6,7 @@ Writes ``reports/published/perf-friction-events.md``:
    ``benchmarks/bench_integrators.py``: :func:`rotor.studies.steady_state.steady_state` from rest, then 64
    revolutions), with ``NewmarkOptions.locate_events`` off and on, alternating in one process, and,
    with ``--baseline DIR``, the code before the change (a source tree of the previous commit, run in a
-   subprocess, timed inside it after compilation) between them: wall times (median), revolutions,
+   subprocess, timed inside it after compilation) and this tree the same way, between them: wall times (median), revolutions,
    1X–5X velocity amplitudes of disk1.y, disk2.y and s.y with events on against off, events located in
    the first 10 revolutions.
 2. Den Hartog's (1931) oscillator (tests/rotor/dynamics/dynamics_denhartog.py): steady amplitude error
@@ -149,15 +149,15 @@ def main(argv=None) -> int:
     load0 = os.getloadavg()
     steady_point(False)   # compile (or load from the cache) both variants first
     steady_point(True)
-    walls = {"off": [], "on": [], "before": []}
+    walls = {"off": [], "on": [], "before": [], "off_sub": []}
     res = {}
     for _ in range(REPEATS):
-        for name in ("before", "off", "on"):
-            if name == "before":
+        for name in ("before", "off_sub", "off", "on"):
+            if name in ("before", "off_sub"):
                 if args.baseline:
-                    b = baseline_point(args.baseline)
-                    walls["before"].append((b["wall"], b["cpu"]))
-                    res["before"] = (b["revs"], None)
+                    b = baseline_point(args.baseline if name == "before" else str(ROOT))
+                    walls[name].append((b["wall"], b["cpu"]))
+                    res[name] = (b["revs"], None)
                 continue
             wall, revs, amps = steady_point(name == "on")
             walls[name].append(wall)
@@ -173,6 +173,7 @@ def main(argv=None) -> int:
              f"Alternating in one run, median of {REPEATS} (min–max), numba compiled beforehand.", "",
              "| variant | wall (s), median (min–max) | CPU (s), median (min–max) | revolutions |", "|---|---|---|---|"]
     for name, label in (("before", "before the change (previous commit, subprocess)"),
+                        ("off_sub", "this change, `locate_events = False` (default), subprocess as the line above"),
                         ("off", "this change, `locate_events = False` (default)"),
                         ("on", "this change, `locate_events = True`")):
         if walls[name]:
