@@ -93,3 +93,14 @@ def test_undamped_den_hartog_reaches_a_periodic_state(omega):
     assert np.all(located[119:] < 1e-8), located[119:].max()
     plain = period_differences(False)
     assert np.all(plain[199:] > 1e-5), plain[199:].min()
+
+
+def test_event_fraction_is_the_root_of_newmarks_velocity_polynomial():
+    """s(θh) = s0 + θh d0 + (θh)² (d1 − d0)/(2h): with s0 = 1, d0 = −1, d1 = −3, h = 1 it is 1 − θ − θ², whose
+    root is the golden ratio's (√5 − 1)/2; a velocity that does not reach zero in the step gives −1."""
+    from rotor.dynamics.friction_events import _event_fraction
+
+    assert _event_fraction(1.0, -1.0, -3.0, 1.0) == pytest.approx((5 ** 0.5 - 1) / 2, rel=1e-14)
+    assert _event_fraction(2.0, -1.0, -1.0, 4e-3) == -1.0
+    # the linear case (d1 = d0): θ = s0 / (−h d0)
+    assert _event_fraction(1e-4, -0.5, -0.5, 1e-3) == pytest.approx(0.2, rel=1e-14)
