@@ -32,8 +32,10 @@ A runtime check records the largest ``ω_c Δt`` met, with ``ω_c² = k_t (B M�
 reported after the fact as well as refused up front (:func:`rotor.dynamics.system.check_time_step`).
 
 This module prepares the system (:func:`prepare`) and drives the run; the compiled routines
-(items 3 and 4) are in :mod:`rotor.dynamics.production_kernels`, the law kernel in
-:mod:`rotor.dynamics.kernels`.
+(items 3 and 4) are in :mod:`rotor.dynamics.production_kernels` (forces, Newton) and
+:mod:`rotor.dynamics.production_loop` (the step and the loop), the law kernel in :mod:`rotor.dynamics.kernels`. With
+``NewmarkOptions.locate_events`` a friction velocity reversal or stick onset is located inside the step
+and the step split there (:mod:`rotor.dynamics.friction_events`).
 """
 from __future__ import annotations
 
@@ -48,7 +50,7 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.condense import condense, expand
 from rotor.dynamics.initial import initial_state
 from rotor.dynamics.kernels import contact_kernel
-from rotor.dynamics.production_kernels import step_loop
+from rotor.dynamics.production_loop import step_loop
 from rotor.dynamics.system import (NewmarkOptions, RotorSystem, Trajectory, check_inputs, check_time_step, coupling_map,
                                    relative_compliance)
 
@@ -78,6 +80,7 @@ class Prepared:
     Minv: np.ndarray
     WM: np.ndarray
     SM: np.ndarray
+    Mr: np.ndarray
 
 
 def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = None) -> Prepared:
@@ -113,7 +116,7 @@ def prepare(system: RotorSystem, dt: float, options: NewmarkOptions | None = Non
     WM = Minv @ Bt.T
     SM = Bt @ WM
     return Prepared(T, Ainv, Dr, Kr, Bt, W, S, static, np.asarray(f.orders, float), f.cos @ T, f.sin @ T,
-                    float(f.omega_rad_s), P, limits, n_faces, s_yy, float(dt), a1, Minv, WM, SM)
+                    float(f.omega_rad_s), P, limits, n_faces, s_yy, float(dt), a1, Minv, WM, SM, Mr)
 
 
 
@@ -155,15 +158,15 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     p, vp, ap = T.T @ q0, T.T @ v0, T.T @ a0
     rec = _records(system, n_steps // record_every + 1, T.shape[1], t0, p, vp, ap, q0, v0, modes, phi_face)
     params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(N_PARAMS)
-    status = np.zeros(4, dtype=np.int64)
+    status = np.zeros(5, dtype=np.int64)
     try:
         done, wdt_max = step_loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
                                   pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos,
                                   pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1, sup is not None,
                                   params, opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick,
                                   opts.max_passes, float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
-                                  pre.Minv, pre.WM, pre.SM, rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"],
-                                  rec["fc"], rec["fel"], rec["face"], rec["modes"], rec["its"], rec["passes"], status)
+                                  pre.Minv, pre.WM, pre.SM, pre.Mr, bool(opts.locate_events), rec["t"], rec["p"],
+                                  rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"], rec["face"], rec["modes"], rec["its"], rec["passes"], status)
     except OutsideDomainError as e:
         raise OutsideDomainError(
             f"{e} (production run from t = {t0:g} s, dt_s = {dt:.3e} s, {n_steps} steps, clearance "
@@ -178,7 +181,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     tr = Trajectory(t=rec["t"], q=rec["p"] @ T.T, v=rec["v"] @ T.T, a=rec["a"] @ T.T, u=rec["u"], w=rec["w"],
                     f_contact=rec["fc"], f_elastic=rec["fel"], face_force=rec["face"], modes=rec["modes"],
                     newton_iters=rec["its"], passes=rec["passes"], omega_dt_max=float(wdt_max),
-                    unconverged_steps=int(status[2]),
+                    unconverged_steps=int(status[2]), located_events=int(status[4]),
                     scheme="production (condensed, analytic Jacobian, numba)")
     return tr
 
@@ -186,7 +189,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
 def warm_up() -> dict:
     """Compile the step loop, or load it from the on-disk cache (:mod:`contact.compiled_cache`), now.
 
-    Runs :func:`rotor.dynamics.production_kernels.step_loop` for zero steps on arguments of the
+    Runs :func:`rotor.dynamics.production_loop.step_loop` for zero steps on arguments of the
     types :func:`simulate_production` passes, so that a later run times the stepping alone.
 
     Returns
@@ -200,10 +203,10 @@ def warm_up() -> dict:
     f1, f2, f3 = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2, 4))
     i1 = np.zeros(2, dtype=np.int64)
     rec = [np.zeros(1), f2, f2, f2, f2, f2, f2, f2, f3, np.zeros((1, 2), dtype=np.int8),
-           np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32), np.zeros(4, dtype=np.int64)]
+           np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32), np.zeros(5, dtype=np.int64)]
     t0 = time.perf_counter()
     step_loop(f1, f1.copy(), f1.copy(), i1, f2.copy(), 0.0, 1.0, 0, 1, f2, f2, f2, f2, f2, f2, f1, f1, f2, f2, 0.0, f3,
-              f1, 0, 0.0, 0.0, True, np.zeros(N_PARAMS), 0.25, 0.5, 1e-10, 1, 0.0, 0.0, 1, 0.0, True, f2, f2, f2, *rec)
+              f1, 0, 0.0, 0.0, True, np.zeros(N_PARAMS), 0.25, 0.5, 1e-10, 1, 0.0, 0.0, 1, 0.0, True, f2, f2, f2, f2, False, *rec)
     return {"compile_s": time.perf_counter() - t0, "from_cache": bool(sum(step_loop.stats.cache_hits.values()))}
 
 

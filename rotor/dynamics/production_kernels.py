@@ -4,8 +4,11 @@ numba ``njit`` functions on the condensed step: the contact and coupling forces 
 analytic Jacobian (:func:`_forces`), the residual of the condensed step (:func:`_residual`), its
 Newton solve with backtracking (:func:`_solve_support`), a hand-written Gaussian elimination for
 the ≤ 10×10 Newton systems (:func:`_small_solve`), the consistent acceleration after a stick onset
-(:func:`_reproject`) and the whole step loop (:func:`step_loop`). The equations are those of
-:mod:`rotor.dynamics.production`; the stick/slip rules are :mod:`rotor.dynamics.constraints`, compiled.
+(:func:`_reproject`, and :func:`_consistent_acceleration` with slipping faces' forces held, after a
+friction event), and the load at a time (:func:`_load`). The step loop is
+:func:`rotor.dynamics.production_loop.step_loop`; the events located inside a step
+:mod:`rotor.dynamics.friction_events`. The equations are those of :mod:`rotor.dynamics.production`;
+the stick/slip rules are :mod:`rotor.dynamics.constraints`, compiled.
 """
 from __future__ import annotations
 
@@ -261,20 +264,35 @@ def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_
     """Consistent acceleration at the end of a step in which a face stuck (the stick-onset
     re-projection of :func:`rotor.dynamics.initial.initial_acceleration`): ``M a = Q − D v − K p + Bᵀ g``
     with the stuck faces' relative acceleration zero, at fixed ``(p, v)``. Linear in the stuck
-    faces' forces (2 per face), which it writes into ``phi_face``. Returns ``a``."""
+    faces' forces (2 per face), which it writes into ``phi_face``. Returns ``a``.
+    (:func:`_consistent_acceleration` with no slipping face's force frozen.)"""
+    return _consistent_acceleration(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, np.zeros(2, dtype=np.bool_),
+                                    np.zeros((2, 2)), mu_N, a1, params, w_reg, phi_face)
+
+
+@njit(cache=True)
+def _consistent_acceleration(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, freeze, freeze_dir, mu_N, a1, params,
+                             w_reg, phi_face):
+    """:func:`_reproject` with the force of each slipping face ``k`` with ``freeze[k]`` set to
+    ``freeze_dir[k]`` (N) instead of the regularised slip force at ``v``: the acceleration a step
+    restarts from after a friction event (:mod:`rotor.dynamics.friction_events`), where the face's
+    velocity is (nearly) zero and its friction is the limit ``μN`` in the direction the event chose.
+    Writes the stuck faces' forces, and the frozen ones, into ``phi_face``. Returns ``a``."""
     u = Bt @ p
     w = Bt @ v
     x = np.zeros(NC + 4)
-    freeze = np.zeros(2, dtype=np.bool_)
-    fdir = np.zeros((2, 2))
     g = np.zeros(NC)
     Jg = np.zeros((NC, NC))
     phi = np.zeros((2, 2))
     uu = np.zeros(NC)
     ww = np.zeros(NC)
     # forces at (u, w) with the stuck faces' forces zero (x[NC:] = 0; bdt2 = gdt = 0 keeps u, w)
-    _forces(x, u, w, 0.0, 0.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Jg, phi, uu, ww)
+    _forces(x, u, w, 0.0, 0.0, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg, g, Jg, phi, uu, ww)
     a = Minv @ (Q - Dr @ v - Kr @ p) + WM @ g
+    for k in range(2):
+        if modes[k] == 0 and freeze[k]:
+            phi_face[k, 0] = freeze_dir[k, 0]
+            phi_face[k, 1] = freeze_dir[k, 1]
     alpha = Bt @ a
     m = 0
     idx = np.zeros(2, dtype=np.int64)
@@ -314,189 +332,13 @@ def _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_
 
 
 @njit(cache=True)
-def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
-              Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
-              has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
-              onset_projection, Minv, WM, SM,
-              rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
-              status):
-    """The ``n_steps`` steps of :func:`rotor.dynamics.production.simulate_production` on the reduced
-    coordinates ``p = Tᵀ q``: predictor, condensed Newton with the active-set loop, correction,
-    stick-onset re-projection, recording every ``record_every`` steps into ``rec_*``. ``p, v, a,
-    modes, phi_face`` are updated in place. ``status``: [0 ok / 2 non-finite, failing step,
-    least-residual steps, stick-onset re-projections]. Returns ``(steps done, largest ω_c Δt)``."""
-    nr = p.shape[0]
-    bdt2 = beta * dt * dt
-    gdt = gamma * dt
-    H = orders.shape[0]
-    alpha = Bt @ a
-    wdt_max = 0.0
-    zero4 = np.zeros(4)
-    freeze = np.zeros(2, dtype=np.bool_)
-    freeze_dir = np.zeros((2, 2))
-    w_old = np.zeros((2, 2))
-    phi_old = np.zeros((2, 2))
-    tried = np.zeros(2, dtype=np.bool_)
-    stuck0 = np.zeros(2, dtype=np.bool_)
-    just_released = np.zeros(2, dtype=np.bool_)
-    phi_c = np.zeros((2, 2))
-    Q = np.empty(nr)
-    for step in range(1, n_steps + 1):
-        t = t0 + step * dt
-        p_pre = p + dt * v + dt * dt * (0.5 - beta) * a
-        v_pre = v + dt * (1.0 - gamma) * a
-        Q[:] = static
-        for h in range(H):
-            ph = orders[h] * omega_f * t
-            cph = math.cos(ph)
-            sph = math.sin(ph)
-            for i in range(nr):
-                Q[i] += cph * cosm[h, i] + sph * sinm[h, i]
-        rhs = Q - Dr @ v_pre - Kr @ p_pre
-        a_lin = Ainv @ rhs
-        total_its = 0
-        passes = 0
-        onset = False
-        if has_support:
-            alpha_lin = Bt @ a_lin
-            u_pre = Bt @ p_pre
-            w_pre = Bt @ v_pre
-            wv = Bt @ v
-            for k in range(2):
-                w_old[k] = P[k] @ wv[:4]
-                tried[k] = modes[k] == 1
-                stuck0[k] = modes[k] == 1
-                freeze[k] = False
-                phi_old[k, 0] = phi_face[k, 0]
-                phi_old[k, 1] = phi_face[k, 1]
-            g = np.zeros(NC)
-            while True:
-                passes += 1
-                alpha_new, g, phi, its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_face,
-                                                            freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
-                                                            tol, max_iter, w_reg)
-                total_its += its
-                if not ok:
-                    # slip Newton stalls when the true answer is (near) stick: try stick on the
-                    # slipping faces not yet tried in this step, else give up
-                    flipped = False
-                    for k in range(n_faces):
-                        if modes[k] == 0 and not tried[k]:
-                            modes[k] = 1
-                            tried[k] = True
-                            phi_face[k] = phi[k]
-                            flipped = True
-                    if flipped and passes < max_passes + 4:
-                        freeze[0] = False
-                        freeze[1] = False
-                        continue
-                    # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
-                    # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
-                    status[2] += 1
-                    alpha = alpha_new
-                    for k in range(2):
-                        phi_face[k] = phi[k]
-                    break
-                alpha = alpha_new
-                if freeze[0] or freeze[1]:
-                    freeze[0] = False
-                    freeze[1] = False
-                    continue
-                w_new = w_pre + gdt * alpha
-                changed = False
-                # a face trying stick in this step (slipping at its start) is tested on its holding
-                # force at the end of the step, the consistent multiplier (stick-onset re-projection),
-                # not on the trapezoidal one that carries the velocity jump (f_n+1 = 2 f̄ − f_n); the
-                # other face, if stuck, on its consistent multiplier too (the one the step will keep)
-                use_c = False
-                if onset_projection:
-                    for k in range(2):
-                        if modes[k] == 1 and not stuck0[k]:
-                            use_c = True
-                if use_c:
-                    a_try = a_lin + W @ g
-                    for k in range(2):
-                        phi_c[k, 0] = phi[k, 0]
-                        phi_c[k, 1] = phi[k, 1]
-                    _reproject(p_pre + bdt2 * a_try, v_pre + gdt * a_try, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes,
-                               mu_N, a1, params, w_reg, phi_c)
-                for k in range(n_faces):
-                    wk = P[k] @ w_new[:4]
-                    fk = phi[k]
-                    if use_c and modes[k] == 1:
-                        fk = phi_c[k]
-                    nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N[k], 0.0 if just_released[k] else w_stick,
-                                      tried[k], phi_old[k],
-                                      stick_mean_weight if stuck0[k] else 0.0)
-                    if nm != modes[k]:
-                        changed = True
-                        modes[k] = nm
-                        if nm == 1:
-                            tried[k] = True
-                            phi_face[k] = phi[k]
-                        else:
-                            nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
-                            freeze[k] = True
-                            if nrm > 0:
-                                freeze_dir[k] = mu_N[k] * fk / nrm
-                            else:
-                                freeze_dir[k] = 0.0
-                if not changed or passes >= max_passes:
-                    for k in range(2):
-                        phi_face[k] = phi[k]
-                    break
-            a = a_lin + W @ g
-            if onset_projection:
-                for k in range(2):
-                    if modes[k] == 1 and not stuck0[k]:
-                        onset = True
-            # largest ω_c Δt met: radial tangent stiffness of the law at the new state
-            u_new = u_pre + bdt2 * alpha
-            w_new = w_pre + gdt * alpha
-            f, Ju, Jv = contact_kernel(u_new[:4], w_new[:4], params)
-            kt = -(Ju[0, 0] + Ju[1, 1])
-            if kt > 0:
-                wd = math.sqrt(kt * s_yy) * dt
-                if wd > wdt_max:
-                    wdt_max = wd
-        else:
-            a = a_lin
-        p = p_pre + bdt2 * a
-        v = v_pre + gdt * a
-        fin = True
-        for i in range(nr):
-            if not (math.isfinite(p[i]) and math.isfinite(v[i])):
-                fin = False
-        if not fin:
-            status[0] = 2
-            status[1] = step
-            return step - 1, wdt_max
-        for k in range(2):
-            just_released[k] = onset_projection and modes[k] == 0 and stuck0[k]
-        if onset:
-            # a face stuck in this step: restart from the consistent acceleration (positions and
-            # velocities of the step kept), so the stuck multiplier does not ring
-            a = _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
-            alpha = Bt @ a
-            status[3] += 1
-        if step % record_every == 0:
-            i = step // record_every
-            rec_t[i] = t
-            rec_p[i] = p
-            rec_v[i] = v
-            rec_a[i] = a
-            rec_its[i] = total_its
-            rec_passes[i] = passes
-            if has_support:
-                uu = Bt @ p
-                ww = Bt @ v
-                rec_u[i] = uu[:4]
-                rec_w[i] = ww[:4]
-                f, Ju, Jv = contact_kernel(uu[:4], ww[:4], params)
-                rec_fc[i] = f
-                fe, Ju, Jv = contact_kernel(uu[:4], zero4, params)
-                rec_fel[i] = fe
-                rec_face[i] = phi_face
-                rec_modes[i, 0] = modes[0]
-                rec_modes[i, 1] = modes[1]
-    return n_steps, wdt_max
+def _load(t, static, orders, cosm, sinm, omega_f, Q):
+    """Reduced load ``Q(t)`` (N) written into ``Q``: static part plus the harmonic orders at time ``t`` (s)."""
+    Q[:] = static
+    for h in range(orders.shape[0]):
+        ph = orders[h] * omega_f * t
+        cph = math.cos(ph)
+        sph = math.sin(ph)
+        for i in range(Q.shape[0]):
+            Q[i] += cph * cosm[h, i] + sph * sinm[h, i]
+    return Q

@@ -230,7 +230,8 @@ class Trajectory:
     f_contact (N, 4) radial-surface force on the bearing, f_elastic (N, 4) its part at zero
     velocity, face_force (N, 2, 2) end-face force on the bearing [right, left][y, z],
     modes (N, 2) 1 = stick / 0 = slip, newton_iters (N,), passes (N,) active-set passes,
-    omega_dt_max: largest ω_c Δt met (contact frequency × step).
+    omega_dt_max: largest ω_c Δt met (contact frequency × step), located_events: friction events
+    located inside a step (production scheme with ``NewmarkOptions.locate_events``).
     """
 
     t: np.ndarray
@@ -248,6 +249,7 @@ class Trajectory:
     omega_dt_max: float = float("nan")
     scheme: str = ""
     unconverged_steps: int = 0
+    located_events: int = 0
 
 
 @dataclass(frozen=True)
@@ -260,7 +262,9 @@ class NewmarkOptions:
     faces chatter, see :func:`rotor.dynamics.constraints.face_mode_update`), and ``consistent_stick_onset``
     (True: stick onsets tested on, and restarted from, the consistent multipliers and
     acceleration; no low-speed stick trial right after a release; see :mod:`rotor.dynamics.constraints`,
-    "Stick onset"; False: the former rule, which chatters at stops with the face force at μN)."""
+    "Stick onset"; False: the former rule, which chatters at stops with the face force at μN), and
+    ``locate_events`` (production scheme only: a slip velocity reversal or stick onset inside a step is
+    located and the step split there, :mod:`rotor.dynamics.friction_events`)."""
 
     beta: float = 0.25
     gamma: float = 0.5
@@ -275,6 +279,7 @@ class NewmarkOptions:
     max_passes: int = 6
     stick_mean_weight: float = 0.5
     consistent_stick_onset: bool = True
+    locate_events: bool = False
 
 
 # ---------------------------------------------------------------------------

@@ -37,9 +37,12 @@ def _last_period_stats(tr, T, dt):
     return 0.5 * (y.max() - y.min()), stuck.mean() * T / 2  # amplitude, stick time per half cycle
 
 
+@pytest.mark.parametrize("locate", [False, True], ids=["plain", "events located"])
 @pytest.mark.parametrize("F,P0,omega,regime", [(0.2, 1.0, 50.0, "continuous slip"), (0.6, 1.0, 25.0, "stick-slip")])
-def test_den_hartog_steady_state(F, P0, omega, regime):
-    """Production scheme from rest to steady state vs Den Hartog's exact amplitude and stop time."""
+def test_den_hartog_steady_state(F, P0, omega, regime, locate):
+    """Production scheme from rest to steady state vs Den Hartog's exact amplitude and stop time,
+    with the plain step and with friction events located inside the step (NewmarkOptions.locate_events,
+    rotor.dynamics.friction_events): the same assertions hold for both."""
     s, dh = _den_hartog_case(F, P0, omega)
     X0, ts, t_stick = dh.steady_state()
     if regime == "continuous slip":
@@ -50,7 +53,8 @@ def test_den_hartog_steady_state(F, P0, omega, regime):
     steps = (400, 800, 1600, 3200)
     for nper_steps in steps:
         dt = dh.T / nper_steps
-        tr = simulate_production(s, dt, 40 * nper_steps, check_step=False)  # ζ = 0.1: transient < 1e-6 after 40 periods
+        # ζ = 0.1: transient < 1e-6 after 40 periods
+        tr = simulate_production(s, dt, 40 * nper_steps, check_step=False, options=NewmarkOptions(locate_events=locate))
         amp, stick = _last_period_stats(tr, dh.T, dt)
         errs.append((abs(amp - X0) / X0, abs(stick - t_stick) / (dh.T / 2)))
         assert np.abs(tr.q[:, 1:]).max() < 1e-12 * X0  # motion stays on the forced axis, no tilt
@@ -76,7 +80,8 @@ def test_den_hartog_steady_state(F, P0, omega, regime):
         # w_reg, not the step: with w_reg ten times smaller it falls below a quarter (measured 5.5x)
         assert np.all(errs[:, 0] < 1e-3), errs
         dt = dh.T / steps[0]
-        tr = simulate_production(s, dt, 40 * steps[0], check_step=False, options=NewmarkOptions(w_reg=1e-7))
+        tr = simulate_production(s, dt, 40 * steps[0], check_step=False,
+                                 options=NewmarkOptions(w_reg=1e-7, locate_events=locate))
         amp, _ = _last_period_stats(tr, dh.T, dt)
         assert abs(amp - X0) / X0 < 0.25 * errs[0, 0], (abs(amp - X0) / X0, errs)
 

@@ -99,7 +99,7 @@ def test_step_loop_compiled_once_for_warm_up_and_runs():
     """warm_up's argument types are those of a real run: the loop has one signature after both,
     with a support and without one (a scene with no loose support runs through the same loop)."""
     from rotor.dynamics import production
-    from rotor.dynamics.production_kernels import step_loop
+    from rotor.dynamics.production_loop import step_loop
     from tests.rotor.dynamics.dynamics_standin import friction_body
 
     info = production.warm_up()
