@@ -254,7 +254,7 @@ def conformal_force(penetration_m, *, clearance_m: float, width_m: float,
     Parameters
     ----------
     penetration_m : array_like
-        Δr = |r| − δ0 (m). ``<= 0`` means no contact (force 0).
+        ``Δr = |r| − δ0`` (m). ``<= 0`` means no contact (force 0).
     clearance_m : float
         Radial clearance δ0 (m), > 0.
     width_m : float

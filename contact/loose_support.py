@@ -12,7 +12,7 @@ arrays of relative displacement, tilt, velocity and angular velocity. It is the 
   :mod:`contact.friction`).
 
 Sign conventions (the one place they are written; docs/reference/contact-laws.md §1, §8, §9)
------------------------------------------------------------------------------
+--------------------------------------------------------------------------------------------
 * Inputs are **relative** quantities, bearing minus support, SI units:
   ``y = y_b − y_s``, ``z = z_b − z_s`` (m), ``θy = θ_b,y − θ_s,y``, ``θz`` (rad), their time
   derivatives ``vy, vz`` (m/s) and ``ωy = θ̇y, ωz = θ̇z`` (rad/s).
@@ -27,7 +27,7 @@ Sign conventions (the one place they are written; docs/reference/contact-laws.md
   (``−P r_k/|r_k|``); friction opposes the face's relative velocity.
 
 Model choices (open questions of docs/reference/contact-laws.md)
--------------------------------------------------
+----------------------------------------------------------------
 * Q8 selection: with the centre inside the clearance (``|r| <= δ0``) the two edges touch
   opposite sides and both forces add (two-point contact). With ``|r| > δ0`` only the edge
   with the larger penetration acts (one patch; capped at the full width l0 it is the line

@@ -9,6 +9,7 @@ housing. :func:`run` returns one row per reading; :mod:`reports.fem2d_paper` wri
 ``reports/published/fem2d-paper-setup.{md,csv,png,svg}``.
 
 Measurements of Δr for a solved state u (total displacement; δ0 subtracted):
+
 * ``drive``: the imposed displacement t of the bearing's driven surface;
 * ``contact-circles``: mean u_y of the bearing's outer circle minus mean u_y of the support bore
   (the least-squares rigid translation of each contact surface);

@@ -20,6 +20,7 @@ Scenes
     pin-in-hole problem, for which the conformal law (Ciavarella & Decuzzi 2001; Yang et al.
     2024) is exact as the plate grows. Load vs *measured* contact angle does not depend on the
     plate size; load vs penetration does (the n = 1 term of an infinite plate is log-divergent).
+
 Paper set-up candidates (``paper-*``): see :func:`paper_candidates`.
 """
 from __future__ import annotations

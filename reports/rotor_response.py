@@ -33,7 +33,8 @@ def run_response(scene_name: str, speed_rpm: float, revolutions: float, out: str
     revolutions : duration (revolutions of the spin), > 0.
     out : output directory.
     method : ``"harmonic"`` or ``"newmark"`` (:func:`rotor.dynamics.linear_response.linear_response`).
-    stations : the scene's station, disk, bearing or support names (default: its response stations).
+    stations : list of str
+        The scene's station, disk, bearing or support names (default: its response stations).
     steps_per_rev, record_per_rev : Newmark steps and recorded samples per revolution.
     elements : elements per shaft segment (override).
     """

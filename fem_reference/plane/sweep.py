@@ -94,7 +94,7 @@ def richardson(values, ratio: float = 2.0) -> Richardson:
     error = max(GCI, nominal): ``GCI = 1.25·|d2|/(r^p − 1)`` with the observed order ``p`` clipped to
     [0.5, 2] (Roache 1998), and ``nominal = |d1|/(r²(r² − 1))``, the finest level's error implied by
     the coarse pair at order 2. The second term catches the arc-edge "lucky" cancellations that make
-    ``|d2|`` alone too small (measured: Δr = 0.002 mm, 4-2-1 mm, true error 1.3e-4, |d2| 3.7e-5).
+    ``|d2|`` alone too small (measured: Δr = 0.002 mm, 4-2-1 mm, true error 1.3e-4, ``|d2|`` 3.7e-5).
     ``extrapolated`` uses the unclipped observed order when the sequence is monotone, else = finest.
     """
     f1, f2, f3 = (float(v) for v in values)

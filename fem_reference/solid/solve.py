@@ -397,6 +397,8 @@ def solve_lcp(G: np.ndarray, g0: np.ndarray, *, max_iter: int = 100) -> tuple[np
 class PointResult3D:
     """One load point on one mesh level (full-ring totals, SI units).
 
+    Attributes
+    ----------
     force_n : float
         Load magnitude (N): minus the y-component of the contact force on the bearing.
     moment_z_nm : float
@@ -419,7 +421,9 @@ class PointResult3D:
     force_minus_y_side_n : float
         Load carried on the -y side (N, magnitude), nonzero only for two-point contact.
     peak_pressure_pa : float
+        Largest contact pressure (Pa).
     n_dofs, n_pairs, n_active, iterations : int
+        Degrees of freedom, contact node pairs, active pairs, contact iterations.
     n_active_lines : int
         Axial node lines with contact on the +y side (resolution of the patch length).
     solve_s : float

@@ -10,7 +10,7 @@ boundary-condition scene, rows = laws, columns = penetrations 0.01 … 0.05 mm, 
 * the calibrated law of the scene (:mod:`contact.calibrate`), both as stored (fitted on all
   points) and **held out** (each displacement predicted by a fit that never saw it).
 
-The paper's own Table 2 percentages (|law − FEM|/FEM of its law against its own FEM, whose
+The paper's own Table 2 percentages (``|law − FEM|/FEM`` of its law against its own FEM, whose
 boundary conditions are not stated) stand beside ours, with one sentence per systematic
 difference. Table 3 style (tilted ring) needs the 3D dataset (``fem_reference/data/3d/*.json``);
 without one the report says so.

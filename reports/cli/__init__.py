@@ -32,7 +32,7 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-report": ("reports.cli.fem:report_main", "write reports/published/fem2d-reference.* from the committed 2D dataset"),
     "fem-paper": ("reports.cli.fem:paper_main", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
     "fem-vtu": ("reports.cli.fem:vtu_main", "export a solved 2D FEM point to VTU for ParaView"),
-    "fem3d": ("reports.cli.fem3d", "3D tilted-ring FEM reference: point | sweep | check (mm, arcmin; --json)"),
+    "fem3d": ("reports.cli.fem3d", "3D tilted-ring FEM reference: point | sweep | check | report | vtu (mm, arcmin; --json)"),
     "calibrate": ("reports.cli.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
     "study": ("reports.cli.study", "steady-state sweeps, cascades, test rig, run-up, regime map (resumable, parallel)"),
     "report": ("reports.cli.report", "build the committed reports/ from the committed datasets (the main job)"),

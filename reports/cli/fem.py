@@ -160,7 +160,7 @@ def paper_main(argv: list[str] | None = None) -> int:
     ap = Parser(prog="ringcontact fem-paper", description=paper_setup.__doc__.splitlines()[0])
     ap.add_argument("--h-mm", type=quantity("h_mm"), default=2.0, help="contact element size [mm]")
     ap.add_argument("--out", type=out_dir, default=REPORT_OUT, help=f"output directory (default {REPORT_OUT})")
-    ap.add_argument("--quiet", action="store_true")
+    ap.add_argument("--quiet", action="store_true", help="no progress lines")
     args = ap.parse_args(argv)
     try:
         rows = paper_setup.run(args.h_mm * 1e-3, progress=(lambda *_: None) if args.quiet else print)

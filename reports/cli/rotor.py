@@ -220,7 +220,7 @@ def _parser() -> argparse.ArgumentParser:
             sp.add_argument("--max-rpm", type=quantity("rpm_max"), default=None, help="top speed (rpm); default from the scene")
 
     sp = sub.add_parser("scenes", help="list bundled scenes")
-    sp.add_argument("--json", action="store_true")
+    sp.add_argument("--json", action="store_true", help="print the bundled scenes as JSON")
     sp.set_defaults(func=cmd_scenes)
     sp = sub.add_parser("modes", help="natural (whirl) frequencies and whirl direction at one speed")
     common(sp, speed_range=False)

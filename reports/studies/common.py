@@ -56,7 +56,7 @@ def channel_column(p, name: str) -> int:
 
 
 def harmonic_table(points, quantity: str = "v", channels=("disk1.y", "disk2.y", "s.y"), orders=(1, 2, 3, 4, 5)):
-    """``(speeds_rpm (P,), amps (P, len(channels), len(orders)))`` of |harmonic| amplitudes (SI)."""
+    """``(speeds_rpm (P,), amps (P, len(channels), len(orders)))`` of harmonic amplitudes (magnitudes, SI)."""
     rpm = np.array([p.params["speed_rpm"] for p in points])
     A = np.zeros((len(points), len(channels), len(orders)))
     for i, p in enumerate(points):

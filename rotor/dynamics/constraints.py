@@ -5,7 +5,7 @@ reference integrator (:mod:`rotor.dynamics.reference`) and, compiled with numba,
 production integrator (:mod:`rotor.dynamics.production`).
 
 Conventions (docs/reference/contact-laws.md §1, §9)
------------------------------------
+---------------------------------------------------
 Relative coordinates of the loose support are ``u = (y, z, θy, θz)`` of the
 bearing minus the support (m, rad); ``w = u̇``. A point at axial position ``x`` on
 the bearing moves laterally by ``(y + x θz, z − x θy)``. The right end face sits at
@@ -15,7 +15,7 @@ generalised relative force ``Pᵀ φ = (φy, φz, −x φz, x φy)``, i.e.
 ``My = −x Fz, Mz = x Fy``.
 
 Decisions on the known traps (docs/reference/contact-laws.md Q6–Q11)
-----------------------------------------------------
+--------------------------------------------------------------------
 * **3a/3b lock (Q11).** The paper's ``g5 = (y3a − y3b)² + (z3a − z3b)²`` has a zero
   gradient at its own solution, so its row of Φ vanishes and the augmented matrix
   is singular. We impose the two *linear* equations ``y3a − y3b = 0``,
@@ -195,7 +195,7 @@ def face_mode_update(mode: int, force, w_new, w_old, mu_N: float, w_stick: float
     force_old : (2,) array or None
         Face force at the start of the step (N).
     mean_weight : float
-        0: test the end-of-step force (the paper's H(μN − |f|) at t_{n+1}); 0.5: test the
+        0: test the end-of-step force (the paper's ``H(μN − |f|)`` at ``t_{n+1}``); 0.5: test the
         step mean ``(f_n + f_{n+1})/2``, i.e. Coulomb's bound on the friction *impulse* of the
         step (Moreau 1988), which is what the trapezoidal rule actually transmits. Pass a
         nonzero weight only for a face that was already stuck at the start of the step: across

@@ -36,7 +36,7 @@ The problem description both schemes share (:class:`~rotor.dynamics.system.Rotor
 step-size check (:func:`rotor.dynamics.system.check_time_step`) are in :mod:`rotor.dynamics.system`.
 
 Safeguards not in the paper (identical in both schemes, so they still agree)
---------------------------------------------------------------------------
+----------------------------------------------------------------------------
 * Backtracking on ``‖F‖`` when a full Newton step does not reduce it (kinks of the contact
   law: first touch, damping clip, edge switch).
 * If Newton does not converge with a face slipping (the regularised direction

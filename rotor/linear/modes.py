@@ -33,7 +33,7 @@ class Modes:
     ----------
     speed_rad_s : spin speed Ω (rad/s).
     frequency_hz : (k,) whirl frequencies ω/2π in increasing order (Hz).
-    damping_ratio : (k,) −Re(λ)/|λ| (0 for an undamped model).
+    damping_ratio : (k,) ``−Re(λ)/|λ|`` (0 for an undamped model).
     forward_fraction : (k,) share of forward whirl, see module notes.
     whirl : (k,) ``"forward" | "backward" | "mixed"``.
     shapes : (n, k) complex mode shapes in model DOFs, normalised to unit largest lateral amplitude.
@@ -181,7 +181,7 @@ class Campbell:
     """Whirl frequencies over a speed range.
 
     ``frequency_hz[i, j]``: j-th lowest frequency at ``speeds_rad_s[i]``; ``whirl[i][j]`` its label;
-    ``damping_ratio[i, j]`` its ζ = −Re(λ)/|λ| (0 when built undamped). Log decrement: :attr:`log_decrement`.
+    ``damping_ratio[i, j]`` its ``ζ = −Re(λ)/|λ|`` (0 when built undamped). Log decrement: :attr:`log_decrement`.
     """
 
     speeds_rad_s: np.ndarray

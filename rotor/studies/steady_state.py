@@ -300,7 +300,7 @@ class SteadyResult:
             raise InputError(f"channel {name!r}: not recorded; have {', '.join(self.channels)}") from None
 
     def harmonics(self, quantity: str = "q", orders=(1, 2, 3, 4, 5)) -> np.ndarray:
-        """|amplitude| of orders h for every channel: ``(len(orders), c)``; quantity 'q' (m),
+        """Amplitude (magnitude) of orders h for every channel: ``(len(orders), c)``; quantity 'q' (m),
         'v' (m/s) or 'u' (relative y, z m and θy, θz rad)."""
         x = {"q": self.q, "v": self.v, "u": self.u}[quantity]
         if self.static:
