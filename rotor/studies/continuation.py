@@ -4,9 +4,14 @@ Unknowns ``y = (x, λ)``: the reduced state at phase 0 (:mod:`rotor.studies.shoo
 Equations ``R(x, λ) = Φ_λ(x) − x = 0`` plus the arclength condition ``τ·(y − y_pred) = 0`` (Keller 1977),
 all in scaled variables (``x_j/s_j``, ``λ/λ_s``). The predictor steps ``ds`` along the unit tangent ``τ``;
 the corrector is Newton on the bordered system ``[[D(M − I)D⁻¹, D ∂R/∂λ λ_s], [τᵀ]]`` solved in the
-minimum-norm sense (a stuck face leaves a direction free, :mod:`rotor.studies.floquet`). Step control:
+minimum-norm sense. A face stuck through the whole period makes the orbits a continuum (multipliers exactly
+1, :mod:`rotor.studies.floquet`): a branch is then a family, not a curve, and its null directions (singular
+values of the scaled ``M − I`` below :data:`NEUTRAL_TOL`) enter as phase conditions ``v·(y − y_prev) = 0``,
+so that each point stays at the previous point's place in the continuum and the tangent has no component
+along it. Step control:
 ``ds`` grows ×1.5 after a corrector of ≤ 3 iterations, shrinks ×0.6 after ≥ 7, is halved and retried on
-failure, down to ``ds_min``.
+failure (no convergence, or an iterate the scheme cannot step: beyond the contact law's domain), down to
+``ds_min``.
 
 Time scaling. The period depends on the speed, so every orbit keeps ``N`` steps per revolution with
 ``Δt = 2π/(Ω N)`` (a speed parameter) or the scene's fixed speed (any other parameter). The parameter
@@ -30,6 +35,7 @@ from typing import Callable
 
 import numpy as np
 
+from contact.errors import ConvergenceError, OutsideDomainError
 from rotor.dynamics import constraints as cons
 from rotor.studies.floquet import FloquetResult, crossing, floquet
 from rotor.studies.period_flow import Flow, advance, make_flow
@@ -37,6 +43,8 @@ from rotor.studies.shooting import ShootingOptions, min_norm_step, shoot
 
 #: relative step of the parameter finite difference
 PARAM_REL_STEP = 1e-6
+#: singular values of the scaled ``M − I`` below this fraction of the largest are a continuum's directions
+NEUTRAL_TOL = 1e-8
 
 
 @dataclass(frozen=True)
@@ -153,26 +161,41 @@ class _Evaluator:
         return R, J, r.monodromy
 
 
-def _tangent(J, prev, rcond):
-    """Unit tangent: the minimum-norm solution of ``[J; prevᵀ] τ = [0; 1]``, normalised."""
-    A = np.vstack([J, prev[None, :]])
+def _neutral(J, tol: float = NEUTRAL_TOL) -> np.ndarray:
+    """Phase rows ``(k, n + 1)``: the directions ``v`` with ``D(M − I)D⁻¹ v = 0`` (singular values below
+    ``tol`` times the largest) padded with a zero parameter entry: a stuck face's continuum of orbits."""
+    _, s, vt = np.linalg.svd(J[:, :-1])
+    rows = vt[s < tol * s[0]]
+    return np.hstack([rows, np.zeros((len(rows), 1))])
+
+
+def _tangent(J, prev, rcond, phase=None):
+    """Unit tangent: the minimum-norm solution of ``[J; P; prevᵀ] τ = [0; 0; 1]``, normalised (``P`` the
+    phase rows: no motion along the continuum)."""
+    rows = [J] + ([phase] if phase is not None and len(phase) else []) + [prev[None, :]]
+    A = np.vstack(rows)
     b = np.zeros(A.shape[0])
     b[-1] = 1.0
     t, _ = min_norm_step(A, b, rcond)
     return t / np.linalg.norm(t)
 
 
-def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions):
-    """Newton on ``[R; τ·(y − y_pred)]``; returns ``(y, J, M, iterations, residual)`` or None."""
+def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, anchor=None):
+    """Newton on ``[R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or None.
+    The phase rows ``P`` keep the orbit's place in a stuck face's continuum that of ``anchor``."""
     y = y_pred.copy()
+    has_phase = phase is not None and len(phase)
     for it in range(1, opts.max_iter + 1):
         x, lam = y[:-1] * ev.s, y[-1] * ev.ls
-        R, J, M = ev(x, lam)
+        try:
+            R, J, M = ev(x, lam)
+        except (OutsideDomainError, ConvergenceError):   # an iterate the scheme cannot step: a failed corrector
+            return None
         res = float(np.max(np.abs(R)))
         if not math.isfinite(res):
             return None
-        A = np.vstack([J, tau[None, :]])
-        rhs = -np.concatenate([R, [tau @ (y - y_pred)]])
+        A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
+        rhs = -np.concatenate([R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else []))
         dy, _ = min_norm_step(A, rhs, opts.rcond)
         y = y + dy
         if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
@@ -198,7 +221,7 @@ def _test(kind: str, pt: BranchPoint) -> float:
     return float(np.abs(pick).max()) - 1.0 if len(pick) else -1.0
 
 
-def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, opts, n_iter: int = 8) -> float:
+def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, opts, phase, n_iter: int = 8) -> float:
     """Parameter of a bifurcation between ``a`` (at ``y0``, tangent ``tau0``) and ``b`` (a step ``ds`` on):
     regula falsi (Illinois) on the arclength ``σ`` in ``[0, ds]``, each trial corrected on the hyperplane
     ``τ0·(y − y0 − σ τ0) = 0``, until the bracket is below 10⁻⁶ ds; linear interpolation if a corrector fails."""
@@ -209,11 +232,11 @@ def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, 
         if flo == fhi:
             break
         sig = lo - flo * (hi - lo) / (fhi - flo)
-        got = _correct(ev, y0 + sig * tau0, tau0, opts)
+        got = _correct(ev, y0 + sig * tau0, tau0, opts, phase, y0)
         if got is None:
             return a.parameter + (b.parameter - a.parameter) * min(max(-flo / (fhi - flo), 0.0), 1.0)
         y, J, M, it, res = got
-        pt = _point(ev, y, J, M, it, res, _tangent(J, tau0, opts.rcond), opts)
+        pt = _point(ev, y, J, M, it, res, _tangent(J, tau0, opts.rcond, _neutral(J)), opts)
         lam, f = pt.parameter, _test(kind, pt)
         if f * flo > 0:
             lo, flo = sig, f
@@ -228,12 +251,13 @@ def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, 
     return float(lam)
 
 
-def _events(ev, prev: BranchPoint, new: BranchPoint, index: int, y0, tau0, ds, opts) -> list:
+def _events(ev, prev: BranchPoint, new: BranchPoint, index: int, y0, tau0, ds, opts, phase) -> list:
     kinds = ["fold"] if prev.dlam_ds * new.dlam_ds < 0 else []
     kind = crossing(prev.floquet, new.floquet)
     if kind is not None and kind not in kinds:
         kinds.append(kind)
-    return [Bifurcation(k, index, _refine(ev, y0, tau0, ds, k, prev, new, opts), new.floquet.critical) for k in kinds]
+    return [Bifurcation(k, index, _refine(ev, y0, tau0, ds, k, prev, new, opts, phase), new.floquet.critical)
+            for k in kinds]
 
 
 def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, scales, lam_scale: float | None = None,
@@ -259,8 +283,9 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     direction = math.copysign(1.0, lam_end - lam0)
     guide = np.zeros(len(y))
     guide[-1] = direction
+    phase = _neutral(J)
     if tangent0 is None:
-        tau = _tangent(J, guide, opts.rcond)
+        tau = _tangent(J, guide, opts.rcond, phase)
     else:
         tau = np.asarray(tangent0, float) / np.linalg.norm(tangent0)
     points = [_point(ev, y, J, M, 0, float(np.max(np.abs(R))), tau, opts)]
@@ -268,7 +293,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     ds, stop = opts.ds, "max_points"
     while len(points) < opts.max_points:
         y_prev = y
-        got = _correct(ev, y + ds * tau, tau, opts)
+        got = _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
         if got is None:
             ds *= 0.5
             if ds < opts.ds_min:
@@ -276,9 +301,11 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
                 break
             continue
         y, J, M, it, res = got
-        tau_new = _tangent(J, tau, opts.rcond)
+        phase_new = _neutral(J)
+        tau_new = _tangent(J, tau, opts.rcond, phase_new)
         pt = _point(ev, y, J, M, it, res, tau_new, opts)
-        bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts)
+        bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
+        phase = phase_new
         points.append(pt)
         tau = tau_new
         ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)

@@ -91,11 +91,11 @@ def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto") -> Flow:
 
 
 def to_reduced(flow: Flow, q, v) -> np.ndarray:
-    """Reduced state ``[p, v_p]`` of the full ``(q, v)`` (m, rad; m/s, rad/s)."""
+    """Reduced state ``[p, v_p]`` of the full ``(q, v)`` (m, rad; m/s, rad/s); rows of samples allowed."""
     q, v = np.asarray(q, float), np.asarray(v, float)
     if flow.condensed is not None:
-        q, v = q[flow.condensed.keep], v[flow.condensed.keep]
-    return np.concatenate([flow.T.T @ q, flow.T.T @ v])
+        q, v = q[..., flow.condensed.keep], v[..., flow.condensed.keep]
+    return np.concatenate([q @ flow.T, v @ flow.T], axis=-1)
 
 
 def _kept(flow: Flow, state) -> tuple[np.ndarray, np.ndarray]:
@@ -116,8 +116,9 @@ def to_full(flow: Flow, state, t_s: float = 0.0) -> tuple[np.ndarray, np.ndarray
 
 def _run(flow: Flow, state, t0: float, n_steps: int, modes0, record_every: int | None = None) -> Trajectory:
     qk, vk = _kept(flow, state)
+    pre = flow.handle.prepared if flow.backend == "exact" else flow.handle
     return simulate_production(flow.reduced, flow.dt_s, int(n_steps), qk, vk, t0=float(t0), modes0=tuple(modes0),
-                               record_every=int(record_every or n_steps), check_step=False, prepared=flow.handle)
+                               record_every=int(record_every or n_steps), check_step=False, prepared=pre)
 
 
 def advance(flow: Flow, state, t0: float, n_steps: int, modes0=(cons.STICK, cons.STICK), *,

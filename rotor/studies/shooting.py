@@ -15,8 +15,10 @@ Singular directions. A face stuck through the whole orbit leaves its sticking of
 a continuum, ``M`` has a multiplier exactly 1 and ``M − I`` is singular (:mod:`rotor.studies.floquet`). The
 Newton step is therefore the minimum-norm least-squares solution of the scaled system (singular values
 below ``rcond`` times the largest are dropped); it moves the state only across the continuum, and the number
-of directions dropped is reported (``singular_directions``). A step that increases the residual is halved
-(at most ``max_halvings`` times).
+of directions dropped is reported (``singular_directions``). A step that does not reduce the 2-norm of the scaled residual is halved
+(at most ``max_halvings`` times), and so is a trial state the scheme cannot step (beyond the contact law's
+domain, or a step's Newton failing). Every map starts from the end-face modes found at the end of the
+transient.
 """
 from __future__ import annotations
 
@@ -26,6 +28,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from contact.errors import ConvergenceError, OutsideDomainError
 from rotor.dynamics import constraints as cons
 from rotor.studies.floquet import FloquetResult, floquet
 from rotor.studies.period_flow import Flow, advance, block_scales, record, to_reduced
@@ -41,10 +44,12 @@ class ShootingOptions:
     residual, ``transient_revs`` before shooting, ``multiplier_tol`` (Floquet, –)."""
 
     tol: float = 1e-9
-    max_iter: int = 25
+    max_iter: int = 10
     rcond: float = 1e-9
-    max_halvings: int = 6
+    max_halvings: int = 4
     transient_revs: int = 16
+    max_transient_revs: int = 2000
+    periods_per_round: int = 2
     multiplier_tol: float = 1e-6
 
 
@@ -63,6 +68,7 @@ class ShootingResult:
     events : int, end-face mode changes over the converged period (the monodromy, hence the multipliers, of
         the exact back-end is exact only with 0, :mod:`rotor.studies.period_flow`)
     scales : (2 n_r,) the orbit scales s_j (m, rad; m/s, rad/s); wall_s : float (s); backend : str
+    transient_revs : int, revolutions integrated before the converged Newton (:func:`shoot_from_transient`)
     """
 
     state: np.ndarray
@@ -81,6 +87,7 @@ class ShootingResult:
     scales: np.ndarray
     wall_s: float
     backend: str
+    transient_revs: int = 0
 
 
 def orbit_scales(flow: Flow, p, v) -> np.ndarray:
@@ -96,7 +103,7 @@ def orbit_scales(flow: Flow, p, v) -> np.ndarray:
 
 def min_norm_step(J, rhs, rcond: float) -> tuple[np.ndarray, int]:
     """Minimum-norm least-squares solution of ``J dx = rhs`` and the number of singular values dropped."""
-    U, s, Vt = np.linalg.svd(J)
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
     keep = s > rcond * s[0] if s.size and s[0] > 0 else np.zeros_like(s, bool)
     dx = Vt[keep].T @ ((U[:, keep].T @ rhs) / s[keep])
     return dx, int((~keep).sum())
@@ -109,6 +116,7 @@ def newton_periodic(flow: Flow, state0, t0_s: float, n_steps: int, modes0, scale
     modes = tuple(modes0)
     r = advance(flow, x, t0_s, n_steps, modes)
     res = float(np.max(np.abs(r.state - x) / scales))
+    merit = float(np.linalg.norm((r.state - x) / scales))
     singular = 0
     it = 0
     while res >= options.tol and it < options.max_iter:
@@ -118,14 +126,19 @@ def newton_periodic(flow: Flow, state0, t0_s: float, n_steps: int, modes0, scale
         lam = 1.0
         for _ in range(options.max_halvings + 1):
             x_try = x + lam * dz * scales
-            r_try = advance(flow, x_try, t0_s, n_steps, r.modes if r.modes != modes else modes)
-            res_try = float(np.max(np.abs(r_try.state - x_try) / scales))
-            if math.isfinite(res_try) and res_try < res:
+            try:
+                r_try = advance(flow, x_try, t0_s, n_steps, modes)
+            except (OutsideDomainError, ConvergenceError):   # a trial beyond the law's domain, or a step failed
+                lam *= 0.5
+                continue
+            merit_try = float(np.linalg.norm((r_try.state - x_try) / scales))
+            if math.isfinite(merit_try) and merit_try < merit:
                 break
             lam *= 0.5
         else:
             return x, r, False, it, res, singular
-        x, r, res, modes = x_try, r_try, res_try, r_try.modes
+        x, r, merit = x_try, r_try, merit_try
+        res = float(np.max(np.abs(r.state - x) / scales))
     return x, r, res < options.tol, it, res, singular
 
 
@@ -158,42 +171,74 @@ def _poincare_order(P: np.ndarray, max_period: int) -> list[int]:
     return sorted(ks, key=lambda k: (d[k] > 10.0 * dmin + 1e-300, d[k] if d[k] > 10.0 * dmin else k))
 
 
-def transient(flow: Flow, q0, v0, *, steps_per_rev: int, revs: int, modes0=(cons.STICK, cons.STICK)):
-    """``revs`` revolutions from the full ``(q0, v0)`` at t = 0: returns ``(state, modes, P, scales)`` — the
-    reduced end state (a whole revolution, phase 0), its face modes, the once-per-revolution reduced
-    displacements ``P`` (revs + 1, n_r) and the orbit scales of the last revolution (:func:`orbit_scales`)."""
+def transient(flow: Flow, state, t0_s: float, *, steps_per_rev: int, revs: int, modes0=(cons.STICK, cons.STICK)):
+    """``revs`` revolutions from the reduced ``state`` at ``t0_s`` (a whole revolution): returns
+    ``(state, modes, P, scales)`` — the reduced end state, its face modes, the once-per-revolution reduced
+    displacements ``P`` (revs, n_r; the start excluded) and the orbit scales of the last revolution
+    (:func:`orbit_scales`)."""
     sub = max(1, steps_per_rev // TRANSIENT_SAMPLES_PER_REV)
-    x0 = to_reduced(flow, q0, v0)
-    p, v, modes = record_reduced(flow, x0, 0.0, steps_per_rev * int(revs), modes0, sub)
+    p, v, modes = record_reduced(flow, state, t0_s, steps_per_rev * int(revs), modes0, sub)
     per = steps_per_rev // sub
     end = np.concatenate([p[-1], v[-1]])
-    return end, modes, p[::per], orbit_scales(flow, p[-per - 1:], v[-per - 1:])
+    return end, modes, p[per::per], orbit_scales(flow, p[-per - 1:], v[-per - 1:])
 
 
 def record_reduced(flow: Flow, state, t0: float, n_steps: int, modes0, record_every: int):
     """``(p, v, modes_end)``: reduced displacement and velocity samples every ``record_every`` steps (rows)
     and the end-face modes at the end."""
     tr = record(flow, state, t0, n_steps, modes0, record_every)
-    red = np.array([to_reduced(flow, q, v) for q, v in zip(tr.q, tr.v)])
+    red = to_reduced(flow, tr.q, tr.v)
     nr = flow.T.shape[1]
     return red[:, :nr], red[:, nr:], tuple(int(m) for m in tr.modes[-1])
 
 
+def _shortest_period(flow: Flow, res: ShootingResult, opts: ShootingOptions) -> ShootingResult:
+    """The orbit ``res`` re-shot with the shortest period ``j`` dividing its ``k`` revolutions whose return
+    after ``j`` revolutions is within 10³ tol of the start (a period-1 orbit also solves the 2-revolution
+    problem)."""
+    k = res.period_revs
+    for j in range(1, k):
+        if k % j:
+            continue
+        x_j = advance(flow, res.state, res.t0_s, j * res.steps_per_rev, res.modes, jacobian=False).state
+        if np.max(np.abs(x_j - res.state) / res.scales) < 1e3 * opts.tol:
+            short = shoot(flow, res.state, t0_s=res.t0_s, steps_per_rev=res.steps_per_rev, period_revs=j,
+                          modes0=res.modes, scales=res.scales, options=opts)
+            if short.converged:
+                return replace(short, newton_iterations=short.newton_iterations + res.newton_iterations)
+    return res
+
+
 def shoot_from_transient(flow: Flow, q0, v0, *, steps_per_rev: int, period_revs: int | None = None,
                          options: ShootingOptions | None = None, modes0=(cons.STICK, cons.STICK)) -> ShootingResult:
-    """A short transient from the full ``(q0, v0)`` at t = 0, then :func:`shoot`. ``period_revs`` None: the
-    periods 1..8 are tried in the order the transient's Poincaré returns suggest (:func:`_poincare_order`)
-    until one converges; the result of the last try is returned if none does. ``wall_s`` includes the
-    transient."""
+    """A short transient from the full ``(q0, v0)`` at t = 0, then :func:`shoot`; if Newton fails, more
+    transient and Newton again.
+
+    Rounds: ``transient_revs`` revolutions, then twice as many as the round before, until Newton converges
+    or ``max_transient_revs`` are spent. Newton's basin on a rotor whose faces stick and slip within the
+    period is small (the map is only piecewise smooth), so the transient brings the start into it; a
+    failed Newton iterate is discarded and the transient continues from its own end. ``period_revs`` None:
+    each round tries the first ``periods_per_round`` periods of 1..8 in the order the Poincaré returns
+    suggest (:func:`_poincare_order`). ``wall_s`` includes the transient; ``transient_revs`` in the result.
+    """
     opts = options or ShootingOptions()
     t_start = time.perf_counter()
-    x, modes, P, scales = transient(flow, q0, v0, steps_per_rev=steps_per_rev, revs=opts.transient_revs, modes0=modes0)
-    t0 = opts.transient_revs * steps_per_rev * flow.dt_s
-    order = [int(period_revs)] if period_revs is not None else _poincare_order(P, MAX_PERIOD_REVS)
-    res = None
-    for k in order:
-        res = shoot(flow, x, t0_s=t0, steps_per_rev=steps_per_rev, period_revs=k, modes0=modes, scales=scales,
-                    options=opts)
-        if res.converged:
+    x, modes, t0 = to_reduced(flow, q0, v0), tuple(modes0), 0.0
+    chunk, done, P, res = int(opts.transient_revs), 0, [], None
+    while True:
+        x, modes, Pc, scales = transient(flow, x, t0, steps_per_rev=steps_per_rev, revs=chunk, modes0=modes)
+        t0 += chunk * steps_per_rev * flow.dt_s
+        done += chunk
+        P.extend(Pc)
+        order = [int(period_revs)] if period_revs is not None else \
+            _poincare_order(np.array(P), MAX_PERIOD_REVS)[:opts.periods_per_round]
+        for k in order:
+            res = shoot(flow, x, t0_s=t0, steps_per_rev=steps_per_rev, period_revs=k, modes0=modes, scales=scales,
+                        options=opts)
+            if res.converged:
+                res = _shortest_period(flow, res, opts)
+                break
+        if res.converged or done >= opts.max_transient_revs:
             break
-    return replace(res, wall_s=time.perf_counter() - t_start)
+        chunk = min(2 * chunk, opts.max_transient_revs - done)
+    return replace(res, wall_s=time.perf_counter() - t_start, transient_revs=done)

@@ -1,0 +1,178 @@
+"""Periodic orbits and branches of a scene's rotor, as the command line asks for them.
+
+:func:`orbit` is one operating point: the periodic orbit by shooting (:mod:`rotor.studies.shooting`) from a
+short transient that starts at the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`,
+as ``simulate --steady``), its Floquet multipliers and stability (:mod:`rotor.studies.floquet`) and the
+1X-5X velocity amplitudes at every response station, the same quantity and key as ``simulate --steady``
+(``velocity_amplitudes_mm_s_1X_to_5X``, mm/s, exact DFT bins over the whole period,
+:func:`rotor.studies.steady_state.harmonic_amplitudes`). :func:`branch` follows the orbit over a speed range
+by pseudo-arclength continuation (:mod:`rotor.studies.continuation`) and lists the bifurcations met.
+
+Steps per revolution: :func:`rotor.studies.steady_state.step_per_rev` (256 by default, more where the contact
+step limit needs it), fixed along a branch at the value its lowest speed needs, so that every orbit of the
+branch repeats exactly on the step grid.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotor.dynamics.initial import linear_initial_state
+from rotor.studies.continuation import Branch, ContinuationOptions, continue_branch, speed_problem
+from rotor.studies.floquet import FloquetResult
+from rotor.studies.period_flow import Flow, make_flow, record
+from rotor.studies.shooting import ShootingOptions, ShootingResult, shoot_from_transient
+from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
+
+ORDERS = (1, 2, 3, 4, 5)
+
+
+@dataclass(frozen=True)
+class OrbitResult:
+    """One periodic orbit of a scene at one speed (SI inside; the amplitudes in mm/s as the CLI prints them).
+
+    Attributes
+    ----------
+    speed_rpm : float; period_revs : int; period_s : float (s); steps_per_rev : int
+    converged : bool, Newton met its tolerance; stable : bool; floquet : FloquetResult
+    velocity_amplitudes_mm_s_1X_to_5X : dict, ``<station>.<y|z>`` -> five amplitudes (mm/s)
+    newton_iterations : int; residual : float (–, relative to the orbit scale); transient_revs : int
+    events : int, end-face mode changes over the period; singular_directions : int; wall_s : float (s)
+    multipliers_exact : bool, the monodromy is the scheme's exact derivative: no face mode change over the
+        period, or the finite-difference back-end (the step-Jacobian monodromy has no saltation term at a
+        stick/slip switch, :mod:`rotor.dynamics.period_map`, so with events its multipliers are approximate)
+    backend : str; shooting : ShootingResult (the reduced state, monodromy, scales)
+    """
+
+    speed_rpm: float
+    period_revs: int
+    period_s: float
+    steps_per_rev: int
+    converged: bool
+    stable: bool
+    floquet: FloquetResult
+    velocity_amplitudes_mm_s_1X_to_5X: dict
+    newton_iterations: int
+    residual: float
+    transient_revs: int
+    events: int
+    singular_directions: int
+    wall_s: float
+    backend: str
+    shooting: ShootingResult
+
+    @property
+    def multipliers_exact(self) -> bool:
+        return self.events == 0 or self.backend == "fd"
+
+    def as_dict(self) -> dict:
+        """JSON-ready summary, keys with units."""
+        return {"speed_rpm": self.speed_rpm, "period_revs": self.period_revs, "period_s": self.period_s,
+                "steps_per_rev": self.steps_per_rev, "converged": self.converged, "stable": self.stable,
+                "multipliers": self.floquet.as_dict()["multipliers"], "spectral_radius": self.floquet.spectral_radius,
+                "critical_kind": self.floquet.kind, "neutral_multipliers": self.floquet.n_neutral,
+                "velocity_amplitudes_mm_s_1X_to_5X": self.velocity_amplitudes_mm_s_1X_to_5X,
+                "newton_iterations": self.newton_iterations, "residual": self.residual,
+                "transient_revs": self.transient_revs, "face_mode_changes": self.events,
+                "singular_directions": self.singular_directions, "multipliers_exact": self.multipliers_exact,
+                "wall_s": self.wall_s, "backend": self.backend}
+
+
+def velocity_amplitudes(flow: Flow, model, res_state, t0_s: float, modes, period_revs: int, steps_per_rev: int,
+                        stations=None) -> dict:
+    """1X-5X velocity amplitudes (mm/s) of ``<station>.y/z`` over one period recorded at every step from the
+    reduced state at ``t0_s`` (stations: ``model.response_stations()`` by default)."""
+    stations = model.response_stations() if stations is None else tuple(stations)
+    names = [f"{s}.{c}" for s in stations for c in ("y", "z")]
+    idx = [model.dof_index(n) for n in names]
+    tr = record(flow, res_state, t0_s, period_revs * steps_per_rev, modes, 1)
+    v = tr.v[:-1, idx]
+    amps = np.abs(harmonic_amplitudes(v - v.mean(axis=0), period_revs, ORDERS))
+    return {n: [float(a) * 1e3 for a in amps[:, j]] for j, n in enumerate(names)}
+
+
+def _overrides(kw: dict) -> dict:
+    keys = ("clearance_m", "misalignment_m", "tilt_ignored", "mu", "preload_n", "elements_per_segment")
+    return {k: kw[k] for k in keys if k in kw and kw[k] is not None}
+
+
+def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, period_revs: int | None = None,
+          backend: str = "auto", options: ShootingOptions | None = None, start=None, stations=None,
+          **overrides) -> OrbitResult:
+    """The periodic orbit of ``scene`` at ``speed_rpm`` (rpm), its stability and 1X-5X velocity amplitudes.
+
+    ``overrides``: ``clearance_m``, ``misalignment_m``, ``tilt_ignored``, ``mu``, ``preload_n``,
+    ``elements_per_segment`` (as :func:`rotor.studies.steady_state.point_system`). ``steps_per_rev`` None:
+    :func:`rotor.studies.steady_state.step_per_rev`. ``period_revs`` None: found (1..8). ``start``: full
+    ``(q0, v0)`` at t = 0 instead of the linear periodic solution (e.g. a neighbouring speed's orbit).
+    """
+    t_start = time.perf_counter()
+    _, model, system = point_system(scene, speed_rpm, **_overrides(overrides))
+    n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
+    flow = make_flow(system, 2.0 * math.pi / (system.omega_rad_s * n), backend)
+    q0, v0 = linear_initial_state(system, 0.0) if start is None else start
+    res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options)
+    amps = velocity_amplitudes(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
+    return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
+                       res.floquet, amps, res.newton_iterations, res.residual, res.transient_revs, res.events,
+                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res)
+
+
+@dataclass(frozen=True)
+class BranchResult:
+    """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
+    ``critical_kind``, ``velocity_amplitudes_mm_s_1X_to_5X``), ``bifurcations`` (dicts: ``kind``,
+    ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
+    (the :class:`rotor.studies.continuation.Branch`)."""
+
+    points: tuple
+    bifurcations: tuple
+    start: OrbitResult
+    stop: str
+    wall_s: float
+    branch: Branch
+
+    def as_dict(self) -> dict:
+        return {"points": list(self.points), "bifurcations": list(self.bifurcations), "start": self.start.as_dict(),
+                "stop": self.stop, "wall_s": self.wall_s}
+
+
+def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
+           options: ContinuationOptions | None = None, amplitudes: bool = True, **overrides) -> BranchResult:
+    """Continue the orbit found at ``rpm_start`` (:func:`orbit`) in speed until ``rpm_end`` (rpm).
+
+    The arclength is measured with the start orbit's scales and a speed scale of a tenth of the range.
+    ``amplitudes``: record each point's 1X-5X velocity amplitudes (one extra period per point).
+    """
+    t_start = time.perf_counter()
+    ov = _overrides(overrides)
+    _, model, sys_lo = point_system(scene, min(rpm_start, rpm_end), **ov)
+    n = int(steps_per_rev or step_per_rev(sys_lo, SteadyStateOptions()))
+    first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, **ov)
+    if not first.converged:
+        return BranchResult((), (), first, "no orbit at the start", time.perf_counter() - t_start,
+                            Branch((), (), first.period_revs, "no orbit at the start", 0.0))
+    to_rpm = 30.0 / math.pi
+
+    def system_at(w):
+        return point_system(scene, w * to_rpm, **ov)[2]
+
+    res = first.shooting
+    # the orbit's start time is a whole number of revolutions: phase 0, where the continuation's maps start
+    pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes)
+    w0, w1 = rpm_start / to_rpm, rpm_end / to_rpm
+    br = continue_branch(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
+    pts = []
+    for p in br.points:
+        d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
+             "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind}
+        if amplitudes:
+            flow = pb.flow(p.parameter)
+            d["velocity_amplitudes_mm_s_1X_to_5X"] = velocity_amplitudes(flow, model, p.state, 0.0, res.modes,
+                                                                         pb.period_revs, n)
+        pts.append(d)
+    bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index} for b in br.bifurcations)
+    return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
