@@ -1,0 +1,77 @@
+"""Bifurcation diagram of a branch of periodic orbits (``ringcontact branch --plot``).
+
+Top: a harmonic velocity amplitude at one channel against speed, stable orbits solid, unstable dashed,
+each bifurcation marked with its kind (Seydel 2010, *Practical Bifurcation and Stability Analysis*, the usual
+drawing). Bottom: the spectral radius of the non-neutral Floquet multipliers against speed, with the unit
+circle's radius 1, so that the reader sees how far each orbit is from losing its stability.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from reports.studies.common import pyplot, save
+
+#: marker and colour of each bifurcation kind
+KINDS = {"fold": ("o", "tab:red", "fold"), "period_doubling": ("s", "tab:purple", "period doubling"),
+         "neimark_sacker": ("D", "tab:orange", "Neimark–Sacker")}
+
+
+def stability_runs(stable) -> list[tuple[int, int, bool]]:
+    """``(first, last, stable)`` index runs of equal stability; neighbouring runs share their end point so
+    that the drawn curve is continuous."""
+    stable = [bool(s) for s in stable]
+    runs, start = [], 0
+    for i in range(1, len(stable) + 1):
+        if i == len(stable) or stable[i] != stable[start]:
+            runs.append((start, min(i, len(stable) - 1), stable[start]))
+            start = i
+    return runs
+
+
+def branch_curve(branch: dict, channel: str, order: int = 1):
+    """``(speed_rpm, amplitude_mm_s, spectral_radius, stable)`` arrays of the branch's points."""
+    pts = branch["points"]
+    rpm = np.array([p["speed_rpm"] for p in pts], float)
+    amp = np.array([p["velocity_amplitudes_mm_s_1X_to_5X"][channel][order - 1] for p in pts], float)
+    rad = np.array([p["spectral_radius"] for p in pts], float)
+    return rpm, amp, rad, np.array([bool(p["stable"]) for p in pts])
+
+
+def bifurcation_figure(branch: dict, channel: str, prefix, order: int = 1) -> list[Path]:
+    """Draw ``prefix.png`` and ``prefix.svg`` of ``branch`` (the JSON of ``ringcontact branch``)."""
+    plt = pyplot()
+    rpm, amp, rad, stable = branch_curve(branch, channel, order)
+    fig, (ax, axr) = plt.subplots(2, 1, figsize=(7.5, 6.2), sharex=True, height_ratios=(3, 1.4),
+                                  constrained_layout=True)
+    drawn = set()
+    for a, b, st in stability_runs(stable):
+        lab = ("stable" if st else "unstable") if st not in drawn else None
+        drawn.add(st)
+        sl = slice(a, b + 1)
+        ax.plot(rpm[sl], amp[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.6, label=lab)
+        axr.plot(rpm[sl], rad[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.2)
+    seen = set()
+    for bif in branch["bifurcations"]:
+        mark, colour, name = KINDS.get(bif["kind"], ("x", "k", bif["kind"]))
+        i = int(bif["after_point"])
+        x = float(bif["speed_rpm"])
+        lo, hi = max(i - 1, 0), min(i, len(rpm) - 1)
+        w = 0.0 if rpm[hi] == rpm[lo] else (x - rpm[lo]) / (rpm[hi] - rpm[lo])
+        y = amp[lo] + min(max(w, 0.0), 1.0) * (amp[hi] - amp[lo])
+        ax.plot([x], [y], mark, color=colour, ms=8, mfc="none", mew=1.8, label=name if name not in seen else None)
+        ax.annotate(f"{name}\n{x:.0f} rpm", (x, y), textcoords="offset points", xytext=(6, 8), fontsize=7,
+                    color=colour)
+        axr.axvline(x, color=colour, lw=0.8, ls=":")
+        seen.add(name)
+    axr.axhline(1.0, color="k", lw=0.8)
+    ax.set_ylabel(f"{order}X velocity amplitude at {channel} (mm/s)")
+    axr.set_ylabel("largest |multiplier|")
+    axr.set_xlabel("rotor speed (rpm)")
+    ax.set_title(f"{branch.get('scene', '')}: periodic orbits by shooting, continued in speed "
+                 f"(period {branch.get('period_revs', 1)} rev)", fontsize=9)
+    ax.legend(fontsize=8, loc="best")
+    for a in (ax, axr):
+        a.grid(True, lw=0.3, alpha=0.5)
+    return save(fig, Path(prefix))
