@@ -45,6 +45,28 @@ def _cascade_axes(ax, points, get, unit_scale, label, floor_rel=1e-4):
     return sc
 
 
+#: how ``--method shooting`` marks a speed whose orbit is not a stable periodic one (rotor.studies.shooting_point)
+STABILITY_MARKS = {"quasi_periodic": ("D", "tab:orange", "unstable: complex pair out (quasi-periodic)"),
+                   "period_doubling": ("s", "tab:purple", "unstable: multiplier < −1 (period doubling)"),
+                   "unstable_fold": ("x", "tab:red", "unstable: real multiplier > 1"),
+                   "non_periodic": ("o", "0.3", "no orbit; transient not periodic"),
+                   "no_orbit_found": ("o", "0.6", "no orbit found")}
+
+
+def mark_stability(ax, points) -> None:
+    """Markers at the right edge of a cascade at the speeds classified unstable, quasi-periodic or
+    non-periodic (points of ``study cascade --method shooting``; nothing for transient points)."""
+    if not any("classification" in p.info for p in points):
+        return
+    x = ax.get_xlim()[1]
+    for cls, (mark, colour, label) in STABILITY_MARKS.items():
+        rpm = [p.params["speed_rpm"] for p in points if p.info.get("classification") == cls]
+        if rpm:
+            ax.plot([0.97 * x] * len(rpm), rpm, mark, color=colour, ms=5, mfc="none", mew=1.2, label=label)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=6, loc="upper left", framealpha=0.8)
+
+
 def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "") -> list[Path]:
     """Velocity-y spectrum cascades at disk 1, disk 2, 3# bearing (Fig. 12 / 16), the relative-tilt
     cascade (Fig. 17), and ``<prefix>.csv`` with 1X–5X per speed, convergence and regime."""
@@ -56,6 +78,7 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
     for ax, (ch, lab) in zip(axes, LOCATIONS):
         _cascade_axes(ax, points, lambda p, ch=ch: p.arrays["spec_v"][:, channel_column(p, ch)], 1e3,
                       f"{lab}: y-velocity amplitude (mm/s)")
+        mark_stability(ax, points)
     fig.suptitle(title or "Steady-state spectrum cascades (y velocity), Table 4 rotor", fontsize=10)
     files += save(fig, figs / prefix)
     fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.6), constrained_layout=True)
@@ -75,6 +98,11 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
         rows.append([rpm[i], int(inf["converged"]), inf["period_revs"], inf["label"], inf["contact_fraction"],
                      inf["stick_fraction"], inf["transient_revs"], p.record.get("run", {}).get("wall_s", float("nan"))]
                     + list((V[i] * 1e3).ravel()) + list((U[i] * 1e3).ravel()))
+    if any("classification" in p.info for p in points):      # --method shooting: the Floquet verdict per speed
+        header += ["classification", "classified_by", "stable", "spectral_radius", "critical_kind"]
+        for r, p in zip(rows, points):
+            r += [p.info.get(k, "") for k in ("classification", "classified_by", "stable", "spectral_radius",
+                                               "critical_kind")]
     files.append(write_csv(figs / f"{prefix}.csv", header, rows))
     return files
 

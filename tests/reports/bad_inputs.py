@@ -198,6 +198,10 @@ def _study_cases() -> list:
     c += _num_cases("study cascade", b, "--clearance-mm", ["nan", "0", "50"], "mm")
     c += _num_cases("study cascade", b, "--misalignment-mm", ["-1", "nan"], "mm")
     c += [("study cascade rpm-min > rpm-max", [*b, "--rpm-min", "5000", "--rpm-max", "3000"], None)]
+    for sub in ("cascade", "params"):
+        for v in ("harmonic-balance", "SHOOTING", ""):
+            c.append((f"study {sub} --method {v or 'EMPTY'}", ["study", sub, "--out", "{tmp}/o", "--no-progress",
+                                                               "--method", v], v or None))
     c += _num_cases("study point", ["study", "point", "--out", "{tmp}/o"], "--speed-rpm", NUMBERS_BAD + ["-1"], "rpm")
     for sub, flag in (("params", "--clearances-mm"), ("params", "--misalignments-mm"), ("map", "--clearances-mm")):
         c += [(f"study {sub} {flag} {v}", ["study", sub, "--out", "{tmp}/o", flag, v], v)

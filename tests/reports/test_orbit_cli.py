@@ -119,3 +119,16 @@ def test_table4_orbit_equals_simulate_steady_at_10500_rpm(tmp_path, capsys):
     sim = json.loads((tmp_path / "s" / "simulate-summary.json").read_text())
     assert _amplitudes_agree(d["velocity_amplitudes_mm_s_1X_to_5X"], sim["velocity_amplitudes_mm_s_1X_to_5X"],
                              1e-3) < 1e-4
+
+
+def test_study_cascade_method_shooting_stores_the_floquet_verdict(damped_jeffcott, tmp_path, capsys):
+    from sweep import load_sweep
+
+    out = tmp_path / "casc"
+    rc, _, err = _run(["study", "cascade", "--scene", damped_jeffcott, "--method", "shooting", "--rpm-min", 0,
+                       "--rpm-max", 2000, "--points", 3, "--workers", 1, "--no-progress", "--out", out], capsys)
+    assert rc == 0, err
+    pts = load_sweep(out, complete=True)
+    got = {round(p.params["speed_rpm"]): (p.info["classification"], p.info["classified_by"]) for p in pts.values()}
+    assert got == {0: ("static", "static"), 1000: ("periodic", "multipliers"), 2000: ("periodic", "multipliers")}
+    assert all(p.params["method"] == "shooting" for p in pts.values())
