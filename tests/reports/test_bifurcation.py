@@ -1,0 +1,30 @@
+"""The bifurcation diagram's drawing rules (reports/bifurcation.py): stable solid, unstable dashed, kinds marked."""
+from __future__ import annotations
+
+from reports.bifurcation import bifurcation_figure, branch_curve, stability_runs
+
+
+def test_runs_of_equal_stability_share_their_end_points():
+    assert stability_runs([True, True, False, False, True]) == [(0, 2, True), (2, 4, False), (4, 4, True)]
+    assert stability_runs([False]) == [(0, 0, False)]
+
+
+def _branch():
+    pts = [{"speed_rpm": 1000.0 + 100 * i, "stable": i < 3, "spectral_radius": 0.9 + 0.05 * i,
+            "critical_kind": "period_doubling", "velocity_amplitudes_mm_s_1X_to_5X": {"d.y": [1.0 + i, 0, 0, 0, 0]}}
+           for i in range(5)]
+    return {"scene": "synthetic", "period_revs": 1, "points": pts,
+            "bifurcations": [{"kind": "period_doubling", "speed_rpm": 1250.0, "after_point": 3}]}
+
+
+def test_curve_reads_the_requested_channel_and_order():
+    rpm, amp, rad, stable = branch_curve(_branch(), "d.y", 1)
+    assert list(rpm) == [1000, 1100, 1200, 1300, 1400] and list(amp) == [1, 2, 3, 4, 5]
+    assert list(stable) == [True, True, True, False, False]
+
+
+def test_figure_is_written_with_the_kind_in_it(tmp_path):
+    files = bifurcation_figure(_branch(), "d.y", tmp_path / "bif")
+    assert [f.suffix for f in files] == [".png", ".svg"]
+    svg = (tmp_path / "bif.svg").read_text()
+    assert "period doubling" in svg and "1250 rpm" in svg and "unstable" in svg
