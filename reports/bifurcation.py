@@ -39,20 +39,40 @@ def branch_curve(branch: dict, channel: str, order: int = 1):
     return rpm, amp, rad, np.array([bool(p["stable"]) for p in pts])
 
 
-def bifurcation_figure(branch: dict, channel: str, prefix, order: int = 1) -> list[Path]:
-    """Draw ``prefix.png`` and ``prefix.svg`` of ``branch`` (the JSON of ``ringcontact branch``)."""
+def bifurcation_figure(branch, channel: str, prefix, order: int = 1) -> list[Path]:
+    """Draw ``prefix.png`` and ``prefix.svg`` of ``branch`` (the JSON of ``ringcontact branch``, or a list of
+    them: segments of one speed range, each drawn on its own)."""
     plt = pyplot()
-    rpm, amp, rad, stable = branch_curve(branch, channel, order)
+    segments = branch if isinstance(branch, (list, tuple)) else [branch]
     fig, (ax, axr) = plt.subplots(2, 1, figsize=(7.5, 6.2), sharex=True, height_ratios=(3, 1.4),
                                   constrained_layout=True)
-    drawn = set()
+    seen: set = set()
+    for seg in segments:
+        if seg["points"]:
+            _draw(ax, axr, seg, channel, order, seen)
+    axr.axhline(1.0, color="k", lw=0.8)
+    ax.set_ylabel(f"{order}X velocity amplitude at {channel} (mm/s)")
+    axr.set_ylabel("largest |multiplier|")
+    axr.set_xlabel("rotor speed (rpm)")
+    periods = sorted({s.get("period_revs", 1) for s in segments})
+    ax.set_title(f"{segments[0].get('scene', '')}: periodic orbits by shooting, continued in speed "
+                 f"(period {', '.join(map(str, periods))} rev)", fontsize=9)
+    ax.legend(fontsize=8, loc="best")
+    for a in (ax, axr):
+        a.grid(True, lw=0.3, alpha=0.5)
+    return save(fig, Path(prefix))
+
+
+def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
+    """One branch: its stability runs and its bifurcations (``seen``: legend labels already drawn)."""
+    rpm, amp, rad, stable = branch_curve(branch, channel, order)
     for a, b, st in stability_runs(stable):
-        lab = ("stable" if st else "unstable") if st not in drawn else None
-        drawn.add(st)
+        lab = "stable" if st else "unstable"
         sl = slice(a, b + 1)
-        ax.plot(rpm[sl], amp[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.6, label=lab)
+        ax.plot(rpm[sl], amp[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.6,
+                label=lab if lab not in seen else None)
         axr.plot(rpm[sl], rad[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.2)
-    seen = set()
+        seen.add(lab)
     for bif in branch["bifurcations"]:
         mark, colour, name = KINDS.get(bif["kind"], ("x", "k", bif["kind"]))
         i = int(bif["after_point"])
@@ -65,13 +85,3 @@ def bifurcation_figure(branch: dict, channel: str, prefix, order: int = 1) -> li
                     color=colour)
         axr.axvline(x, color=colour, lw=0.8, ls=":")
         seen.add(name)
-    axr.axhline(1.0, color="k", lw=0.8)
-    ax.set_ylabel(f"{order}X velocity amplitude at {channel} (mm/s)")
-    axr.set_ylabel("largest |multiplier|")
-    axr.set_xlabel("rotor speed (rpm)")
-    ax.set_title(f"{branch.get('scene', '')}: periodic orbits by shooting, continued in speed "
-                 f"(period {branch.get('period_revs', 1)} rev)", fontsize=9)
-    ax.legend(fontsize=8, loc="best")
-    for a in (ax, axr):
-        a.grid(True, lw=0.3, alpha=0.5)
-    return save(fig, Path(prefix))

@@ -28,3 +28,12 @@ def test_figure_is_written_with_the_kind_in_it(tmp_path):
     assert [f.suffix for f in files] == [".png", ".svg"]
     svg = (tmp_path / "bif.svg").read_text()
     assert "period doubling" in svg and "1250 rpm" in svg and "unstable" in svg
+
+
+def test_segments_are_drawn_together(tmp_path):
+    b1, b2 = _branch(), _branch()
+    b2["points"] = [dict(p, speed_rpm=p["speed_rpm"] + 5000) for p in b2["points"]]
+    b2["bifurcations"] = [{"kind": "neimark_sacker", "speed_rpm": 6250.0, "after_point": 3}]
+    bifurcation_figure([b1, b2, {"points": [], "bifurcations": []}], "d.y", tmp_path / "two")
+    svg = (tmp_path / "two.svg").read_text()
+    assert "period doubling" in svg and "Neimark" in svg and "6250 rpm" in svg
