@@ -85,3 +85,21 @@ def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
                     color=colour)
         axr.axvline(x, color=colour, lw=0.8, ls=":")
         seen.add(name)
+
+
+def segments_table(segments) -> str:
+    """Markdown table of branch segments (the JSON of ``ringcontact branch`` each): range covered, orbits,
+    stable share, largest spectral radius, bifurcations and why each stopped."""
+    lines = ["| start (rpm) | reached (rpm) | target (rpm) | orbits | stable | largest spectral radius | "
+             "bifurcations | stopped |", "|---|---|---|---|---|---|---|---|"]
+    for s in segments:
+        pts = s["points"]
+        if not pts:
+            lines.append(f"| {s['rpm_start']:.0f} | – | {s['rpm_end']:.0f} | 0 | – | – | – | {s['stop']} |")
+            continue
+        rpm = [p["speed_rpm"] for p in pts]
+        stable = sum(bool(p["stable"]) for p in pts)
+        bifs = "; ".join(f"{b['kind'].replace('_', ' ')} {b['speed_rpm']:.0f}" for b in s["bifurcations"]) or "none"
+        lines.append(f"| {s['rpm_start']:.0f} | {max(rpm):.0f} | {s['rpm_end']:.0f} | {len(pts)} | "
+                     f"{stable}/{len(pts)} | {max(p['spectral_radius'] for p in pts):.4f} | {bifs} | {s['stop']} |")
+    return "\n".join(lines)

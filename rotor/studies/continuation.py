@@ -20,8 +20,8 @@ the step and the load at ``λ ± h``; an analytic derivative would need the peri
 and to the load, which the period map does not carry).
 
 Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign;
-period doubling, Neimark–Sacker (and folds seen by the multipliers) where the count of multipliers
-outside the unit circle changes (:func:`rotor.studies.floquet.crossing`). Each is located by regula falsi on
+period doubling, Neimark–Sacker, and branch points (a real multiplier through +1 with no turn: a pitchfork)
+where the count of multipliers outside the unit circle changes (:func:`rotor.studies.floquet.crossing`). Each is located by regula falsi on
 the arclength between the two points, on its test quantity (``dλ/ds``, or ``|μ| − 1`` of the largest multiplier
 of the crossing kind), every trial a corrected orbit. :func:`switch_period_doubling` starts the doubled-period branch at a period doubling from the
 eigenvector of the multiplier −1.
@@ -35,7 +35,7 @@ from typing import Callable
 
 import numpy as np
 
-from contact.errors import ConvergenceError, OutsideDomainError
+from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.dynamics import constraints as cons
 from rotor.studies.floquet import FloquetResult, crossing, floquet
 from rotor.studies.period_flow import Flow, advance, make_flow
@@ -81,6 +81,13 @@ def speed_problem(system_at_speed: Callable, steps_per_rev: int, **kw) -> Proble
     return Problem(system_at_speed, lambda w: w, steps_per_rev, **kw)
 
 
+def parameter_problem(system_at: Callable, speed_rad_s: float, steps_per_rev: int, name: str, **kw) -> Problem:
+    """Continuation in a scalar scene parameter λ (``name`` with its unit, e.g. ``clearance_m``,
+    ``misalignment_m``) at the fixed spin speed ``speed_rad_s``: ``system_at(λ) -> RotorSystem``."""
+    w = float(speed_rad_s)
+    return Problem(system_at, lambda lam: w, steps_per_rev, name=name, **kw)
+
+
 @dataclass(frozen=True)
 class BranchPoint:
     """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector
@@ -96,7 +103,7 @@ class BranchPoint:
 
 @dataclass(frozen=True)
 class Bifurcation:
-    """``kind`` ("fold", "period_doubling", "neimark_sacker") between points ``index − 1`` and ``index``,
+    """``kind`` ("fold", "branch_point", "period_doubling", "neimark_sacker") between points ``index − 1`` and ``index``,
     at the interpolated ``parameter``; ``multiplier`` the critical one at point ``index``."""
 
     kind: str
@@ -122,7 +129,8 @@ class Branch:
 @dataclass(frozen=True)
 class ContinuationOptions:
     """``ds`` initial/min/max arclength steps (scaled units), corrector ``tol`` (–) and ``max_iter``,
-    ``max_points``, ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet)."""
+    ``max_points``, ``back_margin`` (stop when a branch turns back beyond the start by this fraction of the
+    range), ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet)."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -130,6 +138,7 @@ class ContinuationOptions:
     tol: float = 1e-9
     max_iter: int = 10
     max_points: int = 400
+    back_margin: float = 0.5
     rcond: float = 1e-10
     multiplier_tol: float = 1e-6
 
@@ -189,7 +198,7 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
         x, lam = y[:-1] * ev.s, y[-1] * ev.ls
         try:
             R, J, M = ev(x, lam)
-        except (OutsideDomainError, ConvergenceError):   # an iterate the scheme cannot step: a failed corrector
+        except (OutsideDomainError, ConvergenceError, InputError):   # an iterate the scheme cannot step
             return None
         res = float(np.max(np.abs(R)))
         if not math.isfinite(res):
@@ -212,12 +221,19 @@ def _point(ev, y, J, M, it, res, tau, opts) -> BranchPoint:
 
 def _test(kind: str, pt: BranchPoint) -> float:
     """The quantity that changes sign at a bifurcation of ``kind``: ``dλ/ds`` (fold) or ``|μ| − 1`` of the
-    largest multiplier of that kind (real negative: period doubling; complex: Neimark–Sacker)."""
+    largest multiplier of that kind (real negative: period doubling; complex: Neimark–Sacker; real positive:
+    branch point)."""
     if kind == "fold":
         return pt.dlam_ds
     mu = pt.floquet.multipliers
     real = np.abs(mu.imag) <= 1e-9 * np.maximum(1.0, np.abs(mu))
-    pick = mu[real & (mu.real < 0)] if kind == "period_doubling" else mu[~real]
+    neutral = np.abs(mu - 1.0) <= pt.floquet.tol
+    if kind == "period_doubling":
+        pick = mu[real & (mu.real < 0)]
+    elif kind == "branch_point":
+        pick = mu[real & (mu.real > 0) & ~neutral]
+    else:
+        pick = mu[~real]
     return float(np.abs(pick).max()) - 1.0 if len(pick) else -1.0
 
 
@@ -252,8 +268,13 @@ def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, 
 
 
 def _events(ev, prev: BranchPoint, new: BranchPoint, index: int, y0, tau0, ds, opts, phase) -> list:
-    kinds = ["fold"] if prev.dlam_ds * new.dlam_ds < 0 else []
+    """Bifurcations between ``prev`` and ``new``. A real multiplier through +1 without a turn of the
+    parameter is a branch point (a pitchfork: symmetry breaking, e.g. a planar orbit starting to whirl)."""
+    fold = prev.dlam_ds * new.dlam_ds < 0
+    kinds = ["fold"] if fold else []
     kind = crossing(prev.floquet, new.floquet)
+    if kind == "fold" and not fold:
+        kind = "branch_point"
     if kind is not None and kind not in kinds:
         kinds.append(kind)
     return [Bifurcation(k, index, _refine(ev, y0, tau0, ds, k, prev, new, opts, phase), new.floquet.critical)
@@ -311,6 +332,9 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
         if (pt.parameter - lam_end) * direction >= 0:
             stop = "end reached"
+            break
+        if (lam0 - pt.parameter) * direction > opts.back_margin * abs(lam_end - lam0):
+            stop = "turned back beyond the start"
             break
     return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, time.perf_counter() - t_start)
 

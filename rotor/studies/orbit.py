@@ -20,11 +20,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contact.errors import InputError
+from contact.units import check_positive
 from rotor.dynamics.initial import linear_initial_state
 from rotor.studies.continuation import Branch, ContinuationOptions, continue_branch, speed_problem
 from rotor.studies.floquet import FloquetResult
-from rotor.studies.period_flow import Flow, make_flow, record
-from rotor.studies.shooting import ShootingOptions, ShootingResult, shoot_from_transient
+from rotor.studies.period_flow import Flow, make_flow, record, to_full
+from rotor.studies.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
 
 ORDERS = (1, 2, 3, 4, 5)
@@ -41,10 +43,13 @@ class OrbitResult:
     velocity_amplitudes_mm_s_1X_to_5X : dict, ``<station>.<y|z>`` -> five amplitudes (mm/s)
     newton_iterations : int; residual : float (–, relative to the orbit scale); transient_revs : int
     events : int, end-face mode changes over the period; singular_directions : int; wall_s : float (s)
-    multipliers_exact : bool, the monodromy is the scheme's exact derivative: no face mode change over the
-        period, or the finite-difference back-end (the step-Jacobian monodromy has no saltation term at a
-        stick/slip switch, :mod:`rotor.dynamics.period_map`, so with events its multipliers are approximate)
+    switch_free : bool, no end-face mode change over the period. With switches the monodromy is still the
+        exact derivative of the scheme's map while every switch stays in its step, but a perturbation that
+        moves a switch by a step makes the map jump (the discrete trace of the continuous system's saltation,
+        :mod:`rotor.dynamics.period_map`), which the multipliers do not see
     backend : str; shooting : ShootingResult (the reduced state, monodromy, scales)
+    q_m, v_m_s : (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring
+        speed
     """
 
     speed_rpm: float
@@ -63,10 +68,12 @@ class OrbitResult:
     wall_s: float
     backend: str
     shooting: ShootingResult
+    q_m: np.ndarray
+    v_m_s: np.ndarray
 
     @property
-    def multipliers_exact(self) -> bool:
-        return self.events == 0 or self.backend == "fd"
+    def switch_free(self) -> bool:
+        return self.events == 0
 
     def as_dict(self) -> dict:
         """JSON-ready summary, keys with units."""
@@ -77,7 +84,7 @@ class OrbitResult:
                 "velocity_amplitudes_mm_s_1X_to_5X": self.velocity_amplitudes_mm_s_1X_to_5X,
                 "newton_iterations": self.newton_iterations, "residual": self.residual,
                 "transient_revs": self.transient_revs, "face_mode_changes": self.events,
-                "singular_directions": self.singular_directions, "multipliers_exact": self.multipliers_exact,
+                "singular_directions": self.singular_directions, "switch_free": self.switch_free,
                 "wall_s": self.wall_s, "backend": self.backend}
 
 
@@ -110,15 +117,19 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     ``(q0, v0)`` at t = 0 instead of the linear periodic solution (e.g. a neighbouring speed's orbit).
     """
     t_start = time.perf_counter()
+    check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)    # an orbit needs a period: no zero speed
+    if period_revs is not None and not (int(period_revs) == period_revs and 1 <= period_revs <= MAX_PERIOD_REVS):
+        raise InputError(f"period_revs = {period_revs}: must be a whole number of revolutions, 1 to {MAX_PERIOD_REVS}")
     _, model, system = point_system(scene, speed_rpm, **_overrides(overrides))
     n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
     flow = make_flow(system, 2.0 * math.pi / (system.omega_rad_s * n), backend)
     q0, v0 = linear_initial_state(system, 0.0) if start is None else start
     res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options)
     amps = velocity_amplitudes(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
+    q, v = to_full(flow, res.state, 0.0)
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
                        res.floquet, amps, res.newton_iterations, res.residual, res.transient_revs, res.events,
-                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res)
+                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v)
 
 
 @dataclass(frozen=True)
@@ -148,6 +159,10 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     ``amplitudes``: record each point's 1X-5X velocity amplitudes (one extra period per point).
     """
     t_start = time.perf_counter()
+    check_positive("rpm_start", rpm_start, "rpm", upper=1e5)
+    check_positive("rpm_end", rpm_end, "rpm", upper=1e5)
+    if rpm_start == rpm_end:
+        raise InputError(f"rpm_end = {rpm_end:g} rpm: must differ from rpm_start = {rpm_start:g} rpm")
     ov = _overrides(overrides)
     _, model, sys_lo = point_system(scene, min(rpm_start, rpm_end), **ov)
     n = int(steps_per_rev or step_per_rev(sys_lo, SteadyStateOptions()))
@@ -176,3 +191,26 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
         pts.append(d)
     bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index} for b in br.bifurcations)
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
+
+
+def cascade(scene: str, speeds_rpm, *, steps_per_rev: int | None = None, backend: str = "auto",
+            options: ShootingOptions | None = None, **overrides) -> tuple:
+    """:func:`orbit` at each speed of ``speeds_rpm`` (rpm, > 0) in order, each started from the previous
+    converged orbit (2 transient revolutions before Newton) or, after a failure and at the first speed, from
+    the linear periodic solution with the full transient rounds. Returns the :class:`OrbitResult` of every
+    speed; ``converged`` False marks a speed where no orbit of 1..8 revolutions was found within
+    ``max_transient_revs`` (quasi-periodic or chaotic; the neighbours' multipliers say which way it was
+    left: a complex pair outside the circle, Neimark-Sacker, or a real one below −1, period doubling)."""
+    opts = options or ShootingOptions()
+    warm = ShootingOptions(**{**opts.__dict__, "transient_revs": 2})
+    out, prev = [], None
+    for s in speeds_rpm:
+        kw = dict(steps_per_rev=steps_per_rev, backend=backend, **overrides)
+        res = None
+        if prev is not None:
+            res = orbit(scene, s, start=(prev.q_m, prev.v_m_s), options=warm, period_revs=prev.period_revs, **kw)
+        if res is None or not res.converged:
+            res = orbit(scene, s, options=opts, **kw)
+        out.append(res)
+        prev = res if res.converged else None
+    return tuple(out)

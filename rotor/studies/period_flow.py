@@ -66,8 +66,9 @@ class Flow:
 @dataclass(frozen=True)
 class MapResult:
     """``state`` (2 n_r,) after the steps, ``monodromy`` (2 n_r, 2 n_r) or None, end-face ``modes``, and
-    ``events``: end-face mode changes met (the initial stick test's included); the exact back-end's monodromy
-    has no saltation term at such a switch, so it is exact only with ``events == 0``."""
+    ``events``: end-face mode changes met (the initial stick test's included). The exact back-end's monodromy
+    is the derivative of the map while every switch stays in its step; a perturbation that moves a switch by
+    a step makes the map jump, which no derivative (nor the multipliers) sees (:mod:`rotor.dynamics.period_map`)."""
 
     state: np.ndarray
     monodromy: np.ndarray | None

@@ -12,7 +12,7 @@ stability and the kind of the critical multiplier (:mod:`rotor.studies.floquet`)
 Classification (``info["classification"]``, and ``info["classified_by"]`` says how it was reached):
 
 * shooting converged (``classified_by = "multipliers"``): ``periodic`` (stable orbit), or, for an unstable
-  orbit, the way its multipliers leave the unit circle: ``quasi_periodic`` (a complex pair outside:
+  orbit, the way its largest multiplier lies outside the unit circle: ``quasi_periodic`` (a complex pair:
   Neimark–Sacker, the motion settles on a torus), ``period_doubling`` (a real multiplier below −1) or
   ``unstable_fold`` (a real multiplier above +1). The arrays are those of the orbit, stable or not.
 * shooting did not converge (``classified_by = "transient fallback"``): the point is computed by the
@@ -41,14 +41,12 @@ METHODS = ("transient", "shooting")
 
 
 def classify(floquet) -> str:
-    """``periodic`` for a stable orbit, else how its multipliers leave the unit circle (module docstring)."""
+    """``periodic`` for a stable orbit, else by its critical (largest non-neutral) multiplier: a complex pair,
+    ``quasi_periodic``; real below −1, ``period_doubling``; real above +1, ``unstable_fold``."""
     if floquet.stable:
         return "periodic"
-    if floquet.n_out_complex:
-        return "quasi_periodic"
-    if floquet.n_out_real_negative:
-        return "period_doubling"
-    return "unstable_fold"
+    return {"neimark_sacker": "quasi_periodic", "period_doubling": "period_doubling"}.get(floquet.kind,
+                                                                                           "unstable_fold")
 
 
 def floquet_info(res) -> dict:

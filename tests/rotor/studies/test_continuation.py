@@ -1,14 +1,20 @@
 """Pseudo-arclength continuation (rotor.studies.continuation) over the Jeffcott verification rotor's whole
-response curve, against its closed form (rotor.studies.jeffcott: ((k − mΩ'²) r + f(r − δ0))² + (cΩ' r)² =
-(m e Ω²)², with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N) in inertia and damping)."""
+response curve, against its closed form (derived in rotor/studies/jeffcott.py: ((k − mΩ'²) r + f(r − δ0))² +
+(cΩ' r)² = (m e Ω²)², with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N) in inertia and damping).
+
+The rotor (JeffcottParams defaults): m = 1 kg, k = 1e5 N/m (ω_n = 316.2 rad/s), c = 31.62 N s/m (ζ = 0.05),
+e = 20 µm, clearance δ0 = 10 µm, ring width 10 mm, Pereira et al. (2015) law with E = 10 MPa (f ∝ pen^1.25),
+c_c = 50 s/m (inactive on a circle), N = 64 steps per revolution. Closed-form folds (warped): 623.645 rad/s
+(r = 7.39 δ0, jump-up) and 726.368 rad/s (r = 45.5 δ0, jump-down); unwarped 624.336 and 727.172 rad/s."""
 import math
 
 import numpy as np
 import pytest
 
-from rotor.studies.continuation import ContinuationOptions, continue_branch, speed_problem
+from rotor.studies.continuation import ContinuationOptions, continue_branch, parameter_problem, speed_problem
 from rotor.studies.jeffcott import (JeffcottParams, closed_form_folds, closed_form_radius, closed_form_speeds,
-                                    jeffcott_system, warped_frequency)
+                                    contact_force_N, jeffcott_system, warped_frequency)
+from rotor.studies.shooting import shoot_from_transient
 
 P = JeffcottParams()
 N = 64
@@ -84,3 +90,74 @@ def test_neimark_sacker_on_the_lower_right_branch(branch):
     w_up = closed_form_folds(P, N)[0][0]
     assert ns and all(abs(b.parameter / w_up - 1) < 1e-4 for b in ns)
     assert branch.points[-1].floquet.n_out_complex == 2
+
+
+def _roots_in_radius(w, clearance_m):
+    """Number of orbit radii of the warped closed form at speed w and clearance (sign changes of the
+    residual on a 0.14 %-spaced logarithmic grid of radii, 1 µm to 1 mm)."""
+    rs = np.geomspace(1e-6, 1e-3, 5000)
+    wp = float(warped_frequency(w, N))
+    f = contact_force_N(P, rs, clearance_m)
+    g = ((P.stiffness_N_m - P.mass_kg * wp ** 2) * rs + f) ** 2 + (P.damping_N_s_m * wp * rs) ** 2 \
+        - (P.mass_kg * P.eccentricity_m * w ** 2) ** 2
+    return int(np.count_nonzero(np.diff(np.sign(g))))
+
+
+def test_continuation_in_clearance_at_fixed_speed():
+    """At 680 rad/s (between the speed folds) the clearance is the parameter, 6 to 40 µm: the branch stays on
+    the closed form (1e-6; the Pereira law's exponent itself depends on the clearance) and turns twice; at
+    each located fold the closed form's number of radii changes by two within ±0.1 % of the clearance."""
+    w = 680.0
+    pb = parameter_problem(lambda c: jeffcott_system(P, w, clearance_m=c), w, N, "clearance_m", modes0=(0, 0))
+    start = shoot_from_transient(pb.flow(6e-6), np.zeros(4), np.zeros(4), steps_per_rev=N, period_revs=1,
+                                 modes0=(0, 0))
+    br = continue_branch(pb, start.state, 6e-6, 4e-5, scales=SCALES, lam_scale=1e-5,
+                         options=ContinuationOptions(ds=0.1, ds_max=0.4))
+    assert br.stop == "end reached"
+    for p in br.points:
+        r = math.hypot(*p.state[:2])
+        speeds = closed_form_speeds(P, r, N, clearance_m=p.parameter)
+        d = float(np.min(np.abs(speeds - w)) / w) if len(speeds) else math.inf
+        if d >= 1e-6:
+            d = abs(closed_form_radius(P, w, r, N, clearance_m=p.parameter) - r) / r
+        assert d < 1e-6
+    folds = [b.parameter for b in br.bifurcations if b.kind == "fold"]
+    assert len(folds) == 2
+    for c in folds:
+        assert abs(_roots_in_radius(w, c * (1 - 1e-3)) - _roots_in_radius(w, c * (1 + 1e-3))) == 2
+    mid = 0.5 * sum(folds)                       # between the folds: three radii, no change
+    assert _roots_in_radius(w, mid * (1 - 1e-3)) == _roots_in_radius(w, mid * (1 + 1e-3)) == 3
+
+
+@pytest.mark.slow
+def test_period_doubling_on_table4_and_the_doubled_branch():
+    """Table 4 rotor (Dai et al. 2025) from 10 600 rpm up: a real multiplier passes −1 near 10 626 rpm (the
+    complex pair near −1 meets the real axis outside the circle). Past it the multiplier is checked with the
+    finite-difference monodromy (no face mode change over the period there, so both derivatives are the
+    scheme's). Branch switching gives orbits of two revolutions that are not of one: x(2T) = x(0) to 1e-9 of the
+    orbit scale while x(T) − x(0) is of order 1e-2, starting within 0.05 % of the located speed."""
+    from rotor.studies.continuation import switch_period_doubling
+    from rotor.studies.orbit import branch
+    from rotor.studies.period_flow import advance, make_flow, monodromy_fd
+    from rotor.studies.steady_state import point_system
+
+    b = branch("paper-table4", 10600.0, 10680.0, options=ContinuationOptions(max_points=12), amplitudes=False)
+    pds = [x for x in b.branch.bifurcations if x.kind == "period_doubling"]
+    assert len(pds) == 1 and 10600 < pds[0].parameter * 30 / math.pi < 10680
+    n, modes, scales = b.start.steps_per_rev, b.start.shooting.modes, b.start.shooting.scales
+    after = b.branch.points[pds[0].index]
+    sysm = point_system("paper-table4", after.parameter * 30 / math.pi)[2]
+    flow_fd = make_flow(sysm, 2 * math.pi / after.parameter / n, "fd")
+    mu = np.linalg.eigvals(monodromy_fd(flow_fd, after.state, 0.0, n, modes))
+    assert np.min(mu.real[np.abs(mu.imag) < 1e-9]) < -1.0
+    pb = speed_problem(lambda w: point_system("paper-table4", w * 30 / math.pi)[2], n, modes0=modes)
+    b2 = switch_period_doubling(pb, b.branch, pds[0], 10700 * math.pi / 30, scales=scales,
+                                lam_scale=8 * math.pi / 30, options=ContinuationOptions(max_points=4))
+    assert b2.period_revs == 2 and len(b2.points) >= 3
+    assert abs(b2.points[1].parameter / pds[0].parameter - 1) < 5e-4
+    for p in b2.points[1:]:
+        fl = pb.flow(p.parameter)
+        x1 = advance(fl, p.state, 0.0, n, modes, jacobian=False).state
+        x2 = advance(fl, x1, n * fl.dt_s, n, modes, jacobian=False).state
+        assert np.max(np.abs(x2 - p.state) / scales) < 1e-9
+        assert np.max(np.abs(x1 - p.state) / scales) > 1e-3

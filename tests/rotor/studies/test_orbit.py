@@ -1,0 +1,90 @@
+"""orbit() on the Table 4 rotor (Dai et al. 2025) at 10 500 rpm, against the transient steady state that
+``simulate --steady`` reports (rotor.studies.steady_state from the linear periodic solution)."""
+import numpy as np
+import pytest
+
+from rotor.dynamics.initial import linear_initial_state
+from rotor.dynamics.production import warm_up
+from rotor.studies.orbit import orbit
+from rotor.studies.steady_state import steady_state, point_system
+
+SPEED = 10500.0
+
+
+@pytest.fixture(scope="module")
+def transient():
+    warm_up()
+    _, model, system = point_system("paper-table4", SPEED)
+    q0, v0 = linear_initial_state(system, 0.0)
+    return steady_state(system, model, q0=q0, v0=v0)
+
+
+def _worst(o, ss):
+    h = ss.harmonics("v")
+    return max(float(np.max(np.abs(np.array(o.velocity_amplitudes_mm_s_1X_to_5X[n]) * 1e-3 - h[:, j]) / h[:, j]))
+               for j, n in enumerate(ss.channels))
+
+
+def test_shooting_from_the_transient_state_reproduces_its_harmonics(transient):
+    """From the transient's end state: Newton converges (1e-9 of the orbit scale) on a period of one
+    revolution, and the 1X-5X velocity amplitudes at every station equal the transient's to 1e-4 (measured
+    3.5e-5, the transient's own Poincaré tolerance being 1e-4)."""
+    assert transient.convergence.converged and transient.convergence.period == 1
+    o = orbit("paper-table4", SPEED, start=(transient.q_end, transient.v_end))
+    assert o.converged and o.residual < 1e-9 and o.period_revs == 1
+    assert set(o.velocity_amplitudes_mm_s_1X_to_5X) == set(transient.channels)
+    assert _worst(o, transient) < 1e-4
+    assert o.stable
+
+
+def test_a_stuck_face_makes_a_continuum_of_orbits(transient):
+    """The right face slips part of each revolution and the left one sticks throughout, so the left face's
+    sticking offset is free: two multipliers exactly 1 (n_neutral = 2). Shooting from the linear start after
+    a shorter transient converges to another member of that continuum: an exact periodic orbit whose
+    harmonics differ from the long transient's by more than its tolerance, its 1X by less than 1e-3."""
+    o = orbit("paper-table4", SPEED)
+    assert o.converged and o.residual < 1e-9 and o.period_revs == 1
+    assert o.floquet.n_neutral == 2 and o.stable
+    assert o.events > 0 and not o.switch_free              # the right face switches stick/slip in the period
+    h = transient.harmonics("v")
+    one_x = max(abs(o.velocity_amplitudes_mm_s_1X_to_5X[n][0] * 1e-3 / h[0, j] - 1)
+                for j, n in enumerate(transient.channels))
+    assert one_x < 1e-3
+    assert _worst(o, transient) > 1e-3
+    d = o.as_dict()
+    assert d["stable"] is True and len(d["multipliers"]) == o.shooting.state.size
+
+
+def test_cascade_warm_starts_each_speed_from_the_previous_orbit():
+    """Three speeds where the faces keep their modes over the period (a smooth map): every orbit
+    converges; after the first, each starts from its neighbour with 2 transient revolutions only."""
+    from rotor.studies.orbit import cascade
+
+    res = cascade("paper-table4", [11400.0, 11700.0, 12000.0])
+    assert all(r.converged and r.period_revs == 1 for r in res)
+    assert res[0].transient_revs >= 16 and all(r.transient_revs == 2 for r in res[1:])
+    assert all(r.switch_free and r.stable for r in res)
+
+
+def test_a_small_orbit_on_a_large_offset_converges_at_the_noise_floor():
+    """300 rpm: a 0.24 µm orbit on a 1 mm misalignment offset, 4 480 steps per revolution (contact step
+    limit). Newton stalls near 2e-9 of the orbit scale, above tol (1e-9) and below accept_tol (1e-7): the
+    orbit is accepted and its residual reported; both faces stick throughout (4 neutral multipliers)."""
+    o = orbit("paper-table4", 300.0, period_revs=1)
+    assert o.converged and o.steps_per_rev > 256
+    assert o.residual < 1e-7
+    assert o.floquet.n_neutral == 4
+
+
+def test_bad_requests_are_refused_in_one_line():
+    from contact.errors import InputError
+    from rotor.studies.orbit import branch
+
+    with pytest.raises(InputError, match="speed_rpm"):
+        orbit("paper-table4", 0.0)
+    with pytest.raises(InputError, match="period_revs"):
+        orbit("paper-table4", 10500.0, period_revs=9)
+    with pytest.raises(InputError, match="rpm_end"):
+        branch("paper-table4", 10500.0, 10500.0)
+    with pytest.raises(InputError, match="rpm_start"):
+        branch("paper-table4", -1.0, 10500.0)
