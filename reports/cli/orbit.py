@@ -115,6 +115,10 @@ def branch_main(argv: list[str] | None = None) -> int:
 def orbit_json(res, scene: str) -> dict:
     """The JSON of one orbit (keys with units; multipliers as ``[re, im]``)."""
     d = {"scene": scene, **res.as_dict()}
+    f = res.floquet
+    d["critical_multiplier"] = [float(f.critical.real), float(f.critical.imag)]   # the one that leaves first
+    d["multipliers_outside"] = {"real_above_plus_1": int(f.n_out_real_positive),
+                                "real_below_minus_1": int(f.n_out_real_negative), "complex": int(f.n_out_complex)}
     d["wall_s"] = round(float(d["wall_s"]), 4)
     return d
 
@@ -125,7 +129,8 @@ def _orbit_table(d: dict) -> str:
              f"{'converged' if d['converged'] else 'NOT converged'} in {d['newton_iterations']} Newton iterations "
              f"(residual {d['residual']:.2e}), {d['wall_s']:.2f} s",
              f"  {'stable' if d['stable'] else 'UNSTABLE'}: spectral radius {d['spectral_radius']:.6f}, critical "
-             f"multiplier {d['critical_kind']}, {d['neutral_multipliers']} neutral; largest: {mult}",
+             f"multiplier {complex(*d['critical_multiplier']):.4g} ({d['critical_kind']}), "
+             f"{d['neutral_multipliers']} neutral; largest: {mult}",
              f"  {'channel':<14}" + "".join(f"{k}X mm/s".rjust(12) for k in range(1, 6))]
     for name, amps in d["velocity_amplitudes_mm_s_1X_to_5X"].items():
         lines.append(f"  {name:<14}" + "".join(f"{a:12.5g}" for a in amps))

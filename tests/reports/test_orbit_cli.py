@@ -60,6 +60,8 @@ def test_orbit_json_equals_simulate_steady(damped_jeffcott, tmp_path, capsys):
     assert max(radii) < 1.0 and d["spectral_radius"] == pytest.approx(max(radii))   # damped: all inside
     for key in ("newton_iterations", "wall_s", "critical_kind", "speed_rpm", "steps_per_rev"):
         assert key in d
+    assert abs(complex(*d["critical_multiplier"])) == pytest.approx(d["spectral_radius"])
+    assert d["multipliers_outside"] == {"real_above_plus_1": 0, "real_below_minus_1": 0, "complex": 0}
     rc, _, err = _run(["simulate", "--scene", damped_jeffcott, "--speed-rpm", 1500, "--steady", "--revolutions", 4,
                        "--out", tmp_path / "sim"], capsys)
     assert rc == 0, err
