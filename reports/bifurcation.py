@@ -103,3 +103,33 @@ def segments_table(segments) -> str:
         lines.append(f"| {s['rpm_start']:.0f} | {max(rpm):.0f} | {s['rpm_end']:.0f} | {len(pts)} | "
                      f"{stable}/{len(pts)} | {max(p['spectral_radius'] for p in pts):.4f} | {bifs} | {s['stop']} |")
     return "\n".join(lines)
+
+
+def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading: str = "") -> list[Path]:
+    """``study-bifurcation.{png,svg,md,json}`` in ``out_dir`` from branch segments (the JSON of ``ringcontact
+    branch`` each; the JSON keeps the amplitudes of ``channel`` only). ``commands``: the command lines that
+    made them; ``reading``: the hand-written reading appended (reports/notes/study-bifurcation-reading.md)."""
+    import json
+
+    from contact.files import atomic_write_text
+
+    out_dir = Path(out_dir)
+    files = bifurcation_figure(list(segments), channel, out_dir / "study-bifurcation")
+    scene = next((s.get("scene") for s in segments if s.get("scene")), "")
+    lines = [f"# Bifurcation diagram, {scene}: periodic orbits continued in speed", "",
+             "Made by `ringcontact branch` (pseudo-arclength continuation of the shooting orbit, "
+             "`rotor/studies/continuation.py`, Floquet multipliers of each orbit) over the Fig. 12 speed range, in "
+             "segments started at speeds where the orbit exists:", "", "```sh", *commands, "```", "",
+             f"Figure: `study-bifurcation.png/.svg`, 1X velocity amplitude at {channel} (stable solid, unstable "
+             "dashed, bifurcations marked with their kind) and the largest non-neutral |multiplier| against speed. "
+             "Data: `study-bifurcation.json` (each segment's points, bifurcations and why it stopped).", "",
+             segments_table(segments), ""]
+    if reading:
+        lines += [reading.strip(), ""]
+    files.append(atomic_write_text(out_dir / "study-bifurcation.md", "\n".join(lines)))
+    slim = [{**{k: v for k, v in s.items() if k not in ("points", "start")},
+             "points": [{**{k: v for k, v in p.items() if k != "velocity_amplitudes_mm_s_1X_to_5X"},
+                         f"velocity_amplitudes_mm_s_1X_to_5X_{channel}": p["velocity_amplitudes_mm_s_1X_to_5X"][channel]}
+                        for p in s["points"]]} for s in segments]
+    files.append(atomic_write_text(out_dir / "study-bifurcation.json", json.dumps(slim, indent=1) + "\n"))
+    return files

@@ -37,3 +37,19 @@ def test_segments_are_drawn_together(tmp_path):
     bifurcation_figure([b1, b2, {"points": [], "bifurcations": []}], "d.y", tmp_path / "two")
     svg = (tmp_path / "two.svg").read_text()
     assert "period doubling" in svg and "Neimark" in svg and "6250 rpm" in svg
+
+
+def test_publish_writes_the_report_with_each_segment(tmp_path):
+    import json
+
+    from reports.bifurcation import publish
+
+    b = dict(_branch(), rpm_start=1000.0, rpm_end=2000.0, stop="step below ds_min")
+    empty = {"points": [], "bifurcations": [], "rpm_start": 300.0, "rpm_end": 900.0, "stop": "no orbit at the start"}
+    files = publish([b, empty], tmp_path, channel="d.y", commands=["ringcontact branch x"], reading="Reading.")
+    assert {f.name for f in files} >= {"study-bifurcation.md", "study-bifurcation.json", "study-bifurcation.png"}
+    md = (tmp_path / "study-bifurcation.md").read_text()
+    assert "| 1000 | 1400 | 2000 | 5 | 3/5 | 1.1000 | period doubling 1250 | step below ds_min |" in md
+    assert "| 300 | – | 900 | 0 |" in md and md.rstrip().endswith("Reading.")
+    data = json.loads((tmp_path / "study-bifurcation.json").read_text())
+    assert data[0]["points"][4]["velocity_amplitudes_mm_s_1X_to_5X_d.y"] == [5.0, 0, 0, 0, 0]
