@@ -118,7 +118,7 @@ def _cascade_half(speeds) -> list[dict]:
     rows = [{"speed_rpm": 0.0, "wall_s": 0.0, "classification": "static", "stable": None, "spectral_radius": None,
              "critical_kind": None, "period_revs": None, "converged": True, "newton_iterations": None,
              "transient_revs": 0, "residual": None} for s in speeds if s == 0.0]
-    res = orbit_cascade(SCENE, [s for s in speeds if s > 0.0], steps_per_rev=STEPS)
+    res = orbit_cascade(SCENE, [s for s in speeds if s > 0.0])      # steps: 256, more where contact needs
     for r in res:
         rows.append({"speed_rpm": r.speed_rpm, "wall_s": r.wall_s, "classification":
                      classify(r.floquet) if r.converged else "no_orbit_found", "stable": r.stable if r.converged
