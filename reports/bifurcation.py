@@ -46,7 +46,7 @@ def bifurcation_figure(branch, channel: str, prefix, order: int = 1) -> list[Pat
     segments = branch if isinstance(branch, (list, tuple)) else [branch]
     fig, (ax, axr) = plt.subplots(2, 1, figsize=(7.5, 6.2), sharex=True, height_ratios=(3, 1.4),
                                   constrained_layout=True)
-    seen: set = set()
+    seen: set = set()                 # legend labels drawn, and (kind, speed) of the bifurcations labelled
     for seg in segments:
         if seg["points"]:
             _draw(ax, axr, seg, channel, order, seen)
@@ -81,10 +81,15 @@ def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
         w = 0.0 if rpm[hi] == rpm[lo] else (x - rpm[lo]) / (rpm[hi] - rpm[lo])
         y = amp[lo] + min(max(w, 0.0), 1.0) * (amp[hi] - amp[lo])
         ax.plot([x], [y], mark, color=colour, ms=8, mfc="none", mew=1.8, label=name if name not in seen else None)
-        ax.annotate(f"{name}\n{x:.0f} rpm", (x, y), textcoords="offset points", xytext=(6, 8), fontsize=7,
-                    color=colour)
-        axr.axvline(x, color=colour, lw=0.8, ls=":")
         seen.add(name)
+        spot = (bif["kind"], round(x / 25.0))        # the same bifurcation met again (another segment): one label
+        if spot in seen:
+            continue
+        seen.add(spot)
+        k = sum(1 for t in seen if isinstance(t, tuple))
+        ax.annotate(f"{name}\n{x:.0f} rpm", (x, y), textcoords="offset points", xytext=(-40 + 14 * (k % 2), 10 + 16 * (k % 3)),
+                    fontsize=7, color=colour)
+        axr.axvline(x, color=colour, lw=0.8, ls=":")
 
 
 def segments_table(segments) -> str:
