@@ -51,8 +51,9 @@ def bifurcation_figure(branch, channel: str, prefix, order: int = 1) -> list[Pat
         if seg["points"]:
             _draw(ax, axr, seg, channel, order, seen)
     axr.axhline(1.0, color="k", lw=0.8)
+    axr.set_yscale("log")            # from well inside the circle to far outside on one axis
     ax.set_ylabel(f"{order}X velocity amplitude at {channel} (mm/s)")
-    axr.set_ylabel("largest |multiplier|")
+    axr.set_ylabel("largest |multiplier| (log)")
     axr.set_xlabel("rotor speed (rpm)")
     periods = sorted({s.get("period_revs", 1) for s in segments})
     ax.set_title(f"{segments[0].get('scene', '')}: periodic orbits by shooting, continued in speed "
@@ -83,9 +84,9 @@ def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
         ax.plot([x], [y], mark, color=colour, ms=8, mfc="none", mew=1.8, label=name if name not in seen else None)
         seen.add(name)
         spot = (bif["kind"], round(x / 25.0))        # the same bifurcation met again (another segment): one label
-        if spot in seen:
-            continue
-        seen.add(spot)
+        if spot in seen or (id(branch), bif["kind"]) in seen:   # and one label per kind and segment (an
+            continue                                             # unstable branch meets many pairs leaving)
+        seen.update({spot, (id(branch), bif["kind"])})
         k = sum(1 for t in seen if isinstance(t, tuple))
         ax.annotate(f"{name}\n{x:.0f} rpm", (x, y), textcoords="offset points", xytext=(-40 + 14 * (k % 2), 10 + 16 * (k % 3)),
                     fontsize=7, color=colour)
@@ -104,10 +105,23 @@ def segments_table(segments) -> str:
             continue
         rpm = [p["speed_rpm"] for p in pts]
         stable = sum(bool(p["stable"]) for p in pts)
-        bifs = "; ".join(f"{b['kind'].replace('_', ' ')} {b['speed_rpm']:.0f}" for b in s["bifurcations"]) or "none"
+        bifs = _bifurcation_text(s["bifurcations"])
         lines.append(f"| {s['rpm_start']:.0f} | {max(rpm):.0f} | {s['rpm_end']:.0f} | {len(pts)} | "
                      f"{stable}/{len(pts)} | {max(p['spectral_radius'] for p in pts):.4f} | {bifs} | {s['stop']} |")
     return "\n".join(lines)
+
+
+def _bifurcation_text(bifurcations) -> str:
+    """``kind speed`` of each bifurcation in order, a kind met more than twice as ``kind ×n (first–last)``."""
+    by: dict = {}
+    for b in bifurcations:
+        by.setdefault(b["kind"], []).append(b["speed_rpm"])
+    parts = []
+    for kind, xs in by.items():
+        name = kind.replace("_", " ")
+        parts += ([f"{name} {x:.0f}" for x in xs] if len(xs) <= 2 else
+                  [f"{name} ×{len(xs)} ({min(xs):.0f}–{max(xs):.0f})"])
+    return "; ".join(parts) or "none"
 
 
 def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading: str = "") -> list[Path]:
