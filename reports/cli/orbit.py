@@ -60,10 +60,10 @@ def _branch_parser() -> argparse.ArgumentParser:
     p.add_argument("--rpm-end", type=quantity("run_speed_rpm"), required=True,
                    help="last speed (rpm, above --rpm-start)")
     p.add_argument("--max-points", type=count(2, 5000, "points"), default=400, help="most orbits on the branch (default 400)")
-    p.add_argument("--plot", type=out_prefix, default=None,
+    p.add_argument("--plot", type=out_prefix, default=None, metavar="PREFIX",
                    help="bifurcation diagram PREFIX.png/.svg (1X amplitude at --station against speed)")
     p.add_argument("--station", default=None,
-                   help="channel of the diagram, <station>.y or <station>.z (default: the first disk's .y)")
+                   help="channel of the diagram, <station>.y or <station>.z (default: the scene's first response station, .y)")
     return p
 
 
