@@ -48,7 +48,8 @@ def _orbit_parser() -> argparse.ArgumentParser:
     _common(p)
     p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
     p.add_argument("--period-revs", type=count(1, 8, "revolutions"), default=None,
-                   help="period in revolutions, 1 to 8 (default: found from the transient's Poincaré returns)")
+                   help="period in revolutions, 1 to 8 (default: found from the transient's Poincaré returns; "
+                        "an orbit whose shorter period divides it is reported with the shorter period)")
     return p
 
 
