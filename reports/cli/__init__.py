@@ -34,6 +34,8 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-vtu": ("reports.cli.fem:vtu_main", "export a solved 2D FEM point to VTU for ParaView"),
     "fem3d": ("reports.cli.fem3d", "3D tilted-ring FEM reference: point | sweep | check | report | vtu (mm, arcmin; --json)"),
     "calibrate": ("reports.cli.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
+    "orbit": ("reports.cli.orbit", "the periodic orbit at one speed by shooting: period, Floquet multipliers, stability, 1X-5X (--json)"),
+    "branch": ("reports.cli.orbit:branch_main", "follow the periodic orbit over a speed range, bifurcations found (--json, --plot)"),
     "study": ("reports.cli.study", "steady-state sweeps, cascades, test rig, run-up, regime map (resumable, parallel)"),
     "report": ("reports.cli.report", "build the committed reports/ from the committed datasets (the main job)"),
 }

@@ -59,6 +59,27 @@ def _scheduler(p: argparse.ArgumentParser) -> None:
                         "extra) instead of --workers local processes")
 
 
+def _method(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--method", choices=("transient", "shooting"), default="transient",
+                   help="transient (default: integrate to the detected steady state) or shooting (the periodic "
+                        "orbit by Newton on the period map, with its Floquet multipliers and stability; a point "
+                        "where shooting fails falls back to the transient, rotor.studies.shooting_point)")
+
+
+def _tasks(args):
+    """The sweep-task builder of ``--method``."""
+    if args.method == "shooting":
+        from rotor.studies.shooting_point import shooting_sweep_tasks
+        return shooting_sweep_tasks
+    from rotor.studies.steady_state import sweep_tasks
+    return sweep_tasks
+
+
+def _method_note(args) -> dict:
+    """The method in a study's description, only when not the default (transient studies stay as they were)."""
+    return {"method": args.method} if args.method != "transient" else {}
+
+
 def _parser() -> argparse.ArgumentParser:
     p = Parser(prog="ringcontact study", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="study", required=True)
@@ -71,6 +92,7 @@ def _parser() -> argparse.ArgumentParser:
     c.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance (mm, default: scene)")
     c.add_argument("--misalignment-mm", type=quantity("misalignment_mm"), default=None,
                    help="misalignment δ (mm, default: scene)")
+    _method(c)
     pt = sub.add_parser("point", help="orbits, deflection, time histories, spectra, r1/r2 at one speed (Figs. 13-15)")
     _common(pt, "runs/point")
     pt.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), action="append", help="speed (rpm), repeatable (default 4500 and 10500)")
@@ -80,6 +102,7 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--points", type=count(1, 2000), default=31, help="speeds per curve (default 31)")
     pr.add_argument("--clearances-mm", default="0.03,0.08", help="comma list besides the scene's (mm)")
     pr.add_argument("--misalignments-mm", default="0.5,2", help="comma list besides the scene's (mm)")
+    _method(pr)
     tr = sub.add_parser("testrig", help="Table 5 test rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/3 mm")
     _common(tr, "runs/testrig")
     tr.set_defaults(scene="paper-table5-testrig")
@@ -266,7 +289,7 @@ def _require_finished(flag: str, d: Path) -> None:
 def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study cascade``: steady state at each speed of a range (Figs. 12, 16, 17)."""
     from reports.studies.cascade import cascade_figures
-    from rotor.studies.steady_state import _scene_model, sweep_tasks
+    from rotor.studies.steady_state import _scene_model
 
     check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
     if args.rpm_min > args.rpm_max:
@@ -278,8 +301,8 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     if args.misalignment_mm is not None:
         kw["misalignment_m"] = check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True,
                                               upper=50) * 1e-3
-    tasks = sweep_tasks(args.scene, speeds, **kw)
-    s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **kw})
+    tasks = _tasks(args)(args.scene, speeds, **kw)
+    s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **_method_note(args), **kw})
     _timing(out, s, wall, args)
     _, model = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
     if not {"disk1", "disk2", "s"} <= set(model.response_stations()):  # not the paper's stations: by the scene's names
@@ -302,8 +325,8 @@ def _point(args, out: Path, figs: Path, opts: dict) -> list[Path]:
 def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study params``: 1X/2X/3X vs speed for several clearances and misalignments (Figs. 18-19)."""
     from reports.studies.params import params_figures
-    from rotor.studies.steady_state import sweep_tasks
 
+    sweep_tasks = _tasks(args)
     speeds = np.linspace(0.0, args.rpm_max, int(args.points))
     # the scene's own clearance/misalignment is one shared 'base' curve of both figures
     mesh = _mesh(args)
@@ -314,7 +337,7 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
         tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", misalignment_m=d * 1e-3, options=opts,
                              **mesh)
     _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
-                              "misalignments_mm": args.misalignments_mm})
+                              "misalignments_mm": args.misalignments_mm, **_method_note(args)})
     return params_figures(out, figs, tasks=tasks)
 
 

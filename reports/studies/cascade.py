@@ -53,17 +53,43 @@ def _cascade_axes(ax, spectra, label, floor_rel=1e-4):
     return sc
 
 
-def cascade_plots(velocity: dict, tilt: dict, figs: Path, prefix: str, title: str, source: str = "") -> list[Path]:
+#: how ``--method shooting`` marks a speed whose orbit is not a stable periodic one (rotor.studies.shooting_point)
+STABILITY_MARKS = {"quasi_periodic": ("D", "tab:orange", "unstable: complex pair out (quasi-periodic)"),
+                   "period_doubling": ("s", "tab:purple", "unstable: multiplier < −1 (period doubling)"),
+                   "unstable_fold": ("x", "tab:red", "unstable: real multiplier > 1"),
+                   "non_periodic": ("o", "0.3", "no orbit; transient not periodic"),
+                   "no_orbit_found": ("o", "0.6", "no orbit found")}
+
+
+def mark_stability(ax, marks) -> None:
+    """Markers at the right edge of a cascade at the speeds classified unstable, quasi-periodic or
+    non-periodic. ``marks``: ``(speed_rpm, classification)`` pairs of ``study cascade --method shooting``
+    (empty for transient points: nothing drawn)."""
+    if not marks:
+        return
+    x = ax.get_xlim()[1]
+    for cls, (mark, colour, label) in STABILITY_MARKS.items():
+        rpm = [r for r, c in marks if c == cls]
+        if rpm:
+            ax.plot([0.97 * x] * len(rpm), rpm, mark, color=colour, ms=5, mfc="none", mew=1.2, label=label)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=6, loc="upper left", framealpha=0.8)
+
+
+def cascade_plots(velocity: dict, tilt: dict, figs: Path, prefix: str, title: str, source: str = "",
+                  marks=()) -> list[Path]:
     """``<prefix>`` (y velocity at disk 1, disk 2, the support: Figs. 12/16) and ``<prefix>-tilt`` (Fig. 17).
 
     ``velocity``: ``{location label: spectra}`` in mm/s; ``tilt``: ``{"θy": spectra, "θz": spectra}`` in mrad;
-    spectra as :func:`_cascade_axes` takes them. ``source`` is a note under the titles (what was drawn).
+    spectra as :func:`_cascade_axes` takes them. ``source`` is a note under the titles (what was drawn);
+    ``marks``: ``(speed_rpm, classification)`` of the speeds :func:`mark_stability` marks.
     """
     plt = pyplot()
     sub = f"\n{source}" if source else ""
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.9), constrained_layout=True)
     for ax, (lab, spectra) in zip(axes, velocity.items()):
         _cascade_axes(ax, spectra, f"{lab}: y-velocity amplitude (mm/s)")
+        mark_stability(ax, marks)
     fig.suptitle((title or "Steady-state spectrum cascades (y velocity), Table 4 rotor") + sub, fontsize=10)
     files = save(fig, Path(figs) / prefix)
     fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.9), constrained_layout=True)
@@ -96,9 +122,11 @@ def cascade_redraw(csv_path, figs, prefix: str, title: str = ""):
         orders = np.arange(1, len(cols) + 1, dtype=float)
         at = [1 + (vel + tilt).index(c) for c in cols]
         return [(n[0], orders, np.array([n[i] for i in at]), r["converged"] == "1") for n, r in zip(numbers, rows)]
+    marks = [(float(r["speed_rpm"]), r["classification"]) for r in rows if r.get("classification")]
     velocity = {lab: spectra(vel[5 * j:5 * j + 5]) for j, (_, lab) in enumerate(LOCATIONS)}
     tilts = {"θy": spectra(tilt[:3]), "θz": spectra(tilt[3:])}
-    return lambda: cascade_plots(velocity, tilts, figs, prefix, title, CSV_SOURCE.format(name=Path(csv_path).name))
+    return lambda: cascade_plots(velocity, tilts, figs, prefix, title, CSV_SOURCE.format(name=Path(csv_path).name),
+                                 marks)
 
 
 def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "") -> list[Path]:
@@ -113,7 +141,8 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
                 for p in points]
     velocity = {lab: spectra(lambda p, ch=ch: p.arrays["spec_v"][:, channel_column(p, ch)]) for ch, lab in LOCATIONS}
     tilts = {"θy": spectra(lambda p: p.arrays["spec_u"][:, 2]), "θz": spectra(lambda p: p.arrays["spec_u"][:, 3])}
-    files = cascade_plots(velocity, tilts, figs, prefix, title)
+    marks = [(p.params["speed_rpm"], p.info["classification"]) for p in points if "classification" in p.info]
+    files = cascade_plots(velocity, tilts, figs, prefix, title, marks=marks)
     rpm, V = harmonic_table(points, "v")
     _, U = harmonic_table(points, "u", channels=("θy", "θz"), orders=(1, 2, 3))
     header = ["speed_rpm", "converged", "period_revs", "regime", "contact_fraction", "stick_fraction",
@@ -126,6 +155,11 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
         rows.append([rpm[i], int(inf["converged"]), inf["period_revs"], inf["label"], inf["contact_fraction"],
                      inf["stick_fraction"], inf["transient_revs"], p.record.get("run", {}).get("wall_s", float("nan"))]
                     + list((V[i] * 1e3).ravel()) + list((U[i] * 1e3).ravel()))
+    if any("classification" in p.info for p in points):      # --method shooting: the Floquet verdict per speed
+        header += ["classification", "classified_by", "stable", "spectral_radius", "critical_kind"]
+        for r, p in zip(rows, points):
+            r += [p.info.get(k, "") for k in ("classification", "classified_by", "stable", "spectral_radius",
+                                               "critical_kind")]
     files.append(write_csv(figs / f"{prefix}.csv", header, rows))
     return files
 

@@ -487,6 +487,16 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
                                      tilt_ignored=tilt_ignored, mu=mu, preload_n=preload_n,
                                      elements_per_segment=elements_per_segment)
     res = steady_state(system, model, options=opts)
+    return point_record(res, sc, model, system, opts, speed_rpm=speed_rpm, misalignment_m=misalignment_m,
+                        tilt_ignored=tilt_ignored, max_order=max_order, history_revs=history_revs,
+                        elements_per_segment=elements_per_segment)
+
+
+def point_record(res: SteadyResult, sc, model, system, opts: SteadyStateOptions, *, speed_rpm: float,
+                 misalignment_m: float | None, tilt_ignored: bool, max_order: float = 6.0, history_revs: int = 4,
+                 elements_per_segment: int | None = None):
+    """``(arrays, info)`` of :func:`run_point` from a steady record ``res`` (shared with the shooting point,
+    :mod:`rotor.studies.shooting_point`)."""
     orders = (1, 2, 3, 4, 5)
     arrays = {"channels": np.array(res.channels)}
     for name, x in (("q", res.q), ("v", res.v), ("u", res.u)):

@@ -200,6 +200,10 @@ def _study_cases() -> list:
     c += _num_cases("study cascade", b, "--clearance-mm", ["nan", "0", "50"], "mm")
     c += _num_cases("study cascade", b, "--misalignment-mm", ["-1", "nan"], "mm")
     c += [("study cascade rpm-min > rpm-max", [*b, "--rpm-min", "5000", "--rpm-max", "3000"], None)]
+    for sub in ("cascade", "params"):
+        for v in ("harmonic-balance", "SHOOTING", ""):
+            c.append((f"study {sub} --method {v or 'EMPTY'}", ["study", sub, "--out", "{tmp}/o", "--no-progress",
+                                                               "--method", v], v or None))
     c += _num_cases("study point", ["study", "point", "--out", "{tmp}/o"], "--speed-rpm", NUMBERS_BAD + ["-1"], "rpm")
     for sub, flag in (("params", "--clearances-mm"), ("params", "--misalignments-mm"), ("map", "--clearances-mm")):
         c += [(f"study {sub} {flag} {v}", ["study", sub, "--out", "{tmp}/o", flag, v], v)
@@ -233,6 +237,37 @@ def _study_cases() -> list:
     return c
 
 
+def _orbit_cases() -> list:
+    c = []
+    b = ["orbit", "paper-table4", "--speed-rpm", "10500"]
+    c += _num_cases("orbit", ["orbit", "paper-table4"], "--speed-rpm", NUMBERS_BAD + ["-1", "0", "10500rpm"], "rpm")
+    c += _num_cases("orbit", b, "--period-revs", ["0", "9", "-1", "1.5", "abc"], "revolutions")
+    c += [("orbit no speed", ["orbit", "paper-table4"], None),
+          ("orbit no scene", ["orbit", "--speed-rpm", "10500"], None),
+          ("orbit --speed-hz (wrong unit)", ["orbit", "paper-table4", "--speed-hz", "175"], None)]
+    br = ["branch", "paper-table4", "--rpm-start", "10000", "--rpm-end", "11000"]
+    for flag in ("--rpm-start", "--rpm-end"):
+        base = [x for x in br if x not in (flag, {"--rpm-start": "10000", "--rpm-end": "11000"}[flag])]
+        c += _num_cases("branch", base, flag, NUMBERS_BAD + ["-1", "0", "9000rpm"], "rpm")
+    c += _num_cases("branch", br, "--max-points", ["0", "1", "-1", "1000000", "abc"], "points")
+    c += [("branch rpm-start > rpm-end", ["branch", "paper-table4", "--rpm-start", "12000", "--rpm-end", "9000"],
+           "9000 rpm"),
+          ("branch rpm-start = rpm-end", ["branch", "paper-table4", "--rpm-start", "9000", "--rpm-end", "9000"],
+           "9000 rpm"),
+          ("branch --station nosuch", [*br, "--station", "nosuch.y"], "nosuch.y"),
+          ("branch --rpm-end missing", ["branch", "paper-table4", "--rpm-start", "9000"], None),
+          ("branch --speed-rpm (one speed)", [*br, "--speed-rpm", "10500"], None)]
+    c += _out_cases("branch", br, "--plot", ["/proc/ringcontact", "{file}/sub", "{dir}/", ""])
+    for job, base in (("orbit", b), ("branch", br)):
+        c += _num_cases(job, base, "--steps-per-rev", ["0", "-1", "1000000000", "abc"], "")
+        c += _num_cases(job, base, "--clearance-mm", NUMBERS_BAD + ["0", "-1", "50"], "mm")
+        c += _num_cases(job, base, "--misalignment-mm", NUMBERS_BAD + ["-1", "500"], "mm")
+        for name in ("nosuch_scene", "bad_toml", "huge_modulus", "thin_shaft"):
+            c.append((f"{job} scene {name}", [base[0], "{" + name + "}", *base[2:]], None))
+        c += _out_cases(job, base, "--out", UNWRITABLE_FILES)
+    return c
+
+
 def _other_cases() -> list:
     c = [("report --only nosuch", ["report", "--only", "nosuch", "--out", "{tmp}/r"], None),
          ("nosuch job", ["nosuch"], None), ("empty job", [""], None)]
@@ -241,7 +276,7 @@ def _other_cases() -> list:
 
 
 CASES = _law_cases() + _fem_cases() + _fem3d_cases() + _calibrate_cases() + _rotor_cases() + _simulate_cases() \
-    + _study_cases() + _other_cases()
+    + _study_cases() + _orbit_cases() + _other_cases()
 
 
 def _scene_variant(text: str, old: str, new: str) -> str:

@@ -26,7 +26,7 @@ def test_the_suite_is_broad():
                 "fem3d vtu", "fem3d sweep", "fem3d check", "fem3d report", "calibrate", "rotor modes",
                 "rotor campbell", "rotor critical-speeds", "rotor unbalance", "rotor report", "simulate",
                 "study cascade", "study point", "study params", "study testrig", "study map", "study runup",
-                "study publish", "study sensitivity", "study redraw", "report"):
+                "study publish", "study sensitivity", "study redraw", "report", "orbit", "branch"):
         assert job in jobs, job
 
 

@@ -1,0 +1,55 @@
+"""The bifurcation diagram's drawing rules (reports/bifurcation.py): stable solid, unstable dashed, kinds marked."""
+from __future__ import annotations
+
+from reports.bifurcation import bifurcation_figure, branch_curve, stability_runs
+
+
+def test_runs_of_equal_stability_share_their_end_points():
+    assert stability_runs([True, True, False, False, True]) == [(0, 2, True), (2, 4, False), (4, 4, True)]
+    assert stability_runs([False]) == [(0, 0, False)]
+
+
+def _branch():
+    pts = [{"speed_rpm": 1000.0 + 100 * i, "stable": i < 3, "spectral_radius": 0.9 + 0.05 * i,
+            "critical_kind": "period_doubling", "velocity_amplitudes_mm_s_1X_to_5X": {"d.y": [1.0 + i, 0, 0, 0, 0]}}
+           for i in range(5)]
+    return {"scene": "synthetic", "period_revs": 1, "points": pts,
+            "bifurcations": [{"kind": "period_doubling", "speed_rpm": 1250.0, "after_point": 3}]}
+
+
+def test_curve_reads_the_requested_channel_and_order():
+    rpm, amp, rad, stable = branch_curve(_branch(), "d.y", 1)
+    assert list(rpm) == [1000, 1100, 1200, 1300, 1400] and list(amp) == [1, 2, 3, 4, 5]
+    assert list(stable) == [True, True, True, False, False]
+
+
+def test_figure_is_written_with_the_kind_in_it(tmp_path):
+    files = bifurcation_figure(_branch(), "d.y", tmp_path / "bif")
+    assert [f.suffix for f in files] == [".png", ".svg"]
+    svg = (tmp_path / "bif.svg").read_text()
+    assert "period doubling" in svg and "1250 rpm" in svg and "unstable" in svg
+
+
+def test_segments_are_drawn_together(tmp_path):
+    b1, b2 = _branch(), _branch()
+    b2["points"] = [dict(p, speed_rpm=p["speed_rpm"] + 5000) for p in b2["points"]]
+    b2["bifurcations"] = [{"kind": "neimark_sacker", "speed_rpm": 6250.0, "after_point": 3}]
+    bifurcation_figure([b1, b2, {"points": [], "bifurcations": []}], "d.y", tmp_path / "two")
+    svg = (tmp_path / "two.svg").read_text()
+    assert "period doubling" in svg and "Neimark" in svg and "6250 rpm" in svg
+
+
+def test_publish_writes_the_report_with_each_segment(tmp_path):
+    import json
+
+    from reports.bifurcation import publish
+
+    b = dict(_branch(), rpm_start=1000.0, rpm_end=2000.0, stop="step below ds_min")
+    empty = {"points": [], "bifurcations": [], "rpm_start": 300.0, "rpm_end": 900.0, "stop": "no orbit at the start"}
+    files = publish([b, empty], tmp_path, channel="d.y", commands=["ringcontact branch x"], reading="Reading.")
+    assert {f.name for f in files} >= {"study-bifurcation.md", "study-bifurcation.json", "study-bifurcation.png"}
+    md = (tmp_path / "study-bifurcation.md").read_text()
+    assert "| 1000 | 1400 | 2000 | 5 | 3/5 | 1.1000 | period doubling 1250 | step below ds_min |" in md
+    assert "| 300 | – | 900 | 0 |" in md and md.rstrip().endswith("Reading.")
+    data = json.loads((tmp_path / "study-bifurcation.json").read_text())
+    assert data[0]["points"][4]["velocity_amplitudes_mm_s_1X_to_5X_d.y"] == [5.0, 0, 0, 0, 0]
