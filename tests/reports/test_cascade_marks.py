@@ -1,15 +1,14 @@
 """The cascade figure marks the speeds whose orbit is not a stable periodic one (``study cascade --method shooting``)."""
 from __future__ import annotations
 
-from types import SimpleNamespace
-
 from reports.studies.cascade import STABILITY_MARKS, mark_stability
 from reports.studies.common import pyplot
 
 
 def _points(classes):
-    return [SimpleNamespace(params={"speed_rpm": 1000.0 * i}, info={"classification": c} if c else {})
-            for i, c in enumerate(classes)]
+    """``(speed_rpm, classification)`` pairs as cascade_figures builds them from shooting points (none for
+    transient points, which carry no classification)."""
+    return [(1000.0 * i, c) for i, c in enumerate(classes) if c]
 
 
 def test_unstable_and_quasi_periodic_speeds_are_marked_at_their_speed():
