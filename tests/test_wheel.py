@@ -181,12 +181,16 @@ def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
     assert _close(json.loads(out), _source_json(modes, capsys))
     _, opened_sim = job("simulate", "simulate", "--speed-rpm", "10500", "--revolutions", "2")
     _, opened_report = job("report", "report", "--out", "rep")
+    # shooting on a bundled scene (Jeffcott rotor, 3000 rpm: a synchronous orbit of period 1/50 s)
+    _, opened_orbit = job("orbit", "orbit", "verify-jeffcott", "--speed-rpm", "3000", "--out", "orbit.json")
 
     # outputs: where asked (simulate's default folder is in the working directory), all 0644
     summary = json.loads((work / "simulate-out" / "simulate-summary.json").read_text(encoding="utf-8"))
     assert summary["revolutions"] == 2.0 and summary["steps"] > 0
     assert {"simulate.csv", "simulate.npz", "simulate-summary.json"} <= {p.name for p in (work / "simulate-out").iterdir()}
     assert {"laws-vs-paper.md", "accuracy-table2.md"} <= {p.name for p in (work / "rep").iterdir()}
+    orbit = json.loads((work / "orbit.json").read_text(encoding="utf-8"))
+    assert orbit["converged"] and orbit["period_revs"] == 1 and abs(orbit["period_s"] - 0.02) < 1e-12
     written = [p for p in work.rglob("*") if p.is_file()]
     assert len(written) >= 14
     modes_of = {str(p.relative_to(work)): oct(p.stat().st_mode & 0o777) for p in written}
@@ -201,9 +205,10 @@ def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
     assert site_packages / "contact" / "calibrated" / "clamped-foundation.json" in opened_law
     assert site_packages / "rotor" / "scenes" / "paper-table4.toml" in opened_modes
     assert site_packages / "rotor" / "scenes" / "paper-table4.toml" in opened_sim
+    assert site_packages / "rotor" / "scenes" / "verify-jeffcott.toml" in opened_orbit
     assert site_packages / "fem_reference" / "data" / "fem2d-reference.json" in opened_report
     assert site_packages / "fem_reference" / "data" / "3d" / "fem3d-reference.json" in opened_report
-    repo_files = sorted(str(p) for p in opened_law | opened_modes | opened_sim | opened_report
+    repo_files = sorted(str(p) for p in opened_law | opened_modes | opened_sim | opened_report | opened_orbit
                         if p.resolve().is_relative_to(ROOT) and not p.resolve().is_relative_to(Path(sys.prefix).resolve()))
     assert not repo_files, repo_files
     notes = _run([py, "-c", "from importlib.resources import files; "
