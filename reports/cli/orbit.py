@@ -59,7 +59,7 @@ def _branch_parser() -> argparse.ArgumentParser:
     _common(p)
     p.add_argument("--rpm-start", type=quantity("run_speed_rpm"), required=True, help="first speed (rpm)")
     p.add_argument("--rpm-end", type=quantity("run_speed_rpm"), required=True,
-                   help="last speed (rpm, above --rpm-start)")
+                   help="last speed (rpm; below --rpm-start follows the branch downwards, as a run-down)")
     p.add_argument("--max-points", type=count(2, 5000, "points"), default=400, help="most orbits on the branch (default 400)")
     p.add_argument("--plot", type=out_prefix, default=None, metavar="PREFIX",
                    help="bifurcation diagram PREFIX.png/.svg (1X amplitude at --station against speed)")
@@ -105,8 +105,8 @@ def branch_main(argv: list[str] | None = None) -> int:
     """``ringcontact branch``."""
     p = _branch_parser()
     args = p.parse_args(argv)
-    if args.rpm_end <= args.rpm_start:
-        p.error(f"argument --rpm-end: = {args.rpm_end:g} rpm: must be above --rpm-start = {args.rpm_start:g} rpm")
+    if args.rpm_end == args.rpm_start:
+        p.error(f"argument --rpm-end: = {args.rpm_end:g} rpm: must differ from --rpm-start = {args.rpm_start:g} rpm")
     try:
         return _branch(args)
     except RingContactError as e:

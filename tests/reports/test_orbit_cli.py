@@ -100,6 +100,16 @@ def test_branch_points_are_orbits_and_the_plot_is_written(damped_jeffcott, tmp_p
                              1e-3) < 1e-6
 
 
+def test_branch_downwards_is_a_run_down_to_rpm_end(damped_jeffcott, capsys):
+    """--rpm-end below --rpm-start follows the branch downwards (a run-down, the other side of any hysteresis)."""
+    rc, text, err = _run(["branch", damped_jeffcott, "--rpm-start", 3000, "--rpm-end", 1500, "--json"], capsys)
+    assert rc == 0, err
+    d = json.loads(text)
+    rpm = np.array([p["speed_rpm"] for p in d["points"]])
+    assert d["stop"] == "end reached" and rpm[0] == pytest.approx(3000.0) and rpm[-1] <= 1500.0
+    assert np.all(np.diff(rpm) < 0)
+
+
 def test_branch_that_stops_early_exits_1_with_one_line(damped_jeffcott, capsys):
     rc, text, err = _run(["branch", damped_jeffcott, "--rpm-start", 1500, "--rpm-end", 3000, "--max-points", 2], capsys)
     assert rc == 1
