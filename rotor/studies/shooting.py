@@ -205,10 +205,11 @@ def shoot(flow: Flow, state0, *, t0_s: float, steps_per_rev: int, period_revs: i
 
 def _supported(P: np.ndarray, max_period: int) -> list[int]:
     """Periods 1..max_period the Poincaré returns ``P`` (rows: once-per-revolution reduced displacements)
-    support, shortest first: one revolution always; a longer period ``k`` only if its last return
-    ``|P_j − P_{j−k}|`` is within 10× the smallest and below half the return of every period dividing it
-    (a period-j orbit also solves the problem of any multiple of j, so a multiple earns a Newton attempt of
-    its own only where the returns show it repeating better than its divisors)."""
+    support, shortest first: a period ``k`` whose last return ``|P_j − P_{j−k}|`` is within 10× the smallest
+    and, for ``k > 1``, below half the return of every period dividing it (a period-j orbit also solves the
+    problem of any multiple of j, so a multiple earns a Newton attempt of its own only where the returns
+    show it repeating better than its divisors). Never empty: the period of the smallest return, or its
+    smallest divisor within a factor 2 of it, qualifies."""
     ks = [k for k in range(1, max_period + 1) if k < len(P)]
     if not ks:
         return [1]
