@@ -23,7 +23,8 @@ scheme, 256 steps per revolution):
    revolution) by shooting with stability at every speed, on 2 worker processes (each compiled before the
    clock starts), the speeds cut into ``--blocks`` contiguous blocks handed out as workers free up, each block
    by :func:`rotor.studies.orbit.cascade` (every speed started from the previous converged orbit, the first of
-   a block from the linear periodic solution); zero speed is the static point. The wall time,
+   a block and the speed after a failure from the linear periodic solution; a failed warm start is not
+   restarted cold); zero speed is the static point. The wall time,
    each speed's orbit, stability and critical multiplier (:func:`rotor.studies.shooting_point.classify`); the
    speeds the published transient cascade (``reports/published/study-cascade.csv``) called non-periodic,
    classified by their multipliers.
@@ -187,7 +188,8 @@ def report(p1: dict, rows: list[dict], wall: float, load: list, repeats: int, wo
              f"{'holds' if p1['agree_shooting'] <= 1e-4 else 'does NOT hold'}** ({p1['agree_shooting']:.1e}; from "
              f"the transient's end state {p1['agree_from_end']:.1e}).", "",
              f"## The Fig. 12 cascade by shooting ({len(rows)} speeds 0–18 000 rpm, {workers} processes, "
-             f"{blocks} contiguous blocks, each speed started from its neighbour's orbit; no transient fallback)", "",
+             f"{blocks} contiguous blocks, each speed started from its neighbour's orbit, a failed warm start "
+             "not restarted cold; no transient fallback)", "",
              f"Wall {wall:.1f} s ({len(conv)} of {len(rows)} speeds with an orbit; sum of per-speed times "
              f"{sum(r['wall_s'] for r in rows):.1f} s). **Must show ≤ 30 s: "
              f"{'holds' if wall <= 30 else 'does NOT hold'}.** The published transient cascade took 468 s on 2 "

@@ -135,13 +135,15 @@ def _overrides(kw: dict) -> dict:
 
 def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, period_revs: int | None = None,
           backend: str = "auto", options: ShootingOptions | None = None, start=None, stations=None,
-          **overrides) -> OrbitResult:
+          period_hint: int | None = None, **overrides) -> OrbitResult:
     """The periodic orbit of ``scene`` at ``speed_rpm`` (rpm), its stability and 1X-5X velocity amplitudes.
 
     ``overrides``: ``clearance_m``, ``misalignment_m``, ``tilt_ignored``, ``mu``, ``preload_n``,
     ``elements_per_segment`` (as :func:`rotor.studies.steady_state.point_system`). ``steps_per_rev`` None:
     :func:`rotor.studies.steady_state.step_per_rev`. ``period_revs`` None: found (1..8). ``start``: full
     ``(q0, v0)`` at t = 0 instead of the linear periodic solution (e.g. a neighbouring speed's orbit).
+    ``period_hint``: a period (revolutions) to try in every transient round besides those the Poincaré
+    returns support (a neighbouring speed's, :func:`cascade`).
     """
     t_start = time.perf_counter()
     check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)    # an orbit needs a period: no zero speed
@@ -151,7 +153,8 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
     flow = make_flow(system, 2.0 * math.pi / (system.omega_rad_s * n), backend)
     q0, v0 = linear_initial_state(system, 0.0) if start is None else start
-    res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options)
+    res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options,
+                               period_hint=period_hint)
     amps = velocity_amplitudes(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
     q, v = to_full(flow, res.state, 0.0)
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
@@ -223,20 +226,25 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
 def cascade(scene: str, speeds_rpm, *, steps_per_rev: int | None = None, backend: str = "auto",
             options: ShootingOptions | None = None, **overrides) -> tuple:
     """:func:`orbit` at each speed of ``speeds_rpm`` (rpm, > 0) in order, each started from the previous
-    converged orbit (2 transient revolutions before Newton) or, after a failure and at the first speed, from
-    the linear periodic solution with the full transient rounds. Returns the :class:`OrbitResult` of every
+    converged orbit (2 transient revolutions before Newton, then rounds doubling in length, up to
+    ``max_transient_revs``; every round tries the periods its Poincaré returns support and the neighbour's
+    period) or, after a failure and at the first speed, from the linear periodic solution with the
+    transient rounds of ``options``. A warm start that fails is not restarted cold: its own rounds are
+    already a transient of the full budget from the neighbour's orbit, so a second one from the linear
+    state would only spend the budget again (it found an orbit the warm rounds missed only where the
+    two transients end on different attractors; the run-up cascade follows the one reached from the
+    neighbour). Returns the :class:`OrbitResult` of every
     speed; ``converged`` False marks a speed where no orbit of 1..8 revolutions was found within
     ``max_transient_revs`` (quasi-periodic or chaotic; the neighbours' multipliers say which way it was
     left: a complex pair outside the circle, Neimark-Sacker, or a real one below −1, period doubling)."""
     opts = options or ShootingOptions()
-    warm = ShootingOptions(**{**opts.__dict__, "transient_revs": 2})
+    warm = ShootingOptions(**{**opts.__dict__, "transient_revs": 2, "round_growth": 2.0})
     out, prev = [], None
     for s in speeds_rpm:
         kw = dict(steps_per_rev=steps_per_rev, backend=backend, **overrides)
-        res = None
         if prev is not None:
-            res = orbit(scene, s, start=(prev.q_m, prev.v_m_s), options=warm, period_revs=prev.period_revs, **kw)
-        if res is None or not res.converged:
+            res = orbit(scene, s, start=(prev.q_m, prev.v_m_s), options=warm, period_hint=prev.period_revs, **kw)
+        else:
             res = orbit(scene, s, options=opts, **kw)
         out.append(res)
         prev = res if res.converged else None

@@ -44,16 +44,22 @@ class ShootingOptions:
     Newton tolerance and rounding when the orbit is small beside a large static offset (Table 4 at 300 rpm:
     2e-9 of a 0.24 µm orbit on a 1 mm offset); ``max_iter``, ``rcond`` (relative
     singular-value cut of the minimum-norm step), ``max_halvings`` of a step that does not reduce the
-    residual, ``transient_revs`` before shooting, ``multiplier_tol`` (Floquet, –)."""
+    residual, ``transient_revs`` of the first transient round before shooting, ``round_growth``: each further
+    round ``round_growth`` times as long as the one before, until ``max_transient_revs``;
+    ``periods_per_round`` (:func:`shoot_from_transient`), ``stall_iterations`` (:func:`newton_periodic`: stalled
+    steps before the Levenberg–Marquardt retrials, and as many more before the attempt is given up),
+    ``multiplier_tol`` (Floquet, –)."""
 
     tol: float = 1e-9
     accept_tol: float = 1e-7
     max_iter: int = 10
     rcond: float = 1e-9
     max_halvings: int = 4
-    transient_revs: int = 16
+    transient_revs: int = 24
     max_transient_revs: int = 2000
     periods_per_round: int = 2
+    round_growth: float = 1.5
+    stall_iterations: int = 2
     multiplier_tol: float = 1e-6
 
 
@@ -113,36 +119,69 @@ def min_norm_step(J, rhs, rcond: float) -> tuple[np.ndarray, int]:
     return dx, int((~keep).sum())
 
 
+def lm_step(J, rhs, rcond: float, radius: float) -> np.ndarray:
+    """The Levenberg–Marquardt step ``dz(μ) = Σ s_i c_i/(s_i² + μ²) v_i`` (``J = U diag(s) Vᵀ``, ``c = Uᵀ rhs``,
+    singular values below ``rcond`` times the largest dropped) of 2-norm ``radius``: the trust-region step of
+    that radius (Moré 1978; Nocedal & Wright 2006, *Numerical Optimization*, ch. 4), μ by bisection in log μ."""
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    keep = s > rcond * s[0] if s.size and s[0] > 0 else np.zeros_like(s, bool)
+    sk, c, V = s[keep], U[:, keep].T @ rhs, Vt[keep].T
+    lo, hi = math.log(sk[-1]) - 20.0, math.log(sk[0]) + 20.0     # ‖dz(μ)‖ falls monotonically in μ
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if np.linalg.norm(c * sk / (sk * sk + math.exp(2.0 * mid))) > radius:
+            lo = mid
+        else:
+            hi = mid
+    return V @ (c * sk / (sk * sk + math.exp(2.0 * hi)))
+
+
 def newton_periodic(flow: Flow, state0, t0_s: float, n_steps: int, modes0, scales, options: ShootingOptions):
-    """Newton iterations on ``Φ(x) − x`` over ``n_steps`` steps. Returns
+    """Newton iterations on ``Φ(x) − x`` over ``n_steps`` steps. A halved retrial is mapped without its
+    monodromy (the sensitivity pass is about 60 % of a map's cost, and most retrials are rejected) and mapped
+    again with it once accepted (the iterates are the same as with the monodromy at every trial).
+
+    Not contracting. An accepted step that needed halving and left more than half of the residual counts
+    as stalled: the full Newton step keeps crossing a face switch the derivative does not see (the map is
+    only piecewise smooth), and halving along the same line converges linearly at best. After
+    ``options.stall_iterations`` such steps in a row the retrials follow the Levenberg–Marquardt curve
+    (:func:`lm_step`, same norms as the halvings), which turns the step towards the residual's steepest
+    descent; after as many more the attempt is given up (the caller's next round or period). Returns
     ``(state, MapResult at state, converged, iterations, residual, singular_directions)``."""
     x = np.asarray(state0, float).copy()
     modes = tuple(modes0)
     r = advance(flow, x, t0_s, n_steps, modes)
     res = float(np.max(np.abs(r.state - x) / scales))
     merit = float(np.linalg.norm((r.state - x) / scales))
-    singular = 0
-    it = 0
+    singular, it, stalled = 0, 0, 0
     while res >= options.tol and it < options.max_iter:
         it += 1
         J = (r.monodromy - np.eye(len(x))) * (scales[None, :] / scales[:, None])   # scaled: D (M − I) D⁻¹
-        dz, singular = min_norm_step(J, -(r.state - x) / scales, options.rcond)
-        lam = 1.0
-        for _ in range(options.max_halvings + 1):
-            x_try = x + lam * dz * scales
-            try:
-                r_try = advance(flow, x_try, t0_s, n_steps, modes)
+        rhs = -(r.state - x) / scales
+        dz, singular = min_norm_step(J, rhs, options.rcond)
+        lam, step = 1.0, dz
+        for trial in range(options.max_halvings + 1):
+            if trial:     # a shorter step: on the Newton line, or once stalled on the Levenberg–Marquardt curve
+                step = lm_step(J, rhs, options.rcond, lam * float(np.linalg.norm(dz))) \
+                    if stalled >= options.stall_iterations else lam * dz
+            x_try = x + step * scales
+            try:     # a retrial's monodromy only once it is accepted: most retrials are rejected
+                r_try = advance(flow, x_try, t0_s, n_steps, modes, jacobian=trial == 0)
+                merit_try = float(np.linalg.norm((r_try.state - x_try) / scales))
             except (OutsideDomainError, ConvergenceError):   # a trial beyond the law's domain, or a step failed
-                lam *= 0.5
-                continue
-            merit_try = float(np.linalg.norm((r_try.state - x_try) / scales))
-            if math.isfinite(merit_try) and merit_try < merit:
+                merit_try = math.inf
+            if merit_try < merit:
                 break
             lam *= 0.5
         else:   # no decrease: converged only if stalled at the scheme's noise floor, below accept_tol
             return x, r, res < options.accept_tol, it, res, singular
+        if r_try.monodromy is None:
+            r_try = advance(flow, x_try, t0_s, n_steps, modes)
+        stalled = stalled + 1 if lam < 1.0 and merit_try > 0.5 * merit else 0
         x, r, merit = x_try, r_try, merit_try
         res = float(np.max(np.abs(r.state - x) / scales))
+        if stalled >= 2 * options.stall_iterations and res >= options.tol:
+            break             # not contracting on either path: give the round up
     return x, r, res < options.tol, it, res, singular
 
 
@@ -164,15 +203,20 @@ def shoot(flow: Flow, state0, *, t0_s: float, steps_per_rev: int, period_revs: i
                           fl, bool(ok), it, res, singular, int(r.events), s, time.perf_counter() - t_start, flow.backend)
 
 
-def _poincare_order(P: np.ndarray, max_period: int) -> list[int]:
-    """Periods 1..max_period ordered for trial: those whose last Poincaré return ``|P_j − P_{j−k}|`` is
-    within 10× the smallest first (shortest period first), then the rest by that difference."""
+def _supported(P: np.ndarray, max_period: int) -> list[int]:
+    """Periods 1..max_period the Poincaré returns ``P`` (rows: once-per-revolution reduced displacements)
+    support, shortest first: a period ``k`` whose last return ``|P_j − P_{j−k}|`` is within 10× the smallest
+    and, for ``k > 1``, below half the return of every period dividing it (a period-j orbit also solves the
+    problem of any multiple of j, so a multiple earns a Newton attempt of its own only where the returns
+    show it repeating better than its divisors). Never empty: the period of the smallest return, or its
+    smallest divisor within a factor 2 of it, qualifies."""
     ks = [k for k in range(1, max_period + 1) if k < len(P)]
     if not ks:
         return [1]
     d = {k: float(np.abs(P[-1] - P[-1 - k]).max()) for k in ks}
     dmin = min(d.values())
-    return sorted(ks, key=lambda k: (d[k] > 10.0 * dmin + 1e-300, d[k] if d[k] > 10.0 * dmin else k))
+    return [k for k in ks if d[k] <= 10.0 * dmin and
+            (k == 1 or all(d[k] < 0.5 * d[j] for j in ks if j < k and k % j == 0))]
 
 
 def transient(flow: Flow, state, t0_s: float, *, steps_per_rev: int, revs: int, modes0=(cons.STICK, cons.STICK)):
@@ -213,17 +257,31 @@ def _shortest_period(flow: Flow, res: ShootingResult, opts: ShootingOptions) -> 
     return res
 
 
+def _round_periods(P: np.ndarray, period_revs, period_hint, opts: ShootingOptions) -> list[int]:
+    """The periods one round of :func:`shoot_from_transient` tries: ``period_revs`` if given; else the first
+    ``periods_per_round`` periods the Poincaré returns ``P`` support (:func:`_supported`), then
+    ``period_hint`` (a neighbouring speed's period) if not among them."""
+    if period_revs is not None:
+        return [int(period_revs)]
+    order = _supported(P, MAX_PERIOD_REVS)[:opts.periods_per_round]
+    return order + [int(period_hint)] if period_hint is not None and int(period_hint) not in order else order
+
+
 def shoot_from_transient(flow: Flow, q0, v0, *, steps_per_rev: int, period_revs: int | None = None,
-                         options: ShootingOptions | None = None, modes0=(cons.STICK, cons.STICK)) -> ShootingResult:
+                         options: ShootingOptions | None = None, modes0=(cons.STICK, cons.STICK),
+                         period_hint: int | None = None) -> ShootingResult:
     """A short transient from the full ``(q0, v0)`` at t = 0, then :func:`shoot`; if Newton fails, more
     transient and Newton again.
 
-    Rounds: ``transient_revs`` revolutions, then twice as many as the round before, until Newton converges
-    or ``max_transient_revs`` are spent. Newton's basin on a rotor whose faces stick and slip within the
-    period is small (the map is only piecewise smooth), so the transient brings the start into it; a
-    failed Newton iterate is discarded and the transient continues from its own end. ``period_revs`` None:
-    each round tries the first ``periods_per_round`` periods of 1..8 in the order the Poincaré returns
-    suggest (:func:`_poincare_order`). ``wall_s`` includes the transient; ``transient_revs`` in the result.
+    Rounds: ``transient_revs`` revolutions, then ``round_growth`` times as many as the round before, until
+    Newton converges or ``max_transient_revs`` are spent. Newton's basin on a rotor whose faces stick and slip
+    within the period is small (the map is only piecewise smooth), so the transient brings the start into it;
+    a failed Newton iterate is discarded and the transient continues from its own end. The growth of 1.5
+    (rather than 2) overshoots the revolutions a start needs by at most half as much again, at the price of
+    more Newton attempts, which the supported-period rule keeps cheap. ``period_revs`` None: each round tries
+    the first ``periods_per_round`` periods the Poincaré returns support (:func:`_supported`), then
+    ``period_hint`` (a neighbouring speed's period, :func:`rotor.studies.orbit.cascade`) if not among them.
+    ``wall_s`` includes the transient; ``transient_revs`` in the result.
     """
     opts = options or ShootingOptions()
     t_start = time.perf_counter()
@@ -234,9 +292,7 @@ def shoot_from_transient(flow: Flow, q0, v0, *, steps_per_rev: int, period_revs:
         t0 += chunk * steps_per_rev * flow.dt_s
         done += chunk
         P.extend(Pc)
-        order = [int(period_revs)] if period_revs is not None else \
-            _poincare_order(np.array(P), MAX_PERIOD_REVS)[:opts.periods_per_round]
-        for k in order:
+        for k in _round_periods(np.array(P), period_revs, period_hint, opts):
             res = shoot(flow, x, t0_s=t0, steps_per_rev=steps_per_rev, period_revs=k, modes0=modes, scales=scales,
                         options=opts)
             if res.converged:
@@ -244,5 +300,5 @@ def shoot_from_transient(flow: Flow, q0, v0, *, steps_per_rev: int, period_revs:
                 break
         if res.converged or done >= opts.max_transient_revs:
             break
-        chunk = min(2 * chunk, opts.max_transient_revs - done)
+        chunk = min(max(1, int(round(opts.round_growth * chunk))), opts.max_transient_revs - done)
     return replace(res, wall_s=time.perf_counter() - t_start, transient_revs=done)

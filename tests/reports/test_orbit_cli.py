@@ -120,8 +120,8 @@ def test_branch_that_stops_early_exits_1_with_one_line(damped_jeffcott, capsys):
 
 @pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="the left end face sticks through the whole orbit at 10 500 rpm: the orbits "
-                   "form a continuum (2 neutral multipliers) and the orbit job's short transient (240 revolutions) "
-                   "lands on another member than simulate --steady's 529; measured 6.3e-4 (1X). Started from the "
+                   "form a continuum (2 neutral multipliers) and the orbit job's short transient (195 revolutions) "
+                   "lands on another member than simulate --steady's 529; measured 3.3e-4 (1X). Started from the "
                    "transient's end state shooting agrees to 2.3e-5 (tests/rotor/studies/test_orbit.py, "
                    "reports/published/perf-shooting.md). strict: the day the CLI lands on the same member, this fails")
 def test_table4_orbit_equals_simulate_steady_at_10500_rpm(tmp_path, capsys):

@@ -78,3 +78,31 @@ def test_fd_monodromy_against_the_period_map():
     assert np.allclose(exact.state, advance(_flow(w), res.state, 0.0, N, (0, 0), jacobian=False).state,
                        rtol=0, atol=1e-12 * np.abs(res.state).max())
     assert np.abs(exact.monodromy - fd).max() < 1e-6 * np.abs(exact.monodromy).max()
+
+
+def test_levenberg_marquardt_step_has_the_asked_norm_and_turns_towards_the_gradient():
+    from rotor.studies.shooting import lm_step
+    rng = np.random.default_rng(3)
+    J = rng.normal(size=(6, 6)) @ np.diag([10.0, 5.0, 1.0, 0.1, 1e-3, 1e-4])
+    rhs = rng.normal(size=6)
+    full, _ = min_norm_step(J, rhs, 1e-12)
+    step = lm_step(J, rhs, 1e-12, 1e-2 * np.linalg.norm(full))
+    assert np.linalg.norm(step) == pytest.approx(1e-2 * np.linalg.norm(full), rel=1e-6)
+    # a short LM step points along the steepest descent of ½‖J dz − rhs‖², J^T rhs (Nocedal & Wright 2006, ch. 4)
+    tiny = lm_step(J, rhs, 1e-12, 1e-9)
+    g = J.T @ rhs
+    assert tiny @ g / (np.linalg.norm(tiny) * np.linalg.norm(g)) > 0.999
+    # a radius above the full step's norm gives the full step back (μ → 0)
+    assert np.allclose(lm_step(J, rhs, 1e-12, 10 * np.linalg.norm(full)), full, rtol=1e-6, atol=1e-9)
+
+
+def test_poincare_returns_support_a_period_only_where_it_repeats_better_than_its_divisors():
+    from rotor.studies.shooting import _supported
+    j = np.arange(40)[:, None]
+    # a period-3 sequence approaching its orbit: returns after 3 and 6 revolutions small, others O(1);
+    # 6 repeats no better than its divisor 3, so 3 alone
+    P = np.hstack([np.cos(2 * np.pi * j / 3), np.sin(2 * np.pi * j / 3)]) + 1e-3 * 0.9 ** j
+    assert _supported(P, 8) == [3]
+    # a period-1 sequence: no multiple of 1 repeats better than 1 itself, so only 1
+    P1 = np.ones((40, 2)) + 0.5 ** j
+    assert _supported(P1, 8) == [1]
