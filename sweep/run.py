@@ -56,11 +56,14 @@ class SweepSummary:
     errors: dict = field(default_factory=dict)
 
 
-def _call(func, params):
-    """Run one task where the executor puts it; its result, wall time and the worker's stamp."""
+def _call(func, params, stored=None):
+    """Run one task where the executor puts it; its result, wall time and the worker's stamp.
+
+    ``stored`` (a task with outputs: key -> info of the outputs already stored) is passed on to ``func``, whose
+    result is then ``{key: (arrays, info)}``; else the result is ``(arrays, info)``."""
     t0 = time.perf_counter()
-    arrays, info = func(**params)
-    return arrays, info, time.perf_counter() - t0, worker_stamp()
+    result = func(**params) if stored is None else func(**params, stored=stored)
+    return result, time.perf_counter() - t0, worker_stamp()
 
 
 def _watch_parent(parent_pid: int, period_s: float) -> None:
@@ -119,28 +122,35 @@ def _write_manifest(store: ResultStore, tasks: list[Task], manifest: dict | None
     previous = store.read_manifest(required=False) or {}
     man = {"created_utc": previous.get("created_utc", _now()), "updated_utc": _now(), **code_revision(),
            "environment": environment(),
-           "tasks": {t.key: {"func": f"{t.func.__module__}.{t.func.__qualname__}", "params": t.params} for t in tasks}}
+           "tasks": {k: {"func": f"{t.func.__module__}.{t.func.__qualname__}", "params": p,
+                         **({"task": t.key} if t.outputs else {})} for t in tasks for k, p in t.points}}
     man.update(manifest or {})
     store.write_manifest(man)
 
 
-def _plan(tasks: list[Task], store: ResultStore, summary: SweepSummary, say, resume: bool) -> list[Task]:
-    """The tasks to compute: those without a verified result (all of them unless ``resume``).
+def _plan(tasks: list[Task], store: ResultStore, summary: SweepSummary, say,
+          resume: bool) -> list[tuple[Task, dict | None]]:
+    """The tasks to compute: those without a verified result (all of them unless ``resume``), each with the
+    info of its outputs already stored (key -> info; None for a single-point task).
 
     A damaged record, or one gone although the journal says it was stored, is named in a message."""
     todo = []
-    stored = store.journal_keys() if resume else set()
+    journal = store.journal_keys() if resume else set()
     for t in tasks:
-        status, why = store.check(t.key, t.params) if resume else ("missing", "not resuming")
-        if status == "done":
-            summary.reused.append(t.key)
-            continue
-        if status == "missing" and t.key in stored:
-            status, why = "deleted", "its record was stored, then removed"
-        if status in ("corrupt", "stale", "deleted"):
-            summary.recomputed[t.key] = why
-            say(f"sweep: {t.key}: {status} ({why}); recomputing")
-        todo.append(t)
+        done = {}
+        for key, params in t.points:
+            status, why = store.check(key, params) if resume else ("missing", "not resuming")
+            if status == "done":
+                done[key] = store.info(key) if t.outputs else None
+                continue
+            if status == "missing" and key in journal:
+                status, why = "deleted", "its record was stored, then removed"
+            if status in ("corrupt", "stale", "deleted"):
+                summary.recomputed[key] = why
+                say(f"sweep: {key}: {status} ({why}); recomputing")
+        summary.reused.extend(done)
+        if len(done) < len(t.points):
+            todo.append((t, done if t.outputs else None))
     return todo
 
 
@@ -148,32 +158,40 @@ def _collect(futures: dict, store: ResultStore, summary: SweepSummary, prog: Pro
     """Store every point as its future finishes; a failing point is recorded, not raised."""
     client_host = platform.node()
     for fut in cf.as_completed(futures):
-        t = futures[fut]
+        t, stored = futures[fut]
         try:
-            arrays, info, wall, stamp = fut.result()
+            result, wall, stamp = fut.result()
+            results = result if t.outputs else {t.key: result}
+            todo = [(k, p) for k, p in t.points if k not in (stored or {})]
+            missing = [k for k, _ in todo if k not in results]
+            if missing:
+                raise RuntimeError(f"task {t.key} returned no result for {', '.join(missing)}")
         except Exception as e:  # a failing point must not lose the others
-            summary.failed[t.key] = f"{type(e).__name__}: {e}"
-            summary.errors[t.key] = e
+            for key in ([t.key] if not t.outputs else [k for k, _ in t.points if k not in stored]):
+                summary.failed[key] = f"{type(e).__name__}: {e}"
+                summary.errors[key] = e
             say(f"sweep: {t.key} failed: {type(e).__name__}: {e}")
             prog.update(note=f"{t.key} FAILED")
             continue
         run = {"git_commit": stamp["git_commit"], "git_dirty": stamp["git_dirty"], "host": stamp["host"],
                "worker": stamp, "client_host": client_host, "wall_s": round(wall, 4), "finished_utc": _now()}
-        store.save(t.key, t.params, arrays, info, run=run)
-        summary.computed.append(t.key)
-        summary.point_wall_s[t.key] = wall
+        for key, params in todo:
+            arrays, info = results[key]
+            store.save(key, params, arrays, info, run={**run, **({"task": t.key} if t.outputs else {})})
+            summary.computed.append(key)
+            summary.point_wall_s[key] = wall / len(todo)
         prog.update(note=t.key)
 
 
-def _execute(todo: list[Task], executor, max_workers: int, store: ResultStore, summary: SweepSummary,
+def _execute(todo: list[tuple[Task, dict | None]], executor, max_workers: int, store: ResultStore, summary: SweepSummary,
              prog: Progress, say) -> None:
     """Submit ``todo`` to the executor (a local pool of its own if None) and store what comes back."""
     own = executor is None
     ex = local_pool(max_workers) if own else as_executor(executor)
     futures = {}
     try:
-        for t in todo:
-            futures[ex.submit(_call, t.func, t.params)] = t
+        for t, stored in todo:
+            futures[ex.submit(_call, t.func, t.params, stored)] = (t, stored)
         _collect(futures, store, summary, prog, say)
     except BaseException:
         write_status(store.root, "interrupted", tasks=len(summary.reused) + len(todo))
@@ -197,7 +215,8 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
 
     Parameters
     ----------
-    tasks : list of Task (unique keys)
+    tasks : list of Task (unique keys; a task with ``outputs`` stores each output point under its own key,
+        is skipped when all are stored and otherwise told which are, :mod:`sweep.tasks`)
     store : ResultStore or its directory
     executor : concurrent.futures.Executor, dask.distributed.Client, or None
         None: a local :class:`~concurrent.futures.ProcessPoolExecutor` with ``max_workers``
@@ -219,7 +238,7 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
     :class:`~contact.errors.DatasetError` naming it, before anything is computed.
     """
     store = store if isinstance(store, ResultStore) else ResultStore(store)
-    keys = [t.key for t in tasks]
+    keys = [k for t in tasks for k, _ in t.points]
     if len(set(keys)) != len(keys):
         dup = sorted({k for k in keys if keys.count(k) > 1})
         raise InputError(f"tasks: duplicate keys {dup[:5]}")
@@ -240,7 +259,7 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
             prog = Progress(len(todo), label=label, enabled=(None if progress is None else bool(progress)))
         if todo:
             _execute(todo, executor, max_workers, store, summary, prog, say)
-        write_status(store.root, "incomplete" if summary.failed else "complete", tasks=len(tasks),
+        write_status(store.root, "incomplete" if summary.failed else "complete", tasks=len(keys),
                      failed=sorted(summary.failed))
     summary.wall_s = time.perf_counter() - t_start
     return summary

@@ -38,7 +38,7 @@ import numpy as np
 
 from contact.errors import DatasetError
 from contact.files import atomic_write_bytes, atomic_write_text
-from sweep.tasks import PointResult, Task
+from sweep.tasks import PointResult, Task, point_tasks
 
 FORMAT = "ringcontact.sweep-point/1"
 MANIFEST = "sweep.json"
@@ -186,6 +186,10 @@ class ResultStore:
             arrays = {k: z[k] for k in z.files}
         return PointResult(key, arrays, rec)
 
+    def info(self, key: str) -> dict:
+        """The ``info`` of a point's JSON record (check it first: :meth:`check`)."""
+        return json.loads(self.json_path(key).read_text()).get("info", {})
+
     def keys(self) -> list[str]:
         return sorted(p.stem for p in self.points.glob("*.json")) if self.points.exists() else []
 
@@ -202,7 +206,8 @@ def expected_points(store: ResultStore) -> dict[str, dict | None]:
 
 def load_sweep(store: ResultStore | str | os.PathLike, tasks: list[Task] | None = None, *,
                complete: bool = False) -> dict[str, PointResult]:
-    """All verified points of a store (those of ``tasks`` if given, checking their params).
+    """All verified points of a store (those of ``tasks`` if given, checking their params; a task with
+    ``outputs`` stands for its output points, :func:`sweep.tasks.point_tasks`).
 
     ``complete=False``: corrupt, stale or missing points are left out. ``complete=True``: they are
     refused with one :class:`DatasetError` naming each (without ``tasks``, the points expected are
@@ -210,7 +215,7 @@ def load_sweep(store: ResultStore | str | os.PathLike, tasks: list[Task] | None 
     """
     store = store if isinstance(store, ResultStore) else ResultStore(store)
     if tasks is not None:
-        items = [(t.key, t.params) for t in tasks]
+        items = [(t.key, t.params) for t in point_tasks(tasks)]
     elif complete:
         items = list(expected_points(store).items())
     else:

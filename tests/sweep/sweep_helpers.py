@@ -59,3 +59,28 @@ def alive(pid: int) -> bool:
             return fh.read().rsplit(")", 1)[1].split()[0] != "Z"
     except OSError:
         return False
+
+
+def chain_block(xs: list, calls_dir: str, stored: dict, fail_at: float | None = None) -> dict:
+    """A task with several outputs: a running sum over ``xs``, each point's ``total`` its lower neighbour's plus
+    its own x, taken from ``stored`` (key -> info) where the neighbour is stored; records each x computed."""
+    out, total = {}, 0.0
+    for x in xs:
+        key = f"c{x:g}"
+        if key in stored:
+            total = stored[key]["total"]
+            continue
+        if x == fail_at:
+            raise ValueError(f"boom at {x:g}")
+        with open(os.path.join(calls_dir, f"call-{x:g}-{os.getpid()}-{os.urandom(4).hex()}"), "w"):
+            pass
+        total += x
+        out[key] = ({"x": np.array([x])}, {"total": total, "neighbour_stored": f"c{xs[xs.index(x) - 1]:g}" in stored})
+    return out
+
+
+def chain_tasks(calls_dir, blocks=((1.0, 2.0, 3.0), (4.0, 5.0)), fail_at=None):
+    """One chain_block task per block; outputs ``c<x>`` with params ``{"x": x}``."""
+    params = {"calls_dir": str(calls_dir), **({"fail_at": fail_at} if fail_at is not None else {})}
+    return [Task(f"block{b[0]:g}-{b[-1]:g}", chain_block, {"xs": list(b), **params},
+                 tuple((f"c{x:g}", {"x": x}) for x in b)) for b in blocks]
