@@ -63,14 +63,15 @@ def _method(p: argparse.ArgumentParser) -> None:
     p.add_argument("--method", choices=("transient", "shooting"), default="transient",
                    help="transient (default: integrate to the detected steady state) or shooting (the periodic "
                         "orbit by Newton on the period map, with its Floquet multipliers and stability; a point "
-                        "where shooting fails falls back to the transient, rotor.studies.shooting_point)")
+                        "where shooting fails falls back to the transient, rotor.studies.shooting_point; speeds in contiguous "
+                        "blocks, each from its lower neighbour's orbit, rotor.studies.shooting_block)")
 
 
 def _tasks(args):
     """The sweep-task builder of ``--method``."""
     if args.method == "shooting":
-        from rotor.studies.shooting_point import shooting_sweep_tasks
-        return shooting_sweep_tasks
+        from rotor.studies.shooting_block import shooting_block_tasks
+        return shooting_block_tasks
     from rotor.studies.steady_state import sweep_tasks
     return sweep_tasks
 
@@ -190,7 +191,7 @@ def _mesh(args) -> dict:
 
 
 def _sweep(tasks, out: Path, args, description: dict):
-    from sweep import run_sweep
+    from sweep import point_tasks, run_sweep
     from sweep.cluster import connect
     from rotor.studies.steady_state import _scene_model
 
@@ -203,12 +204,13 @@ def _sweep(tasks, out: Path, args, description: dict):
         s = run_sweep(tasks, out, executor=client, max_workers=args.workers, manifest=manifest,
                       progress=False if args.no_progress else None)
     wall = time.perf_counter() - t0
-    print(f"study {args.study}: {len(tasks)} points, {len(s.computed)} computed, {len(s.reused)} reused, "
+    n_points = len(point_tasks(tasks))
+    print(f"study {args.study}: {n_points} points, {len(s.computed)} computed, {len(s.reused)} reused, "
           f"{len(s.recomputed)} recomputed, {len(s.failed)} failed, wall {wall:.1f} s")
     for k, e in s.failed.items():
         print(f"  FAILED {k}: {e}", file=sys.stderr)
     if s.failed:
-        raise FailedPointsError(f"{len(s.failed)} of {len(tasks)} points failed (FAILED lines above); no figures "
+        raise FailedPointsError(f"{len(s.failed)} of {n_points} points failed (FAILED lines above); no figures "
                                 f"written; the finished points stay in {out}, a rerun computes only the rest")
     return s, wall
 
@@ -290,6 +292,7 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study cascade``: steady state at each speed of a range (Figs. 12, 16, 17)."""
     from reports.studies.cascade import cascade_figures
     from rotor.studies.steady_state import _scene_model
+    from sweep import point_tasks
 
     check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
     if args.rpm_min > args.rpm_max:
@@ -305,6 +308,7 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **_method_note(args), **kw})
     _timing(out, s, wall, args)
     _, model = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
+    tasks = point_tasks(tasks)          # what is stored: one point per speed (shooting blocks hold several)
     if not {"disk1", "disk2", "s"} <= set(model.response_stations()):  # not the paper's stations: by the scene's names
         from reports.station_cascade import station_cascade
         return station_cascade(out, figs, tasks=tasks)
@@ -325,6 +329,7 @@ def _point(args, out: Path, figs: Path, opts: dict) -> list[Path]:
 def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study params``: 1X/2X/3X vs speed for several clearances and misalignments (Figs. 18-19)."""
     from reports.studies.params import params_figures
+    from sweep import point_tasks
 
     sweep_tasks = _tasks(args)
     speeds = np.linspace(0.0, args.rpm_max, int(args.points))
@@ -338,7 +343,7 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
                              **mesh)
     _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
                               "misalignments_mm": args.misalignments_mm, **_method_note(args)})
-    return params_figures(out, figs, tasks=tasks)
+    return params_figures(out, figs, tasks=point_tasks(tasks))
 
 
 def _testrig(args, out: Path, figs: Path, opts: dict) -> list[Path]:

@@ -223,6 +223,12 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
 
 
+def warm_options(options: ShootingOptions | None = None) -> ShootingOptions:
+    """``options`` for a start from a neighbouring speed's orbit (:func:`cascade`): 2 transient revolutions
+    before Newton, then rounds doubling in length."""
+    return ShootingOptions(**{**(options or ShootingOptions()).__dict__, "transient_revs": 2, "round_growth": 2.0})
+
+
 def cascade(scene: str, speeds_rpm, *, steps_per_rev: int | None = None, backend: str = "auto",
             options: ShootingOptions | None = None, **overrides) -> tuple:
     """:func:`orbit` at each speed of ``speeds_rpm`` (rpm, > 0) in order, each started from the previous
@@ -238,7 +244,7 @@ def cascade(scene: str, speeds_rpm, *, steps_per_rev: int | None = None, backend
     ``max_transient_revs`` (quasi-periodic or chaotic; the neighbours' multipliers say which way it was
     left: a complex pair outside the circle, Neimark-Sacker, or a real one below −1, period doubling)."""
     opts = options or ShootingOptions()
-    warm = ShootingOptions(**{**opts.__dict__, "transient_revs": 2, "round_growth": 2.0})
+    warm = warm_options(opts)
     out, prev = [], None
     for s in speeds_rpm:
         kw = dict(steps_per_rev=steps_per_rev, backend=backend, **overrides)

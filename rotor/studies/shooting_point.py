@@ -107,8 +107,17 @@ def run_shooting_point(scene: str, speed_rpm: float, clearance_m: float | None =
         arrays, info = run_point(scene, speed_rpm, **kw, **point)
         return arrays, {**info, "method": "shooting", "classification": "static", "classified_by": "static"}
     opts = SteadyStateOptions(**(options or {}))
-    sc, model, system = point_system(scene, speed_rpm, **kw)
+    system = point_system(scene, speed_rpm, **kw)[2]
     res = orbit(scene, speed_rpm, steps_per_rev=step_per_rev(system, opts), **kw)
+    return orbit_point(res, scene, speed_rpm, kw, point, fallback, t_start)
+
+
+def orbit_point(res, scene: str, speed_rpm: float, kw: dict, point: dict, fallback: bool, t_start: float):
+    """``(arrays, info)`` of a shooting point from its :class:`rotor.studies.orbit.OrbitResult` ``res``
+    (:func:`run_shooting_point`; ``kw``: the scene overrides, ``point``: ``options``, ``max_order``,
+    ``history_revs``; ``t_start``: :func:`time.perf_counter` when the point began)."""
+    opts = SteadyStateOptions(**(point["options"] or {}))
+    sc, model, system = point_system(scene, speed_rpm, **kw)
     fl = floquet_info(res)
     if not res.converged and not fallback:
         return {"channels": np.array([])}, {"speed_rpm": float(speed_rpm), "converged": False, **fl,
@@ -123,9 +132,9 @@ def run_shooting_point(scene: str, speed_rpm: float, clearance_m: float | None =
                         "wall_s": time.perf_counter() - t_start}
     ss = orbit_record(system, model, res, opts)
     arrays, info = point_record(replace(ss, wall_s=time.perf_counter() - t_start), sc, model, system, opts,
-                                speed_rpm=speed_rpm, misalignment_m=misalignment_m, tilt_ignored=tilt_ignored,
-                                max_order=max_order, history_revs=history_revs,
-                                elements_per_segment=elements_per_segment)
+                                speed_rpm=speed_rpm, misalignment_m=kw["misalignment_m"],
+                                tilt_ignored=kw["tilt_ignored"], max_order=point["max_order"],
+                                history_revs=point["history_revs"], elements_per_segment=kw["elements_per_segment"])
     info.update({**fl, "method": "shooting", "classified_by": "multipliers", "classification": classify(res.floquet)})
     return arrays, info
 

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,19 +18,12 @@ from rotor.studies import shooting_point as sp
 from rotor.studies.floquet import floquet
 from rotor.studies.steady_state import run_point
 
-ROOT = Path(__file__).resolve().parents[3]
 OPTIONS = {"steps_per_rev": 256, "max_revs": 1500}
 
 
 @pytest.fixture(scope="module")
-def scene(tmp_path_factory) -> str:
-    text = (ROOT / "rotor/scenes/verify-jeffcott.toml").read_text(encoding="utf-8")
-    text = text.replace('name = "verify-jeffcott"', 'name = "damped-jeffcott"').replace(
-        "density_kg_m3 = 0\n", "density_kg_m3 = 7800\n").replace(
-        "stiffness_n_per_m = 2.0e6\n", "stiffness_n_per_m = 2.0e6\ndamping_n_s_per_m = 3000\n")
-    path = tmp_path_factory.mktemp("scene") / "damped-jeffcott.toml"
-    path.write_text(text, encoding="utf-8")
-    return str(path)
+def scene(damped_jeffcott_scene) -> str:
+    return damped_jeffcott_scene(3000)
 
 
 def test_shooting_point_has_the_transient_arrays_and_agrees(scene):
