@@ -194,7 +194,8 @@ def _execute(todo: list[tuple[Task, dict | None]], executor, max_workers: int, s
             futures[ex.submit(_call, t.func, t.params, stored)] = (t, stored)
         _collect(futures, store, summary, prog, say)
     except BaseException:
-        write_status(store.root, "interrupted", tasks=len(summary.reused) + len(todo))
+        write_status(store.root, "interrupted",
+                     tasks=len(summary.reused) + sum(len(t.points) - len(done or {}) for t, done in todo))
         for f in futures:
             f.cancel()
         if own:

@@ -74,3 +74,24 @@ def test_output_keys_must_be_unique_and_file_safe(dirs):
         run_sweep(chain_tasks(calls, blocks=((1.0, 2.0), (2.0, 3.0))), dirs[0], progress=False)
     with pytest.raises(InputError, match="task key"):
         Task("ok", chain_block, {}, (("bad/key", {}),))
+
+
+def test_interrupted_after_one_block_resumes_with_the_other_only(dirs):
+    from sweep import Progress
+
+    class _StopAfterOne(Progress):
+        def update(self, n=1, note=""):
+            super().update(n, note)
+            raise KeyboardInterrupt
+
+    store, calls = dirs
+    tasks = chain_tasks(calls)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(tasks, store, max_workers=1, progress=_StopAfterOne(2, enabled=False), log=lambda m: None)
+    assert json.loads((store / "status.json").read_text())["state"] == "interrupted"
+    first = {k for k in EXPECTED if (store / "points" / f"{k}.json").exists()}
+    assert first in ({"c1", "c2", "c3"}, {"c4", "c5"})
+    s = run_sweep(tasks, store, max_workers=1, progress=False, log=lambda m: None)
+    assert set(s.computed) == set(EXPECTED) - first and set(s.reused) == first
+    # the stored block is not computed again (the other may have been under way when interrupted: lost, rerun)
+    assert all(_calls(calls, float(k[1:])) == 1 for k in first) and _totals(store, tasks) == EXPECTED
