@@ -135,8 +135,7 @@ def period_map_setup(system: RotorSystem, dt: float, options: NewmarkOptions | N
     if red.support is not None and check_step:
         check_time_step(red, dt)
     pre = prepare(red, dt, opts)
-    T = pre.T
-    Mr = T.T @ red.M @ T
+    T, Mr = pre.T, pre.Mr
     Minv = pre.Minv
     Kr, Dr = pre.Kr, pre.Dr
     A = Mr + opts.gamma * dt * Dr + opts.beta * dt * dt * Kr

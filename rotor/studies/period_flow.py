@@ -6,10 +6,10 @@ coordinates ``q = T p`` of :mod:`rotor.dynamics.production`: massless DOFs conde
 removed) and its Jacobian:
 
 * ``"exact"`` — :mod:`rotor.dynamics.period_map`, the monodromy carried through the Newmark steps from
-  the step Jacobians (the support's analytic Jacobian); used whenever that module is importable;
+  the step Jacobians (the support's analytic Jacobian), the default (``"auto"``);
 * ``"fd"`` — :func:`monodromy_fd`, central finite differences of
   :func:`rotor.dynamics.production.simulate_production` over the same steps (``4 n_r`` runs), kept for
-  cross-checks and as the fallback. Its error is O(h²) away from events; a contact onset, stick onset or
+  cross-checks. Its error is O(h²) away from events; a contact onset, stick onset or
   release inside the perturbed runs makes it a secant rather than a derivative there.
 
 Both step the same compiled loop, so the state (and the residual of a periodic orbit) agrees to the
@@ -22,20 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.condense import condense, expand
-from rotor.dynamics.production import prepare, simulate_production
+from rotor.dynamics.condense import expand
+from rotor.dynamics.period_map import full_state, period_map, period_map_setup, reduced_state
+from rotor.dynamics.production import simulate_production
 from rotor.dynamics.system import RotorSystem, Trajectory
 
 #: relative finite-difference step of :func:`monodromy_fd` (of the state's block scale)
 FD_REL_STEP = 1e-6
-
-
-def _exact_module():
-    try:
-        from rotor.dynamics import period_map as pmod
-    except ImportError:
-        return None
-    return pmod
 
 
 @dataclass(frozen=True)
@@ -47,7 +40,8 @@ class Flow:
     system : the full system (all DOFs); reduced : the one integrated (massless DOFs condensed)
     condensed : rotor.dynamics.condense.Condensed or None
     T : (n_k, n_r) orthonormal basis of the lock's null space (``q_k = T p``)
-    dt_s : float (s); backend : "exact" or "fd"; handle : the back-end's prepared object
+    dt_s : float (s); backend : "exact" or "fd" (how :func:`advance` differentiates the map);
+    handle : the :class:`rotor.dynamics.period_map.PeriodMap` both back-ends step with
     """
 
     system: RotorSystem
@@ -77,26 +71,20 @@ class MapResult:
 
 
 def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto") -> Flow:
-    """Prepare ``system`` for maps of step ``dt_s`` (s); ``backend`` "auto" (exact when available), "exact"
-    or "fd"."""
-    pmod = _exact_module()
+    """Prepare ``system`` for maps of step ``dt_s`` (s); ``backend`` "auto" (= "exact": the monodromy of
+    :mod:`rotor.dynamics.period_map`) or "fd" (central differences, :func:`monodromy_fd`, for cross-checks;
+    its step is not checked against the contact limit)."""
     if backend == "auto":
-        backend = "exact" if pmod is not None else "fd"
-    if backend not in ("exact", "fd") or (backend == "exact" and pmod is None):
+        backend = "exact"
+    if backend not in ("exact", "fd"):
         raise ValueError(f"backend = {backend!r}: must be 'auto', 'fd' or 'exact' (rotor.dynamics.period_map)")
-    c = condense(system)
-    reduced = c.system if c is not None else system
-    T = cons.null_space_map(reduced.lock)
-    handle = pmod.period_map_setup(system, dt_s) if backend == "exact" else prepare(reduced, dt_s)
-    return Flow(system, reduced, c, T, float(dt_s), backend, handle)
+    pm = period_map_setup(system, dt_s, check_step=backend == "exact")
+    return Flow(system, pm.reduced, pm.condensed, pm.T, float(dt_s), backend, pm)
 
 
 def to_reduced(flow: Flow, q, v) -> np.ndarray:
     """Reduced state ``[p, v_p]`` of the full ``(q, v)`` (m, rad; m/s, rad/s); rows of samples allowed."""
-    q, v = np.asarray(q, float), np.asarray(v, float)
-    if flow.condensed is not None:
-        q, v = q[..., flow.condensed.keep], v[..., flow.condensed.keep]
-    return np.concatenate([q @ flow.T, v @ flow.T], axis=-1)
+    return reduced_state(flow.handle, q, v)
 
 
 def _kept(flow: Flow, state) -> tuple[np.ndarray, np.ndarray]:
@@ -107,27 +95,21 @@ def _kept(flow: Flow, state) -> tuple[np.ndarray, np.ndarray]:
 
 def to_full(flow: Flow, state, t_s: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Full ``(q, v)`` of a reduced state at time ``t_s`` (the condensed DOFs depend on the load at t)."""
-    qk, vk = _kept(flow, state)
-    if flow.condensed is None:
-        return qk, vk
-    one = Trajectory(np.array([float(t_s)]), qk[None], vk[None], np.zeros_like(qk)[None], *([None] * 8))
-    tr = expand(flow.condensed, one)
-    return tr.q[0], tr.v[0]
+    return full_state(flow.handle, state, t_s)
 
 
 def _run(flow: Flow, state, t0: float, n_steps: int, modes0, record_every: int | None = None) -> Trajectory:
     qk, vk = _kept(flow, state)
-    pre = flow.handle.prepared if flow.backend == "exact" else flow.handle
     return simulate_production(flow.reduced, flow.dt_s, int(n_steps), qk, vk, t0=float(t0), modes0=tuple(modes0),
-                               record_every=int(record_every or n_steps), check_step=False, prepared=pre)
+                               record_every=int(record_every or n_steps), check_step=False,
+                               prepared=flow.handle.prepared)
 
 
 def advance(flow: Flow, state, t0: float, n_steps: int, modes0=(cons.STICK, cons.STICK), *,
             jacobian: bool = True) -> MapResult:
     """The map over ``n_steps`` steps from ``state`` at ``t0`` (s), with its Jacobian if asked."""
     if flow.backend == "exact":
-        pmod = _exact_module()
-        r = pmod.period_map(flow.handle, np.asarray(state, float), float(t0), int(n_steps), modes0=tuple(modes0),
+        r = period_map(flow.handle, np.asarray(state, float), float(t0), int(n_steps), modes0=tuple(modes0),
                             jacobian=jacobian)
         return MapResult(np.asarray(r.state, float), None if not jacobian else np.asarray(r.monodromy, float),
                          tuple(int(m) for m in r.modes), int(r.events))

@@ -40,13 +40,6 @@ def _waiting_tasks(calls, gate, n=4):
             for i in range(n)]
 
 
-@pytest.fixture
-def dirs(tmp_path):
-    calls = tmp_path / "calls"
-    calls.mkdir()
-    return tmp_path / "store", calls
-
-
 def test_kill_9_of_a_sweep_leaves_no_orphan_worker_and_no_temporary(dirs, tmp_path):
     store, calls = dirs
     gate = tmp_path / "gate"

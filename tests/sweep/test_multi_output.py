@@ -15,13 +15,6 @@ from sweep_helpers import calls as _calls, chain_block, chain_tasks
 EXPECTED = {"c1": 1.0, "c2": 3.0, "c3": 6.0, "c4": 4.0, "c5": 9.0}    # partial sums within each block
 
 
-@pytest.fixture
-def dirs(tmp_path):
-    calls = tmp_path / "calls"
-    calls.mkdir()
-    return tmp_path / "store", calls
-
-
 def _totals(store, tasks):
     return {k: p.info["total"] for k, p in load_sweep(store, tasks, complete=True).items()}
 
