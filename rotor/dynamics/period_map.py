@@ -130,6 +130,11 @@ def period_map_setup(system: RotorSystem, dt: float, options: NewmarkOptions | N
     opts = options or NewmarkOptions()
     if not (np.isfinite(dt) and dt > 0):
         raise InputError(f"dt_s: {dt!r} s; must be a finite positive step")
+    if opts.locate_events:
+        # the derivative pass differentiates the plain step; a step split at a located friction event
+        # (rotor.dynamics.friction_events) would be integrated but not differentiated: refused, not wrong
+        raise InputError("options.locate_events: True; the period map's monodromy follows the plain Newmark step "
+                         "(locate_events = False)")
     c = condense(system)
     red = c.system if c is not None else system
     if red.support is not None and check_step:
