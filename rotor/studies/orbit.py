@@ -60,6 +60,10 @@ class OrbitResult:
         Periodicity residual relative to the orbit scale (–).
     transient_revs : int
         Revolutions of transient before Newton converged.
+    settled (JSON key, from ``shooting.settled``) : bool
+        On a continuum of orbits (a face stuck through the period), the transient's conserved levels had
+        stopped drifting when the orbit was shot, so the orbit is the member the transient settles on
+        (:func:`rotor.studies.shooting.shoot_from_transient`); always True without a continuum.
     events : int
         End-face mode changes over the period.
     singular_directions : int
@@ -110,7 +114,8 @@ class OrbitResult:
                 "critical_kind": self.floquet.kind, "neutral_multipliers": self.floquet.n_neutral,
                 "velocity_amplitudes_mm_s_1X_to_5X": self.velocity_amplitudes_mm_s_1X_to_5X,
                 "newton_iterations": self.newton_iterations, "residual": self.residual,
-                "transient_revs": self.transient_revs, "face_mode_changes": self.events,
+                "transient_revs": self.transient_revs, "settled": self.shooting.settled,
+                "face_mode_changes": self.events,
                 "singular_directions": self.singular_directions, "switch_free": self.switch_free,
                 "wall_s": self.wall_s, "backend": self.backend}
 

@@ -118,15 +118,11 @@ def test_branch_that_stops_early_exits_1_with_one_line(damped_jeffcott, capsys):
     assert "1500" in text          # the orbits found are still shown
 
 
-@pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="the left end face sticks through the whole orbit at 10 500 rpm: the orbits "
-                   "form a continuum (2 neutral multipliers) and the orbit job's short transient (195 revolutions) "
-                   "lands on another member than simulate --steady's 529; measured 3.3e-4 (1X). Started from the "
-                   "transient's end state shooting agrees to 2.3e-5 (tests/rotor/studies/test_orbit.py, "
-                   "reports/published/perf-shooting.md). strict: the day the CLI lands on the same member, this fails")
 def test_table4_orbit_equals_simulate_steady_at_10500_rpm(tmp_path, capsys):
     """Issue 18 must-show: Table 4 at 10 500 rpm, the shooting orbit's 1X-5X equal the transient steady
-    state's (``simulate --steady``) within 1e-4 relative (to each channel's 1X)."""
+    state's (``simulate --steady``) within 1e-4 relative (to each channel's 1X). The left end face sticks
+    through the orbit (a continuum of orbits): the orbit job shoots once the transient's conserved levels
+    stop drifting (rotor/studies/shooting.py), so it lands on the transient's member."""
     rc, text, err = _run(["orbit", "paper-table4", "--speed-rpm", 10500, "--json"], capsys)
     assert rc == 0, err
     d = json.loads(text)

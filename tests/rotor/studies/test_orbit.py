@@ -37,22 +37,41 @@ def test_shooting_from_the_transient_state_reproduces_its_harmonics(transient):
     assert o.stable
 
 
-def test_a_stuck_face_makes_a_continuum_of_orbits(transient):
+def test_a_stuck_face_makes_a_continuum_and_the_cold_orbit_is_the_transients_member(transient):
     """The right face slips part of each revolution and the left one sticks throughout, so the left face's
-    sticking offset is free: two multipliers exactly 1 (n_neutral = 2). Shooting from the linear start after
-    a shorter transient converges to another member of that continuum: an exact periodic orbit whose
-    harmonics differ from the long transient's by more than its tolerance, its 1X by less than 1e-3."""
+    sticking offset is free: two multipliers exactly 1 (n_neutral = 2), a continuum of exact orbits. The
+    transient from the linear start settles on one member when the left face slips for the last time
+    (revolution 246, measured); the cold shot watches the conserved levels and shoots once they stop
+    drifting, so it lands on that member: 1X-5X equal ``simulate --steady``'s to 1e-4 (issue 18 must-show),
+    and the transient it ran is at least the 246 revolutions."""
     o = orbit("paper-table4", SPEED)
     assert o.converged and o.residual < 1e-9 and o.period_revs == 1
     assert o.floquet.n_neutral == 2 and o.stable
     assert o.events > 0 and not o.switch_free              # the right face switches stick/slip in the period
+    assert o.shooting.settled and o.transient_revs >= 246
+    assert _worst(o, transient) < 1e-4
+    d = o.as_dict()
+    assert d["stable"] is True and len(d["multipliers"]) == o.shooting.state.size
+
+
+def test_a_minimum_norm_newton_before_the_levels_settle_lands_on_another_member(transient):
+    """The same point with the old rule (Newton after 195 transient revolutions, accepted as soon as it
+    converges, its steps minimum-norm across the continuum): an exact orbit of another member, whose
+    harmonics differ from the transient's by more than 1e-4 (measured 3.3e-4), its 1X by less than 1e-3."""
+    from rotor.studies import shooting as sh
+
+    level_step, settle = sh.level_step, sh._settle
+    try:
+        sh.level_step = lambda J, rhs, rcond, back=None: (*sh.min_norm_step(J, rhs, rcond), np.zeros((len(rhs), 0)))
+        sh._settle = lambda run, res, opts: res
+        o = orbit("paper-table4", SPEED)
+    finally:
+        sh.level_step, sh._settle = level_step, settle
+    assert o.converged and o.transient_revs < 246
     h = transient.harmonics("v")
     one_x = max(abs(o.velocity_amplitudes_mm_s_1X_to_5X[n][0] * 1e-3 / h[0, j] - 1)
                 for j, n in enumerate(transient.channels))
-    assert one_x < 1e-3
-    assert _worst(o, transient) > 1e-3
-    d = o.as_dict()
-    assert d["stable"] is True and len(d["multipliers"]) == o.shooting.state.size
+    assert one_x < 1e-3 and _worst(o, transient) > 1e-4
 
 
 def test_cascade_warm_starts_each_speed_from_the_previous_orbit():

@@ -7,7 +7,7 @@ import pytest
 
 from rotor.studies.jeffcott import JeffcottParams, closed_form_radius, jeffcott_system, warped_frequency
 from rotor.studies.period_flow import advance, make_flow, monodromy_fd
-from rotor.studies.shooting import ShootingOptions, min_norm_step, shoot, shoot_from_transient
+from rotor.studies.shooting import ShootingOptions, level_step, min_norm_step, shoot, shoot_from_transient
 
 P = JeffcottParams()
 N = 64
@@ -66,6 +66,30 @@ def test_min_norm_step_on_a_singular_system():
     assert np.allclose(J @ dx, rhs, atol=1e-13)
     assert abs(Q[:, 3] @ dx) < 1e-13
     assert np.allclose(dx, np.linalg.pinv(J) @ rhs, atol=1e-13)
+
+
+def test_level_step_keeps_the_conserved_levels():
+    """A map with a conserved quantity ``w·x`` (``wᵀ(M − I) = 0``) whose null direction ``v`` is not ``w``
+    (a stuck face's offset: the scheme conserves it, the continuum runs along v): the step solves the
+    consistent system and sets ``wᵀ dz`` to ``wᵀ back`` exactly, where the minimum-norm step would move it."""
+    rng = np.random.default_rng(5)
+    n = 5
+    v = rng.normal(size=n)
+    v /= np.linalg.norm(v)
+    w = rng.normal(size=n)
+    w /= np.linalg.norm(w)
+    B = rng.normal(size=(n, n))
+    J = (np.eye(n) - np.outer(w, w)) @ B @ (np.eye(n) - np.outer(v, v))     # left null w, right null v
+    rhs = J @ rng.normal(size=n)
+    back = rng.normal(size=n)
+    dz, dropped, U0 = level_step(J, rhs, 1e-9, back)
+    assert dropped == 1 and U0.shape == (n, 1) and abs(abs(U0[:, 0] @ w) - 1.0) < 1e-12
+    assert np.allclose(J @ dz, rhs, atol=1e-12)
+    assert abs(w @ dz - w @ back) < 1e-12
+    mn, _ = min_norm_step(J, rhs, 1e-9)
+    assert abs(w @ mn - w @ back) > 1e-3                    # the minimum-norm step does not keep them
+    dz0, _, _ = level_step(J, rhs, 1e-9)
+    assert abs(w @ dz0) < 1e-12
 
 
 def test_fd_monodromy_against_the_period_map():
