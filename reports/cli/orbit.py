@@ -130,7 +130,7 @@ def _orbit_table(d: dict) -> str:
              f"{'converged' if d['converged'] else 'NOT converged'} in {d['newton_iterations']} Newton iterations "
              f"(residual {d['residual']:.2e}), {d['wall_s']:.2f} s",
              f"  {'stable' if d['stable'] else 'UNSTABLE'}: spectral radius {d['spectral_radius']:.6f}, critical "
-             f"multiplier {complex(*d['critical_multiplier']):.4g} ({d['critical_kind']}), "
+             f"multiplier {complex(*d['critical_multiplier']):.4g} ({d['leading_multiplier']}), "
              f"{d['neutral_multipliers']} neutral; largest: {mult}",
              f"  {'channel':<14}" + "".join(f"{k}X mm/s".rjust(12) for k in range(1, 6))]
     for name, amps in d["velocity_amplitudes_mm_s_1X_to_5X"].items():
@@ -158,9 +158,9 @@ def _orbit(args) -> int:
 def _branch_table(d: dict) -> str:
     lines = [f"branch {d['scene']} {d['rpm_start']:g} -> {d['rpm_end']:g} rpm: {len(d['points'])} orbits, "
              f"period {d['period_revs']} rev, stopped: {d['stop']}, {d['wall_s']:.1f} s",
-             f"  {'speed rpm':>10} {'stable':>7} {'radius':>9} {'critical':>16}"]
+             f"  {'speed rpm':>10} {'stable':>7} {'radius':>9} {'leading':>13}"]
     for p in d["points"]:
-        lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} {p['critical_kind']:>16}")
+        lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} {p['leading_multiplier']:>13}")
     lines.append("  bifurcations: " + ("; ".join(f"{b['kind']} at {b['speed_rpm']:.1f} rpm" for b in d["bifurcations"])
                                        or "none"))
     return "\n".join(lines)

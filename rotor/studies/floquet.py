@@ -13,8 +13,8 @@ Neutral multipliers. A stuck end face fixes the relative *velocity* of the suppo
 a periodic orbit with a face stuck throughout belongs to a continuum of orbits (the face may stick at any
 offset): the monodromy has a multiplier exactly 1 in that direction. Multipliers within ``tol`` of +1 are
 counted as ``n_neutral`` and left out of the stability verdict and the bifurcation labels (they neither
-grow nor decay); the shooting step treats the same direction by a minimum-norm solve
-(:mod:`rotor.studies.shooting`).
+grow nor decay); the shooting step keeps the levels the continuum conserves
+(:func:`rotor.studies.shooting.level_step`).
 
 Discrete multipliers. The orbit is one of the Newmark map (average acceleration, the trapezoidal rule on
 the first-order system), so for a linear system the multipliers are exactly ``c(λΔt)^N`` with the Cayley
@@ -47,8 +47,11 @@ class FloquetResult:
     n_out_real_positive, n_out_real_negative, n_out_complex : int, multipliers outside the circle
         (``|μ| > 1 + tol``), real above +1, real below −1, complex (both of a pair counted)
     critical : complex, the non-neutral multiplier of largest modulus (0 if none)
-    kind : str, how ``critical`` sits: "fold" (real, positive), "period_doubling" (real, negative) or
-        "neimark_sacker" (complex); the bifurcation it would cause on leaving the circle
+    kind : str, the bifurcation ``critical`` names when it lies outside the circle: "fold" (real, above +1),
+        "period_doubling" (real, below −1) or "neimark_sacker" (complex pair); "none" for a stable orbit
+    leading : str, the type of ``critical`` whether inside or outside: "real_positive", "real_negative" or
+        "complex_pair" ("none" without non-neutral multipliers): the way a stable orbit would lose stability
+        if ``critical`` reached the circle
     """
 
     multipliers: np.ndarray
@@ -61,6 +64,7 @@ class FloquetResult:
     n_out_complex: int
     critical: complex
     kind: str
+    leading: str = "none"
 
     @property
     def spectral_radius(self) -> float:
@@ -75,7 +79,11 @@ class FloquetResult:
         """JSON-ready summary (multipliers as ``[re, im]`` pairs)."""
         return {"multipliers": [[float(m.real), float(m.imag)] for m in self.multipliers],
                 "stable": bool(self.stable), "spectral_radius": self.spectral_radius, "kind": self.kind,
+                "leading": self.leading,
                 "n_neutral": int(self.n_neutral), "period_s": float(self.period_s)}
+
+
+_LEADING = {"fold": "real_positive", "period_doubling": "real_negative", "neimark_sacker": "complex_pair"}
 
 
 def _kind(mu: complex) -> str:
@@ -102,7 +110,8 @@ def floquet(monodromy, period_s: float, *, tol: float = MULTIPLIER_TOL) -> Floqu
     critical = complex(rest[0]) if len(rest) else 0j
     return FloquetResult(mu, float(period_s), float(tol), len(out) == 0, int(neutral.sum()),
                          kinds.count("fold"), kinds.count("period_doubling"), kinds.count("neimark_sacker"),
-                         critical, _kind(critical) if len(rest) else "none")
+                         critical, _kind(critical) if len(out) else "none",
+                         _LEADING[_kind(critical)] if len(rest) else "none")
 
 
 def trapezoidal_multipliers(eigenvalues, dt_s: float, n_steps: int) -> np.ndarray:

@@ -111,7 +111,8 @@ class OrbitResult:
         return {"speed_rpm": self.speed_rpm, "period_revs": self.period_revs, "period_s": self.period_s,
                 "steps_per_rev": self.steps_per_rev, "converged": self.converged, "stable": self.stable,
                 "multipliers": self.floquet.as_dict()["multipliers"], "spectral_radius": self.floquet.spectral_radius,
-                "critical_kind": self.floquet.kind, "neutral_multipliers": self.floquet.n_neutral,
+                "critical_kind": self.floquet.kind, "leading_multiplier": self.floquet.leading,
+                "neutral_multipliers": self.floquet.n_neutral,
                 "velocity_amplitudes_mm_s_1X_to_5X": self.velocity_amplitudes_mm_s_1X_to_5X,
                 "newton_iterations": self.newton_iterations, "residual": self.residual,
                 "transient_revs": self.transient_revs, "settled": self.shooting.settled,
@@ -218,7 +219,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     pts = []
     for p in br.points:
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
-             "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind}
+             "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
+             "leading_multiplier": p.floquet.leading}
         if amplitudes:
             flow = pb.flow(p.parameter)
             d["velocity_amplitudes_mm_s_1X_to_5X"] = velocity_amplitudes(flow, model, p.state, 0.0, res.modes,

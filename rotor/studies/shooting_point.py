@@ -54,6 +54,7 @@ def floquet_info(res) -> dict:
     f = res.floquet
     return {"multipliers": [[float(m.real), float(m.imag)] for m in f.multipliers[:12]],
             "stable": bool(f.stable), "spectral_radius": float(f.spectral_radius), "critical_kind": f.kind,
+            "leading_multiplier": f.leading,
             "neutral_multipliers": int(f.n_neutral), "newton_iterations": int(res.newton_iterations),
             "shooting_residual": float(res.residual), "shooting_converged": bool(res.converged),
             "shooting_period_revs": int(res.period_revs), "shooting_wall_s": float(res.wall_s)}

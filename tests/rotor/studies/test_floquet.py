@@ -86,3 +86,15 @@ def test_classification_of_the_multiplier_leaving_the_circle():
     assert crossing(floquet(np.diag([0.9, 0.5]), 1.0), fold) == "fold"
     assert crossing(fold, fold) is None
     assert np.allclose(neutral.exponents()[1], math.log(0.9) / 2.0)
+    assert ns.leading == "complex_pair" and pd.leading == "real_negative" and fold.leading == "real_positive"
+
+
+def test_a_stable_orbit_names_no_bifurcation_only_its_leading_multiplier():
+    """A stable orbit whose largest multiplier is a complex pair of modulus 0.54 (as the Table 4 orbits at low
+    speed): nothing leaves the circle, so no bifurcation kind; the leading multiplier's type is reported."""
+    rot = 0.54 * np.array([[math.cos(0.7), -math.sin(0.7)], [math.sin(0.7), math.cos(0.7)]])
+    fl = floquet(np.block([[rot, np.zeros((2, 1))], [np.zeros((1, 2)), -0.3 * np.eye(1)]]), 1.0)
+    assert fl.stable and fl.kind == "none" and fl.leading == "complex_pair"
+    assert abs(fl.spectral_radius - 0.54) < 1e-12
+    assert floquet(np.diag([0.9, -0.5]), 1.0).leading == "real_positive"
+    assert floquet(np.diag([1.0]), 1.0).leading == "none"            # only a neutral multiplier
