@@ -67,7 +67,8 @@ class OrbitResult:
     events : int
         End-face mode changes over the period.
     singular_directions : int
-        Directions dropped by the minimum-norm Newton step.
+        Directions of M − I dropped by the Newton step (the continuum's conserved levels,
+        :func:`rotor.studies.shooting.level_step`).
     wall_s : float
         Wall time (s).
     switch_free : bool

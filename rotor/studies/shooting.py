@@ -47,7 +47,7 @@ class ShootingOptions:
     stalls (no step reduces it) still counts as converged if below this — the floor set by the step's own
     Newton tolerance and rounding when the orbit is small beside a large static offset (Table 4 at 300 rpm:
     2e-9 of a 0.24 µm orbit on a 1 mm offset); ``max_iter``, ``rcond`` (relative
-    singular-value cut of the minimum-norm step), ``max_halvings`` of a step that does not reduce the
+    singular-value cut of the Newton step, :func:`level_step`), ``max_halvings`` of a step that does not reduce the
     residual, ``transient_revs`` of the first transient round before shooting, ``round_growth``: each further
     round ``round_growth`` times as long as the one before, until ``max_transient_revs``;
     ``periods_per_round`` (:func:`shoot_from_transient`), ``stall_iterations`` (:func:`newton_periodic`: stalled
@@ -80,7 +80,7 @@ class ShootingResult:
     modes : end-face modes at ``t0_s`` (1 stick / 0 slip)
     monodromy : (2 n_r, 2 n_r); floquet : FloquetResult
     converged : bool; newton_iterations : int; residual : float, ``max |R_j|/s_j`` (–)
-    singular_directions : int, directions of ``M − I`` dropped by the minimum-norm step at the last iteration
+    singular_directions : int, directions of ``M − I`` dropped by the Newton step at the last iteration (:func:`level_step`)
     events : int, end-face mode changes over the converged period (with switches the map is only piecewise
         smooth: the multipliers hold while no switch moves by a step, :mod:`rotor.studies.period_flow`)
     scales : (2 n_r,) the orbit scales s_j (m, rad; m/s, rad/s); wall_s : float (s); backend : str
