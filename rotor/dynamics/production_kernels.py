@@ -19,7 +19,7 @@ from numba import njit
 
 from contact.compiled_cache import compiled_with
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.kernels import contact_kernel
+from rotor.dynamics.kernels import contact_point_jacobian
 
 # The kernels below inline rotor.dynamics.constraints and the law kernel (rotor.dynamics.kernels, which
 # inlines contact._kernel): their cache entries are stale when any of those sources changes (numba
@@ -76,23 +76,25 @@ def _small_solve(A, b, m, out):
     return True
 
 
-@njit(cache=True)
-def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
-            g, Jg, phi, u, w):
-    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x (stuck-face forces from x[NC:]);
-    also leaves the condensed displacement u and velocity w of the iterate."""
+@njit(cache=True, inline="always")
+def _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
+                 g, Jg, phi, u, w, jac):
+    """:func:`_forces` on a caller's law Jacobian ``jac`` (4, 8), written (no array allocated here)."""
     for i in range(NC):
         u[i] = u_pre[i] + bdt2 * x[i]
         w[i] = w_pre[i] + gdt * x[i]
-    f, Ju, Jv = contact_kernel(u[:4], w[:4], params)
+    f0, f1, f2, f3 = contact_point_jacobian(u, w, params, jac)
     for i in range(NC):
         g[i] = 0.0
         for j in range(NC):
             Jg[i, j] = 0.0
+    g[0] = f0
+    g[1] = f1
+    g[2] = f2
+    g[3] = f3
     for i in range(4):
-        g[i] = f[i]
         for j in range(4):
-            Jg[i, j] = Ju[i, j] * bdt2 + Jv[i, j] * gdt
+            Jg[i, j] = jac[i, j] * bdt2 + jac[i, 4 + j] * gdt
     if a1 != 0.0:
         d0 = u[4]
         d1 = u[5]
@@ -104,7 +106,6 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
         Jg[5, 4] = Jg[4, 5]
         Jg[5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
     j = NC
-    wk = np.empty(2)
     for k in range(2):
         if modes[k] == 1:
             phi[k, 0] = x[j]
@@ -114,6 +115,7 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
             phi[k, 0] = freeze_dir[k, 0]
             phi[k, 1] = freeze_dir[k, 1]
         else:
+            wk = np.empty(2)
             for rr in range(2):
                 wk[rr] = P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]
             fk, Jk = _slip_force(wk, mu_N[k], w_reg)
@@ -132,11 +134,20 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
 
 
 @njit(cache=True)
-def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
-              w_reg, g, Jg, phi, u, w, R, J):
-    """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|."""
-    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
-            g, Jg, phi, u, w)
+def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
+            g, Jg, phi, u, w):
+    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x (stuck-face forces from x[NC:]);
+    also leaves the condensed displacement u and velocity w of the iterate."""
+    _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
+                 g, Jg, phi, u, w, np.empty((4, 8)))
+
+
+@njit(cache=True, inline="always")
+def _residual_into(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
+                   w_reg, g, Jg, phi, u, w, R, J, jac):
+    """:func:`_residual` on a caller's law Jacobian ``jac`` (4, 8)."""
+    _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
+                 g, Jg, phi, u, w, jac)
     for r in range(m):
         for c in range(m):
             J[r, c] = 0.0
@@ -171,20 +182,43 @@ def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu
 
 
 @njit(cache=True)
+def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
+              w_reg, g, Jg, phi, u, w, R, J):
+    """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|."""
+    return _residual_into(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
+                          params, w_reg, g, Jg, phi, u, w, R, J, np.empty((4, 8)))
+
+
+MX = NC + 4  # Newton unknowns at most: α and two multipliers per stuck face
+
+
+@njit(cache=True)
+def newton_work():
+    """The work arrays of :func:`_solve_support`, allocated once per step loop: ``(vec (10, MX), mat (3, MX, MX),
+    jac (4, 8))``; rows of ``vec``: iterate, residual, trial residual, right-hand side, trial iterate, Newton
+    step, best iterate, forces g, condensed u, w; ``mat``: Newton matrix, trial matrix, ∂g/∂α."""
+    return np.zeros((10, MX)), np.zeros((3, MX, MX)), np.zeros((4, 8))
+
+
+@njit(cache=True)
 def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freeze, freeze_dir, mu_N, a1,
-                   bdt2, gdt, params, tol, max_iter, w_reg):
+                   bdt2, gdt, params, tol, max_iter, w_reg, vec, mat, jac, phi):
     """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)], analytic Jacobian,
     with backtracking on |R| when a full step does not decrease it (kinks of the law).
     If it does not converge, the least-residual iterate is returned with ok = False.
 
-    Returns (alpha, g, phi (2,2), iterations, converged)."""
+    Work arrays from :func:`newton_work`. Leaves the new α in ``vec[0, :NC]``, the forces g in ``vec[7, :NC]``
+    and the face forces in ``phi`` (2, 2). Returns (iterations, converged)."""
+    x, R, R2, rhs, xt, dx, best, g, u, w = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5], vec[6], vec[7], vec[8], vec[9]
+    J, J2, Jg = mat[0], mat[1], mat[2]
     n_st = 0
     for k in range(2):
         if modes[k] == 1:
             n_st += 1
     m = NC + 2 * n_st
-    MX = NC + 4
-    x = np.zeros(MX)
+    vec[:, :] = 0.0
+    mat[:, :, :] = 0.0
+    phi[:, :] = 0.0
     for i in range(NC):
         x[i] = alpha[i]
     j = NC
@@ -193,23 +227,10 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             x[j] = phi_stuck[k, 0]
             x[j + 1] = phi_stuck[k, 1]
             j += 2
-    phi = np.zeros((2, 2))
-    g = np.zeros(NC)
-    Jg = np.zeros((NC, NC))
-    u = np.zeros(NC)
-    w = np.zeros(NC)
-    R = np.zeros(MX)
-    J = np.zeros((MX, MX))
-    R2 = np.zeros(MX)
-    J2 = np.zeros((MX, MX))
-    rhs = np.zeros(MX)
-    xt = np.zeros(MX)
-    dx = np.zeros(MX)
-    best = np.zeros(MX)
     its = 0
     ok = False
-    nR = _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
-                   params, w_reg, g, Jg, phi, u, w, R, J)
+    nR = _residual_into(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
+                        params, w_reg, g, Jg, phi, u, w, R, J, jac)
     best[:] = x
     best_n = nR
     for it in range(max_iter):
@@ -235,8 +256,8 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
         for ls in range(40):
             for i in range(m):
                 xt[i] = x[i] - lam * dx[i]
-            nR2 = _residual(xt, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
-                            params, w_reg, g, Jg, phi, u, w, R2, J2)
+            nR2 = _residual_into(xt, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2,
+                                 gdt, params, w_reg, g, Jg, phi, u, w, R2, J2, jac)
             if nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0:
                 break
             lam *= 0.5
@@ -254,9 +275,9 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             break
     if not ok:
         x[:] = best
-    _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg, g, Jg, phi,
-            u, w)
-    return x[:NC].copy(), g, phi, its, ok
+    _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg, g, Jg, phi,
+                 u, w, jac)
+    return its, ok
 
 
 @njit(cache=True)

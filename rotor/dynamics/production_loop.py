@@ -21,7 +21,7 @@ from contact.compiled_cache import compiled_with
 from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
                                             _velocity_events)
 from rotor.dynamics.kernels import contact_kernel
-from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC
+from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC, newton_work
 
 compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
@@ -55,6 +55,10 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     just_released = np.zeros(2, dtype=np.bool_)
     phi_c = np.zeros((2, 2))
     Q = np.empty(nr)
+    vec, mat, jac = newton_work()
+    phi = np.zeros((2, 2))
+    alpha_new = vec[0, :NC]
+    g = vec[7, :NC]
     # event location: the step's start state, its plain result, the held friction
     locate = locate_events and has_support
     hold = np.zeros(2, dtype=np.bool_)
@@ -112,12 +116,11 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     freeze_dir[k, 1] = hold_dir[k, 1]
                 phi_old[k, 0] = phi_face[k, 0]
                 phi_old[k, 1] = phi_face[k, 1]
-            g = np.zeros(NC)
+            g[:] = 0.0
             while True:
                 passes += 1
-                alpha_new, g, phi, its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, Sh, P, modes, phi_face,
-                                                            freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
-                                                            tol, max_iter, w_reg)
+                its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, Sh, P, modes, phi_face, freeze, freeze_dir,
+                                         mu_N, a1, bdt2, gdt, params, tol, max_iter, w_reg, vec, mat, jac, phi)
                 total_its += its
                 if not ok:
                     # slip Newton stalls when the true answer is (near) stick: try stick on the
@@ -136,11 +139,11 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
                     # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
                     status[2] += 1
-                    alpha = alpha_new
+                    alpha = alpha_new.copy()
                     for k in range(2):
                         phi_face[k] = phi[k]
                     break
-                alpha = alpha_new
+                alpha = alpha_new.copy()
                 if (freeze[0] and not hold[0]) or (freeze[1] and not hold[1]):
                     for k in range(2):
                         freeze[k] = hold[k]
