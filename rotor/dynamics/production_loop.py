@@ -20,7 +20,7 @@ from numba import njit
 from contact.compiled_cache import compiled_with
 from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
                                             _velocity_events)
-from rotor.dynamics.kernels import contact_kernel
+from rotor.dynamics.kernels import contact_point_jacobian
 from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC, newton_work
 
 compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
@@ -44,6 +44,13 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     events]. Returns ``(steps done, largest ω_c Δt)``."""
     nr = p.shape[0]
     alpha = Bt @ a
+    # the step's vectors, written in place (an array expression or a matvec result is an allocation, and
+    # every array bound to a new name a reference count)
+    p_pre, v_pre, rhs, a_lin, d_v, k_p, pn, vn, an, wg = (np.empty(nr), np.empty(nr), np.empty(nr), np.empty(nr),
+                                                        np.empty(nr), np.empty(nr), np.empty(nr), np.empty(nr),
+                                                        np.empty(nr), np.empty(nr))
+    alpha_lin, u_pre, w_pre, wv, u_new, w_new = (np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC),
+                                                 np.empty(NC))
     wdt_max = 0.0
     zero4 = np.zeros(4)
     freeze = np.zeros(2, dtype=np.bool_)
@@ -73,7 +80,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     modes_pl = modes.copy()
     phi_pl = phi_face.copy()
     jr_pl = just_released.copy()
-    p_pl, v_pl, a_pl, al_pl = p, v, a, alpha
+    p_pl, v_pl, a_pl, al_pl = np.empty(nr), np.empty(nr), np.empty(nr), np.empty(NC)
     Ai, Wh, Sh = Ainv, W, S
     h = dt
     h1 = 0.0
@@ -92,20 +99,26 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         # ---------------------------------------------------------------- the step body, length h
         bdt2 = beta * h * h
         gdt = gamma * h
-        p_pre = p + h * v + h * h * (0.5 - beta) * a
-        v_pre = v + h * (1.0 - gamma) * a
+        cp = h * h * (0.5 - beta)
+        cv = h * (1.0 - gamma)
+        for i in range(nr):
+            p_pre[i] = p[i] + h * v[i] + cp * a[i]
+            v_pre[i] = v[i] + cv * a[i]
         _load(t, static, orders, cosm, sinm, omega_f, Q)
-        rhs = Q - Dr @ v_pre - Kr @ p_pre
-        a_lin = Ai @ rhs
+        np.dot(Dr, v_pre, d_v)
+        np.dot(Kr, p_pre, k_p)
+        for i in range(nr):
+            rhs[i] = Q[i] - d_v[i] - k_p[i]
+        np.dot(Ai, rhs, a_lin)
         total_its = 0
         passes = 0
         onset = False
         wd = 0.0
         if has_support:
-            alpha_lin = Bt @ a_lin
-            u_pre = Bt @ p_pre
-            w_pre = Bt @ v_pre
-            wv = Bt @ v
+            np.dot(Bt, a_lin, alpha_lin)
+            np.dot(Bt, p_pre, u_pre)
+            np.dot(Bt, v_pre, w_pre)
+            np.dot(Bt, v, wv)
             for k in range(2):
                 w_old[k] = P[k] @ wv[:4]
                 tried[k] = modes[k] == 1
@@ -139,16 +152,17 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
                     # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
                     status[2] += 1
-                    alpha = alpha_new.copy()
+                    alpha[:] = alpha_new
                     for k in range(2):
                         phi_face[k] = phi[k]
                     break
-                alpha = alpha_new.copy()
+                alpha[:] = alpha_new
                 if (freeze[0] and not hold[0]) or (freeze[1] and not hold[1]):
                     for k in range(2):
                         freeze[k] = hold[k]
                     continue
-                w_new = w_pre + gdt * alpha
+                for i in range(NC):
+                    w_new[i] = w_pre[i] + gdt * alpha[i]
                 changed = False
                 # a face trying stick in this step (slipping at its start) is tested on its holding
                 # force at the end of the step, the consistent multiplier (stick-onset re-projection),
@@ -193,29 +207,33 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     for k in range(2):
                         phi_face[k] = phi[k]
                     break
-            an = a_lin + Wh @ g
+            np.dot(Wh, g, wg)
+            for i in range(nr):
+                an[i] = a_lin[i] + wg[i]
             if onset_projection:
                 for k in range(2):
                     if modes[k] == 1 and not stuck0[k]:
                         onset = True
             # largest ω_c Δt met: radial tangent stiffness of the law at the new state
-            u_new = u_pre + bdt2 * alpha
-            w_new = w_pre + gdt * alpha
-            f, Ju, Jv = contact_kernel(u_new[:4], w_new[:4], params)
-            kt = -(Ju[0, 0] + Ju[1, 1])
+            for i in range(NC):
+                u_new[i] = u_pre[i] + bdt2 * alpha[i]
+                w_new[i] = w_pre[i] + gdt * alpha[i]
+            contact_point_jacobian(u_new, w_new, params, jac)
+            kt = -(jac[0, 0] + jac[1, 1])
             if kt > 0:
                 wd = math.sqrt(kt * s_yy) * h
         else:
-            an = a_lin
-        pn = p_pre + bdt2 * an
-        vn = v_pre + gdt * an
+            an[:] = a_lin
+        for i in range(nr):
+            pn[i] = p_pre[i] + bdt2 * an[i]
+            vn[i] = v_pre[i] + gdt * an[i]
         for k in range(2):
             just_released[k] = onset_projection and modes[k] == 0 and stuck0[k]
         if onset:
             # a face stuck in this step: restart from the consistent acceleration (positions and
             # velocities of the step kept), so the stuck multiplier does not ring
-            an = _reproject(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
-            alpha = Bt @ an
+            an[:] = _reproject(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
+            np.dot(Bt, an, alpha)
             status[3] += 1
         if wd > wdt_max:
             wdt_max = wd
@@ -224,14 +242,17 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         # ---------------------------------------------------------------- event location (passes of the step)
         if phase == PLAIN:
             if locate and _velocity_events(v, vn, modes0, modes, jr0, Bt, P, n_faces, w_reg, ev) > 0:
-                p_pl, v_pl, a_pl, al_pl = pn, vn, an, alpha          # the plain result, kept
+                p_pl[:] = pn                                        # the plain result, kept
+                v_pl[:] = vn
+                a_pl[:] = an
+                al_pl[:] = alpha
                 modes_pl[:] = modes
                 phi_pl[:, :] = phi_face
                 jr_pl[:] = just_released
                 modes[:] = modes0
                 phi_face[:, :] = phi0
                 just_released[:] = jr0
-                alpha = Bt @ a
+                np.dot(Bt, a, alpha)
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
                 continue
@@ -242,13 +263,16 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             just_released[:] = jr0
             if theta > 1.0:                     # not reached with the friction held: the plain result stands
                 hold[:] = False
-                pn, vn, an, alpha = p_pl, v_pl, a_pl, al_pl
+                pn[:] = p_pl
+                vn[:] = v_pl
+                an[:] = a_pl
+                alpha[:] = al_pl
                 modes[:] = modes_pl
                 phi_face[:, :] = phi_pl
                 just_released[:] = jr_pl
                 phase = PLAIN
             else:
-                alpha = Bt @ a
+                np.dot(Bt, a, alpha)
                 h1 = theta * dt
                 if h1 > 1e-12 * dt:
                     Ai, Wh, Sh = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
@@ -256,16 +280,21 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     phase = TO_EVENT
                     continue
                 h1 = 0.0                        # the event at the start of the step
-                pn, vn, an = p, v, a
+                pn[:] = p
+                vn[:] = v
+                an[:] = a
                 phase = TO_EVENT
         if phase == TO_EVENT:
             # the friction state switched at the event, the consistent acceleration, then the rest of the step
             _load(t0 + (step - 1) * dt + h1, static, orders, cosm, sinm, omega_f, Q)
-            an = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
+            an[:] = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
                                   a1, params, w_reg)
             hold[:] = False
             status[4] += 1
-            p, v, a, alpha = pn, vn, an, Bt @ an
+            p[:] = pn
+            v[:] = vn
+            a[:] = an
+            np.dot(Bt, an, alpha)
             h = dt - h1
             if h > 1e-12 * dt:
                 Ai, Wh, Sh = _substep_matrices(h, Mr, Dr, Kr, Bt, beta, gamma)
@@ -276,7 +305,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             h = dt
             phase = PLAIN
         # ---------------------------------------------------------------- the step is done
-        p, v, a = pn, vn, an
+        p[:] = pn
+        v[:] = vn
+        a[:] = an
         fin = True
         for i in range(nr):
             if not (math.isfinite(p[i]) and math.isfinite(v[i])):
@@ -294,14 +325,15 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             rec_its[i] = step_its
             rec_passes[i] = step_passes
             if has_support:
-                uu = Bt @ p
-                ww = Bt @ v
-                rec_u[i] = uu[:4]
-                rec_w[i] = ww[:4]
-                f, Ju, Jv = contact_kernel(uu[:4], ww[:4], params)
-                rec_fc[i] = f
-                fe, Ju, Jv = contact_kernel(uu[:4], zero4, params)
-                rec_fel[i] = fe
+                np.dot(Bt, p, u_new)
+                np.dot(Bt, v, w_new)
+                for r in range(4):
+                    rec_u[i, r] = u_new[r]
+                    rec_w[i, r] = w_new[r]
+                rec_fc[i, 0], rec_fc[i, 1], rec_fc[i, 2], rec_fc[i, 3] = contact_point_jacobian(u_new, w_new, params,
+                                                                                               jac)
+                rec_fel[i, 0], rec_fel[i, 1], rec_fel[i, 2], rec_fel[i, 3] = contact_point_jacobian(u_new, zero4,
+                                                                                                   params, jac)
                 rec_face[i] = phi_face
                 rec_modes[i, 0] = modes[0]
                 rec_modes[i, 1] = modes[1]
