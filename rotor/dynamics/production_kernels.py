@@ -33,8 +33,20 @@ compiled_with(__file__, ["rotor.dynamics.constraints", "rotor.dynamics.kernels",
 # saving eventually failed); a global one is compiled into the loop, so every function here is cached
 # on disk (contact.compiled_cache) and compiled once per machine.
 
-_slip_force = njit(cache=True)(cons.slip_force)
 _mode_update = njit(cache=True)(cons.face_mode_update)
+
+
+
+@njit(cache=True, inline="always")
+def _slip_force_scalar(wy, wz, mu_N, w_reg):
+    """:func:`rotor.dynamics.constraints.slip_force` of the sliding velocity ``(wy, wz)`` (m/s) on scalars, the
+    same operations in the same order (nothing allocated): ``(fy, fz, J00, J01, J10, J11)`` (N; N s/m)."""
+    s2 = wy * wy + wz * wz + w_reg * w_reg
+    s = np.sqrt(s2)
+    c = mu_N / (s2 * s)
+    return (-mu_N * wy / s, -mu_N * wz / s, -mu_N / s + c * wy * wy, c * wy * wz, c * wz * wy,
+            -mu_N / s + c * wz * wz)
+
 
 NC = 6  # condensed coordinates: relative support (y, z, θy, θz) + coupling Δθ (y, z)
 
@@ -115,19 +127,17 @@ def _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N,
             phi[k, 0] = freeze_dir[k, 0]
             phi[k, 1] = freeze_dir[k, 1]
         else:
-            wk = np.empty(2)
-            for rr in range(2):
-                wk[rr] = P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]
-            fk, Jk = _slip_force(wk, mu_N[k], w_reg)
-            phi[k, 0] = fk[0]
-            phi[k, 1] = fk[1]
+            wy = P[k, 0, 0] * w[0] + P[k, 0, 1] * w[1] + P[k, 0, 2] * w[2] + P[k, 0, 3] * w[3]
+            wz = P[k, 1, 0] * w[0] + P[k, 1, 1] * w[1] + P[k, 1, 2] * w[2] + P[k, 1, 3] * w[3]
+            phi[k, 0], phi[k, 1], j00, j01, j10, j11 = _slip_force_scalar(wy, wz, mu_N[k], w_reg)
             # Jg += Pkᵀ Jk Pk γΔt
             for r in range(4):
                 for c in range(4):
                     s = 0.0
-                    for a in range(2):
-                        for b in range(2):
-                            s += P[k, a, r] * Jk[a, b] * P[k, b, c]
+                    s += P[k, 0, r] * j00 * P[k, 0, c]
+                    s += P[k, 0, r] * j01 * P[k, 1, c]
+                    s += P[k, 1, r] * j10 * P[k, 0, c]
+                    s += P[k, 1, r] * j11 * P[k, 1, c]
                     Jg[r, c] += s * gdt
         for r in range(4):
             g[r] += P[k, 0, r] * phi[k, 0] + P[k, 1, r] * phi[k, 1]
