@@ -23,11 +23,17 @@ compiled_with(__file__, ["contact._kernel"])
 
 
 @njit(cache=True, inline="always")
-def contact_point_jacobian(u, v, p, jac):
-    """The law at ``u[:4], v[:4]`` (longer arrays allowed) writing ``∂f/∂(u, v)`` into ``jac`` (4, 8): returns
+def contact_point(y, z, thy, thz, vy, vz, wy, wz, p, jac):
+    """The law at one relative state (m, rad; m/s, rad/s) writing ``∂f/∂(u, v)`` into ``jac`` (4, 8): returns
     ``(Fy, Fz, My, Mz)`` (N, N m). The step loop's form of :func:`contact_kernel` (nothing allocated)."""
     pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
-    return point_force_jacobian(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], pt, jac)
+    return point_force_jacobian(y, z, thy, thz, vy, vz, wy, wz, pt, jac)
+
+
+@njit(cache=True, inline="always")
+def contact_point_jacobian(u, v, p, jac):
+    """:func:`contact_point` at ``u[:4], v[:4]`` (longer arrays allowed)."""
+    return contact_point(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], p, jac)
 
 
 @njit(cache=True)

@@ -19,7 +19,7 @@ from numba import njit
 
 from contact.compiled_cache import compiled_with
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.kernels import contact_point_jacobian
+from rotor.dynamics.kernels import contact_point
 
 # The kernels below inline rotor.dynamics.constraints and the law kernel (rotor.dynamics.kernels, which
 # inlines contact._kernel): their cache entries are stale when any of those sources changes (numba
@@ -88,48 +88,70 @@ def _small_solve(A, b, m, out):
     return True
 
 
+# Work arrays of the Newton solve (newton_work): rows of `vec` (MX,), slabs of `mat` (MX, MX), columns of `face`.
+# One evaluation of the condensed step reads and writes only these (a handful of array arguments: every array
+# argument of a compiled call costs a reference-count increment and decrement, which dominated the step).
+MX = NC + 4  # Newton unknowns at most: α and two multipliers per stuck face
+VX, VR, VR2, VRHS, VXT, VDX, VBEST, VG, VU, VW, VALIN, VUPRE, VWPRE = range(13)   # rows of vec
+MJ, MJ2, MJG, MS = range(4)                                   # slabs of mat (MS: S, NC × NC)
+F_FROZEN, F_FD0, F_FD1, F_MU, F_PHI0, F_PHI1 = range(6)       # columns of face, one row a face
+
+
+@njit(cache=True)
+def newton_work():
+    """The work arrays of the condensed Newton solve, allocated once per step loop: ``(vec (13, MX), mat (4, MX, MX),
+    face (2, 6), jac (4, 8))``. Rows of ``vec``: iterate, residual, trial residual, right-hand side, trial iterate,
+    Newton step, best iterate, forces g, condensed u, w, and the step's α_lin, u_pre, w_pre; ``mat``: Newton matrix,
+    trial matrix, ∂g/∂α, S; ``face`` per face: frozen (1.0/0.0), frozen force (2, N), μN (N), face force φ (2, N);
+    ``jac``: the law's Jacobian."""
+    return np.zeros((13, MX)), np.zeros((4, MX, MX)), np.zeros((2, 6)), np.zeros((4, 8))
+
+
 @njit(cache=True, inline="always")
-def _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
-                 g, Jg, phi, u, w, jac):
-    """:func:`_forces` on a caller's law Jacobian ``jac`` (4, 8), written (no array allocated here)."""
+def _evaluate(vec, mat, jac, P, modes, face, params, ix, ir, ij, m, a1, bdt2, gdt, w_reg):
+    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at the iterate ``vec[ix]`` (stuck-face forces from its entries
+    NC…), also the condensed u, w of the iterate and the face forces ``face[:, PHI0:]``; with ``m > 0`` also
+    the residual ``vec[ir, :m]`` and its analytic Jacobian ``mat[ij, :m, :m]`` of the condensed step, returning
+    |R| (0 if ``m == 0``). Work arrays of :func:`newton_work`, loaded by :func:`_load_work`."""
     for i in range(NC):
-        u[i] = u_pre[i] + bdt2 * x[i]
-        w[i] = w_pre[i] + gdt * x[i]
-    f0, f1, f2, f3 = contact_point_jacobian(u, w, params, jac)
+        vec[VU, i] = vec[VUPRE, i] + bdt2 * vec[ix, i]
+        vec[VW, i] = vec[VWPRE, i] + gdt * vec[ix, i]
+    f0, f1, f2, f3 = contact_point(vec[VU, 0], vec[VU, 1], vec[VU, 2], vec[VU, 3], vec[VW, 0], vec[VW, 1], vec[VW, 2],
+                                   vec[VW, 3], params, jac)
     for i in range(NC):
-        g[i] = 0.0
+        vec[VG, i] = 0.0
         for j in range(NC):
-            Jg[i, j] = 0.0
-    g[0] = f0
-    g[1] = f1
-    g[2] = f2
-    g[3] = f3
+            mat[MJG, i, j] = 0.0
+    vec[VG, 0] = f0
+    vec[VG, 1] = f1
+    vec[VG, 2] = f2
+    vec[VG, 3] = f3
     for i in range(4):
         for j in range(4):
-            Jg[i, j] = jac[i, j] * bdt2 + jac[i, 4 + j] * gdt
+            mat[MJG, i, j] = jac[i, j] * bdt2 + jac[i, 4 + j] * gdt
     if a1 != 0.0:
-        d0 = u[4]
-        d1 = u[5]
+        d0 = vec[VU, 4]
+        d1 = vec[VU, 5]
         s2 = d0 * d0 + d1 * d1
-        g[4] = -a1 * s2 * d0
-        g[5] = -a1 * s2 * d1
-        Jg[4, 4] = -a1 * (s2 + 2 * d0 * d0) * bdt2
-        Jg[4, 5] = -a1 * (2 * d0 * d1) * bdt2
-        Jg[5, 4] = Jg[4, 5]
-        Jg[5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
+        vec[VG, 4] = -a1 * s2 * d0
+        vec[VG, 5] = -a1 * s2 * d1
+        mat[MJG, 4, 4] = -a1 * (s2 + 2 * d0 * d0) * bdt2
+        mat[MJG, 4, 5] = -a1 * (2 * d0 * d1) * bdt2
+        mat[MJG, 5, 4] = mat[MJG, 4, 5]
+        mat[MJG, 5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
     j = NC
     for k in range(2):
         if modes[k] == 1:
-            phi[k, 0] = x[j]
-            phi[k, 1] = x[j + 1]
+            face[k, F_PHI0] = vec[ix, j]
+            face[k, F_PHI1] = vec[ix, j + 1]
             j += 2
-        elif freeze[k]:
-            phi[k, 0] = freeze_dir[k, 0]
-            phi[k, 1] = freeze_dir[k, 1]
+        elif face[k, F_FROZEN] != 0.0:
+            face[k, F_PHI0] = face[k, F_FD0]
+            face[k, F_PHI1] = face[k, F_FD1]
         else:
-            wy = P[k, 0, 0] * w[0] + P[k, 0, 1] * w[1] + P[k, 0, 2] * w[2] + P[k, 0, 3] * w[3]
-            wz = P[k, 1, 0] * w[0] + P[k, 1, 1] * w[1] + P[k, 1, 2] * w[2] + P[k, 1, 3] * w[3]
-            phi[k, 0], phi[k, 1], j00, j01, j10, j11 = _slip_force_scalar(wy, wz, mu_N[k], w_reg)
+            wy = P[k, 0, 0] * vec[VW, 0] + P[k, 0, 1] * vec[VW, 1] + P[k, 0, 2] * vec[VW, 2] + P[k, 0, 3] * vec[VW, 3]
+            wz = P[k, 1, 0] * vec[VW, 0] + P[k, 1, 1] * vec[VW, 1] + P[k, 1, 2] * vec[VW, 2] + P[k, 1, 3] * vec[VW, 3]
+            face[k, F_PHI0], face[k, F_PHI1], j00, j01, j10, j11 = _slip_force_scalar(wy, wz, face[k, F_MU], w_reg)
             # Jg += Pkᵀ Jk Pk γΔt
             for r in range(4):
                 for c in range(4):
@@ -138,9 +160,82 @@ def _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N,
                     s += P[k, 0, r] * j01 * P[k, 1, c]
                     s += P[k, 1, r] * j10 * P[k, 0, c]
                     s += P[k, 1, r] * j11 * P[k, 1, c]
-                    Jg[r, c] += s * gdt
+                    mat[MJG, r, c] += s * gdt
         for r in range(4):
-            g[r] += P[k, 0, r] * phi[k, 0] + P[k, 1, r] * phi[k, 1]
+            vec[VG, r] += P[k, 0, r] * face[k, F_PHI0] + P[k, 1, r] * face[k, F_PHI1]
+    if m == 0:
+        return 0.0
+    for r in range(m):
+        for c in range(m):
+            mat[ij, r, c] = 0.0
+    for r in range(NC):
+        s = 0.0
+        for c in range(NC):
+            s += mat[MS, r, c] * vec[VG, c]
+        vec[ir, r] = vec[ix, r] - vec[VALIN, r] - s
+        for c in range(NC):
+            s = 0.0
+            for k in range(NC):
+                s += mat[MS, r, k] * mat[MJG, k, c]
+            mat[ij, r, c] = (1.0 if r == c else 0.0) - s
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            for rr in range(2):
+                vec[ir, j + rr] = (P[k, rr, 0] * vec[VW, 0] + P[k, rr, 1] * vec[VW, 1] + P[k, rr, 2] * vec[VW, 2]
+                                   + P[k, rr, 3] * vec[VW, 3]) / gdt
+                for c in range(4):
+                    mat[ij, j + rr, c] = P[k, rr, c]
+            for r in range(NC):
+                for rr in range(2):
+                    s = 0.0
+                    for c in range(4):
+                        s += mat[MS, r, c] * P[k, rr, c]
+                    mat[ij, r, j + rr] = -s
+            j += 2
+    nr = 0.0
+    for i in range(m):
+        nr += vec[ir, i] * vec[ir, i]
+    return math.sqrt(nr)
+
+
+@njit(cache=True)
+def _load_work(vec, face, x, u_pre, w_pre, freeze, freeze_dir, mu_N):
+    """Copy the inputs of :func:`_evaluate`'s forces into its work arrays: the iterate ``x`` (into ``vec[VX]``),
+    u_pre, w_pre (NC,), the frozen faces' forces and μN."""
+    for i in range(MX):
+        vec[VX, i] = x[i] if i < x.shape[0] else 0.0
+    for i in range(NC):
+        vec[VUPRE, i] = u_pre[i]
+        vec[VWPRE, i] = w_pre[i]
+    for k in range(2):
+        face[k, F_FROZEN] = 1.0 if freeze[k] else 0.0
+        face[k, F_FD0] = freeze_dir[k, 0]
+        face[k, F_FD1] = freeze_dir[k, 1]
+        face[k, F_MU] = mu_N[k]
+
+
+@njit(cache=True)
+def _load_step(vec, mat, alpha_lin, S):
+    """Copy the inputs of :func:`_evaluate`'s residual into its work arrays: α_lin (NC,) and S (NC, NC)."""
+    for i in range(NC):
+        vec[VALIN, i] = alpha_lin[i]
+        for c in range(NC):
+            mat[MS, i, c] = S[i, c]
+
+
+@njit(cache=True)
+def _forces_out(vec, mat, face, g, Jg, phi, u, w):
+    """Copy :func:`_evaluate`'s forces g, ∂g/∂α, face forces φ and condensed u, w out of its work arrays."""
+    for i in range(NC):
+        g[i] = vec[VG, i]
+        u[i] = vec[VU, i]
+        w[i] = vec[VW, i]
+        for c in range(NC):
+            Jg[i, c] = mat[MJG, i, c]
+    for k in range(2):
+        phi[k, 0] = face[k, F_PHI0]
+        phi[k, 1] = face[k, F_PHI1]
 
 
 @njit(cache=True)
@@ -148,145 +243,119 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
             g, Jg, phi, u, w):
     """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at iterate x (stuck-face forces from x[NC:]);
     also leaves the condensed displacement u and velocity w of the iterate."""
-    _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
-                 g, Jg, phi, u, w, np.empty((4, 8)))
-
-
-@njit(cache=True, inline="always")
-def _residual_into(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
-                   w_reg, g, Jg, phi, u, w, R, J, jac):
-    """:func:`_residual` on a caller's law Jacobian ``jac`` (4, 8)."""
-    _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg,
-                 g, Jg, phi, u, w, jac)
-    for r in range(m):
-        for c in range(m):
-            J[r, c] = 0.0
-    for r in range(NC):
-        s = 0.0
-        for c in range(NC):
-            s += S[r, c] * g[c]
-        R[r] = x[r] - alpha_lin[r] - s
-        for c in range(NC):
-            s = 0.0
-            for k in range(NC):
-                s += S[r, k] * Jg[k, c]
-            J[r, c] = (1.0 if r == c else 0.0) - s
-    j = NC
-    for k in range(2):
-        if modes[k] == 1:
-            for rr in range(2):
-                R[j + rr] = (P[k, rr, 0] * w[0] + P[k, rr, 1] * w[1] + P[k, rr, 2] * w[2] + P[k, rr, 3] * w[3]) / gdt
-                for c in range(4):
-                    J[j + rr, c] = P[k, rr, c]
-            for r in range(NC):
-                for rr in range(2):
-                    s = 0.0
-                    for c in range(4):
-                        s += S[r, c] * P[k, rr, c]
-                    J[r, j + rr] = -s
-            j += 2
-    nr = 0.0
-    for i in range(m):
-        nr += R[i] * R[i]
-    return math.sqrt(nr)
+    vec, mat, face, jac = newton_work()
+    _load_work(vec, face, x, u_pre, w_pre, freeze, freeze_dir, mu_N)
+    _evaluate(vec, mat, jac, P, modes, face, params, VX, VR, MJ, 0, a1, bdt2, gdt, w_reg)
+    _forces_out(vec, mat, face, g, Jg, phi, u, w)
 
 
 @njit(cache=True)
 def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
               w_reg, g, Jg, phi, u, w, R, J):
-    """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|."""
-    return _residual_into(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
-                          params, w_reg, g, Jg, phi, u, w, R, J, np.empty((4, 8)))
-
-
-MX = NC + 4  # Newton unknowns at most: α and two multipliers per stuck face
-
-
-@njit(cache=True)
-def newton_work():
-    """The work arrays of :func:`_solve_support`, allocated once per step loop: ``(vec (10, MX), mat (3, MX, MX),
-    jac (4, 8))``; rows of ``vec``: iterate, residual, trial residual, right-hand side, trial iterate, Newton
-    step, best iterate, forces g, condensed u, w; ``mat``: Newton matrix, trial matrix, ∂g/∂α."""
-    return np.zeros((10, MX)), np.zeros((3, MX, MX)), np.zeros((4, 8))
+    """Residual R and analytic Jacobian J (first m rows/cols) of the condensed step at iterate x; returns |R|.
+    Also leaves g, ∂g/∂α, the face forces φ and u, w as :func:`_forces`."""
+    vec, mat, face, jac = newton_work()
+    _load_work(vec, face, x, u_pre, w_pre, freeze, freeze_dir, mu_N)
+    _load_step(vec, mat, alpha_lin, S)
+    nR = _evaluate(vec, mat, jac, P, modes, face, params, VX, VR, MJ, m, a1, bdt2, gdt, w_reg)
+    _forces_out(vec, mat, face, g, Jg, phi, u, w)
+    for i in range(m):
+        R[i] = vec[VR, i]
+        for c in range(m):
+            J[i, c] = mat[MJ, i, c]
+    return nR
 
 
 @njit(cache=True)
 def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freeze, freeze_dir, mu_N, a1,
-                   bdt2, gdt, params, tol, max_iter, w_reg, vec, mat, jac, phi):
+                   bdt2, gdt, params, tol, max_iter, w_reg, vec, mat, face, jac, phi):
     """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)], analytic Jacobian,
     with backtracking on |R| when a full step does not decrease it (kinks of the law).
     If it does not converge, the least-residual iterate is returned with ok = False.
 
-    Work arrays from :func:`newton_work`. Leaves the new α in ``vec[0, :NC]``, the forces g in ``vec[7, :NC]``
-    and the face forces in ``phi`` (2, 2). Returns (iterations, converged)."""
-    x, R, R2, rhs, xt, dx, best, g, u, w = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5], vec[6], vec[7], vec[8], vec[9]
-    J, J2, Jg = mat[0], mat[1], mat[2]
+    Work arrays from :func:`newton_work`. Leaves the new α in ``vec[VX, :NC]``, the forces g in ``vec[VG, :NC]``
+    and the face forces in ``phi`` (2, 2). Returns (iterations, converged).
+
+    One call site of :func:`_evaluate`, in a loop over its stages (the first iterate, the line-search trials,
+    the forces at the result): each call of a compiled function with array arguments costs reference counts."""
     n_st = 0
     for k in range(2):
         if modes[k] == 1:
             n_st += 1
     m = NC + 2 * n_st
-    vec[:, :] = 0.0
-    mat[:, :, :] = 0.0
-    phi[:, :] = 0.0
-    for i in range(NC):
-        x[i] = alpha[i]
+    _load_work(vec, face, alpha, u_pre, w_pre, freeze, freeze_dir, mu_N)
+    _load_step(vec, mat, alpha_lin, S)
     j = NC
     for k in range(2):
         if modes[k] == 1:
-            x[j] = phi_stuck[k, 0]
-            x[j + 1] = phi_stuck[k, 1]
+            vec[VX, j] = phi_stuck[k, 0]
+            vec[VX, j + 1] = phi_stuck[k, 1]
             j += 2
+    for i in range(MX):
+        vec[VXT, i] = vec[VX, i]
     its = 0
     ok = False
-    nR = _residual_into(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2, gdt,
-                        params, w_reg, g, Jg, phi, u, w, R, J, jac)
-    best[:] = x
-    best_n = nR
-    for it in range(max_iter):
-        its = it + 1
-        for i in range(m):
-            rhs[i] = R[i]
-        if not _small_solve(J, rhs, m, dx):
+    stage = 0           # 0: the first iterate, 1: a line-search trial, 2: the forces at the result
+    it = 0
+    ls = 0
+    lam = 1.0
+    nR = 0.0
+    best_n = 0.0
+    while True:
+        nR2 = _evaluate(vec, mat, jac, P, modes, face, params, VXT, VR2, MJ2, m if stage != 2 else 0, a1, bdt2, gdt,
+                        w_reg)
+        if stage == 2:
             break
-        nx = 0.0
-        nd = 0.0
-        for i in range(m):
-            nx += x[i] * x[i]
-            nd += dx[i] * dx[i]
-        if not (nd == nd):
-            break
-        if math.sqrt(nd) <= tol * (math.sqrt(nx) + 1e-12):
+        if stage == 1 and not (nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0) and ls < 39:
+            lam *= 0.5      # backtrack
+            ls += 1
             for i in range(m):
-                x[i] -= dx[i]
-            ok = True
-            break
-        lam = 1.0
-        nR2 = nR
-        for ls in range(40):
-            for i in range(m):
-                xt[i] = x[i] - lam * dx[i]
-            nR2 = _residual_into(xt, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu_N, a1, bdt2,
-                                 gdt, params, w_reg, g, Jg, phi, u, w, R2, J2, jac)
-            if nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0:
-                break
-            lam *= 0.5
-        for i in range(m):
-            x[i] = xt[i]
-            R[i] = R2[i]
+                vec[VXT, i] = vec[VX, i] - lam * vec[VDX, i]
+            continue
+        for i in range(m):  # the trial is the new iterate
+            vec[VX, i] = vec[VXT, i]
+            vec[VR, i] = vec[VR2, i]
             for c in range(m):
-                J[i, c] = J2[i, c]
+                mat[MJ, i, c] = mat[MJ2, i, c]
         nR = nR2
-        if nR < best_n:
+        if stage == 0 or nR < best_n:
             best_n = nR
-            best[:] = x
-        if nR == 0.0:
+            for i in range(MX):
+                vec[VBEST, i] = vec[VX, i]
+        if stage == 1 and nR == 0.0:
             ok = True
-            break
-    if not ok:
-        x[:] = best
-    _forces_into(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, params, w_reg, g, Jg, phi,
-                 u, w, jac)
+        stage = 2
+        if not ok and it < max_iter:    # the next Newton iteration
+            its = it + 1
+            it += 1
+            for i in range(m):
+                vec[VRHS, i] = vec[VR, i]
+            if _small_solve(mat[MJ], vec[VRHS], m, vec[VDX]):
+                nx = 0.0
+                nd = 0.0
+                for i in range(m):
+                    nx += vec[VX, i] * vec[VX, i]
+                    nd += vec[VDX, i] * vec[VDX, i]
+                if nd == nd:
+                    if math.sqrt(nd) <= tol * (math.sqrt(nx) + 1e-12):
+                        for i in range(m):
+                            vec[VX, i] -= vec[VDX, i]
+                        ok = True
+                    else:
+                        lam = 1.0
+                        ls = 0
+                        for i in range(m):
+                            vec[VXT, i] = vec[VX, i] - lam * vec[VDX, i]
+                        stage = 1
+        if stage == 2:
+            if not ok:
+                for i in range(MX):
+                    vec[VX, i] = vec[VBEST, i]
+            for i in range(MX):
+                vec[VXT, i] = vec[VX, i]
+    for k in range(2):
+        phi[k, 0] = face[k, F_PHI0]
+        phi[k, 1] = face[k, F_PHI1]
     return its, ok
 
 

@@ -21,7 +21,7 @@ from contact.compiled_cache import compiled_with
 from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
                                             _velocity_events)
 from rotor.dynamics.kernels import contact_point_jacobian
-from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC, newton_work
+from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC, VG, VX, newton_work
 
 compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
@@ -62,10 +62,10 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     just_released = np.zeros(2, dtype=np.bool_)
     phi_c = np.zeros((2, 2))
     Q = np.empty(nr)
-    vec, mat, jac = newton_work()
+    vec, mat, face, jac = newton_work()
     phi = np.zeros((2, 2))
-    alpha_new = vec[0, :NC]
-    g = vec[7, :NC]
+    alpha_new = vec[VX, :NC]
+    g = vec[VG, :NC]
     # event location: the step's start state, its plain result, the held friction
     locate = locate_events and has_support
     hold = np.zeros(2, dtype=np.bool_)
@@ -133,7 +133,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             while True:
                 passes += 1
                 its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, Sh, P, modes, phi_face, freeze, freeze_dir,
-                                         mu_N, a1, bdt2, gdt, params, tol, max_iter, w_reg, vec, mat, jac, phi)
+                                         mu_N, a1, bdt2, gdt, params, tol, max_iter, w_reg, vec, mat, face, jac,
+                                         phi)
                 total_its += its
                 if not ok:
                     # slip Newton stalls when the true answer is (near) stick: try stick on the
