@@ -102,106 +102,184 @@ def newton_work():
     """The work arrays of the condensed Newton solve, allocated once per step loop: ``(vec (13, MX), mat (4, MX, MX),
     face (2, 6), jac (4, 8))``. Rows of ``vec``: iterate, residual, trial residual, right-hand side, trial iterate,
     Newton step, best iterate, forces g, condensed u, w, and the step's α_lin, u_pre, w_pre; ``mat``: Newton matrix,
-    trial matrix, ∂g/∂α, S; ``face`` per face: frozen (1.0/0.0), frozen force (2, N), μN (N), face force φ (2, N);
-    ``jac``: the law's Jacobian."""
+    trial matrix, ∂g/∂α, S; ``face`` per face: frozen (1.0/0.0), frozen force (2, N), μN (N), face force
+    φ (2, N); ``jac``: the law's Jacobian."""
     return np.zeros((13, MX)), np.zeros((4, MX, MX)), np.zeros((2, 6)), np.zeros((4, 8))
 
 
-@njit(cache=True, inline="always")
-def _evaluate(vec, mat, jac, P, modes, face, params, ix, ir, ij, m, a1, bdt2, gdt, w_reg):
-    """Condensed forces g (NC,) and ∂g/∂α (NC, NC) at the iterate ``vec[ix]`` (stuck-face forces from its entries
-    NC…), also the condensed u, w of the iterate and the face forces ``face[:, PHI0:]``; with ``m > 0`` also
-    the residual ``vec[ir, :m]`` and its analytic Jacobian ``mat[ij, :m, :m]`` of the condensed step, returning
-    |R| (0 if ``m == 0``). Work arrays of :func:`newton_work`, loaded by :func:`_load_work`."""
-    for i in range(NC):
-        vec[VU, i] = vec[VUPRE, i] + bdt2 * vec[ix, i]
-        vec[VW, i] = vec[VWPRE, i] + gdt * vec[ix, i]
-    f0, f1, f2, f3 = contact_point(vec[VU, 0], vec[VU, 1], vec[VU, 2], vec[VU, 3], vec[VW, 0], vec[VW, 1], vec[VW, 2],
-                                   vec[VW, 3], params, jac)
-    for i in range(NC):
-        vec[VG, i] = 0.0
-        for j in range(NC):
-            mat[MJG, i, j] = 0.0
-    vec[VG, 0] = f0
-    vec[VG, 1] = f1
-    vec[VG, 2] = f2
-    vec[VG, 3] = f3
-    for i in range(4):
-        for j in range(4):
-            mat[MJG, i, j] = jac[i, j] * bdt2 + jac[i, 4 + j] * gdt
-    if a1 != 0.0:
-        d0 = vec[VU, 4]
-        d1 = vec[VU, 5]
-        s2 = d0 * d0 + d1 * d1
-        vec[VG, 4] = -a1 * s2 * d0
-        vec[VG, 5] = -a1 * s2 * d1
-        mat[MJG, 4, 4] = -a1 * (s2 + 2 * d0 * d0) * bdt2
-        mat[MJG, 4, 5] = -a1 * (2 * d0 * d1) * bdt2
-        mat[MJG, 5, 4] = mat[MJG, 4, 5]
-        mat[MJG, 5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
-    j = NC
-    for k in range(2):
-        if modes[k] == 1:
-            face[k, F_PHI0] = vec[ix, j]
-            face[k, F_PHI1] = vec[ix, j + 1]
-            j += 2
-        elif face[k, F_FROZEN] != 0.0:
-            face[k, F_PHI0] = face[k, F_FD0]
-            face[k, F_PHI1] = face[k, F_FD1]
-        else:
-            wy = P[k, 0, 0] * vec[VW, 0] + P[k, 0, 1] * vec[VW, 1] + P[k, 0, 2] * vec[VW, 2] + P[k, 0, 3] * vec[VW, 3]
-            wz = P[k, 1, 0] * vec[VW, 0] + P[k, 1, 1] * vec[VW, 1] + P[k, 1, 2] * vec[VW, 2] + P[k, 1, 3] * vec[VW, 3]
-            face[k, F_PHI0], face[k, F_PHI1], j00, j01, j10, j11 = _slip_force_scalar(wy, wz, face[k, F_MU], w_reg)
-            # Jg += Pkᵀ Jk Pk γΔt
-            for r in range(4):
-                for c in range(4):
-                    s = 0.0
-                    s += P[k, 0, r] * j00 * P[k, 0, c]
-                    s += P[k, 0, r] * j01 * P[k, 1, c]
-                    s += P[k, 1, r] * j10 * P[k, 0, c]
-                    s += P[k, 1, r] * j11 * P[k, 1, c]
-                    mat[MJG, r, c] += s * gdt
-        for r in range(4):
-            vec[VG, r] += P[k, 0, r] * face[k, F_PHI0] + P[k, 1, r] * face[k, F_PHI1]
-    if m == 0:
-        return 0.0
-    for r in range(m):
-        for c in range(m):
-            mat[ij, r, c] = 0.0
-    for r in range(NC):
-        s = 0.0
-        for c in range(NC):
-            s += mat[MS, r, c] * vec[VG, c]
-        vec[ir, r] = vec[ix, r] - vec[VALIN, r] - s
-        for c in range(NC):
-            s = 0.0
-            for k in range(NC):
-                s += mat[MS, r, k] * mat[MJG, k, c]
-            mat[ij, r, c] = (1.0 if r == c else 0.0) - s
-    j = NC
-    for k in range(2):
-        if modes[k] == 1:
-            for rr in range(2):
-                vec[ir, j + rr] = (P[k, rr, 0] * vec[VW, 0] + P[k, rr, 1] * vec[VW, 1] + P[k, rr, 2] * vec[VW, 2]
-                                   + P[k, rr, 3] * vec[VW, 3]) / gdt
-                for c in range(4):
-                    mat[ij, j + rr, c] = P[k, rr, c]
-            for r in range(NC):
-                for rr in range(2):
-                    s = 0.0
+@njit(cache=True)
+def _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, tol, max_iter, evaluate_only):
+    """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)] from ``vec[VX]``, analytic Jacobian,
+    with backtracking on |R| when a full step does not decrease it (kinks of the law); the least-residual
+    iterate if it does not converge. Leaves the result in ``vec[VX]``, and at it the condensed forces g
+    (``vec[VG]``), ∂g/∂α (``mat[MJG]``), u, w (``vec[VU]``, ``vec[VW]``) and the face forces ``face[:, F_PHI0:]``.
+    ``evaluate_only``: no Newton, these at ``vec[VX]`` and the residual of the first ``m`` unknowns into
+    ``vec[VR2]``, ``mat[MJ2]`` (m = 0: the forces alone). Work arrays of :func:`newton_work`, loaded by
+    :func:`_load_work` and :func:`_load_step`. Returns (iterations, converged, |R| of the last evaluation).
+
+    The condensed step is evaluated at one place, in a loop over its stages (the first iterate, the
+    line-search trials, the forces at the result): a compiled call with array arguments costs reference
+    counts, which dominated the step."""
+    for i in range(MX):
+        vec[VXT, i] = vec[VX, i]
+    Jn = mat[MJ]
+    rhs = vec[VRHS]
+    dx = vec[VDX]
+    its = 0
+    ok = False
+    stage = 2 if evaluate_only else 0   # 0: the first iterate, 1: a line-search trial, 2: the forces at the result
+    it = 0
+    ls = 0
+    lam = 1.0
+    nR = 0.0
+    nR2 = 0.0
+    best_n = 0.0
+    while True:
+        # ---- the condensed step at vec[VXT]: forces, and with m_now > 0 the residual into vec[VR2], mat[MJ2]
+        m_now = m if (stage != 2 or evaluate_only) else 0
+        for i in range(NC):
+            vec[VU, i] = vec[VUPRE, i] + bdt2 * vec[VXT, i]
+            vec[VW, i] = vec[VWPRE, i] + gdt * vec[VXT, i]
+        f0, f1, f2, f3 = contact_point(vec[VU, 0], vec[VU, 1], vec[VU, 2], vec[VU, 3], vec[VW, 0], vec[VW, 1],
+                                       vec[VW, 2], vec[VW, 3], params, jac)
+        for i in range(NC):
+            vec[VG, i] = 0.0
+            for j in range(NC):
+                mat[MJG, i, j] = 0.0
+        vec[VG, 0] = f0
+        vec[VG, 1] = f1
+        vec[VG, 2] = f2
+        vec[VG, 3] = f3
+        for i in range(4):
+            for j in range(4):
+                mat[MJG, i, j] = jac[i, j] * bdt2 + jac[i, 4 + j] * gdt
+        if a1 != 0.0:
+            d0 = vec[VU, 4]
+            d1 = vec[VU, 5]
+            s2 = d0 * d0 + d1 * d1
+            vec[VG, 4] = -a1 * s2 * d0
+            vec[VG, 5] = -a1 * s2 * d1
+            mat[MJG, 4, 4] = -a1 * (s2 + 2 * d0 * d0) * bdt2
+            mat[MJG, 4, 5] = -a1 * (2 * d0 * d1) * bdt2
+            mat[MJG, 5, 4] = mat[MJG, 4, 5]
+            mat[MJG, 5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
+        j = NC
+        for k in range(2):
+            if modes[k] == 1:
+                face[k, F_PHI0] = vec[VXT, j]
+                face[k, F_PHI1] = vec[VXT, j + 1]
+                j += 2
+            elif face[k, F_FROZEN] != 0.0:
+                face[k, F_PHI0] = face[k, F_FD0]
+                face[k, F_PHI1] = face[k, F_FD1]
+            else:
+                wy = (P[k, 0, 0] * vec[VW, 0] + P[k, 0, 1] * vec[VW, 1] + P[k, 0, 2] * vec[VW, 2]
+                      + P[k, 0, 3] * vec[VW, 3])
+                wz = (P[k, 1, 0] * vec[VW, 0] + P[k, 1, 1] * vec[VW, 1] + P[k, 1, 2] * vec[VW, 2]
+                      + P[k, 1, 3] * vec[VW, 3])
+                face[k, F_PHI0], face[k, F_PHI1], j00, j01, j10, j11 = _slip_force_scalar(wy, wz, face[k, F_MU],
+                                                                                          w_reg)
+                # Jg += Pkᵀ Jk Pk γΔt
+                for r in range(4):
                     for c in range(4):
-                        s += mat[MS, r, c] * P[k, rr, c]
-                    mat[ij, r, j + rr] = -s
-            j += 2
-    nr = 0.0
-    for i in range(m):
-        nr += vec[ir, i] * vec[ir, i]
-    return math.sqrt(nr)
+                        s = 0.0
+                        s += P[k, 0, r] * j00 * P[k, 0, c]
+                        s += P[k, 0, r] * j01 * P[k, 1, c]
+                        s += P[k, 1, r] * j10 * P[k, 0, c]
+                        s += P[k, 1, r] * j11 * P[k, 1, c]
+                        mat[MJG, r, c] += s * gdt
+            for r in range(4):
+                vec[VG, r] += P[k, 0, r] * face[k, F_PHI0] + P[k, 1, r] * face[k, F_PHI1]
+        nR2 = 0.0
+        if m_now > 0:
+            for r in range(m_now):
+                for c in range(m_now):
+                    mat[MJ2, r, c] = 0.0
+            for r in range(NC):
+                s = 0.0
+                for c in range(NC):
+                    s += mat[MS, r, c] * vec[VG, c]
+                vec[VR2, r] = vec[VXT, r] - vec[VALIN, r] - s
+                for c in range(NC):
+                    s = 0.0
+                    for k in range(NC):
+                        s += mat[MS, r, k] * mat[MJG, k, c]
+                    mat[MJ2, r, c] = (1.0 if r == c else 0.0) - s
+            j = NC
+            for k in range(2):
+                if modes[k] == 1:
+                    for rr in range(2):
+                        vec[VR2, j + rr] = (P[k, rr, 0] * vec[VW, 0] + P[k, rr, 1] * vec[VW, 1]
+                                            + P[k, rr, 2] * vec[VW, 2] + P[k, rr, 3] * vec[VW, 3]) / gdt
+                        for c in range(4):
+                            mat[MJ2, j + rr, c] = P[k, rr, c]
+                    for r in range(NC):
+                        for rr in range(2):
+                            s = 0.0
+                            for c in range(4):
+                                s += mat[MS, r, c] * P[k, rr, c]
+                            mat[MJ2, r, j + rr] = -s
+                    j += 2
+            nr = 0.0
+            for i in range(m_now):
+                nr += vec[VR2, i] * vec[VR2, i]
+            nR2 = math.sqrt(nr)
+        # ---- the stage's decision
+        if stage == 2:
+            break
+        if stage == 1 and not (nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0) and ls < 39:
+            lam *= 0.5      # backtrack
+            ls += 1
+            for i in range(m):
+                vec[VXT, i] = vec[VX, i] - lam * dx[i]
+            continue
+        for i in range(m):  # the trial is the new iterate
+            vec[VX, i] = vec[VXT, i]
+            vec[VR, i] = vec[VR2, i]
+            for c in range(m):
+                Jn[i, c] = mat[MJ2, i, c]
+        nR = nR2
+        if stage == 0 or nR < best_n:
+            best_n = nR
+            for i in range(MX):
+                vec[VBEST, i] = vec[VX, i]
+        if stage == 1 and nR == 0.0:
+            ok = True
+        stage = 2
+        if not ok and it < max_iter:    # the next Newton iteration
+            its = it + 1
+            it += 1
+            for i in range(m):
+                rhs[i] = vec[VR, i]
+            if _small_solve(Jn, rhs, m, dx):
+                nx = 0.0
+                nd = 0.0
+                for i in range(m):
+                    nx += vec[VX, i] * vec[VX, i]
+                    nd += dx[i] * dx[i]
+                if nd == nd:
+                    if math.sqrt(nd) <= tol * (math.sqrt(nx) + 1e-12):
+                        for i in range(m):
+                            vec[VX, i] -= dx[i]
+                        ok = True
+                    else:
+                        lam = 1.0
+                        ls = 0
+                        for i in range(m):
+                            vec[VXT, i] = vec[VX, i] - lam * dx[i]
+                        stage = 1
+        if stage == 2:
+            if not ok:
+                for i in range(MX):
+                    vec[VX, i] = vec[VBEST, i]
+            for i in range(MX):
+                vec[VXT, i] = vec[VX, i]
+    return its, ok, nR2
 
 
 @njit(cache=True)
 def _load_work(vec, face, x, u_pre, w_pre, freeze, freeze_dir, mu_N):
-    """Copy the inputs of :func:`_evaluate`'s forces into its work arrays: the iterate ``x`` (into ``vec[VX]``),
+    """Copy the inputs of :func:`_newton`'s forces into its work arrays: the iterate ``x`` (into ``vec[VX]``),
     u_pre, w_pre (NC,), the frozen faces' forces and μN."""
     for i in range(MX):
         vec[VX, i] = x[i] if i < x.shape[0] else 0.0
@@ -217,7 +295,7 @@ def _load_work(vec, face, x, u_pre, w_pre, freeze, freeze_dir, mu_N):
 
 @njit(cache=True)
 def _load_step(vec, mat, alpha_lin, S):
-    """Copy the inputs of :func:`_evaluate`'s residual into its work arrays: α_lin (NC,) and S (NC, NC)."""
+    """Copy the inputs of :func:`_newton`'s residual into its work arrays: α_lin (NC,) and S (NC, NC)."""
     for i in range(NC):
         vec[VALIN, i] = alpha_lin[i]
         for c in range(NC):
@@ -226,7 +304,7 @@ def _load_step(vec, mat, alpha_lin, S):
 
 @njit(cache=True)
 def _forces_out(vec, mat, face, g, Jg, phi, u, w):
-    """Copy :func:`_evaluate`'s forces g, ∂g/∂α, face forces φ and condensed u, w out of its work arrays."""
+    """Copy :func:`_newton`'s forces g, ∂g/∂α, face forces φ and condensed u, w out of its work arrays."""
     for i in range(NC):
         g[i] = vec[VG, i]
         u[i] = vec[VU, i]
@@ -245,7 +323,7 @@ def _forces(x, u_pre, w_pre, bdt2, gdt, P, modes, freeze, freeze_dir, mu_N, a1, 
     also leaves the condensed displacement u and velocity w of the iterate."""
     vec, mat, face, jac = newton_work()
     _load_work(vec, face, x, u_pre, w_pre, freeze, freeze_dir, mu_N)
-    _evaluate(vec, mat, jac, P, modes, face, params, VX, VR, MJ, 0, a1, bdt2, gdt, w_reg)
+    _newton(vec, mat, face, jac, P, modes, params, 0, a1, bdt2, gdt, w_reg, 0.0, 0, True)
     _forces_out(vec, mat, face, g, Jg, phi, u, w)
 
 
@@ -257,12 +335,12 @@ def _residual(x, m, alpha_lin, u_pre, w_pre, S, P, modes, freeze, freeze_dir, mu
     vec, mat, face, jac = newton_work()
     _load_work(vec, face, x, u_pre, w_pre, freeze, freeze_dir, mu_N)
     _load_step(vec, mat, alpha_lin, S)
-    nR = _evaluate(vec, mat, jac, P, modes, face, params, VX, VR, MJ, m, a1, bdt2, gdt, w_reg)
+    nR = _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, 0.0, 0, True)[2]
     _forces_out(vec, mat, face, g, Jg, phi, u, w)
     for i in range(m):
-        R[i] = vec[VR, i]
+        R[i] = vec[VR2, i]
         for c in range(m):
-            J[i, c] = mat[MJ, i, c]
+            J[i, c] = mat[MJ2, i, c]
     return nR
 
 
@@ -274,10 +352,8 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
     If it does not converge, the least-residual iterate is returned with ok = False.
 
     Work arrays from :func:`newton_work`. Leaves the new α in ``vec[VX, :NC]``, the forces g in ``vec[VG, :NC]``
-    and the face forces in ``phi`` (2, 2). Returns (iterations, converged).
-
-    One call site of :func:`_evaluate`, in a loop over its stages (the first iterate, the line-search trials,
-    the forces at the result): each call of a compiled function with array arguments costs reference counts."""
+    and the face forces in ``phi`` (2, 2). Returns (iterations, converged). (:func:`_newton` on the loaded work
+    arrays.)"""
     n_st = 0
     for k in range(2):
         if modes[k] == 1:
@@ -291,68 +367,7 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
             vec[VX, j] = phi_stuck[k, 0]
             vec[VX, j + 1] = phi_stuck[k, 1]
             j += 2
-    for i in range(MX):
-        vec[VXT, i] = vec[VX, i]
-    its = 0
-    ok = False
-    stage = 0           # 0: the first iterate, 1: a line-search trial, 2: the forces at the result
-    it = 0
-    ls = 0
-    lam = 1.0
-    nR = 0.0
-    best_n = 0.0
-    while True:
-        nR2 = _evaluate(vec, mat, jac, P, modes, face, params, VXT, VR2, MJ2, m if stage != 2 else 0, a1, bdt2, gdt,
-                        w_reg)
-        if stage == 2:
-            break
-        if stage == 1 and not (nR2 <= (1.0 - 1e-4 * lam) * nR or nR2 == 0.0) and ls < 39:
-            lam *= 0.5      # backtrack
-            ls += 1
-            for i in range(m):
-                vec[VXT, i] = vec[VX, i] - lam * vec[VDX, i]
-            continue
-        for i in range(m):  # the trial is the new iterate
-            vec[VX, i] = vec[VXT, i]
-            vec[VR, i] = vec[VR2, i]
-            for c in range(m):
-                mat[MJ, i, c] = mat[MJ2, i, c]
-        nR = nR2
-        if stage == 0 or nR < best_n:
-            best_n = nR
-            for i in range(MX):
-                vec[VBEST, i] = vec[VX, i]
-        if stage == 1 and nR == 0.0:
-            ok = True
-        stage = 2
-        if not ok and it < max_iter:    # the next Newton iteration
-            its = it + 1
-            it += 1
-            for i in range(m):
-                vec[VRHS, i] = vec[VR, i]
-            if _small_solve(mat[MJ], vec[VRHS], m, vec[VDX]):
-                nx = 0.0
-                nd = 0.0
-                for i in range(m):
-                    nx += vec[VX, i] * vec[VX, i]
-                    nd += vec[VDX, i] * vec[VDX, i]
-                if nd == nd:
-                    if math.sqrt(nd) <= tol * (math.sqrt(nx) + 1e-12):
-                        for i in range(m):
-                            vec[VX, i] -= vec[VDX, i]
-                        ok = True
-                    else:
-                        lam = 1.0
-                        ls = 0
-                        for i in range(m):
-                            vec[VXT, i] = vec[VX, i] - lam * vec[VDX, i]
-                        stage = 1
-        if stage == 2:
-            if not ok:
-                for i in range(MX):
-                    vec[VX, i] = vec[VBEST, i]
-            for i in range(MX):
-                vec[VXT, i] = vec[VX, i]
+    its, ok, _ = _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, tol, max_iter, False)
     for k in range(2):
         phi[k, 0] = face[k, F_PHI0]
         phi[k, 1] = face[k, F_PHI1]
