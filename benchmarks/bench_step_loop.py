@@ -1,0 +1,161 @@
+"""The production integrator's compiled step loop: this tree against an earlier commit, side by side.
+
+Writes ``reports/published/perf-step-loop.md``: the Table 4 rotor (``paper-table4``) at 10 500 rpm, 250
+revolutions of :func:`rotor.dynamics.production.simulate_production` from the linear start
+(:func:`rotor.dynamics.initial.linear_initial_state`), at the steady-state study's steps per revolution
+(:func:`rotor.studies.steady_state.step_per_rev`), ``NewmarkOptions.locate_events`` off and on. The earlier
+code is the ``contact`` and ``rotor`` packages of ``--old-ref`` (``git archive`` into a folder under the
+temporary directory, compiled once into the on-disk cache like any checkout); each tree runs in its own
+worker process, which compiles (or loads) the loop first and then times runs on request, the two asked
+alternately (the order swapped every repeat), ``--repeats`` times. Medians of the wall and CPU times, per
+step; the load average at the start and at the end; whether the two trees' end states are bit-identical.
+
+Run: ``nice -n 0 .venv/bin/python benchmarks/bench_step_loop.py [--old-ref REF] [--repeats N]`` (about a
+minute after the first compilation of the old tree).
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tarfile
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from contact.files import atomic_write_text  # noqa: E402
+
+OUT = ROOT / "reports" / "published" / "perf-step-loop.md"
+RPM = 10500.0
+REVS = 250
+OLD_REF = "291495d"   # the branch point of the step-loop work (before any of it)
+
+# The worker: set the point up, compile or load the loop, then one timed run per request line ("off"/"on").
+WORKER = r"""
+import hashlib, json, math, sys, time
+import numpy as np
+from rotor.dynamics.initial import linear_initial_state
+from rotor.dynamics.production import prepare, simulate_production
+from rotor.dynamics.system import NewmarkOptions
+from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
+import rotor
+rpm, revs = float(sys.argv[1]), int(sys.argv[2])
+_, model, system = point_system("paper-table4", rpm)
+n = step_per_rev(system, SteadyStateOptions())
+dt = 2 * math.pi / (system.omega_rad_s * n)
+q0, v0 = linear_initial_state(system, 0.0)
+pre = prepare(system, dt)
+t = time.perf_counter()
+simulate_production(system, dt, 4, q0, v0, prepared=pre)
+print(json.dumps({"ready": True, "first_call_s": time.perf_counter() - t, "package": rotor.__file__,
+                  "steps": revs * n, "steps_per_rev": n}), flush=True)
+for line in sys.stdin:
+    opts = NewmarkOptions(locate_events=line.strip() == "on")
+    w, c = time.perf_counter(), time.process_time()
+    tr = simulate_production(system, dt, revs * n, q0, v0, options=opts, record_every=revs * n, prepared=pre)
+    c, w = time.process_time() - c, time.perf_counter() - w
+    end = hashlib.sha256(np.concatenate([tr.q[-1], tr.v[-1], tr.a[-1]]).tobytes()).hexdigest()
+    print(json.dumps({"wall_s": w, "cpu_s": c, "end_sha256": end, "events": tr.located_events}), flush=True)
+"""
+
+
+def old_tree(ref: str) -> Path:
+    """The ``contact`` and ``rotor`` packages of ``ref``, extracted once into the temporary directory."""
+    sha = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short=12", ref], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    tree = Path(tempfile.gettempdir()) / f"ringcontact-bench-step-loop-{sha}"
+    if not (tree / "rotor").is_dir():
+        tmp = Path(tempfile.mkdtemp(dir=tempfile.gettempdir()))
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", "--format=tar", sha, "contact", "rotor"],
+                                 capture_output=True, check=True).stdout
+        tar_path = tmp / "src.tar"
+        tar_path.write_bytes(archive)
+        with tarfile.open(tar_path) as tar:
+            tar.extractall(tmp / "tree", filter="data")
+        os.replace(tmp / "tree", tree)
+    return tree
+
+
+class Worker:
+    """One tree's worker process (see ``WORKER``)."""
+
+    def __init__(self, tree: Path):
+        env = dict(os.environ, PYTHONPATH=str(tree), OPENBLAS_NUM_THREADS="1")
+        self.proc = subprocess.Popen([sys.executable, "-c", WORKER, str(RPM), str(REVS)], cwd=tree, env=env,
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        self.info = json.loads(self.proc.stdout.readline())
+
+    def run(self, case: str) -> dict:
+        self.proc.stdin.write(case + "\n")
+        self.proc.stdin.flush()
+        return json.loads(self.proc.stdout.readline())
+
+    def close(self) -> None:
+        self.proc.stdin.close()
+        self.proc.wait(timeout=60)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--old-ref", default=OLD_REF, help=f"git commit of the earlier code (default {OLD_REF})")
+    ap.add_argument("--repeats", type=int, default=7, help="interleaved repeats (default 7)")
+    args = ap.parse_args()
+    load0 = os.getloadavg()
+    workers = {"old": Worker(old_tree(args.old_ref)), "new": Worker(ROOT)}
+    times = {(tree, case): [] for tree in workers for case in ("off", "on")}
+    ends, events = {}, {}
+    for r in range(args.repeats):
+        for case in ("off", "on"):
+            for tree in (("old", "new") if r % 2 == 0 else ("new", "old")):
+                res = workers[tree].run(case)
+                times[(tree, case)].append((res["wall_s"], res["cpu_s"]))
+                ends.setdefault((tree, case), set()).add(res["end_sha256"])
+                events[(tree, case)] = res["events"]
+    load1 = os.getloadavg()
+    for w in workers.values():
+        w.close()
+    steps = workers["new"].info["steps"]
+    lines = report(args, workers, times, ends, events, steps, load0, load1)
+    atomic_write_text(OUT, "\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+def report(args, workers, times, ends, events, steps, load0, load1) -> list[str]:
+    """The markdown lines of the report."""
+    def med(tree, case, k):
+        return statistics.median(t[k] for t in times[(tree, case)])
+
+    ref = workers["old"].info["package"].split("/rotor/__init__.py")[0]
+    lines = ["# The production step loop: time per step, before and after", "",
+             f"Generated by `benchmarks/bench_step_loop.py` on {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M}"
+             f" UTC. Table 4 rotor (`paper-table4`) at {RPM:g} rpm, {REVS} revolutions of `simulate_production` from "
+             f"the linear start, {workers['new'].info['steps_per_rev']} steps per revolution ({steps} steps), "
+             "`NewmarkOptions.locate_events` off and on. *before*: the `contact` and `rotor` packages of commit "
+             f"`{args.old_ref}` ({ref}); *after*: this tree. Each tree in its own worker process, compiled or loaded "
+             f"from the disk cache first (first call {workers['old'].info['first_call_s']:.2f} s / "
+             f"{workers['new'].info['first_call_s']:.2f} s), then asked alternately (order swapped every repeat), "
+             f"{args.repeats} repeats, medians. Load average at start {load0[0]:.2f}/{load0[1]:.2f}/{load0[2]:.2f}, "
+             f"at end {load1[0]:.2f}/{load1[1]:.2f}/{load1[2]:.2f} (shared machine, 2 cores); {platform.machine()}, "
+             f"Python {platform.python_version()}.", "",
+             "| locate_events | before, µs/step (wall) | after, µs/step (wall) | ratio (wall) | before, µs/step (CPU) "
+             "| after, µs/step (CPU) | ratio (CPU) | located events | end states bit-identical |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for case in ("off", "on"):
+        wo, wn = med("old", case, 0), med("new", case, 0)
+        co, cn = med("old", case, 1), med("new", case, 1)
+        same = len(ends[("old", case)] | ends[("new", case)]) == 1
+        lines.append(f"| {case} | {wo / steps * 1e6:.2f} | {wn / steps * 1e6:.2f} | {wo / wn:.2f} | "
+                     f"{co / steps * 1e6:.2f} | {cn / steps * 1e6:.2f} | {co / cn:.2f} | {events[('new', case)]} | "
+                     f"{'yes' if same else 'NO'} |")
+    return lines
+
+
+if __name__ == "__main__":
+    main()
