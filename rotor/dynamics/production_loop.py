@@ -64,6 +64,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     Q = np.empty(nr)
     vec, mat, face, jac = newton_work()
     phi = np.zeros((2, 2))
+    fk, wk, wo, fo = np.empty(2), np.empty(2), np.empty(2), np.empty(2)   # one face's force, velocities, old force
     alpha_new = vec[VX, :NC]
     g = vec[VG, :NC]
     # event location: the step's start state, its plain result, the held friction
@@ -120,7 +121,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             np.dot(Bt, v_pre, w_pre)
             np.dot(Bt, v, wv)
             for k in range(2):
-                w_old[k] = P[k] @ wv[:4]
+                np.dot(P[k], wv[:4], w_old[k])
                 tried[k] = modes[k] == 1
                 stuck0[k] = modes[k] == 1
                 freeze[k] = hold[k]
@@ -184,13 +185,16 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 for k in range(n_faces):
                     if hold[k]:
                         continue
-                    wk = P[k] @ w_new[:4]
-                    fk = phi[k]
-                    if use_c and modes[k] == 1:
-                        fk = phi_c[k]
-                    nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N[k], 0.0 if just_released[k] else w_stick,
-                                      tried[k], phi_old[k],
-                                      stick_mean_weight if stuck0[k] else 0.0)
+                    np.dot(P[k], w_new[:4], wk)
+                    src = phi_c if use_c and modes[k] == 1 else phi
+                    fk[0] = src[k, 0]
+                    fk[1] = src[k, 1]
+                    wo[0] = w_old[k, 0]
+                    wo[1] = w_old[k, 1]
+                    fo[0] = phi_old[k, 0]
+                    fo[1] = phi_old[k, 1]
+                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if just_released[k] else w_stick,
+                                      tried[k], fo, stick_mean_weight if stuck0[k] else 0.0)
                     if nm != modes[k]:
                         changed = True
                         modes[k] = nm
@@ -201,7 +205,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                             nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
                             freeze[k] = True
                             if nrm > 0:
-                                freeze_dir[k] = mu_N[k] * fk / nrm
+                                freeze_dir[k, 0] = mu_N[k] * fk[0] / nrm
+                                freeze_dir[k, 1] = mu_N[k] * fk[1] / nrm
                             else:
                                 freeze_dir[k] = 0.0
                 if not changed or passes >= max_passes:
