@@ -15,7 +15,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, types
+from numba.core import cgutils
+from numba.extending import intrinsic
+from numba.np.arrayobj import make_array
+from numba.np.linalg import call_xxgemv, ensure_blas
 
 from contact.compiled_cache import compiled_with
 from rotor.dynamics import constraints as cons
@@ -46,6 +50,36 @@ def _slip_force_scalar(wy, wz, mu_N, w_reg):
     c = mu_N / (s2 * s)
     return (-mu_N * wy / s, -mu_N * wz / s, -mu_N / s + c * wy * wy, c * wy * wz, c * wz * wy,
             -mu_N / s + c * wz * wz)
+
+
+@intrinsic
+def matvec_into(typingctx, a, x, out):
+    """``out[:] = a @ x`` (float64; ``a`` C-contiguous 2-D, ``x`` and ``out`` contiguous 1-D, shapes the caller's
+    care) by the very BLAS call of numba's ``a @ x`` (``numba.np.linalg.dot_3_vm``: ``numba_xxgemv``, transposed,
+    α = 1, β = 0), so the same numbers; without that wrapper's compiled call, whose three array arguments and
+    returned array cost reference counts (~8 atomic operations a product, ~10 products a step)."""
+    if not all(isinstance(t, types.Array) and t.dtype == types.float64 and t.layout == "C" for t in (a, x, out)):
+        return None
+    if a.ndim != 2 or x.ndim != 1 or out.ndim != 1:
+        return None
+
+    def codegen(context, builder, sig, args):
+        ensure_blas()
+        am = make_array(sig.args[0])(context, builder, args[0])
+        xm = make_array(sig.args[1])(context, builder, args[1])
+        om = make_array(sig.args[2])(context, builder, args[2])
+        shapes = cgutils.unpack_tuple(builder, am.shape)
+        zero = context.get_constant(types.intp, 0)
+        empty = builder.or_(builder.icmp_signed("==", cgutils.unpack_tuple(builder, xm.shape)[0], zero),
+                            builder.icmp_signed("==", shapes[0], zero))
+        with builder.if_else(empty, likely=False) as (is_empty, not_empty):
+            with is_empty:
+                cgutils.memset(builder, om.data, builder.mul(om.itemsize, om.nitems), 0)
+            with not_empty:
+                call_xxgemv(context, builder, True, sig.args[0], shapes, am.data, xm.data, om.data)
+        return context.get_dummy_value()
+
+    return types.void(a, x, out), codegen
 
 
 NC = 6  # condensed coordinates: relative support (y, z, θy, θz) + coupling Δθ (y, z)

@@ -21,7 +21,7 @@ from contact.compiled_cache import compiled_with
 from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
                                             _velocity_events)
 from rotor.dynamics.kernels import contact_point_jacobian
-from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC, VG, VX, newton_work
+from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into, newton_work
 
 compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
@@ -106,22 +106,22 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             p_pre[i] = p[i] + h * v[i] + cp * a[i]
             v_pre[i] = v[i] + cv * a[i]
         _load(t, static, orders, cosm, sinm, omega_f, Q)
-        np.dot(Dr, v_pre, d_v)
-        np.dot(Kr, p_pre, k_p)
+        matvec_into(Dr, v_pre, d_v)
+        matvec_into(Kr, p_pre, k_p)
         for i in range(nr):
             rhs[i] = Q[i] - d_v[i] - k_p[i]
-        np.dot(Ai, rhs, a_lin)
+        matvec_into(Ai, rhs, a_lin)
         total_its = 0
         passes = 0
         onset = False
         wd = 0.0
         if has_support:
-            np.dot(Bt, a_lin, alpha_lin)
-            np.dot(Bt, p_pre, u_pre)
-            np.dot(Bt, v_pre, w_pre)
-            np.dot(Bt, v, wv)
+            matvec_into(Bt, a_lin, alpha_lin)
+            matvec_into(Bt, p_pre, u_pre)
+            matvec_into(Bt, v_pre, w_pre)
+            matvec_into(Bt, v, wv)
             for k in range(2):
-                np.dot(P[k], wv[:4], w_old[k])
+                matvec_into(P[k], wv[:4], w_old[k])
                 tried[k] = modes[k] == 1
                 stuck0[k] = modes[k] == 1
                 freeze[k] = hold[k]
@@ -185,7 +185,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 for k in range(n_faces):
                     if hold[k]:
                         continue
-                    np.dot(P[k], w_new[:4], wk)
+                    matvec_into(P[k], w_new[:4], wk)
                     src = phi_c if use_c and modes[k] == 1 else phi
                     fk[0] = src[k, 0]
                     fk[1] = src[k, 1]
@@ -213,7 +213,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     for k in range(2):
                         phi_face[k] = phi[k]
                     break
-            np.dot(Wh, g, wg)
+            matvec_into(Wh, g, wg)
             for i in range(nr):
                 an[i] = a_lin[i] + wg[i]
             if onset_projection:
@@ -239,7 +239,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             # a face stuck in this step: restart from the consistent acceleration (positions and
             # velocities of the step kept), so the stuck multiplier does not ring
             an[:] = _reproject(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
-            np.dot(Bt, an, alpha)
+            matvec_into(Bt, an, alpha)
             status[3] += 1
         if wd > wdt_max:
             wdt_max = wd
@@ -258,7 +258,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 modes[:] = modes0
                 phi_face[:, :] = phi0
                 just_released[:] = jr0
-                np.dot(Bt, a, alpha)
+                matvec_into(Bt, a, alpha)
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
                 continue
@@ -278,7 +278,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 just_released[:] = jr_pl
                 phase = PLAIN
             else:
-                np.dot(Bt, a, alpha)
+                matvec_into(Bt, a, alpha)
                 h1 = theta * dt
                 if h1 > 1e-12 * dt:
                     Ai, Wh, Sh = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
@@ -300,7 +300,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             p[:] = pn
             v[:] = vn
             a[:] = an
-            np.dot(Bt, an, alpha)
+            matvec_into(Bt, an, alpha)
             h = dt - h1
             if h > 1e-12 * dt:
                 Ai, Wh, Sh = _substep_matrices(h, Mr, Dr, Kr, Bt, beta, gamma)
@@ -331,8 +331,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             rec_its[i] = step_its
             rec_passes[i] = step_passes
             if has_support:
-                np.dot(Bt, p, u_new)
-                np.dot(Bt, v, w_new)
+                matvec_into(Bt, p, u_new)
+                matvec_into(Bt, v, w_new)
                 for r in range(4):
                     rec_u[i, r] = u_new[r]
                     rec_w[i, r] = w_new[r]

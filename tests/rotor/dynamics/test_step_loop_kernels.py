@@ -16,8 +16,10 @@ import pytest
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.kernels import contact_kernel, contact_point
 from rotor.dynamics.production import prepare, simulate_production
+from numba import njit
+
 from rotor.dynamics.production_kernels import (MX, NC, VG, VX, _forces, _residual, _slip_force_scalar,
-                                               _solve_support, newton_work)
+                                               _solve_support, matvec_into, newton_work)
 from rotor.dynamics.system import NewmarkOptions
 
 
@@ -52,6 +54,25 @@ def test_slip_force_on_scalars_is_constraints_slip_force_bit_for_bit():
             f, jac = cons.slip_force(w, mu_n, w_reg)
             got = _slip_force_scalar(w[0], w[1], mu_n, w_reg)
             assert np.array_equal(np.array(got), np.concatenate([f, jac.ravel()]))
+
+
+@njit
+def _both_products(a, x, out):
+    """``a @ x`` as numba compiles it, and :func:`matvec_into` into ``out``; also a face's (2, 4) block."""
+    ref = a @ x
+    matvec_into(a, x, out)
+    return ref
+
+
+def test_matvec_into_is_numbas_matmul_bit_for_bit():
+    rng = np.random.default_rng(11)
+    for rows, cols in ((6, 26), (26, 26), (2, 4), (1, 1), (7, 3)):
+        a = rng.normal(size=(rows, cols)) * 10.0 ** rng.uniform(-8, 8, size=(rows, cols))
+        x = rng.normal(size=cols) * 10.0 ** rng.uniform(-8, 8, size=cols)
+        out = np.full(rows, np.nan)
+        ref = _both_products(a, x, out)
+        assert np.array_equal(ref, out)
+        assert np.all(np.abs(out - a @ x) <= 1e-13 * (np.abs(a) @ np.abs(x)))   # and it is the product
 
 
 def test_contact_point_is_contact_kernel_bit_for_bit(run):
