@@ -23,11 +23,16 @@ compiled_with(__file__, ["contact._kernel"])
 
 
 @njit(cache=True, inline="always")
+def law_tuple(p):
+    """The law's parameter array (14,) as the tuple :func:`contact.loose_support.point_force_jacobian` takes."""
+    return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
+
+
+@njit(cache=True, inline="always")
 def contact_point(y, z, thy, thz, vy, vz, wy, wz, p, jac):
     """The law at one relative state (m, rad; m/s, rad/s) writing ``∂f/∂(u, v)`` into ``jac`` (4, 8): returns
     ``(Fy, Fz, My, Mz)`` (N, N m). The step loop's form of :func:`contact_kernel` (nothing allocated)."""
-    pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
-    return point_force_jacobian(y, z, thy, thz, vy, vz, wy, wz, pt, jac)
+    return point_force_jacobian(y, z, thy, thz, vy, vz, wy, wz, law_tuple(p), jac)
 
 
 @njit(cache=True, inline="always")

@@ -22,8 +22,9 @@ from numba.np.arrayobj import make_array
 from numba.np.linalg import call_xxgemv, ensure_blas
 
 from contact.compiled_cache import compiled_with
+from contact.loose_support import point_force_jacobian
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.kernels import contact_point
+from rotor.dynamics.kernels import law_tuple
 
 # The kernels below inline rotor.dynamics.constraints and the law kernel (rotor.dynamics.kernels, which
 # inlines contact._kernel): their cache entries are stale when any of those sources changes (numba
@@ -156,6 +157,7 @@ def _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, tol,
     counts, which dominated the step."""
     for i in range(MX):
         vec[VXT, i] = vec[VX, i]
+    pt = law_tuple(params)      # the law's parameters, as rotor.dynamics.kernels.contact_point passes them
     Jn = mat[MJ]
     rhs = vec[VRHS]
     dx = vec[VDX]
@@ -174,8 +176,8 @@ def _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, tol,
         for i in range(NC):
             vec[VU, i] = vec[VUPRE, i] + bdt2 * vec[VXT, i]
             vec[VW, i] = vec[VWPRE, i] + gdt * vec[VXT, i]
-        f0, f1, f2, f3 = contact_point(vec[VU, 0], vec[VU, 1], vec[VU, 2], vec[VU, 3], vec[VW, 0], vec[VW, 1],
-                                       vec[VW, 2], vec[VW, 3], params, jac)
+        f0, f1, f2, f3 = point_force_jacobian(vec[VU, 0], vec[VU, 1], vec[VU, 2], vec[VU, 3], vec[VW, 0], vec[VW, 1],
+                                              vec[VW, 2], vec[VW, 3], pt, jac)
         for i in range(NC):
             vec[VG, i] = 0.0
             for j in range(NC):
