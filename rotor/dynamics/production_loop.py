@@ -65,6 +65,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     vec, mat, face, jac = newton_work()
     phi = np.zeros((2, 2))
     fk, wk, wo, fo = np.empty(2), np.empty(2), np.empty(2), np.empty(2)   # one face's force, velocities, old force
+    # views made once (a view made in the loop is a reference count): the faces' maps, the support's velocities
+    P_0, P_1, wv4, w_new4, w_old_0, w_old_1 = P[0], P[1], wv[:4], w_new[:4], w_old[0], w_old[1]
     alpha_new = vec[VX, :NC]
     g = vec[VG, :NC]
     # event location: the step's start state, its plain result, the held friction
@@ -120,8 +122,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             matvec_into(Bt, p_pre, u_pre)
             matvec_into(Bt, v_pre, w_pre)
             matvec_into(Bt, v, wv)
+            matvec_into(P_0, wv4, w_old_0)
+            matvec_into(P_1, wv4, w_old_1)
             for k in range(2):
-                matvec_into(P[k], wv[:4], w_old[k])
                 tried[k] = modes[k] == 1
                 stuck0[k] = modes[k] == 1
                 freeze[k] = hold[k]
@@ -185,10 +188,16 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 for k in range(n_faces):
                     if hold[k]:
                         continue
-                    matvec_into(P[k], w_new[:4], wk)
-                    src = phi_c if use_c and modes[k] == 1 else phi
-                    fk[0] = src[k, 0]
-                    fk[1] = src[k, 1]
+                    if k == 0:
+                        matvec_into(P_0, w_new4, wk)
+                    else:
+                        matvec_into(P_1, w_new4, wk)
+                    if use_c and modes[k] == 1:
+                        fk[0] = phi_c[k, 0]
+                        fk[1] = phi_c[k, 1]
+                    else:
+                        fk[0] = phi[k, 0]
+                        fk[1] = phi[k, 1]
                     wo[0] = w_old[k, 0]
                     wo[1] = w_old[k, 1]
                     fo[0] = phi_old[k, 0]
