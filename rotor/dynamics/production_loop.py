@@ -18,10 +18,12 @@ import numpy as np
 from numba import njit
 
 from contact.compiled_cache import compiled_with
+from contact.loose_support import point_force_jacobian
 from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
                                             _velocity_events)
-from rotor.dynamics.kernels import contact_point_jacobian
-from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into, newton_work
+from rotor.dynamics.kernels import law_tuple
+from rotor.dynamics.production_kernels import (_load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into,
+                                               newton_work)
 
 compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
@@ -52,7 +54,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     alpha_lin, u_pre, w_pre, wv, u_new, w_new = (np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC),
                                                  np.empty(NC))
     wdt_max = 0.0
-    zero4 = np.zeros(4)
+    pt = law_tuple(params)      # the law's parameters, as rotor.dynamics.kernels.contact_point passes them
     freeze = np.zeros(2, dtype=np.bool_)
     freeze_dir = np.zeros((2, 2))
     w_old = np.zeros((2, 2))
@@ -233,7 +235,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             for i in range(NC):
                 u_new[i] = u_pre[i] + bdt2 * alpha[i]
                 w_new[i] = w_pre[i] + gdt * alpha[i]
-            contact_point_jacobian(u_new, w_new, params, jac)
+            point_force_jacobian(u_new[0], u_new[1], u_new[2], u_new[3], w_new[0], w_new[1], w_new[2], w_new[3], pt,
+                                 jac)
             kt = -(jac[0, 0] + jac[1, 1])
             if kt > 0:
                 wd = math.sqrt(kt * s_yy) * h
@@ -345,11 +348,13 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 for r in range(4):
                     rec_u[i, r] = u_new[r]
                     rec_w[i, r] = w_new[r]
-                rec_fc[i, 0], rec_fc[i, 1], rec_fc[i, 2], rec_fc[i, 3] = contact_point_jacobian(u_new, w_new, params,
-                                                                                               jac)
-                rec_fel[i, 0], rec_fel[i, 1], rec_fel[i, 2], rec_fel[i, 3] = contact_point_jacobian(u_new, zero4,
-                                                                                                   params, jac)
-                rec_face[i] = phi_face
+                rec_fc[i, 0], rec_fc[i, 1], rec_fc[i, 2], rec_fc[i, 3] = point_force_jacobian(
+                    u_new[0], u_new[1], u_new[2], u_new[3], w_new[0], w_new[1], w_new[2], w_new[3], pt, jac)
+                rec_fel[i, 0], rec_fel[i, 1], rec_fel[i, 2], rec_fel[i, 3] = point_force_jacobian(
+                    u_new[0], u_new[1], u_new[2], u_new[3], 0.0, 0.0, 0.0, 0.0, pt, jac)
+                for k in range(2):
+                    rec_face[i, k, 0] = phi_face[k, 0]
+                    rec_face[i, k, 1] = phi_face[k, 1]
                 rec_modes[i, 0] = modes[0]
                 rec_modes[i, 1] = modes[1]
         step_its = 0
