@@ -51,8 +51,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     p_pre, v_pre, rhs, a_lin, d_v, k_p, pn, vn, an, wg = (np.empty(nr), np.empty(nr), np.empty(nr), np.empty(nr),
                                                         np.empty(nr), np.empty(nr), np.empty(nr), np.empty(nr),
                                                         np.empty(nr), np.empty(nr))
-    alpha_lin, u_pre, w_pre, wv, u_new, w_new = (np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC),
-                                                 np.empty(NC))
+    alpha_lin, u_pre, w_pre, wv, u_new, w_new, w_end = (np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC),
+                                                        np.empty(NC), np.empty(NC), np.empty(NC))
     wdt_max = 0.0
     pt = law_tuple(params)      # the law's parameters, as rotor.dynamics.kernels.contact_point passes them
     freeze = np.zeros(2, dtype=np.bool_)
@@ -98,9 +98,11 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         if phase == TO_EVENT:
             t = t0 + (step - 1) * dt + h1
         if phase == PLAIN and locate:
-            modes0[:] = modes
-            phi0[:, :] = phi_face
-            jr0[:] = just_released
+            for k in range(2):
+                modes0[k] = modes[k]
+                phi0[k, 0] = phi_face[k, 0]
+                phi0[k, 1] = phi_face[k, 1]
+                jr0[k] = just_released[k]
         # ---------------------------------------------------------------- the step body, length h
         bdt2 = beta * h * h
         gdt = gamma * h
@@ -259,7 +261,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         step_passes += passes
         # ---------------------------------------------------------------- event location (passes of the step)
         if phase == PLAIN:
-            if locate and _velocity_events(v, vn, modes0, modes, jr0, Bt, P, n_faces, w_reg, ev) > 0:
+            if locate:
+                matvec_into(Bt, vn, w_end)          # (wv = Bt v, the step's start, from the step body)
+            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev) > 0:
                 p_pl[:] = pn                                        # the plain result, kept
                 v_pl[:] = vn
                 a_pl[:] = an
