@@ -2,8 +2,11 @@
 
 numba ``njit`` functions on the condensed step: the contact and coupling forces with their
 analytic Jacobian (:func:`_forces`), the residual of the condensed step (:func:`_residual`), its
-Newton solve with backtracking (:func:`_solve_support`), a hand-written Gaussian elimination for
-the ≤ 10×10 Newton systems (:func:`_small_solve`), the consistent acceleration after a stick onset
+Newton solve with backtracking (:func:`_solve_support`; all three are :func:`_newton`, which evaluates
+the step at one place on packed work arrays, :func:`newton_work`, so that an evaluation costs no
+reference counts of array arguments), a hand-written Gaussian elimination for
+the ≤ 10×10 Newton systems (:func:`_small_solve`), the matrix-vector product into a given array by
+numba's own BLAS call (:func:`matvec_into`), the consistent acceleration after a stick onset
 (:func:`_reproject`, and :func:`_consistent_acceleration` with slipping faces' forces held, after a
 friction event), and the load at a time (:func:`_load`). The step loop is
 :func:`rotor.dynamics.production_loop.step_loop`; the events located inside a step

@@ -9,6 +9,13 @@ held; the friction state is switched at the event; (3) the sub-step from the eve
 
 The step body is written once, inside the loop over the steps: called as a function it cost ~12 % of
 the step (measured on the Table 4 rotor: the reference counts of the ~30 arrays it takes, per call).
+For the same reason the step allocates nothing and binds no new array names: its vectors are work
+arrays made once before the loop and written in place, its matrix-vector products go through
+:func:`rotor.dynamics.production_kernels.matvec_into` (numba's own BLAS call of ``a @ x``, so the same
+numbers), views are made once. Each array bound or passed is an atomic reference-count increment and
+decrement; before these changes they were ~45 % of the step and the temporary arrays another ~10 %
+(perf on the Table 4 rotor at 10 500 rpm; ``benchmarks/bench_step_loop.py`` times the step against the
+earlier code, ``reports/published/perf-step-loop.md``). The results are bit-identical to that code's.
 """
 from __future__ import annotations
 
