@@ -82,13 +82,12 @@ def _event_fraction(s0, d0, d1, h):
 
 
 @njit(cache=True)
-def _velocity_events(v, v_end, modes0, modes1, released0, Bt, P, n_faces, w_min, ev):
+def _velocity_events(w0, w1, modes0, modes1, released0, P, n_faces, w_min, ev):
     """Mark in ``ev`` (2,) the faces slipping at the start of the step, faster than ``w_min`` (m/s; the
     friction regularisation ``w_reg``, below which the slip direction is not defined) and not just
     released (``released0``: they start from rest), whose velocity reversed (``w_n+1 · w_n ≤ 0``) or
-    which stuck by its end; returns how many."""
-    w0 = Bt @ v
-    w1 = Bt @ v_end
+    which stuck by its end; returns how many. ``w0``, ``w1``: the condensed velocities ``Bt v`` (NC,) at the
+    start and at the end of the step (m/s, rad/s)."""
     count = 0
     for k in range(2):
         ev[k] = False

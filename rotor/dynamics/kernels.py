@@ -22,12 +22,30 @@ from rotor.dynamics.system import SupportLaw
 compiled_with(__file__, ["contact._kernel"])
 
 
+@njit(cache=True, inline="always")
+def law_tuple(p):
+    """The law's parameter array (14,) as the tuple :func:`contact.loose_support.point_force_jacobian` takes."""
+    return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
+
+
+@njit(cache=True, inline="always")
+def contact_point(y, z, thy, thz, vy, vz, wy, wz, p, jac):
+    """The law at one relative state (m, rad; m/s, rad/s) writing ``∂f/∂(u, v)`` into ``jac`` (4, 8): returns
+    ``(Fy, Fz, My, Mz)`` (N, N m). The step loop's form of :func:`contact_kernel` (nothing allocated)."""
+    return point_force_jacobian(y, z, thy, thz, vy, vz, wy, wz, law_tuple(p), jac)
+
+
+@njit(cache=True, inline="always")
+def contact_point_jacobian(u, v, p, jac):
+    """:func:`contact_point` at ``u[:4], v[:4]`` (longer arrays allowed)."""
+    return contact_point(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], p, jac)
+
+
 @njit(cache=True)
 def contact_kernel(u, v, p):
     """``contact.loose_support`` scalar path as ``(u, v, params) -> (f, Ju, Jv)`` (analytic Jacobian)."""
-    pt = (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
     jac = np.empty((4, 8))
-    fy, fz, my, mz = point_force_jacobian(u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3], pt, jac)
+    fy, fz, my, mz = contact_point_jacobian(u, v, p, jac)
     f = np.empty(4)
     f[0] = fy
     f[1] = fz

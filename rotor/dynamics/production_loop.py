@@ -9,6 +9,13 @@ held; the friction state is switched at the event; (3) the sub-step from the eve
 
 The step body is written once, inside the loop over the steps: called as a function it cost ~12 % of
 the step (measured on the Table 4 rotor: the reference counts of the ~30 arrays it takes, per call).
+For the same reason the step allocates nothing and binds no new array names: its vectors are work
+arrays made once before the loop and written in place, its matrix-vector products go through
+:func:`rotor.dynamics.production_kernels.matvec_into` (numba's own BLAS call of ``a @ x``, so the same
+numbers), views are made once. Each array bound or passed is an atomic reference-count increment and
+decrement; before these changes they were ~45 % of the step and the temporary arrays another ~10 %
+(perf on the Table 4 rotor at 10 500 rpm; ``benchmarks/bench_step_loop.py`` times the step against the
+earlier code, ``reports/published/perf-step-loop.md``). The results are bit-identical to that code's.
 """
 from __future__ import annotations
 
@@ -18,10 +25,12 @@ import numpy as np
 from numba import njit
 
 from contact.compiled_cache import compiled_with
+from contact.loose_support import point_force_jacobian
 from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
                                             _velocity_events)
-from rotor.dynamics.kernels import contact_kernel
-from rotor.dynamics.production_kernels import _load, _mode_update, _reproject, _solve_support, NC
+from rotor.dynamics.kernels import law_tuple
+from rotor.dynamics.production_kernels import (_load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into,
+                                               newton_work)
 
 compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
@@ -44,8 +53,15 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     events]. Returns ``(steps done, largest ω_c Δt)``."""
     nr = p.shape[0]
     alpha = Bt @ a
+    # the step's vectors, written in place (an array expression or a matvec result is an allocation, and
+    # every array bound to a new name a reference count)
+    p_pre, v_pre, rhs, a_lin, d_v, k_p, pn, vn, an, wg = (np.empty(nr), np.empty(nr), np.empty(nr), np.empty(nr),
+                                                        np.empty(nr), np.empty(nr), np.empty(nr), np.empty(nr),
+                                                        np.empty(nr), np.empty(nr))
+    alpha_lin, u_pre, w_pre, wv, u_new, w_new, w_end = (np.empty(NC), np.empty(NC), np.empty(NC), np.empty(NC),
+                                                        np.empty(NC), np.empty(NC), np.empty(NC))
     wdt_max = 0.0
-    zero4 = np.zeros(4)
+    pt = law_tuple(params)      # the law's parameters, as rotor.dynamics.kernels.contact_point passes them
     freeze = np.zeros(2, dtype=np.bool_)
     freeze_dir = np.zeros((2, 2))
     w_old = np.zeros((2, 2))
@@ -55,6 +71,13 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     just_released = np.zeros(2, dtype=np.bool_)
     phi_c = np.zeros((2, 2))
     Q = np.empty(nr)
+    vec, mat, face, jac = newton_work()
+    phi = np.zeros((2, 2))
+    fk, wk, wo, fo = np.empty(2), np.empty(2), np.empty(2), np.empty(2)   # one face's force, velocities, old force
+    # views made once (a view made in the loop is a reference count): the faces' maps, the support's velocities
+    P_0, P_1, wv4, w_new4, w_old_0, w_old_1 = P[0], P[1], wv[:4], w_new[:4], w_old[0], w_old[1]
+    alpha_new = vec[VX, :NC]
+    g = vec[VG, :NC]
     # event location: the step's start state, its plain result, the held friction
     locate = locate_events and has_support
     hold = np.zeros(2, dtype=np.bool_)
@@ -69,7 +92,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     modes_pl = modes.copy()
     phi_pl = phi_face.copy()
     jr_pl = just_released.copy()
-    p_pl, v_pl, a_pl, al_pl = p, v, a, alpha
+    p_pl, v_pl, a_pl, al_pl = np.empty(nr), np.empty(nr), np.empty(nr), np.empty(NC)
     Ai, Wh, Sh = Ainv, W, S
     h = dt
     h1 = 0.0
@@ -82,28 +105,37 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         if phase == TO_EVENT:
             t = t0 + (step - 1) * dt + h1
         if phase == PLAIN and locate:
-            modes0[:] = modes
-            phi0[:, :] = phi_face
-            jr0[:] = just_released
+            for k in range(2):
+                modes0[k] = modes[k]
+                phi0[k, 0] = phi_face[k, 0]
+                phi0[k, 1] = phi_face[k, 1]
+                jr0[k] = just_released[k]
         # ---------------------------------------------------------------- the step body, length h
         bdt2 = beta * h * h
         gdt = gamma * h
-        p_pre = p + h * v + h * h * (0.5 - beta) * a
-        v_pre = v + h * (1.0 - gamma) * a
+        cp = h * h * (0.5 - beta)
+        cv = h * (1.0 - gamma)
+        for i in range(nr):
+            p_pre[i] = p[i] + h * v[i] + cp * a[i]
+            v_pre[i] = v[i] + cv * a[i]
         _load(t, static, orders, cosm, sinm, omega_f, Q)
-        rhs = Q - Dr @ v_pre - Kr @ p_pre
-        a_lin = Ai @ rhs
+        matvec_into(Dr, v_pre, d_v)
+        matvec_into(Kr, p_pre, k_p)
+        for i in range(nr):
+            rhs[i] = Q[i] - d_v[i] - k_p[i]
+        matvec_into(Ai, rhs, a_lin)
         total_its = 0
         passes = 0
         onset = False
         wd = 0.0
         if has_support:
-            alpha_lin = Bt @ a_lin
-            u_pre = Bt @ p_pre
-            w_pre = Bt @ v_pre
-            wv = Bt @ v
+            matvec_into(Bt, a_lin, alpha_lin)
+            matvec_into(Bt, p_pre, u_pre)
+            matvec_into(Bt, v_pre, w_pre)
+            matvec_into(Bt, v, wv)
+            matvec_into(P_0, wv4, w_old_0)
+            matvec_into(P_1, wv4, w_old_1)
             for k in range(2):
-                w_old[k] = P[k] @ wv[:4]
                 tried[k] = modes[k] == 1
                 stuck0[k] = modes[k] == 1
                 freeze[k] = hold[k]
@@ -112,12 +144,12 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     freeze_dir[k, 1] = hold_dir[k, 1]
                 phi_old[k, 0] = phi_face[k, 0]
                 phi_old[k, 1] = phi_face[k, 1]
-            g = np.zeros(NC)
+            g[:] = 0.0
             while True:
                 passes += 1
-                alpha_new, g, phi, its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, Sh, P, modes, phi_face,
-                                                            freeze, freeze_dir, mu_N, a1, bdt2, gdt, params,
-                                                            tol, max_iter, w_reg)
+                its, ok = _solve_support(alpha, alpha_lin, u_pre, w_pre, Sh, P, modes, phi_face, freeze, freeze_dir,
+                                         mu_N, a1, bdt2, gdt, params, tol, max_iter, w_reg, vec, mat, face, jac,
+                                         phi)
                 total_its += its
                 if not ok:
                     # slip Newton stalls when the true answer is (near) stick: try stick on the
@@ -136,16 +168,17 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
                     # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
                     status[2] += 1
-                    alpha = alpha_new
+                    alpha[:] = alpha_new
                     for k in range(2):
                         phi_face[k] = phi[k]
                     break
-                alpha = alpha_new
+                alpha[:] = alpha_new
                 if (freeze[0] and not hold[0]) or (freeze[1] and not hold[1]):
                     for k in range(2):
                         freeze[k] = hold[k]
                     continue
-                w_new = w_pre + gdt * alpha
+                for i in range(NC):
+                    w_new[i] = w_pre[i] + gdt * alpha[i]
                 changed = False
                 # a face trying stick in this step (slipping at its start) is tested on its holding
                 # force at the end of the step, the consistent multiplier (stick-onset re-projection),
@@ -166,13 +199,22 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 for k in range(n_faces):
                     if hold[k]:
                         continue
-                    wk = P[k] @ w_new[:4]
-                    fk = phi[k]
+                    if k == 0:
+                        matvec_into(P_0, w_new4, wk)
+                    else:
+                        matvec_into(P_1, w_new4, wk)
                     if use_c and modes[k] == 1:
-                        fk = phi_c[k]
-                    nm = _mode_update(modes[k], fk, wk, w_old[k], mu_N[k], 0.0 if just_released[k] else w_stick,
-                                      tried[k], phi_old[k],
-                                      stick_mean_weight if stuck0[k] else 0.0)
+                        fk[0] = phi_c[k, 0]
+                        fk[1] = phi_c[k, 1]
+                    else:
+                        fk[0] = phi[k, 0]
+                        fk[1] = phi[k, 1]
+                    wo[0] = w_old[k, 0]
+                    wo[1] = w_old[k, 1]
+                    fo[0] = phi_old[k, 0]
+                    fo[1] = phi_old[k, 1]
+                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if just_released[k] else w_stick,
+                                      tried[k], fo, stick_mean_weight if stuck0[k] else 0.0)
                     if nm != modes[k]:
                         changed = True
                         modes[k] = nm
@@ -183,36 +225,42 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                             nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
                             freeze[k] = True
                             if nrm > 0:
-                                freeze_dir[k] = mu_N[k] * fk / nrm
+                                freeze_dir[k, 0] = mu_N[k] * fk[0] / nrm
+                                freeze_dir[k, 1] = mu_N[k] * fk[1] / nrm
                             else:
                                 freeze_dir[k] = 0.0
                 if not changed or passes >= max_passes:
                     for k in range(2):
                         phi_face[k] = phi[k]
                     break
-            an = a_lin + Wh @ g
+            matvec_into(Wh, g, wg)
+            for i in range(nr):
+                an[i] = a_lin[i] + wg[i]
             if onset_projection:
                 for k in range(2):
                     if modes[k] == 1 and not stuck0[k]:
                         onset = True
             # largest ω_c Δt met: radial tangent stiffness of the law at the new state
-            u_new = u_pre + bdt2 * alpha
-            w_new = w_pre + gdt * alpha
-            f, Ju, Jv = contact_kernel(u_new[:4], w_new[:4], params)
-            kt = -(Ju[0, 0] + Ju[1, 1])
+            for i in range(NC):
+                u_new[i] = u_pre[i] + bdt2 * alpha[i]
+                w_new[i] = w_pre[i] + gdt * alpha[i]
+            point_force_jacobian(u_new[0], u_new[1], u_new[2], u_new[3], w_new[0], w_new[1], w_new[2], w_new[3], pt,
+                                 jac)
+            kt = -(jac[0, 0] + jac[1, 1])
             if kt > 0:
                 wd = math.sqrt(kt * s_yy) * h
         else:
-            an = a_lin
-        pn = p_pre + bdt2 * an
-        vn = v_pre + gdt * an
+            an[:] = a_lin
+        for i in range(nr):
+            pn[i] = p_pre[i] + bdt2 * an[i]
+            vn[i] = v_pre[i] + gdt * an[i]
         for k in range(2):
             just_released[k] = onset_projection and modes[k] == 0 and stuck0[k]
         if onset:
             # a face stuck in this step: restart from the consistent acceleration (positions and
             # velocities of the step kept), so the stuck multiplier does not ring
-            an = _reproject(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
-            alpha = Bt @ an
+            an[:] = _reproject(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, mu_N, a1, params, w_reg, phi_face)
+            matvec_into(Bt, an, alpha)
             status[3] += 1
         if wd > wdt_max:
             wdt_max = wd
@@ -220,15 +268,20 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         step_passes += passes
         # ---------------------------------------------------------------- event location (passes of the step)
         if phase == PLAIN:
-            if locate and _velocity_events(v, vn, modes0, modes, jr0, Bt, P, n_faces, w_reg, ev) > 0:
-                p_pl, v_pl, a_pl, al_pl = pn, vn, an, alpha          # the plain result, kept
+            if locate:
+                matvec_into(Bt, vn, w_end)          # (wv = Bt v, the step's start, from the step body)
+            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev) > 0:
+                p_pl[:] = pn                                        # the plain result, kept
+                v_pl[:] = vn
+                a_pl[:] = an
+                al_pl[:] = alpha
                 modes_pl[:] = modes
                 phi_pl[:, :] = phi_face
                 jr_pl[:] = just_released
                 modes[:] = modes0
                 phi_face[:, :] = phi0
                 just_released[:] = jr0
-                alpha = Bt @ a
+                matvec_into(Bt, a, alpha)
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
                 continue
@@ -239,13 +292,16 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             just_released[:] = jr0
             if theta > 1.0:                     # not reached with the friction held: the plain result stands
                 hold[:] = False
-                pn, vn, an, alpha = p_pl, v_pl, a_pl, al_pl
+                pn[:] = p_pl
+                vn[:] = v_pl
+                an[:] = a_pl
+                alpha[:] = al_pl
                 modes[:] = modes_pl
                 phi_face[:, :] = phi_pl
                 just_released[:] = jr_pl
                 phase = PLAIN
             else:
-                alpha = Bt @ a
+                matvec_into(Bt, a, alpha)
                 h1 = theta * dt
                 if h1 > 1e-12 * dt:
                     Ai, Wh, Sh = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
@@ -253,16 +309,21 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     phase = TO_EVENT
                     continue
                 h1 = 0.0                        # the event at the start of the step
-                pn, vn, an = p, v, a
+                pn[:] = p
+                vn[:] = v
+                an[:] = a
                 phase = TO_EVENT
         if phase == TO_EVENT:
             # the friction state switched at the event, the consistent acceleration, then the rest of the step
             _load(t0 + (step - 1) * dt + h1, static, orders, cosm, sinm, omega_f, Q)
-            an = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
+            an[:] = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
                                   a1, params, w_reg)
             hold[:] = False
             status[4] += 1
-            p, v, a, alpha = pn, vn, an, Bt @ an
+            p[:] = pn
+            v[:] = vn
+            a[:] = an
+            matvec_into(Bt, an, alpha)
             h = dt - h1
             if h > 1e-12 * dt:
                 Ai, Wh, Sh = _substep_matrices(h, Mr, Dr, Kr, Bt, beta, gamma)
@@ -273,7 +334,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             h = dt
             phase = PLAIN
         # ---------------------------------------------------------------- the step is done
-        p, v, a = pn, vn, an
+        p[:] = pn
+        v[:] = vn
+        a[:] = an
         fin = True
         for i in range(nr):
             if not (math.isfinite(p[i]) and math.isfinite(v[i])):
@@ -291,15 +354,18 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             rec_its[i] = step_its
             rec_passes[i] = step_passes
             if has_support:
-                uu = Bt @ p
-                ww = Bt @ v
-                rec_u[i] = uu[:4]
-                rec_w[i] = ww[:4]
-                f, Ju, Jv = contact_kernel(uu[:4], ww[:4], params)
-                rec_fc[i] = f
-                fe, Ju, Jv = contact_kernel(uu[:4], zero4, params)
-                rec_fel[i] = fe
-                rec_face[i] = phi_face
+                matvec_into(Bt, p, u_new)
+                matvec_into(Bt, v, w_new)
+                for r in range(4):
+                    rec_u[i, r] = u_new[r]
+                    rec_w[i, r] = w_new[r]
+                rec_fc[i, 0], rec_fc[i, 1], rec_fc[i, 2], rec_fc[i, 3] = point_force_jacobian(
+                    u_new[0], u_new[1], u_new[2], u_new[3], w_new[0], w_new[1], w_new[2], w_new[3], pt, jac)
+                rec_fel[i, 0], rec_fel[i, 1], rec_fel[i, 2], rec_fel[i, 3] = point_force_jacobian(
+                    u_new[0], u_new[1], u_new[2], u_new[3], 0.0, 0.0, 0.0, 0.0, pt, jac)
+                for k in range(2):
+                    rec_face[i, k, 0] = phi_face[k, 0]
+                    rec_face[i, k, 1] = phi_face[k, 1]
                 rec_modes[i, 0] = modes[0]
                 rec_modes[i, 1] = modes[1]
         step_its = 0
