@@ -118,13 +118,14 @@ def _cascade_half(speeds) -> list[dict]:
     from rotor.studies.shooting_point import classify
 
     rows = [{"speed_rpm": 0.0, "wall_s": 0.0, "classification": "static", "stable": None, "spectral_radius": None,
-             "critical_kind": None, "period_revs": None, "converged": True, "newton_iterations": None,
-             "transient_revs": 0, "residual": None} for s in speeds if s == 0.0]
+             "critical_kind": None, "leading_multiplier": None, "period_revs": None, "converged": True,
+             "newton_iterations": None, "transient_revs": 0, "residual": None} for s in speeds if s == 0.0]
     res = orbit_cascade(SCENE, [s for s in speeds if s > 0.0])      # steps: 256, more where contact needs
     for r in res:
         rows.append({"speed_rpm": r.speed_rpm, "wall_s": r.wall_s, "classification":
                      classify(r.floquet) if r.converged else "no_orbit_found", "stable": r.stable if r.converged
                      else None, "spectral_radius": r.floquet.spectral_radius, "critical_kind": r.floquet.kind,
+                     "leading_multiplier": r.floquet.leading,
                      "period_revs": r.period_revs if r.converged else None, "converged": r.converged,
                      "newton_iterations": r.newton_iterations, "transient_revs": r.transient_revs,
                      "residual": r.residual})
@@ -179,8 +180,10 @@ def report(p1: dict, rows: list[dict], wall: float, load: list, repeats: int, wo
              f"{p1['agree_from_end']:.1e} | {p1['agree_1x_from_end']:.1e} |", "",
              f"Shooting: {o.newton_iterations} Newton iterations after {o.transient_revs} transient revolutions, "
              f"residual {o.residual:.1e}, period {o.period_revs} revolution, stable {o.stable}, spectral radius "
-             f"{o.floquet.spectral_radius:.4f} ({o.floquet.kind}), {o.floquet.n_neutral} neutral multipliers "
-             f"(faces stuck through the orbit: a continuum of orbits). The transient detector stops at a relative "
+             f"{o.floquet.spectral_radius:.4f} (leading multiplier {o.floquet.leading}), {o.floquet.n_neutral} "
+             "neutral multipliers (a face stuck through the orbit: a continuum of orbits; the Newton step keeps the "
+             "transient's conserved levels and the orbit is shot once they stop drifting, settled "
+             f"{o.shooting.settled}: rotor/studies/shooting.py). The transient detector stops at a relative "
              f"Poincaré change of 1e-4 with an estimated {p1['poincare_remaining']:.1e} still to decay.", "",
              f"**Must show ≤ 0.5 s per shooting point: cold start {'holds' if t['shooting'] <= 0.5 else 'does NOT hold'} "
              f"({t['shooting']:.2f} s); warm start {'holds' if t['shooting_warm'] <= 0.5 else 'does NOT hold'} "
@@ -194,18 +197,19 @@ def report(p1: dict, rows: list[dict], wall: float, load: list, repeats: int, wo
              f"{sum(r['wall_s'] for r in rows):.1f} s). **Must show ≤ 30 s: "
              f"{'holds' if wall <= 30 else 'does NOT hold'}.** The published transient cascade took 468 s on 2 "
              "processes (reports/published/study-cascade.md, another run).", "",
-             "| speed (rpm) | transient (published) | shooting | stable | spectral radius | critical | period (rev) "
-             "| Newton its | wall (s) |", "|---|---|---|---|---|---|---|---|---|"]
+             "| speed (rpm) | transient (published) | shooting | stable | spectral radius | leading multiplier "
+             "| period (rev) | Newton its | transient revs | wall (s) |", "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         tr = "not periodic" if r["speed_rpm"] in nonper else "periodic"
         sr = "" if r["spectral_radius"] is None else f"{r['spectral_radius']:.4f}"
         if not r["converged"]:           # the last Newton iterate's multipliers: not an orbit's
             sr, crit = f"({sr}, last iterate)", ""
         else:
-            crit = r["critical_kind"] or ""
+            crit = r["leading_multiplier"] or ""
         st = "–" if r["stable"] is None else str(r["stable"])
         lines.append(f"| {r['speed_rpm']:.0f} | {tr} | {r['classification']} | {st} | {sr} | {crit} | "
-                     f"{r['period_revs'] or ''} | {r['newton_iterations'] or ''} | {r['wall_s']:.2f} |")
+                     f"{r['period_revs'] or ''} | {r['newton_iterations'] or ''} | {r['transient_revs']} | "
+                     f"{r['wall_s']:.2f} |")
     by = {}
     for r in rows:
         if r["speed_rpm"] in nonper:
