@@ -39,12 +39,14 @@ from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.dynamics import constraints as cons
 from rotor.studies.floquet import FloquetResult, crossing, floquet
 from rotor.studies.period_flow import Flow, advance, make_flow
-from rotor.studies.shooting import ShootingOptions, min_norm_step, shoot
+from rotor.studies.shooting import ShootingOptions, min_norm_step, orbit_scales, record_reduced, shoot
 
 #: relative step of the parameter finite difference
 PARAM_REL_STEP = 1e-6
 #: singular values of the scaled ``M − I`` below this fraction of the largest are a continuum's directions
 NEUTRAL_TOL = 1e-8
+#: the state scales are renewed when the orbit's own scale differs from them by more than this factor
+RESCALE_RATIO = 2.0
 
 
 @dataclass(frozen=True)
@@ -91,7 +93,8 @@ def parameter_problem(system_at: Callable, speed_rad_s: float, steps_per_rev: in
 @dataclass(frozen=True)
 class BranchPoint:
     """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector
-    ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent)."""
+    ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent), ``restarted``:
+    reached by a shooting restart past a switch (:func:`_restart`), not by the corrector from the point before."""
 
     parameter: float
     state: np.ndarray
@@ -99,6 +102,7 @@ class BranchPoint:
     iterations: int
     residual: float
     dlam_ds: float
+    restarted: bool = False
 
 
 @dataclass(frozen=True)
@@ -114,13 +118,15 @@ class Bifurcation:
 
 @dataclass(frozen=True)
 class Branch:
-    """Points and bifurcations of one branch, ``period_revs``, why it stopped (``stop``), ``wall_s``."""
+    """Points and bifurcations of one branch, ``period_revs``, why it stopped (``stop``), ``wall_s``, and
+    ``restarts``: points reached by a shooting restart past a switch (:func:`_restart`)."""
 
     points: tuple
     bifurcations: tuple
     period_revs: int
     stop: str
     wall_s: float
+    restarts: int = 0
 
     def parameters(self) -> np.ndarray:
         return np.array([p.parameter for p in self.points])
@@ -130,7 +136,14 @@ class Branch:
 class ContinuationOptions:
     """``ds`` initial/min/max arclength steps (scaled units), corrector ``tol`` (–) and ``max_iter``,
     ``max_points``, ``back_margin`` (stop when a branch turns back beyond the start by this fraction of the
-    range), ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet)."""
+    range), ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet).
+
+    ``pass_switches``: a corrector that stops contracting is given up after 4 iterations, and after
+    ``restart_after`` failed correctors in a row the branch is restarted past the switch by shooting at fixed
+    parameter (:func:`_restart`, ``restart_tries`` parameter steps doubling from the last one).
+    ``follow_scales``: the state scales follow the orbit's own peak-to-peak range (never below the given
+    ``scales``) once it differs from them by more than ``RESCALE_RATIO``. Both False: the plain corrector with
+    the start's scales."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -141,6 +154,10 @@ class ContinuationOptions:
     back_margin: float = 0.5
     rcond: float = 1e-10
     multiplier_tol: float = 1e-6
+    pass_switches: bool = True
+    restart_after: int = 3
+    restart_tries: int = 6
+    follow_scales: bool = True
 
 
 class _Evaluator:
@@ -194,6 +211,7 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
     The phase rows ``P`` keep the orbit's place in a stuck face's continuum that of ``anchor``."""
     y = y_pred.copy()
     has_phase = phase is not None and len(phase)
+    best = math.inf
     for it in range(1, opts.max_iter + 1):
         x, lam = y[:-1] * ev.s, y[-1] * ev.ls
         try:
@@ -201,8 +219,9 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
         except (OutsideDomainError, ConvergenceError, InputError):   # an iterate the scheme cannot step
             return None
         res = float(np.max(np.abs(R)))
-        if not math.isfinite(res):
-            return None
+        if not math.isfinite(res) or (opts.pass_switches and it > 4 and res >= best):
+            return None        # not contracting: Newton cycles between pieces of a map that jumps at a switch
+        best = min(best, res)
         A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
         rhs = -np.concatenate([R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else []))
         dy, _ = min_norm_step(A, rhs, opts.rcond)
@@ -212,11 +231,11 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
     return None
 
 
-def _point(ev, y, J, M, it, res, tau, opts) -> BranchPoint:
+def _point(ev, y, J, M, it, res, tau, opts, restarted: bool = False) -> BranchPoint:
     lam = y[-1] * ev.ls
     period = ev.pb.n_steps * ev.flow(lam).dt_s
     return BranchPoint(float(lam), y[:-1] * ev.s, floquet(M, period, tol=opts.multiplier_tol), it, res,
-                       float(tau[-1]))
+                       float(tau[-1]), restarted)
 
 
 def _test(kind: str, pt: BranchPoint) -> float:
@@ -269,16 +288,117 @@ def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, 
 
 def _events(ev, prev: BranchPoint, new: BranchPoint, index: int, y0, tau0, ds, opts, phase) -> list:
     """Bifurcations between ``prev`` and ``new``. A real multiplier through +1 without a turn of the
-    parameter is a branch point (a pitchfork: symmetry breaking, e.g. a planar orbit starting to whirl)."""
-    fold = prev.dlam_ds * new.dlam_ds < 0
+    parameter is a branch point (a pitchfork: symmetry breaking, e.g. a planar orbit starting to whirl).
+    Across a restart (``new.restarted``) the tangents of two pieces of the map are not compared (no fold), and
+    a multiplier crossing is placed by linear interpolation of its test quantity (no corrector joins them)."""
+    fold = prev.dlam_ds * new.dlam_ds < 0 and not new.restarted
     kinds = ["fold"] if fold else []
     kind = crossing(prev.floquet, new.floquet)
     if kind == "fold" and not fold:
         kind = "branch_point"
     if kind is not None and kind not in kinds:
         kinds.append(kind)
+    if new.restarted:
+        return [Bifurcation(k, index, _interpolated(k, prev, new), new.floquet.critical) for k in kinds]
     return [Bifurcation(k, index, _refine(ev, y0, tau0, ds, k, prev, new, opts, phase), new.floquet.critical)
             for k in kinds]
+
+
+def _interpolated(kind: str, a: BranchPoint, b: BranchPoint) -> float:
+    """Parameter where the test quantity of ``kind`` crosses zero on the straight line from ``a`` to ``b``."""
+    fa, fb = _test(kind, a), _test(kind, b)
+    w = 0.5 if fa == fb else min(max(-fa / (fb - fa), 0.0), 1.0)
+    return a.parameter + w * (b.parameter - a.parameter)
+
+
+def _confirmed_folds(points, bifs) -> list:
+    """The bifurcations with each fold kept only where the branch truly turns: the parameter components of
+    the tangents at points ``i − 1`` and ``i`` have opposite signs *and* the parameter moved along each of them,
+    into ``i − 1`` (from ``i − 2``; the first point has no secant in) and out of ``i`` (to ``i + 1``). A fold
+    between a branch's last two points, or one the secants contradict (a tangent turned by a switch, the
+    next corrector stepping on in the old direction), is not reported."""
+    lam = [p.parameter for p in points]
+    out = []
+    for b in bifs:
+        i = b.index
+        if b.kind == "fold":
+            into = i < 2 or (lam[i - 1] - lam[i - 2]) * points[i - 1].dlam_ds > 0
+            onward = i + 1 < len(points) and (lam[i + 1] - lam[i]) * points[i].dlam_ds > 0
+            if not (into and onward) or points[i].restarted or (i + 1 < len(points) and points[i + 1].restarted):
+                continue
+        out.append(b)
+    return out
+
+
+def _restart(ev, points, y, tau, opts):
+    """A point past a switch where the corrector cannot go: shooting (:func:`rotor.studies.shooting.shoot`,
+    Newton with halving and Levenberg–Marquardt retrials, no arclength or phase row) at the fixed parameter
+    ``λ_k + h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
+    the last step's parameter advance (at least ``ds_min``), doubled after each failure, ``restart_tries``
+    times, at most ``ds_max``. Returns ``(y, J, M, iterations, residual, secant)`` or None."""
+    x_k, lam_k = y[:-1] * ev.s, y[-1] * ev.ls
+    if len(points) > 1:
+        prev = points[-2]
+        d = np.concatenate([(x_k - prev.state) / ev.s, [(lam_k - prev.parameter) / ev.ls]])
+    else:
+        d = tau.copy()
+    if abs(d[-1]) < 1e-3 * np.linalg.norm(d):       # at a turn: no direction in the parameter to restart along
+        return None
+    d = d / np.linalg.norm(d)
+    h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), opts.ds_min)
+    sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_iter=2 * opts.max_iter)
+    pb = ev.pb
+    for _ in range(opts.restart_tries):
+        h = min(h, opts.ds_max)
+        y_pred = y + (h / abs(d[-1])) * d
+        lam = y_pred[-1] * ev.ls
+        try:
+            sh = shoot(ev.flow(lam), y_pred[:-1] * ev.s, t0_s=0.0, steps_per_rev=pb.steps_per_rev,
+                       period_revs=pb.period_revs, modes0=pb.modes0, scales=ev.s, options=sopts)
+        except (OutsideDomainError, ConvergenceError, InputError):
+            sh = None
+        if sh is not None and sh.converged:
+            R, J, M = ev(sh.state, lam)
+            return np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, \
+                float(np.max(np.abs(R))), d
+        h *= 2.0
+    return None
+
+
+def _rescale(ev, y, tau, M, J, floor):
+    """Renew the state scales to the orbit's own peak-to-peak range over one period at ``y`` (never below
+    ``floor``) when they differ by more than :data:`RESCALE_RATIO`: returns ``(y, tau, J)`` in the new
+    scaled variables (``J`` transformed, not recomputed) and sets ``ev.s``."""
+    x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+    p, v, _ = record_reduced(ev.flow(lam), x, 0.0, ev.pb.n_steps, ev.pb.modes0, max(1, ev.pb.n_steps // 256))
+    new = np.maximum(orbit_scales(ev.flow(lam), p, v), floor)
+    ratio = new / ev.s
+    if max(ratio.max(), 1.0 / ratio.min()) <= RESCALE_RATIO:
+        return y, tau, J
+    old, ev.s = ev.s, new
+    y = np.concatenate([y[:-1] / ratio, y[-1:]])
+    tau = np.concatenate([tau[:-1] / ratio, tau[-1:]])
+    J = np.hstack([(M - np.eye(len(new))) * (new[None, :] / new[:, None]), (J[:, -1] * old / new)[:, None]])
+    return y, tau / np.linalg.norm(tau), J
+
+
+def _start(problem, ev, state0, lam0, lam_end, opts, tangent0):
+    """The first point (shot at fixed ``lam0``), its ``(y, J, phase, tau)``, or None if shooting failed."""
+    s = ev.s
+    first = shoot(ev.flow(lam0), state0, t0_s=0.0, steps_per_rev=problem.steps_per_rev, period_revs=problem.period_revs,
+                  modes0=problem.modes0, scales=s, options=ShootingOptions(tol=opts.tol, rcond=opts.rcond))
+    if not first.converged:
+        return None
+    y = np.concatenate([first.state / s, [lam0 / ev.ls]])
+    R, J, M = ev(first.state, lam0)
+    guide = np.zeros(len(y))
+    guide[-1] = math.copysign(1.0, lam_end - lam0)
+    phase = _neutral(J)
+    if tangent0 is None:
+        tau = _tangent(J, guide, opts.rcond, phase)
+    else:
+        tau = np.asarray(tangent0, float) / np.linalg.norm(tangent0)
+    return _point(ev, y, J, M, 0, float(np.max(np.abs(R))), tau, opts), y, J, phase, tau
 
 
 def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, scales, lam_scale: float | None = None,
@@ -288,55 +408,61 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     ``scales`` (2 n_r,): state scales (m, rad; m/s, rad/s); ``lam_scale``: parameter scale (default
     ``|lam_end − lam0|/10``). ``tangent0`` (scaled, 2 n_r + 1): start direction instead of the branch's own
     (branch switching). The first point is corrected at fixed ``lam0`` by :func:`rotor.studies.shooting.shoot`.
+    With ``options.pass_switches`` a corrector that fails ``restart_after`` times in a row (the map jumps at a
+    stick/slip switch, or the phase conditions hold the orbit at a place of a stuck face's continuum where the
+    face starts to slip) is followed by a shooting restart past it (:func:`_restart`).
     """
     opts = options or ContinuationOptions()
     t_start = time.perf_counter()
-    s = np.asarray(scales, float)
-    ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
-    ev = _Evaluator(problem, s, ls)
-    first = shoot(ev.flow(lam0), state0, t0_s=0.0, steps_per_rev=problem.steps_per_rev, period_revs=problem.period_revs,
-                  modes0=problem.modes0, scales=s, options=ShootingOptions(tol=opts.tol, rcond=opts.rcond))
-    if not first.converged:
+    floor = np.asarray(scales, float)
+    ev = _Evaluator(problem, floor.copy(), float(lam_scale or abs(lam_end - lam0) / 10.0))
+    got = _start(problem, ev, state0, lam0, lam_end, opts, tangent0)
+    if got is None:
         return Branch((), (), problem.period_revs, f"no orbit at the start ({problem.name} = {lam0:g})",
                       time.perf_counter() - t_start)
-    y = np.concatenate([first.state / s, [lam0 / ls]])
-    R, J, M = ev(first.state, lam0)
+    pt, y, J, phase, tau = got
+    points, bifs, restarts, fails = [pt], [], 0, 0
     direction = math.copysign(1.0, lam_end - lam0)
-    guide = np.zeros(len(y))
-    guide[-1] = direction
-    phase = _neutral(J)
-    if tangent0 is None:
-        tau = _tangent(J, guide, opts.rcond, phase)
-    else:
-        tau = np.asarray(tangent0, float) / np.linalg.norm(tangent0)
-    points = [_point(ev, y, J, M, 0, float(np.max(np.abs(R))), tau, opts)]
-    bifs: list = []
     ds, stop = opts.ds, "max_points"
     while len(points) < opts.max_points:
         y_prev = y
         got = _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        guide = tau
         if got is None:
-            ds *= 0.5
-            if ds < opts.ds_min:
-                stop = "step below ds_min"
-                break
-            continue
-        y, J, M, it, res = got
+            fails += 1
+            if opts.pass_switches and fails == opts.restart_after:
+                got = _restart(ev, points, y, tau, opts)
+            if got is None:
+                ds *= 0.5
+                if ds < opts.ds_min:
+                    stop = "step below ds_min"
+                    break
+                continue
+            y, J, M, it, res, guide = got
+            restarts += 1
+            ds = opts.ds
+        else:
+            y, J, M, it, res = got
+        restarted, fails = guide is not tau, 0
         phase_new = _neutral(J)
-        tau_new = _tangent(J, tau, opts.rcond, phase_new)
-        pt = _point(ev, y, J, M, it, res, tau_new, opts)
+        tau_new = _tangent(J, guide, opts.rcond, phase_new)
+        pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
         bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
-        phase = phase_new
         points.append(pt)
         tau = tau_new
-        ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
+        if opts.follow_scales:
+            y, tau, J = _rescale(ev, y, tau, M, J, floor)
+        phase = _neutral(J)
+        if not restarted:
+            ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
         if (pt.parameter - lam_end) * direction >= 0:
             stop = "end reached"
             break
         if (lam0 - pt.parameter) * direction > opts.back_margin * abs(lam_end - lam0):
             stop = "turned back beyond the start"
             break
-    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, time.perf_counter() - t_start)
+    return Branch(tuple(points), tuple(_confirmed_folds(points, bifs)), problem.period_revs, stop,
+                  time.perf_counter() - t_start, restarts)
 
 
 def switch_period_doubling(problem: Problem, branch: Branch, bif: Bifurcation, lam_end: float, *, scales,
