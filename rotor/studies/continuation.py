@@ -37,14 +37,22 @@ import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.dynamics import constraints as cons
+from rotor.dynamics.initial import linear_initial_state
 from rotor.studies.floquet import FloquetResult, crossing, floquet
-from rotor.studies.period_flow import Flow, advance, make_flow
-from rotor.studies.shooting import ShootingOptions, min_norm_step, orbit_scales, record_reduced, shoot
+from rotor.studies.period_flow import Flow, advance, make_flow, to_full
+from rotor.studies.shooting import (ShootingOptions, min_norm_step, orbit_scales, record_reduced, shoot,
+                                    shoot_from_transient)
 
 #: relative step of the parameter finite difference
 PARAM_REL_STEP = 1e-6
 #: singular values of the scaled ``M − I`` below this fraction of the largest are a continuum's directions
 NEUTRAL_TOL = 1e-8
+#: shortest parameter step of a restart past a switch (scaled parameter, –)
+RESTART_STEP = 1e-4
+#: how a restarted point was found (``BranchPoint.restarted``; 0: by the corrector)
+SECANT, TRANSIENT, COLD = 1, 2, 3
+#: most revolutions of the transient of a restart from the last orbit
+RESTART_TRANSIENT_REVS = 62
 #: the state scales are renewed when the orbit's own scale differs from them by more than this factor
 RESCALE_RATIO = 2.0
 
@@ -94,7 +102,8 @@ def parameter_problem(system_at: Callable, speed_rad_s: float, steps_per_rev: in
 class BranchPoint:
     """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector
     ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent), ``restarted``:
-    reached by a shooting restart past a switch (:func:`_restart`), not by the corrector from the point before."""
+    0 reached by the corrector from the point before, else by a restart past a switch (:func:`_restart`):
+    :data:`SECANT`, :data:`TRANSIENT` or :data:`COLD`, how its orbit was shot (:func:`_shot`)."""
 
     parameter: float
     state: np.ndarray
@@ -102,7 +111,7 @@ class BranchPoint:
     iterations: int
     residual: float
     dlam_ds: float
-    restarted: bool = False
+    restarted: int = 0
 
 
 @dataclass(frozen=True)
@@ -140,7 +149,7 @@ class ContinuationOptions:
 
     ``pass_switches``: a corrector that stops contracting is given up after 4 iterations, and after
     ``restart_after`` failed correctors in a row the branch is restarted past the switch by shooting at fixed
-    parameter (:func:`_restart`, ``restart_tries`` parameter steps doubling from the last one).
+    parameter (:func:`_restart`, ``restart_tries`` parameter steps growing ×4 from the last one).
     ``follow_scales``: the state scales follow the orbit's own peak-to-peak range (never below the given
     ``scales``) once it differs from them by more than ``RESCALE_RATIO``. Both False: the plain corrector with
     the start's scales."""
@@ -231,7 +240,7 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
     return None
 
 
-def _point(ev, y, J, M, it, res, tau, opts, restarted: bool = False) -> BranchPoint:
+def _point(ev, y, J, M, it, res, tau, opts, restarted: int = 0) -> BranchPoint:
     lam = y[-1] * ev.ls
     period = ev.pb.n_steps * ev.flow(lam).dt_s
     return BranchPoint(float(lam), y[:-1] * ev.s, floquet(M, period, tol=opts.multiplier_tol), it, res,
@@ -330,12 +339,18 @@ def _confirmed_folds(points, bifs) -> list:
     return out
 
 
-def _restart(ev, points, y, tau, opts):
+def _restart(ev, points, y, tau, opts, continuum: bool):
     """A point past a switch where the corrector cannot go: shooting (:func:`rotor.studies.shooting.shoot`,
     Newton with halving and Levenberg–Marquardt retrials, no arclength or phase row) at the fixed parameter
-    ``λ_k + h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
-    the last step's parameter advance (at least ``ds_min``), doubled after each failure, ``restart_tries``
-    times, at most ``ds_max``. Returns ``(y, J, M, iterations, residual, secant)`` or None."""
+    ``λ_k + 2h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
+    the last step's parameter advance (at least :data:`RESTART_STEP`), four times as long after each failure,
+    ``restart_tries`` times, at most ``ds_max`` (scaled parameter); then at ``λ_k + 2h`` a transient from the
+    last orbit before shooting, then one from the linear periodic solution (:func:`_shot`). In a stuck face's
+    continuum (``continuum``: the last orbit has neutral directions) the transient comes first: the orbit the
+    corrector cannot reach lies where the face, having slipped a little, holds again, which a transient
+    finds and Newton from the secant (at the offset where the face slips) does not. Returns
+    ``(y, J, M, iterations, residual, how, guide)`` or None, ``guide`` the unit parameter direction of travel
+    (for the new tangent)."""
     x_k, lam_k = y[:-1] * ev.s, y[-1] * ev.ls
     if len(points) > 1:
         prev = points[-2]
@@ -345,24 +360,50 @@ def _restart(ev, points, y, tau, opts):
     if abs(d[-1]) < 1e-3 * np.linalg.norm(d):       # at a turn: no direction in the parameter to restart along
         return None
     d = d / np.linalg.norm(d)
-    h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), opts.ds_min)
-    sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_iter=2 * opts.max_iter)
-    pb = ev.pb
-    for _ in range(opts.restart_tries):
-        h = min(h, opts.ds_max)
-        y_pred = y + (h / abs(d[-1])) * d
-        lam = y_pred[-1] * ev.ls
-        try:
-            sh = shoot(ev.flow(lam), y_pred[:-1] * ev.s, t0_s=0.0, steps_per_rev=pb.steps_per_rev,
-                       period_revs=pb.period_revs, modes0=pb.modes0, scales=ev.s, options=sopts)
-        except (OutsideDomainError, ConvergenceError, InputError):
-            sh = None
-        if sh is not None and sh.converged:
-            R, J, M = ev(sh.state, lam)
-            return np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, \
-                float(np.max(np.abs(R))), d
-        h *= 2.0
+    h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), RESTART_STEP)
+    tries = [(SECANT, min(2.0 * h * 4.0 ** k, opts.ds_max)) for k in range(opts.restart_tries)]
+    tries = ([(TRANSIENT, 2.0 * h)] + tries if continuum else tries + [(TRANSIENT, 2.0 * h)]) + [(COLD, 2.0 * h)]
+    for how, step in tries:
+        y_pred = y + (step / abs(d[-1])) * d
+        got = _shot(ev, y_pred, opts, how, y)
+        if got is not None:       # the new tangent points on in the parameter: across a jump the secant need not
+            guide = np.zeros(len(y))
+            guide[-1] = math.copysign(1.0, d[-1])
+            return (*got, guide)
     return None
+
+
+def _shot(ev, y_pred, opts, how: int, y_last):
+    """The orbit at the parameter of ``y_pred``: ``how`` 1 (:data:`SECANT`) :func:`rotor.studies.shooting.shoot`
+    from its state; 2 (:data:`TRANSIENT`) :func:`rotor.studies.shooting.shoot_from_transient` from the last
+    orbit ``y_last`` (rounds of 2, 4, … revolutions, at most :data:`RESTART_TRANSIENT_REVS`); 3 (:data:`COLD`)
+    the same from the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`; 24, 48, …
+    revolutions: the start of a new segment). ``(y, J, M, iterations, residual, how)`` if the orbit's residual
+    with the branch's own start modes is below ``tol``, else None."""
+    pb, lam = ev.pb, y_pred[-1] * ev.ls
+    flow = ev.flow(lam)
+    sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_iter=2 * opts.max_iter, transient_revs=2,
+                            round_growth=2.0, max_transient_revs=RESTART_TRANSIENT_REVS)
+    try:
+        if how == SECANT:
+            sh = shoot(flow, y_pred[:-1] * ev.s, t0_s=0.0, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
+                       modes0=pb.modes0, scales=ev.s, options=sopts)
+        else:
+            if how == TRANSIENT:
+                q, v = to_full(flow, y_last[:-1] * ev.s, 0.0)
+            else:
+                q, v = linear_initial_state(flow.system, 0.0)
+                sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_transient_revs=8 * RESTART_TRANSIENT_REVS)
+            sh = shoot_from_transient(flow, q, v, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
+                                      options=sopts, modes0=pb.modes0)
+        if not sh.converged:
+            return None
+        R, J, M = ev(sh.state, lam)
+    except (OutsideDomainError, ConvergenceError, InputError):
+        return None
+    res = float(np.max(np.abs(R)))
+    return (np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, res, how) \
+        if res < opts.tol else None
 
 
 def _rescale(ev, y, tau, M, J, floor):
@@ -430,20 +471,21 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         guide = tau
         if got is None:
             fails += 1
-            if opts.pass_switches and fails == opts.restart_after:
-                got = _restart(ev, points, y, tau, opts)
+            if opts.pass_switches and fails == (1 if points[-1].restarted else opts.restart_after):
+                got = _restart(ev, points, y, tau, opts, len(phase) > 0)
             if got is None:
                 ds *= 0.5
                 if ds < opts.ds_min:
                     stop = "step below ds_min"
                     break
                 continue
-            y, J, M, it, res, guide = got
+            y, J, M, it, res, restarted, guide = got
             restarts += 1
             ds = opts.ds
         else:
             y, J, M, it, res = got
-        restarted, fails = guide is not tau, 0
+            restarted = 0
+        fails = 0
         phase_new = _neutral(J)
         tau_new = _tangent(J, guide, opts.rcond, phase_new)
         pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
