@@ -147,9 +147,9 @@ class ContinuationOptions:
     ``max_points``, ``back_margin`` (stop when a branch turns back beyond the start by this fraction of the
     range), ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet).
 
-    ``pass_switches``: a corrector that stops contracting is given up after 4 iterations, and after
-    ``restart_after`` failed correctors in a row the branch is restarted past the switch by shooting at fixed
-    parameter (:func:`_restart`, ``restart_tries`` parameter steps growing ×4 from the last one).
+    ``pass_switches``: after ``restart_after`` failed correctors in a row (one after a restarted point) the
+    branch is restarted past the switch by shooting at fixed parameter (:func:`_restart`, ``restart_tries``
+    parameter steps growing ×4 from the last one).
     ``follow_scales``: the state scales follow the orbit's own peak-to-peak range (never below the given
     ``scales``) once it differs from them by more than ``RESCALE_RATIO``. Both False: the plain corrector with
     the start's scales."""
@@ -220,7 +220,6 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
     The phase rows ``P`` keep the orbit's place in a stuck face's continuum that of ``anchor``."""
     y = y_pred.copy()
     has_phase = phase is not None and len(phase)
-    best = math.inf
     for it in range(1, opts.max_iter + 1):
         x, lam = y[:-1] * ev.s, y[-1] * ev.ls
         try:
@@ -228,9 +227,8 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
         except (OutsideDomainError, ConvergenceError, InputError):   # an iterate the scheme cannot step
             return None
         res = float(np.max(np.abs(R)))
-        if not math.isfinite(res) or (opts.pass_switches and it > 4 and res >= best):
-            return None        # not contracting: Newton cycles between pieces of a map that jumps at a switch
-        best = min(best, res)
+        if not math.isfinite(res):
+            return None
         A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
         rhs = -np.concatenate([R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else []))
         dy, _ = min_norm_step(A, rhs, opts.rcond)
