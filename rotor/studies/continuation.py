@@ -19,7 +19,24 @@ derivative ``∂R/∂λ`` is a central finite difference of the map, ``h = 10⁻
 the step and the load at ``λ ± h``; an analytic derivative would need the period map's sensitivity to Δt
 and to the load, which the period map does not carry).
 
-Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign;
+Switches (the Table 4 rotor, friction on the ring's end faces). The corrector stops where the map jumps, as
+measured at three stalls of the plain corrector (600–18 000 rpm, 2 240 steps per revolution; the monodromy
+agreed there with central differences to 3e-6 of its scale one step back, so the Jacobian was not the cause):
+at 3 083 and 3 954 rpm both faces stick through the period (four neutral multipliers) and the phase rows hold
+the orbit at the place of the continuum where face 2's holding force has reached μN (1 499 and 1 496 N of
+1 500 N): a parameter step of 4e-4 rpm makes the face slip for a step and the scaled residual jump from 5e-11
+to 4e-4 (2.7e-4 at 3 954 rpm), while shooting at fixed speed (no phase rows) finds a stuck orbit 0.1 rpm on,
+4e-2 away in the continuum. At 5 179 rpm (19 switches per period) a switch moves by a step: Newton cycles on
+residuals 1.7e-4 / 4.4e-5 and, at some speeds of the discrete scheme, no exact fixed point exists (a transient
+of 2 000 revolutions ends at 1.6e-5), while 1 rpm on shooting converges to 5e-12. With ``pass_switches``
+(:class:`ContinuationOptions`) such a stall is passed by a restart (:func:`_restart`): shooting at a fixed
+parameter a little further on, from the secant predictor, from a short transient of the last orbit (first in
+a stuck continuum: the face slips a little and holds again) or from the linear periodic solution; the point
+is marked ``restarted`` and no fold is read across it. ``follow_scales`` renews the state scales with the
+orbit's own range (the amplitude grows with the speed squared: with the start's scales the steps creep).
+
+Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign and
+the secants into and out of the pair confirm the turn (:func:`_confirmed_folds`);
 period doubling, Neimark–Sacker, and branch points (a real multiplier through +1 with no turn: a pitchfork)
 where the count of multipliers outside the unit circle changes (:func:`rotor.studies.floquet.crossing`). Each is located by regula falsi on
 the arclength between the two points, on its test quantity (``dλ/ds``, or ``|μ| − 1`` of the largest multiplier
