@@ -68,7 +68,10 @@ NEUTRAL_TOL = 1e-8
 RESTART_STEP = 1e-4
 #: how a restarted point was found (``BranchPoint.restarted``; 0: by the corrector)
 SECANT, TRANSIENT, COLD = 1, 2, 3
-#: most revolutions of the transient of a restart from the last orbit
+#: a restart from the linear periodic solution (a new segment's start) is tried this many times, at parameter
+#: steps growing ×4 from ``COLD_STEP`` (scaled parameter; with a tenth of 600–18 000 rpm as the scale: 1.7 to 445 rpm)
+COLD_TRIES, COLD_STEP = 5, 1e-3
+#: most revolutions of the transient of a restart from the last orbit (four times as many from the linear start)
 RESTART_TRANSIENT_REVS = 62
 #: the state scales are renewed when the orbit's own scale differs from them by more than this factor
 RESCALE_RATIO = 2.0
@@ -360,7 +363,8 @@ def _restart(ev, points, y, tau, opts, continuum: bool):
     ``λ_k + 2h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
     the last step's parameter advance (at least :data:`RESTART_STEP`), four times as long after each failure,
     ``restart_tries`` times, at most ``ds_max`` (scaled parameter); then at ``λ_k + 2h`` a transient from the
-    last orbit before shooting, then one from the linear periodic solution (:func:`_shot`). In a stuck face's
+    last orbit before shooting, then from the linear periodic solution at :data:`COLD_TRIES` steps growing ×4
+    (:func:`_shot`). In a stuck face's
     continuum (``continuum``: the last orbit has neutral directions) the transient comes first: the orbit the
     corrector cannot reach lies where the face, having slipped a little, holds again, which a transient
     finds and Newton from the secant (at the offset where the face slips) does not. Returns
@@ -377,7 +381,8 @@ def _restart(ev, points, y, tau, opts, continuum: bool):
     d = d / np.linalg.norm(d)
     h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), RESTART_STEP)
     tries = [(SECANT, min(2.0 * h * 4.0 ** k, opts.ds_max)) for k in range(opts.restart_tries)]
-    tries = ([(TRANSIENT, 2.0 * h)] + tries if continuum else tries + [(TRANSIENT, 2.0 * h)]) + [(COLD, 2.0 * h)]
+    cold = [(COLD, min(COLD_STEP * 4.0 ** k, opts.ds_max)) for k in range(COLD_TRIES)]
+    tries = ([(TRANSIENT, 2.0 * h)] + tries if continuum else tries + [(TRANSIENT, 2.0 * h)]) + cold
     for how, step in tries:
         y_pred = y + (step / abs(d[-1])) * d
         got = _shot(ev, y_pred, opts, how, y)
@@ -392,8 +397,8 @@ def _shot(ev, y_pred, opts, how: int, y_last):
     """The orbit at the parameter of ``y_pred``: ``how`` 1 (:data:`SECANT`) :func:`rotor.studies.shooting.shoot`
     from its state; 2 (:data:`TRANSIENT`) :func:`rotor.studies.shooting.shoot_from_transient` from the last
     orbit ``y_last`` (rounds of 2, 4, … revolutions, at most :data:`RESTART_TRANSIENT_REVS`); 3 (:data:`COLD`)
-    the same from the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`; 24, 48, …
-    revolutions: the start of a new segment). ``(y, J, M, iterations, residual, how)`` if the orbit's residual
+    the same from the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`; 24, 36, …
+    revolutions, at most 4 :data:`RESTART_TRANSIENT_REVS`: the start of a new segment). ``(y, J, M, iterations, residual, how)`` if the orbit's residual
     with the branch's own start modes is below ``tol``, else None."""
     pb, lam = ev.pb, y_pred[-1] * ev.ls
     flow = ev.flow(lam)
@@ -408,7 +413,7 @@ def _shot(ev, y_pred, opts, how: int, y_last):
                 q, v = to_full(flow, y_last[:-1] * ev.s, 0.0)
             else:
                 q, v = linear_initial_state(flow.system, 0.0)
-                sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_transient_revs=8 * RESTART_TRANSIENT_REVS)
+                sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_transient_revs=4 * RESTART_TRANSIENT_REVS)
             sh = shoot_from_transient(flow, q, v, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
                                       options=sopts, modes0=pb.modes0)
         if not sh.converged:
