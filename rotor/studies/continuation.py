@@ -283,10 +283,20 @@ def _test(kind: str, pt: BranchPoint) -> float:
     return float(np.abs(pick).max()) - 1.0 if len(pick) else -1.0
 
 
+def _fold_estimate(a: BranchPoint, b: BranchPoint, ds: float, lam_scale: float) -> float:
+    """The parameter at the turn between ``a`` and ``b`` a step ``ds`` apart (scaled), with ``dλ/ds`` taken as
+    linear in the arclength from ``a.dlam_ds`` to ``b.dlam_ds``: ``λ_a + λ_s f_a² ds / (2 (f_a − f_b))``, the
+    vertex of the parabola ``λ(σ)`` (beyond both points, where a linear interpolation of λ would fall between
+    them)."""
+    fa, fb = a.dlam_ds, b.dlam_ds
+    return a.parameter + lam_scale * fa * fa * ds / (2.0 * (fa - fb))
+
+
 def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, opts, phase, n_iter: int = 8) -> float:
     """Parameter of a bifurcation between ``a`` (at ``y0``, tangent ``tau0``) and ``b`` (a step ``ds`` on):
     regula falsi (Illinois) on the arclength ``σ`` in ``[0, ds]``, each trial corrected on the hyperplane
-    ``τ0·(y − y0 − σ τ0) = 0``, until the bracket is below 10⁻⁶ ds; linear interpolation if a corrector fails."""
+    ``τ0·(y − y0 − σ τ0) = 0``, until the bracket is below 10⁻⁶ ds; if a corrector fails, linear interpolation
+    (a fold: :func:`_fold_estimate`, the turning point itself lies beyond both points)."""
     lo, hi, flo, fhi = 0.0, ds, _test(kind, a), _test(kind, b)
     lam = b.parameter
     side = 0
@@ -296,6 +306,8 @@ def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, 
         sig = lo - flo * (hi - lo) / (fhi - flo)
         got = _correct(ev, y0 + sig * tau0, tau0, opts, phase, y0)
         if got is None:
+            if kind == "fold":
+                return _fold_estimate(a, b, ds, ev.ls)
             return a.parameter + (b.parameter - a.parameter) * min(max(-flo / (fhi - flo), 0.0), 1.0)
         y, J, M, it, res = got
         pt = _point(ev, y, J, M, it, res, _tangent(J, tau0, opts.rcond, _neutral(J)), opts)

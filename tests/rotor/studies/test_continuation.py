@@ -216,3 +216,13 @@ def test_a_fold_is_reported_only_where_the_branch_turns():
     assert _confirmed_folds(jump, fold) == []
     other = [Bifurcation("period_doubling", 3, 2.05, -1.0)]
     assert _confirmed_folds(last, other) == other
+
+
+def test_fold_estimate_is_the_vertex_of_the_parabola():
+    """λ(σ) = 3 − (σ − 0.3)² (scaled, λ_s = 2): dλ/dσ = 0.6 at σ = 0 and −0.2 at σ = 0.4, the vertex at
+    σ = 0.3 with λ = 3 · 2 = 6, above both points (λ(0) = 5.82, λ(0.4) = 5.98)."""
+    from rotor.studies.continuation import _fold_estimate
+
+    a, b = _fake(2.0 * (3 - 0.09), 0.6), _fake(2.0 * (3 - 0.01), -0.2)
+    got = _fold_estimate(a, b, 0.4, 2.0)
+    assert abs(got - 6.0) < 1e-12 and got > max(a.parameter, b.parameter)
