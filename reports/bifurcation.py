@@ -95,19 +95,25 @@ def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
 
 def segments_table(segments) -> str:
     """Markdown table of branch segments (the JSON of ``ringcontact branch`` each): range covered, orbits,
-    stable share, largest spectral radius, bifurcations and why each stopped."""
+    stable share, largest spectral radius, bifurcations, the points reached by restarts past a switch (by
+    kind, :mod:`rotor.studies.continuation`; a column only when the segments carry ``restarts``) and why each
+    stopped."""
+    restarts = any("restarts" in s for s in segments)
+    extra = (" restarts past switches (secant/transient/cold) |", "---|") if restarts else ("", "")
     lines = ["| start (rpm) | reached (rpm) | target (rpm) | orbits | stable | largest spectral radius | "
-             "bifurcations | stopped |", "|---|---|---|---|---|---|---|---|"]
+             "bifurcations |" + extra[0] + " stopped |", "|---|---|---|---|---|---|---|" + extra[1] + "---|"]
     for s in segments:
         pts = s["points"]
+        r = s.get("restarts", {})
+        rtext = f" {r.get('secant', 0)}/{r.get('transient', 0)}/{r.get('cold', 0)} |" if restarts else ""
         if not pts:
-            lines.append(f"| {s['rpm_start']:.0f} | – | {s['rpm_end']:.0f} | 0 | – | – | – | {s['stop']} |")
+            lines.append(f"| {s['rpm_start']:.0f} | – | {s['rpm_end']:.0f} | 0 | – | – | – |{rtext} {s['stop']} |")
             continue
         rpm = [p["speed_rpm"] for p in pts]
         stable = sum(bool(p["stable"]) for p in pts)
         bifs = _bifurcation_text(s["bifurcations"])
         lines.append(f"| {s['rpm_start']:.0f} | {max(rpm):.0f} | {s['rpm_end']:.0f} | {len(pts)} | "
-                     f"{stable}/{len(pts)} | {max(p['spectral_radius'] for p in pts):.4f} | {bifs} | {s['stop']} |")
+                     f"{stable}/{len(pts)} | {max(p['spectral_radius'] for p in pts):.4f} | {bifs} |{rtext} {s['stop']} |")
     return "\n".join(lines)
 
 

@@ -19,7 +19,24 @@ derivative ``∂R/∂λ`` is a central finite difference of the map, ``h = 10⁻
 the step and the load at ``λ ± h``; an analytic derivative would need the period map's sensitivity to Δt
 and to the load, which the period map does not carry).
 
-Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign;
+Switches (the Table 4 rotor, friction on the ring's end faces). The corrector stops where the map jumps, as
+measured at three stalls of the plain corrector (600–18 000 rpm, 2 240 steps per revolution; the monodromy
+agreed there with central differences to 3e-6 of its scale one step back, so the Jacobian was not the cause):
+at 3 083 and 3 954 rpm both faces stick through the period (four neutral multipliers) and the phase rows hold
+the orbit at the place of the continuum where face 2's holding force has reached μN (1 499 and 1 496 N of
+1 500 N): a parameter step of 4e-4 rpm makes the face slip for a step and the scaled residual jump from 5e-11
+to 4e-4 (2.7e-4 at 3 954 rpm), while shooting at fixed speed (no phase rows) finds a stuck orbit 0.1 rpm on,
+4e-2 away in the continuum. At 5 179 rpm (19 switches per period) a switch moves by a step: Newton cycles on
+residuals 1.7e-4 / 4.4e-5 and, at some speeds of the discrete scheme, no exact fixed point exists (a transient
+of 2 000 revolutions ends at 1.6e-5), while 1 rpm on shooting converges to 5e-12. With ``pass_switches``
+(:class:`ContinuationOptions`) such a stall is passed by a restart (:func:`_restart`): shooting at a fixed
+parameter a little further on, from the secant predictor, from a short transient of the last orbit (first in
+a stuck continuum: the face slips a little and holds again) or from the linear periodic solution; the point
+is marked ``restarted`` and no fold is read across it. ``follow_scales`` renews the state scales with the
+orbit's own range (the amplitude grows with the speed squared: with the start's scales the steps creep).
+
+Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign and
+the secants into and out of the pair confirm the turn (:func:`_confirmed_folds`);
 period doubling, Neimark–Sacker, and branch points (a real multiplier through +1 with no turn: a pitchfork)
 where the count of multipliers outside the unit circle changes (:func:`rotor.studies.floquet.crossing`). Each is located by regula falsi on
 the arclength between the two points, on its test quantity (``dλ/ds``, or ``|μ| − 1`` of the largest multiplier
@@ -37,14 +54,27 @@ import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.dynamics import constraints as cons
+from rotor.dynamics.initial import linear_initial_state
 from rotor.studies.floquet import FloquetResult, crossing, floquet
-from rotor.studies.period_flow import Flow, advance, make_flow
-from rotor.studies.shooting import ShootingOptions, min_norm_step, shoot
+from rotor.studies.period_flow import Flow, advance, make_flow, to_full
+from rotor.studies.shooting import (ShootingOptions, min_norm_step, orbit_scales, record_reduced, shoot,
+                                    shoot_from_transient)
 
 #: relative step of the parameter finite difference
 PARAM_REL_STEP = 1e-6
 #: singular values of the scaled ``M − I`` below this fraction of the largest are a continuum's directions
 NEUTRAL_TOL = 1e-8
+#: shortest parameter step of a restart past a switch (scaled parameter, –)
+RESTART_STEP = 1e-4
+#: how a restarted point was found (``BranchPoint.restarted``; 0: by the corrector)
+SECANT, TRANSIENT, COLD = 1, 2, 3
+#: a restart from the linear periodic solution (a new segment's start) is tried this many times, at parameter
+#: steps growing ×4 from ``COLD_STEP`` (scaled parameter; with a tenth of 600–18 000 rpm as the scale: 1.7 to 445 rpm)
+COLD_TRIES, COLD_STEP = 5, 1e-3
+#: most revolutions of the transient of a restart from the last orbit (four times as many from the linear start)
+RESTART_TRANSIENT_REVS = 62
+#: the state scales are renewed when the orbit's own scale differs from them by more than this factor
+RESCALE_RATIO = 2.0
 
 
 @dataclass(frozen=True)
@@ -91,7 +121,9 @@ def parameter_problem(system_at: Callable, speed_rad_s: float, steps_per_rev: in
 @dataclass(frozen=True)
 class BranchPoint:
     """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector
-    ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent)."""
+    ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent), ``restarted``:
+    0 reached by the corrector from the point before, else by a restart past a switch (:func:`_restart`):
+    :data:`SECANT`, :data:`TRANSIENT` or :data:`COLD`, how its orbit was shot (:func:`_shot`)."""
 
     parameter: float
     state: np.ndarray
@@ -99,6 +131,7 @@ class BranchPoint:
     iterations: int
     residual: float
     dlam_ds: float
+    restarted: int = 0
 
 
 @dataclass(frozen=True)
@@ -114,13 +147,15 @@ class Bifurcation:
 
 @dataclass(frozen=True)
 class Branch:
-    """Points and bifurcations of one branch, ``period_revs``, why it stopped (``stop``), ``wall_s``."""
+    """Points and bifurcations of one branch, ``period_revs``, why it stopped (``stop``), ``wall_s``, and
+    ``restarts``: points reached by a shooting restart past a switch (:func:`_restart`)."""
 
     points: tuple
     bifurcations: tuple
     period_revs: int
     stop: str
     wall_s: float
+    restarts: int = 0
 
     def parameters(self) -> np.ndarray:
         return np.array([p.parameter for p in self.points])
@@ -130,7 +165,14 @@ class Branch:
 class ContinuationOptions:
     """``ds`` initial/min/max arclength steps (scaled units), corrector ``tol`` (–) and ``max_iter``,
     ``max_points``, ``back_margin`` (stop when a branch turns back beyond the start by this fraction of the
-    range), ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet)."""
+    range), ``rcond`` of the minimum-norm solves, ``multiplier_tol`` (Floquet).
+
+    ``pass_switches``: after ``restart_after`` failed correctors in a row (one after a restarted point) the
+    branch is restarted past the switch by shooting at fixed parameter (:func:`_restart`, ``restart_tries``
+    parameter steps growing ×4 from the last one).
+    ``follow_scales``: the state scales follow the orbit's own peak-to-peak range (never below the given
+    ``scales``) once it differs from them by more than ``RESCALE_RATIO``. Both False: the plain corrector with
+    the start's scales."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -141,6 +183,10 @@ class ContinuationOptions:
     back_margin: float = 0.5
     rcond: float = 1e-10
     multiplier_tol: float = 1e-6
+    pass_switches: bool = True
+    restart_after: int = 3
+    restart_tries: int = 6
+    follow_scales: bool = True
 
 
 class _Evaluator:
@@ -212,11 +258,11 @@ def _correct(ev: _Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None,
     return None
 
 
-def _point(ev, y, J, M, it, res, tau, opts) -> BranchPoint:
+def _point(ev, y, J, M, it, res, tau, opts, restarted: int = 0) -> BranchPoint:
     lam = y[-1] * ev.ls
     period = ev.pb.n_steps * ev.flow(lam).dt_s
     return BranchPoint(float(lam), y[:-1] * ev.s, floquet(M, period, tol=opts.multiplier_tol), it, res,
-                       float(tau[-1]))
+                       float(tau[-1]), restarted)
 
 
 def _test(kind: str, pt: BranchPoint) -> float:
@@ -237,10 +283,20 @@ def _test(kind: str, pt: BranchPoint) -> float:
     return float(np.abs(pick).max()) - 1.0 if len(pick) else -1.0
 
 
+def _fold_estimate(a: BranchPoint, b: BranchPoint, ds: float, lam_scale: float) -> float:
+    """The parameter at the turn between ``a`` and ``b`` a step ``ds`` apart (scaled), with ``dλ/ds`` taken as
+    linear in the arclength from ``a.dlam_ds`` to ``b.dlam_ds``: ``λ_a + λ_s f_a² ds / (2 (f_a − f_b))``, the
+    vertex of the parabola ``λ(σ)`` (beyond both points, where a linear interpolation of λ would fall between
+    them)."""
+    fa, fb = a.dlam_ds, b.dlam_ds
+    return a.parameter + lam_scale * fa * fa * ds / (2.0 * (fa - fb))
+
+
 def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, opts, phase, n_iter: int = 8) -> float:
     """Parameter of a bifurcation between ``a`` (at ``y0``, tangent ``tau0``) and ``b`` (a step ``ds`` on):
     regula falsi (Illinois) on the arclength ``σ`` in ``[0, ds]``, each trial corrected on the hyperplane
-    ``τ0·(y − y0 − σ τ0) = 0``, until the bracket is below 10⁻⁶ ds; linear interpolation if a corrector fails."""
+    ``τ0·(y − y0 − σ τ0) = 0``, until the bracket is below 10⁻⁶ ds; if a corrector fails, linear interpolation
+    (a fold: :func:`_fold_estimate`, the turning point itself lies beyond both points)."""
     lo, hi, flo, fhi = 0.0, ds, _test(kind, a), _test(kind, b)
     lam = b.parameter
     side = 0
@@ -250,6 +306,8 @@ def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, 
         sig = lo - flo * (hi - lo) / (fhi - flo)
         got = _correct(ev, y0 + sig * tau0, tau0, opts, phase, y0)
         if got is None:
+            if kind == "fold":
+                return _fold_estimate(a, b, ds, ev.ls)
             return a.parameter + (b.parameter - a.parameter) * min(max(-flo / (fhi - flo), 0.0), 1.0)
         y, J, M, it, res = got
         pt = _point(ev, y, J, M, it, res, _tangent(J, tau0, opts.rcond, _neutral(J)), opts)
@@ -269,16 +327,151 @@ def _refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, 
 
 def _events(ev, prev: BranchPoint, new: BranchPoint, index: int, y0, tau0, ds, opts, phase) -> list:
     """Bifurcations between ``prev`` and ``new``. A real multiplier through +1 without a turn of the
-    parameter is a branch point (a pitchfork: symmetry breaking, e.g. a planar orbit starting to whirl)."""
-    fold = prev.dlam_ds * new.dlam_ds < 0
+    parameter is a branch point (a pitchfork: symmetry breaking, e.g. a planar orbit starting to whirl).
+    Across a restart (``new.restarted``) the tangents of two pieces of the map are not compared (no fold), and
+    a multiplier crossing is placed by linear interpolation of its test quantity (no corrector joins them)."""
+    fold = prev.dlam_ds * new.dlam_ds < 0 and not new.restarted
     kinds = ["fold"] if fold else []
     kind = crossing(prev.floquet, new.floquet)
     if kind == "fold" and not fold:
         kind = "branch_point"
     if kind is not None and kind not in kinds:
         kinds.append(kind)
+    if new.restarted:
+        return [Bifurcation(k, index, _interpolated(k, prev, new), new.floquet.critical) for k in kinds]
     return [Bifurcation(k, index, _refine(ev, y0, tau0, ds, k, prev, new, opts, phase), new.floquet.critical)
             for k in kinds]
+
+
+def _interpolated(kind: str, a: BranchPoint, b: BranchPoint) -> float:
+    """Parameter where the test quantity of ``kind`` crosses zero on the straight line from ``a`` to ``b``."""
+    fa, fb = _test(kind, a), _test(kind, b)
+    w = 0.5 if fa == fb else min(max(-fa / (fb - fa), 0.0), 1.0)
+    return a.parameter + w * (b.parameter - a.parameter)
+
+
+def _confirmed_folds(points, bifs) -> list:
+    """The bifurcations with each fold kept only where the branch truly turns: the parameter components of
+    the tangents at points ``i − 1`` and ``i`` have opposite signs *and* the parameter moved along each of them,
+    into ``i − 1`` (from ``i − 2``; the first point has no secant in) and out of ``i`` (to ``i + 1``). A fold
+    between a branch's last two points, or one the secants contradict (a tangent turned by a switch, the
+    next corrector stepping on in the old direction), is not reported."""
+    lam = [p.parameter for p in points]
+    out = []
+    for b in bifs:
+        i = b.index
+        if b.kind == "fold":
+            into = i < 2 or (lam[i - 1] - lam[i - 2]) * points[i - 1].dlam_ds > 0
+            onward = i + 1 < len(points) and (lam[i + 1] - lam[i]) * points[i].dlam_ds > 0
+            if not (into and onward) or points[i].restarted or (i + 1 < len(points) and points[i + 1].restarted):
+                continue
+        out.append(b)
+    return out
+
+
+def _restart(ev, points, y, tau, opts, continuum: bool):
+    """A point past a switch where the corrector cannot go: shooting (:func:`rotor.studies.shooting.shoot`,
+    Newton with halving and Levenberg–Marquardt retrials, no arclength or phase row) at the fixed parameter
+    ``λ_k + 2h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
+    the last step's parameter advance (at least :data:`RESTART_STEP`), four times as long after each failure,
+    ``restart_tries`` times, at most ``ds_max`` (scaled parameter); then at ``λ_k + 2h`` a transient from the
+    last orbit before shooting, then from the linear periodic solution at :data:`COLD_TRIES` steps growing ×4
+    (:func:`_shot`). In a stuck face's
+    continuum (``continuum``: the last orbit has neutral directions) the transient comes first: the orbit the
+    corrector cannot reach lies where the face, having slipped a little, holds again, which a transient
+    finds and Newton from the secant (at the offset where the face slips) does not. Returns
+    ``(y, J, M, iterations, residual, how, guide)`` or None, ``guide`` the unit parameter direction of travel
+    (for the new tangent)."""
+    x_k, lam_k = y[:-1] * ev.s, y[-1] * ev.ls
+    if len(points) > 1:
+        prev = points[-2]
+        d = np.concatenate([(x_k - prev.state) / ev.s, [(lam_k - prev.parameter) / ev.ls]])
+    else:
+        d = tau.copy()
+    if abs(d[-1]) < 1e-3 * np.linalg.norm(d):       # at a turn: no direction in the parameter to restart along
+        return None
+    d = d / np.linalg.norm(d)
+    h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), RESTART_STEP)
+    tries = [(SECANT, min(2.0 * h * 4.0 ** k, opts.ds_max)) for k in range(opts.restart_tries)]
+    cold = [(COLD, min(COLD_STEP * 4.0 ** k, opts.ds_max)) for k in range(COLD_TRIES)]
+    tries = ([(TRANSIENT, 2.0 * h)] + tries if continuum else tries + [(TRANSIENT, 2.0 * h)]) + cold
+    for how, step in tries:
+        y_pred = y + (step / abs(d[-1])) * d
+        got = _shot(ev, y_pred, opts, how, y)
+        if got is not None:       # the new tangent points on in the parameter: across a jump the secant need not
+            guide = np.zeros(len(y))
+            guide[-1] = math.copysign(1.0, d[-1])
+            return (*got, guide)
+    return None
+
+
+def _shot(ev, y_pred, opts, how: int, y_last):
+    """The orbit at the parameter of ``y_pred``: ``how`` 1 (:data:`SECANT`) :func:`rotor.studies.shooting.shoot`
+    from its state; 2 (:data:`TRANSIENT`) :func:`rotor.studies.shooting.shoot_from_transient` from the last
+    orbit ``y_last`` (rounds of 2, 4, … revolutions, at most :data:`RESTART_TRANSIENT_REVS`); 3 (:data:`COLD`)
+    the same from the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`; 24, 36, …
+    revolutions, at most 4 :data:`RESTART_TRANSIENT_REVS`: the start of a new segment). ``(y, J, M, iterations, residual, how)`` if the orbit's residual
+    with the branch's own start modes is below ``tol``, else None."""
+    pb, lam = ev.pb, y_pred[-1] * ev.ls
+    flow = ev.flow(lam)
+    sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_iter=2 * opts.max_iter, transient_revs=2,
+                            round_growth=2.0, max_transient_revs=RESTART_TRANSIENT_REVS)
+    try:
+        if how == SECANT:
+            sh = shoot(flow, y_pred[:-1] * ev.s, t0_s=0.0, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
+                       modes0=pb.modes0, scales=ev.s, options=sopts)
+        else:
+            if how == TRANSIENT:
+                q, v = to_full(flow, y_last[:-1] * ev.s, 0.0)
+            else:
+                q, v = linear_initial_state(flow.system, 0.0)
+                sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_transient_revs=4 * RESTART_TRANSIENT_REVS)
+            sh = shoot_from_transient(flow, q, v, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
+                                      options=sopts, modes0=pb.modes0)
+        if not sh.converged:
+            return None
+        R, J, M = ev(sh.state, lam)
+    except (OutsideDomainError, ConvergenceError, InputError):
+        return None
+    res = float(np.max(np.abs(R)))
+    return (np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, res, how) \
+        if res < opts.tol else None
+
+
+def _rescale(ev, y, tau, M, J, floor):
+    """Renew the state scales to the orbit's own peak-to-peak range over one period at ``y`` (never below
+    ``floor``) when they differ by more than :data:`RESCALE_RATIO`: returns ``(y, tau, J)`` in the new
+    scaled variables (``J`` transformed, not recomputed) and sets ``ev.s``."""
+    x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+    p, v, _ = record_reduced(ev.flow(lam), x, 0.0, ev.pb.n_steps, ev.pb.modes0, max(1, ev.pb.n_steps // 256))
+    new = np.maximum(orbit_scales(ev.flow(lam), p, v), floor)
+    ratio = new / ev.s
+    if max(ratio.max(), 1.0 / ratio.min()) <= RESCALE_RATIO:
+        return y, tau, J
+    old, ev.s = ev.s, new
+    y = np.concatenate([y[:-1] / ratio, y[-1:]])
+    tau = np.concatenate([tau[:-1] / ratio, tau[-1:]])
+    J = np.hstack([(M - np.eye(len(new))) * (new[None, :] / new[:, None]), (J[:, -1] * old / new)[:, None]])
+    return y, tau / np.linalg.norm(tau), J
+
+
+def _start(problem, ev, state0, lam0, lam_end, opts, tangent0):
+    """The first point (shot at fixed ``lam0``), its ``(y, J, phase, tau)``, or None if shooting failed."""
+    s = ev.s
+    first = shoot(ev.flow(lam0), state0, t0_s=0.0, steps_per_rev=problem.steps_per_rev, period_revs=problem.period_revs,
+                  modes0=problem.modes0, scales=s, options=ShootingOptions(tol=opts.tol, rcond=opts.rcond))
+    if not first.converged:
+        return None
+    y = np.concatenate([first.state / s, [lam0 / ev.ls]])
+    R, J, M = ev(first.state, lam0)
+    guide = np.zeros(len(y))
+    guide[-1] = math.copysign(1.0, lam_end - lam0)
+    phase = _neutral(J)
+    if tangent0 is None:
+        tau = _tangent(J, guide, opts.rcond, phase)
+    else:
+        tau = np.asarray(tangent0, float) / np.linalg.norm(tangent0)
+    return _point(ev, y, J, M, 0, float(np.max(np.abs(R))), tau, opts), y, J, phase, tau
 
 
 def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, scales, lam_scale: float | None = None,
@@ -288,55 +481,62 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     ``scales`` (2 n_r,): state scales (m, rad; m/s, rad/s); ``lam_scale``: parameter scale (default
     ``|lam_end − lam0|/10``). ``tangent0`` (scaled, 2 n_r + 1): start direction instead of the branch's own
     (branch switching). The first point is corrected at fixed ``lam0`` by :func:`rotor.studies.shooting.shoot`.
+    With ``options.pass_switches`` a corrector that fails ``restart_after`` times in a row (the map jumps at a
+    stick/slip switch, or the phase conditions hold the orbit at a place of a stuck face's continuum where the
+    face starts to slip) is followed by a shooting restart past it (:func:`_restart`).
     """
     opts = options or ContinuationOptions()
     t_start = time.perf_counter()
-    s = np.asarray(scales, float)
-    ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
-    ev = _Evaluator(problem, s, ls)
-    first = shoot(ev.flow(lam0), state0, t0_s=0.0, steps_per_rev=problem.steps_per_rev, period_revs=problem.period_revs,
-                  modes0=problem.modes0, scales=s, options=ShootingOptions(tol=opts.tol, rcond=opts.rcond))
-    if not first.converged:
+    floor = np.asarray(scales, float)
+    ev = _Evaluator(problem, floor.copy(), float(lam_scale or abs(lam_end - lam0) / 10.0))
+    got = _start(problem, ev, state0, lam0, lam_end, opts, tangent0)
+    if got is None:
         return Branch((), (), problem.period_revs, f"no orbit at the start ({problem.name} = {lam0:g})",
                       time.perf_counter() - t_start)
-    y = np.concatenate([first.state / s, [lam0 / ls]])
-    R, J, M = ev(first.state, lam0)
+    pt, y, J, phase, tau = got
+    points, bifs, restarts, fails = [pt], [], 0, 0
     direction = math.copysign(1.0, lam_end - lam0)
-    guide = np.zeros(len(y))
-    guide[-1] = direction
-    phase = _neutral(J)
-    if tangent0 is None:
-        tau = _tangent(J, guide, opts.rcond, phase)
-    else:
-        tau = np.asarray(tangent0, float) / np.linalg.norm(tangent0)
-    points = [_point(ev, y, J, M, 0, float(np.max(np.abs(R))), tau, opts)]
-    bifs: list = []
     ds, stop = opts.ds, "max_points"
     while len(points) < opts.max_points:
         y_prev = y
         got = _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        guide = tau
         if got is None:
-            ds *= 0.5
-            if ds < opts.ds_min:
-                stop = "step below ds_min"
-                break
-            continue
-        y, J, M, it, res = got
+            fails += 1
+            if opts.pass_switches and fails == (1 if points[-1].restarted else opts.restart_after):
+                got = _restart(ev, points, y, tau, opts, len(phase) > 0)
+            if got is None:
+                ds *= 0.5
+                if ds < opts.ds_min:
+                    stop = "step below ds_min"
+                    break
+                continue
+            y, J, M, it, res, restarted, guide = got
+            restarts += 1
+            ds = opts.ds
+        else:
+            y, J, M, it, res = got
+            restarted = 0
+        fails = 0
         phase_new = _neutral(J)
-        tau_new = _tangent(J, tau, opts.rcond, phase_new)
-        pt = _point(ev, y, J, M, it, res, tau_new, opts)
+        tau_new = _tangent(J, guide, opts.rcond, phase_new)
+        pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
         bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
-        phase = phase_new
         points.append(pt)
         tau = tau_new
-        ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
+        if opts.follow_scales:
+            y, tau, J = _rescale(ev, y, tau, M, J, floor)
+        phase = _neutral(J)
+        if not restarted:
+            ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
         if (pt.parameter - lam_end) * direction >= 0:
             stop = "end reached"
             break
         if (lam0 - pt.parameter) * direction > opts.back_margin * abs(lam_end - lam0):
             stop = "turned back beyond the start"
             break
-    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, time.perf_counter() - t_start)
+    return Branch(tuple(points), tuple(_confirmed_folds(points, bifs)), problem.period_revs, stop,
+                  time.perf_counter() - t_start, restarts)
 
 
 def switch_period_doubling(problem: Problem, branch: Branch, bif: Bifurcation, lam_end: float, *, scales,

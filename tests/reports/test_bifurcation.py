@@ -53,3 +53,17 @@ def test_publish_writes_the_report_with_each_segment(tmp_path):
     assert "| 300 | – | 900 | 0 |" in md and md.rstrip().endswith("Reading.")
     data = json.loads((tmp_path / "study-bifurcation.json").read_text())
     assert data[0]["points"][4]["velocity_amplitudes_mm_s_1X_to_5X_d.y"] == [5.0, 0, 0, 0, 0]
+
+
+def test_segments_table_counts_restarts_when_the_segments_carry_them():
+    """The restart column appears only with ``restarts`` in the segments, one count per kind."""
+    from reports.bifurcation import segments_table
+
+    seg = {"rpm_start": 600.0, "rpm_end": 18000.0, "stop": "max_points", "bifurcations": [],
+           "points": [{"speed_rpm": 600.0, "stable": True, "spectral_radius": 0.7},
+                      {"speed_rpm": 650.0, "stable": True, "spectral_radius": 0.8}]}
+    plain = segments_table([seg])
+    assert "restarts" not in plain and plain.splitlines()[2].count("|") == 9
+    table = segments_table([{**seg, "restarts": {"secant": 1, "transient": 4, "cold": 0}}])
+    assert "restarts past switches" in table.splitlines()[0] and "| 1/4/0 |" in table.splitlines()[2]
+    assert table.splitlines()[2].count("|") == 10

@@ -161,3 +161,68 @@ def test_period_doubling_on_table4_and_the_doubled_branch():
         x2 = advance(fl, x1, n * fl.dt_s, n, modes, jacobian=False).state
         assert np.max(np.abs(x2 - p.state) / scales) < 1e-9
         assert np.max(np.abs(x1 - p.state) / scales) > 1e-3
+
+
+def test_smooth_branch_needs_no_restart_and_its_scales_follow_the_orbit(branch):
+    """The Jeffcott map has no switch (frictionless ring): the corrector alone covers the curve, no point
+    comes from a shooting restart. On the upper branch the orbit (radius up to 46 δ0 = 4.6e-4 m, peak-to-peak
+    9.2e-4 m) outgrows the given 1e-4 m scale more than twice, so the scales were renewed there: with the
+    start's scales and no restarts (``follow_scales``/``pass_switches`` off) the same curve takes more points."""
+    assert branch.restarts == 0 and not any(p.restarted for p in branch.points)
+    pb = speed_problem(lambda w: jeffcott_system(P, w), N, modes0=(0, 0))
+    plain = continue_branch(pb, np.zeros(8), 150.0, 900.0, scales=SCALES, lam_scale=100.0,
+                            options=ContinuationOptions(ds=0.1, ds_max=0.4, pass_switches=False, follow_scales=False))
+    assert plain.stop == "end reached" and len(plain.points) > len(branch.points)
+
+
+def test_rescaled_jacobian_is_the_one_evaluated_in_the_new_scales():
+    """``_rescale`` transforms the scaled state, tangent and bordered Jacobian to new scales without a new
+    map: they equal the evaluator's own at the same point in the new scales (to round-off)."""
+    from rotor.studies.continuation import _Evaluator, _rescale
+
+    pb = speed_problem(lambda w: jeffcott_system(P, w), N, modes0=(0, 0))
+    ev = _Evaluator(pb, SCALES.copy(), 100.0)
+    x, lam = np.array([2e-5, 1e-5, 0, 0, -3e-3, 6e-3, 0, 0]), 500.0
+    R, J, M = ev(x, lam)
+    y = np.concatenate([x / ev.s, [lam / ev.ls]])
+    tau = np.ones(9) / 3.0
+    y2, tau2, J2 = _rescale(ev, y, tau, M, J, 10.0 * SCALES)          # the floor forces new scales: 10 × SCALES
+    assert np.allclose(ev.s, 10.0 * SCALES)
+    assert np.allclose(y2[:-1] * ev.s, x, rtol=1e-14, atol=0) and y2[-1] == y[-1]
+    assert np.isclose(np.linalg.norm(tau2), 1.0) and np.allclose(tau2[:-1] * ev.s / (tau2[-1] * ev.ls),
+                                                                 tau[:-1] * SCALES / (tau[-1] * ev.ls))
+    _, J_new, _ = ev(x, lam)
+    assert np.allclose(J2, J_new, rtol=1e-9, atol=1e-12 * np.abs(J_new).max())
+
+
+def _fake(lam, dlam_ds, restarted=False):
+    from rotor.studies.continuation import BranchPoint
+    return BranchPoint(lam, np.zeros(2), None, 0, 0.0, dlam_ds, restarted)
+
+
+def test_a_fold_is_reported_only_where_the_branch_turns():
+    """The parameter components of the tangents change sign between points 2 and 3 in each case; only where
+    the parameter also moves along them (up into point 2, down after point 3) is it a fold."""
+    from rotor.studies.continuation import Bifurcation, _confirmed_folds
+
+    fold = [Bifurcation("fold", 3, 2.5, 1.0)]
+    turns = [_fake(0.0, 1), _fake(1.0, 1), _fake(2.0, 0.5), _fake(2.1, -0.5), _fake(1.5, -1)]
+    assert _confirmed_folds(turns, fold) == fold
+    goes_on = [_fake(0.0, 1), _fake(1.0, 1), _fake(2.0, 0.5), _fake(2.1, -0.5), _fake(2.5, 1)]   # a tangent turned
+    assert _confirmed_folds(goes_on, fold) == []
+    last = turns[:4]                                                    # nothing after: not confirmed
+    assert _confirmed_folds(last, fold) == []
+    jump = turns[:3] + [_fake(2.1, -0.5, True)] + turns[4:]             # reached by a restart: no tangent to compare
+    assert _confirmed_folds(jump, fold) == []
+    other = [Bifurcation("period_doubling", 3, 2.05, -1.0)]
+    assert _confirmed_folds(last, other) == other
+
+
+def test_fold_estimate_is_the_vertex_of_the_parabola():
+    """λ(σ) = 3 − (σ − 0.3)² (scaled, λ_s = 2): dλ/dσ = 0.6 at σ = 0 and −0.2 at σ = 0.4, the vertex at
+    σ = 0.3 with λ = 3 · 2 = 6, above both points (λ(0) = 5.82, λ(0.4) = 5.98)."""
+    from rotor.studies.continuation import _fold_estimate
+
+    a, b = _fake(2.0 * (3 - 0.09), 0.6), _fake(2.0 * (3 - 0.01), -0.2)
+    got = _fold_estimate(a, b, 0.4, 2.0)
+    assert abs(got - 6.0) < 1e-12 and got > max(a.parameter, b.parameter)
