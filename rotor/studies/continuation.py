@@ -47,7 +47,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
@@ -546,19 +546,31 @@ def switch_period_doubling(problem: Problem, branch: Branch, bif: Bifurcation, l
     At the point after the crossing the monodromy has a real multiplier near −1 with eigenvector ``φ``;
     for the map over two periods it is a multiplier near +1 and the new branch leaves the old one along
     ``(φ, 0)`` (a pitchfork of the doubled map). The continuation of period ``2 period_revs`` starts at the
-    old orbit with that tangent, so its first corrector works on the hyperplane ``φ·(y − y_pred) = 0`` a
-    step ``ds`` away from the old branch, where only the new branch crosses; it runs towards ``lam_end``.
+    old orbit with that tangent made orthogonal to the old branch's secant through the crossing (scaled
+    ``(x/s, λ/λ_s)``; ``φ`` alone may lean along the old branch, which then crosses the corrector's hyperplane
+    too and takes the corrector back), so its first corrector works on a hyperplane a step ``ds`` away from
+    the old branch, where only the new branch crosses; it runs towards ``lam_end``.
     """
     pt = branch.points[bif.index]
     mu, vec = np.linalg.eig(_monodromy_at(problem, pt))
     j = int(np.argmin(np.abs(mu + 1.0)))
     s = np.asarray(scales, float)
-    phi = np.real(vec[:, j]) / s
-    phi /= np.linalg.norm(phi)
+    ls = float(lam_scale or abs(lam_end - pt.parameter) / 10.0)
+    t0 = np.concatenate([np.real(vec[:, j]) / s, [0.0]])
+    if bif.index > 0:     # off the old branch: its secant through the crossing removed from the start direction
+        prev = branch.points[bif.index - 1]
+        sec = np.concatenate([(pt.state - prev.state) / s, [(pt.parameter - prev.parameter) / ls]])
+        if np.linalg.norm(sec) > 0:
+            sec /= np.linalg.norm(sec)
+            t0 = t0 - (t0 @ sec) * sec
+    t0 /= np.linalg.norm(t0)
     doubled = Problem(problem.system_at, problem.speed_at, problem.steps_per_rev, 2 * problem.period_revs,
                       problem.backend, problem.modes0, problem.name)
-    return continue_branch(doubled, pt.state, pt.parameter, lam_end, scales=s, lam_scale=lam_scale, options=options,
-                           tangent0=np.concatenate([phi, [0.0]]))
+    # no restarts by shooting on the doubled branch: every orbit of the old branch solves the doubled problem
+    # too, and a shot from near the switch lands back on it (measured on Table 4 at 10 628 rpm)
+    opts = replace(options or ContinuationOptions(), pass_switches=False)
+    return continue_branch(doubled, pt.state, pt.parameter, lam_end, scales=s, lam_scale=ls, options=opts,
+                           tangent0=t0)
 
 
 def _monodromy_at(problem: Problem, pt: BranchPoint) -> np.ndarray:

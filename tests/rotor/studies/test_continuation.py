@@ -131,17 +131,19 @@ def test_continuation_in_clearance_at_fixed_speed():
 
 @pytest.mark.slow
 def test_period_doubling_on_table4_and_the_doubled_branch():
-    """Table 4 rotor (Dai et al. 2025) from 10 600 rpm up: a real multiplier passes −1 near 10 626 rpm (the
-    complex pair near −1 meets the real axis outside the circle). Past it the multiplier is checked with the
+    """Table 4 rotor (Dai et al. 2025) from 10 600 rpm up, on the member of the stuck face's continuum that the
+    transient settles on (rotor/studies/shooting.py): the complex pair near −1 leaves the circle (Neimark–Sacker
+    near 10 610 rpm), then meets the real axis outside it: a real multiplier passes −1 near 10 628 rpm. Past it the multiplier is checked with the
     finite-difference monodromy (no face mode change over the period there, so both derivatives are the
     scheme's). Branch switching gives orbits of two revolutions that are not of one: x(2T) = x(0) to 1e-9 of the
-    orbit scale while x(T) − x(0) is of order 1e-2, starting within 0.05 % of the located speed."""
+    orbit scale while x(T) − x(0) is above 1e-5 of it, 10⁴ times the periodicity tolerance (measured 2.6e-4 next
+    to the crossing, growing away from it), starting within 0.05 % of the located speed."""
     from rotor.studies.continuation import switch_period_doubling
     from rotor.studies.orbit import branch
     from rotor.studies.period_flow import advance, make_flow, monodromy_fd
     from rotor.studies.steady_state import point_system
 
-    b = branch("paper-table4", 10600.0, 10680.0, options=ContinuationOptions(max_points=12), amplitudes=False)
+    b = branch("paper-table4", 10600.0, 10680.0, options=ContinuationOptions(max_points=20), amplitudes=False)
     pds = [x for x in b.branch.bifurcations if x.kind == "period_doubling"]
     assert len(pds) == 1 and 10600 < pds[0].parameter * 30 / math.pi < 10680
     n, modes, scales = b.start.steps_per_rev, b.start.shooting.modes, b.start.shooting.scales
@@ -160,7 +162,7 @@ def test_period_doubling_on_table4_and_the_doubled_branch():
         x1 = advance(fl, p.state, 0.0, n, modes, jacobian=False).state
         x2 = advance(fl, x1, n * fl.dt_s, n, modes, jacobian=False).state
         assert np.max(np.abs(x2 - p.state) / scales) < 1e-9
-        assert np.max(np.abs(x1 - p.state) / scales) > 1e-3
+        assert np.max(np.abs(x1 - p.state) / scales) > 1e-5
 
 
 def test_smooth_branch_needs_no_restart_and_its_scales_follow_the_orbit(branch):
