@@ -1,7 +1,7 @@
 """The study-bifurcation report: the Table 4 rotor's periodic orbits continued in speed, 600-18 000 rpm, in segments.
 
 Each segment is :func:`rotor.studies.orbit.branch` (what ``ringcontact branch paper-table4 --rpm-start A
---rpm-end 18000 --max-points 80`` computes, with the same JSON plus each segment's ``restarts`` and each point's
+--rpm-end 18000 --max-points 80`` computes, the same JSON with each segment's ``restarts`` and each point's
 ``restarted``); the first starts at 600 rpm, each next one 300 rpm past the highest speed the previous one
 reached (the procedure of the published report). Writes ``reports/published/study-bifurcation.{md,json,png,svg}``
 through :func:`reports.bifurcation.publish`, and the segments' JSON into ``--segments-dir``.
@@ -25,7 +25,7 @@ SCENE, RPM_START, RPM_END, GAP_RPM = "paper-table4", 600.0, 18000.0, 300.0
 
 
 def segment(rpm_start: float, max_points: int) -> dict:
-    """One segment as the ``ringcontact branch --json`` output, plus ``restarts`` (points by each restart kind)."""
+    """One segment as the ``ringcontact branch --json`` output (with ``restarts``, points by each restart kind)."""
     from rotor.studies.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
@@ -33,10 +33,6 @@ def segment(rpm_start: float, max_points: int) -> dict:
     res = branch(SCENE, rpm_start, RPM_END, options=ContinuationOptions(max_points=max_points))
     d = {"scene": SCENE, "rpm_start": rpm_start, "rpm_end": RPM_END, "period_revs": res.start.period_revs,
          "steps_per_rev": res.start.steps_per_rev, **res.as_dict(), "wall_s": round(time.perf_counter() - t0, 3)}
-    kinds = [int(p.restarted) for p in res.branch.points]
-    d["restarts"] = {"secant": kinds.count(1), "transient": kinds.count(2), "cold": kinds.count(3)}
-    for p, k in zip(d["points"], kinds):
-        p["restarted"] = k
     return d
 
 

@@ -23,13 +23,16 @@ import numpy as np
 from contact.errors import InputError
 from contact.units import check_positive
 from rotor.dynamics.initial import linear_initial_state
-from rotor.studies.continuation import Branch, ContinuationOptions, continue_branch, speed_problem
+from rotor.studies.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
+                                        speed_problem)
 from rotor.studies.floquet import FloquetResult
 from rotor.studies.period_flow import Flow, make_flow, record, to_full
 from rotor.studies.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
 
 ORDERS = (1, 2, 3, 4, 5)
+#: how a branch point past a stick/slip switch was reached (:mod:`rotor.studies.continuation`); None: by the corrector
+RESTART_KINDS = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold"}
 
 
 @dataclass(frozen=True)
@@ -172,7 +175,8 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
 @dataclass(frozen=True)
 class BranchResult:
     """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
-    ``critical_kind``, ``velocity_amplitudes_mm_s_1X_to_5X``), ``bifurcations`` (dicts: ``kind``,
+    ``critical_kind``, ``leading_multiplier``, ``restarted`` (None, or how a point past a stick/slip switch was
+    shot: ``secant``, ``transient``, ``cold``), ``velocity_amplitudes_mm_s_1X_to_5X``), ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
     (the :class:`rotor.studies.continuation.Branch`)."""
 
@@ -184,8 +188,10 @@ class BranchResult:
     branch: Branch
 
     def as_dict(self) -> dict:
+        kinds = [p.get("restarted") for p in self.points]
         return {"points": list(self.points), "bifurcations": list(self.bifurcations), "start": self.start.as_dict(),
-                "stop": self.stop, "wall_s": self.wall_s}
+                "stop": self.stop, "wall_s": self.wall_s,
+                "restarts": {k: kinds.count(k) for k in RESTART_KINDS.values()}}
 
 
 def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
@@ -221,7 +227,7 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     for p in br.points:
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
-             "leading_multiplier": p.floquet.leading}
+             "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted))}
         if amplitudes:
             flow = pb.flow(p.parameter)
             d["velocity_amplitudes_mm_s_1X_to_5X"] = velocity_amplitudes(flow, model, p.state, 0.0, res.modes,

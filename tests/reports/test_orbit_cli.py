@@ -108,6 +108,9 @@ def test_branch_downwards_is_a_run_down_to_rpm_end(damped_jeffcott, capsys):
     rpm = np.array([p["speed_rpm"] for p in d["points"]])
     assert d["stop"] == "end reached" and rpm[0] == pytest.approx(3000.0) and rpm[-1] <= 1500.0
     assert np.all(np.diff(rpm) < 0)
+    # a frictionless ring: a smooth map, every point reached by the corrector, none by a restart past a switch
+    assert d["restarts"] == {"secant": 0, "transient": 0, "cold": 0}
+    assert all(p["restarted"] is None for p in d["points"])
 
 
 def test_branch_that_stops_early_exits_1_with_one_line(damped_jeffcott, capsys):
