@@ -66,7 +66,8 @@ def main(argv=None) -> int:
                 f"--max-points {args.max_points} for A = "
                 + ", ".join(f"{s['rpm_start']:.0f}" for s in segments)
                 + " (each next A 300 rpm past the highest speed the segment before reached)"]
-    for f in publish(segments, ROOT / "reports" / "published", commands=commands):
+    reading = (ROOT / "reports" / "notes" / "study-bifurcation-reading.md").read_text(encoding="utf-8")
+    for f in publish(segments, ROOT / "reports" / "published", commands=commands, reading=reading):
         print("wrote", f)
     return 0
 
