@@ -47,7 +47,7 @@ def _text(site: Path, page: str) -> str:
 
 
 def test_site_builds_with_every_page(site):
-    for page in ("index", "quickstart", "laws", "fem", "scenes", "cli", "gallery", "api/index",
+    for page in ("index", "quickstart", "laws", "fem", "scenes", "orbits", "cli", "gallery", "api/index",
                  "reference/contact-laws", "reference/fem-notes"):
         assert (site / f"{page}.html").is_file(), page
     # the Markdown reference notes are included as they are: their headings reach the HTML
