@@ -125,10 +125,16 @@ def orbit_scales(flow: Flow, p, v) -> np.ndarray:
     return np.concatenate([np.full(nr, sp), np.full(nr, sv)])
 
 
-def min_norm_step(J, rhs, rcond: float) -> tuple[np.ndarray, int]:
-    """Minimum-norm least-squares solution of ``J dx = rhs`` and the number of singular values dropped."""
+def _truncated_svd(J, rcond: float):
+    """``(U, s, Vt, keep)``: the SVD of ``J`` and the mask of singular values above ``rcond`` times the largest."""
     U, s, Vt = np.linalg.svd(J, full_matrices=False)
     keep = s > rcond * s[0] if s.size and s[0] > 0 else np.zeros_like(s, bool)
+    return U, s, Vt, keep
+
+
+def min_norm_step(J, rhs, rcond: float) -> tuple[np.ndarray, int]:
+    """Minimum-norm least-squares solution of ``J dx = rhs`` and the number of singular values dropped."""
+    U, s, Vt, keep = _truncated_svd(J, rcond)
     dx = Vt[keep].T @ ((U[:, keep].T @ rhs) / s[keep])
     return dx, int((~keep).sum())
 
@@ -144,8 +150,7 @@ def level_step(J, rhs, rcond: float, back=None) -> tuple[np.ndarray, int, np.nda
     Newton then moves within the level set the transient ended on, which is the member of the continuum
     the transient itself settles on once the face stops slipping. Where ``U0ᵀ V0`` is ill-conditioned
     (reciprocal condition below 1e-6) the minimum-norm step is returned. ``U0`` (n, dropped)."""
-    U, s, Vt = np.linalg.svd(J, full_matrices=False)
-    keep = s > rcond * s[0] if s.size and s[0] > 0 else np.zeros_like(s, bool)
+    U, s, Vt, keep = _truncated_svd(J, rcond)
     dz = Vt[keep].T @ ((U[:, keep].T @ rhs) / s[keep])
     U0, V0 = U[:, ~keep], Vt[~keep].T
     if U0.shape[1]:
@@ -161,8 +166,7 @@ def lm_step(J, rhs, rcond: float, radius: float) -> np.ndarray:
     """The Levenberg–Marquardt step ``dz(μ) = Σ s_i c_i/(s_i² + μ²) v_i`` (``J = U diag(s) Vᵀ``, ``c = Uᵀ rhs``,
     singular values below ``rcond`` times the largest dropped) of 2-norm ``radius``: the trust-region step of
     that radius (Moré 1978; Nocedal & Wright 2006, *Numerical Optimization*, ch. 4), μ by bisection in log μ."""
-    U, s, Vt = np.linalg.svd(J, full_matrices=False)
-    keep = s > rcond * s[0] if s.size and s[0] > 0 else np.zeros_like(s, bool)
+    U, s, Vt, keep = _truncated_svd(J, rcond)
     sk, c, V = s[keep], U[:, keep].T @ rhs, Vt[keep].T
     lo, hi = math.log(sk[-1]) - 20.0, math.log(sk[0]) + 20.0     # ‖dz(μ)‖ falls monotonically in μ
     for _ in range(60):
