@@ -36,12 +36,18 @@ BEARING_DRIVES = {
     "rigid-inner-y": "bearing inner surface: u_y = t prescribed, u_x free (frictionless shaft fit)",
     "coupled-inner": "bearing inner surface: distributing coupling (RBE3-like): its mean u_y = t, "
                      "load as uniform y-traction, surface free to deform",
+    "rigid-inner-axially-free": "bearing inner surface moved rigidly in its plane, free to slide along the axis "
+                                "(3D; in 2D the same as rigid-inner)",
 }
 SUPPORT_HOLDS = {
     "clamped-outer": "support outer surface clamped (u = 0)",
     "clamped-outer-lower": "support outer surface clamped on its lower half only (y <= 0)",
     "clamped-outer-upper": "support outer surface clamped on its upper half only (y >= 0)",
+    "clamped-outer-axially-free": "support outer surface held radially and circumferentially, free to slide "
+                                  "along the axis (3D; in 2D the same as clamped-outer)",
 }
+#: the 2D model has no axial displacement: these drives and holds are the 2D ones they name
+PLANE_EQUIVALENT = {"rigid-inner-axially-free": "rigid-inner", "clamped-outer-axially-free": "clamped-outer"}
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,7 @@ from fem_reference.plane.contact_solver import (ArcNotResolvedError, CircleSurfa
                                           contact_half_angle, mortar_operator, solve_lcp)
 from fem_reference.plane.elasticity import ElasticSystem, circle_dofs, stiffness, symmetry_dofs, vector_basis
 from fem_reference.plane.mesh import BEARING, SUPPORT, MeshSpec, RingMesh, build_mesh
-from fem_reference.scenes import Scene
+from fem_reference.scenes import PLANE_EQUIVALENT, Scene
 
 
 def _solve_columns(system: ElasticSystem, B: np.ndarray) -> np.ndarray:
@@ -33,15 +33,17 @@ def _solve_columns(system: ElasticSystem, B: np.ndarray) -> np.ndarray:
 def _dirichlet(scene: Scene, rmesh: RingMesh, basis):
     """Dirichlet DOFs and their values per unit drive displacement t (m/m)."""
     rings = scene.rings
+    drive = PLANE_EQUIVALENT.get(scene.bearing_drive, scene.bearing_drive)
+    hold = PLANE_EQUIVALENT.get(scene.support_hold, scene.support_hold)
     n = basis.N
     fixed = [symmetry_dofs(rmesh, basis)]
     unit = np.zeros(n)
     inner = circle_dofs(rmesh, basis, rings.inner_radius_m)
     Q = None
-    if scene.bearing_drive == "rigid-inner":
+    if drive == "rigid-inner":
         fixed += [inner[0], inner[1]]
         unit[inner[1]] = 1.0
-    elif scene.bearing_drive == "rigid-inner-y":
+    elif drive == "rigid-inner-y":
         fixed += [inner[1]]
         unit[inner[1]] = 1.0
     else:  # coupled-inner: distributing coupling, mean u_y of the inner surface = t
@@ -50,12 +52,12 @@ def _dirichlet(scene: Scene, rmesh: RingMesh, basis):
         Q = circle_mean_weights(rmesh, basis, rings.inner_radius_m, BEARING)[:, None]
     outer = circle_dofs(rmesh, basis, rings.support_outer_radius_m)
     y = basis.doflocs[1]
-    if scene.support_hold == "clamped-outer":
+    if hold == "clamped-outer":
         fixed += [outer[0], outer[1]]
-    elif scene.support_hold == "clamped-outer-lower":
+    elif hold == "clamped-outer-lower":
         keep = y[outer[0]] <= 1e-12
         fixed += [outer[0][keep], outer[1][keep]]
-    elif scene.support_hold == "clamped-outer-upper":
+    elif hold == "clamped-outer-upper":
         keep = y[outer[0]] >= -1e-12
         fixed += [outer[0][keep], outer[1][keep]]
     return np.unique(np.concatenate(fixed)), unit, Q

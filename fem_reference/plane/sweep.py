@@ -44,7 +44,8 @@ from contact.package_data import shipped
 from fem_reference.plane.contact_solver import ArcNotResolvedError
 from fem_reference.plane.mesh import MeshSpec
 from fem_reference.plane.solve import ContactModel
-from fem_reference.scenes import Scene, by_name
+from fem_reference.ring_scene import RingScene, from_document, scene_2d
+from fem_reference.scenes import Scene
 from sweep import ResultStore, Task, code_revision, machine, package_versions, revision_label, run_sweep, utc_stamp
 
 #: the shipped 2D dataset (read through importlib.resources, see contact.package_data)
@@ -283,12 +284,16 @@ def reference_point(levels: Levels, penetration_m: float, target_rel: float = TA
     }
 
 
-def scene_task(scene: str, penetrations_m: list[float], levels_m: list[float], order: int) -> tuple[dict, dict]:
+def scene_task(scene: str, penetrations_m: list[float], levels_m: list[float], order: int,
+               ring_scene: dict | None = None) -> tuple[dict, dict]:
     """All points of one scene as a :class:`sweep.Task` function: ``({}, {"points": [...], "build": {...}})``.
 
-    The scene's mesh levels are built once (:class:`Levels`) and reused along its penetrations.
+    ``scene`` is a scene name (:func:`fem_reference.ring_scene.scene_2d`) unless ``ring_scene``, the
+    normalised document of a ring-pair file (:attr:`~fem_reference.ring_scene.RingScene.document`),
+    defines it. The scene's mesh levels are built once (:class:`Levels`) and reused along its penetrations.
     """
-    levels = Levels(by_name(scene), tuple(levels_m), order)
+    sc = from_document(ring_scene, scene).scene if ring_scene is not None else scene_2d(scene)
+    levels = Levels(sc, tuple(levels_m), order)
     points = [reference_point(levels, dr) for dr in penetrations_m]
     log = levels.build_log
     build = {"total_s": sum(b[2] for b in log), "meshes_built": len(log), "largest_ndofs": max(b[1] for b in log)}
@@ -325,6 +330,9 @@ def sweep_dataset(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFA
                   store: str | os.PathLike | None = None) -> tuple[dict, list[dict]]:
     """Solve every (scene, penetration); returns (metadata, points).
 
+    ``scene_names``: scene names (bundled ring-pair files or generated names, see
+    :func:`fem_reference.ring_scene.scene_2d`) or :class:`~fem_reference.ring_scene.RingScene` objects.
+
     One task per scene through :func:`sweep.run_sweep`: ``workers`` local processes (default 1:
     every point timed alone), or ``executor`` (a process pool or a dask client; gmsh's Ctrl-C handler
     is installed only from a main thread, so a dask worker's task threads mesh too). ``store``: directory of a
@@ -335,10 +343,12 @@ def sweep_dataset(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFA
         penetrations_m = [v * 1e-3 for v in DEFAULT_PENETRATIONS_MM]
     t0 = time.perf_counter()
     load_start = round(os.getloadavg()[0], 2)
-    scenes = [by_name(n) for n in scene_names]
+    scenes = [n.scene if isinstance(n, RingScene) else scene_2d(n) for n in scene_names]
     common = {"penetrations_m": [float(d) for d in penetrations_m], "levels_m": [float(h) for h in levels_m],
               "order": int(order)}
-    tasks = [Task(_scene_key(sc.name), scene_task, {"scene": name, **common}) for name, sc in zip(scene_names, scenes)]
+    tasks = [Task(_scene_key(sc.name), scene_task,
+                  {"scene": sc.name, **common, **({"ring_scene": n.document} if isinstance(n, RingScene) else {})})
+             for n, sc in zip(scene_names, scenes)]
     results = _run_scenes(tasks, store, workers, executor, progress)
     points = [_row(p) for r in results for p in r["points"]]
     builds = {sc.name: r["build"] for sc, r in zip(scenes, results)}
@@ -397,7 +407,7 @@ def check_against_committed(path=DATASET_PATH, n_points: int = 3, scene_names=No
     for name in scene_names or ds.scenes():
         pts = ds.select(scene=name)
         idx = np.unique(np.linspace(0, len(pts) - 1, n_points).round().astype(int))
-        lv = Levels(by_name(name), levels, order)
+        lv = Levels(scene_2d(name), levels, order)
         for i in idx:
             old = pts[i]
             new = reference_point(lv, old["penetration_m"])

@@ -58,6 +58,21 @@ SCENES = {
                "frictionless contact; half model about z = 0 (contact forces symmetric about the load plane)",
     "clamped-axially-fixed-ends": "as 'clamped' but u_x = 0 on both end faces of both rings: at zero tilt "
                "this is exactly the 2D plane-strain 'clamped' scene (verification scene)",
+    "clamped-axially-free-outer": "as 'clamped' but the support outer surface is held radially and "
+               "circumferentially only, free to slide along the axis (a housing bore that can slip axially)",
+    "clamped-axially-free-inner": "as 'clamped' but the bearing inner surface is moved rigidly in its plane "
+               "only, free to slide along the axis (a non-locating ring on its rolling elements)",
+    "clamped-axially-free": "both held surfaces free to slide along the axis ('clamped-axially-free-outer' "
+               "and '-inner' together)",
+}
+
+#: per scene: (end faces held axially, (bearing inner surface held axially, support outer surface held axially))
+SCENE_HOLDS = {
+    "clamped": (False, (True, True)),
+    "clamped-axially-fixed-ends": (True, (True, True)),
+    "clamped-axially-free-outer": (False, (True, False)),
+    "clamped-axially-free-inner": (False, (False, True)),
+    "clamped-axially-free": (False, (False, False)),
 }
 
 
@@ -229,14 +244,17 @@ def build_compliance(geom: RingPair3D, level: MeshLevel3D, scene: str = "clamped
     """Build one level (``level.method``: "fourier" harmonics or "hex" hexahedra) and its operator A."""
     if scene not in SCENES:
         raise InputError(f"scene = {scene!r}: must be one of {sorted(SCENES)}")
-    fix_ends = scene == "clamped-axially-fixed-ends"
+    fix_ends, held_axially = SCENE_HOLDS[scene]
     t0 = time.perf_counter()
     if level.method == "fourier":
         from fem_reference.solid.fourier import build_fourier
-        x_nodes, X, A, n_dofs, timings = build_fourier(geom, level, fix_ends)
+        x_nodes, X, A, n_dofs, timings = build_fourier(geom, level, fix_ends, held_axially)
         comp = _assemble(scene, level, geom, x_nodes, X, n_dofs, time.perf_counter() - t0, timings, A)
         comp.load_s = comp.build_s
         return comp
+    if not all(held_axially):
+        raise InputError(f"scene = {scene!r}: the hexahedral levels model surfaces held in all directions only "
+                         "(use the harmonic levels Q*/E*)")
     bearing, support = build_meshes(geom, level)
     x_grid = dof_points(bearing.x_nodes, level.order)
     gb, nb, tb = ring_kernel(bearing, geom.young_bearing_pa, geom.poisson_bearing, x_grid, fix_ends)

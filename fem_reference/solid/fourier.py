@@ -43,8 +43,13 @@ def condensed_fourier(X: np.ndarray, J: np.ndarray) -> np.ndarray:
     return 0.5 * (A + A.T)
 
 
-def build_fourier(geom: RingPair3D, level: MeshLevel3D, fix_end_faces_axially: bool = False):
-    """Axial grid, harmonic kernel ``X[n, e, d]`` (both rings), condensed ``A``, DOFs, timings."""
+def build_fourier(geom: RingPair3D, level: MeshLevel3D, fix_end_faces_axially: bool = False,
+                  held_axially: tuple[bool, bool] = (True, True)):
+    """Axial grid, harmonic kernel ``X[n, e, d]`` (both rings), condensed ``A``, DOFs, timings.
+
+    ``held_axially``: (bearing inner surface, support outer surface) held along the axis too
+    (True) or free to slide axially (False); see :func:`~fem_reference.solid.harmonic.harmonic_compliance`.
+    """
     if level.order != 2:
         raise InputError(f"order = {level.order}: the harmonic model uses quadratic sections (order 2)")
     t0 = time.perf_counter()
@@ -54,14 +59,14 @@ def build_fourier(geom: RingPair3D, level: MeshLevel3D, fix_end_faces_axially: b
     rs = geom.support_inner_radius_m
     X = 0.0
     n_dofs = 0
-    for r_c, r_h, e, nu in ((geom.bearing_outer_radius_m, geom.bearing_inner_radius_m, geom.young_bearing_pa,
-                             geom.poisson_bearing),
-                            (geom.support_inner_radius_m, geom.support_outer_radius_m, geom.young_support_pa,
-                             geom.poisson_support)):
+    for r_c, r_h, e, nu, axial in ((geom.bearing_outer_radius_m, geom.bearing_inner_radius_m, geom.young_bearing_pa,
+                                    geom.poisson_bearing, held_axially[0]),
+                                   (geom.support_inner_radius_m, geom.support_outer_radius_m, geom.young_support_pa,
+                                    geom.poisson_support, held_axially[1])):
         rho = graded_one_sided(0.0, 1.0, level.n_radial, level.radial_ratio)
         r_nodes = np.sort(r_c + (r_h - r_c) * rho)
         basis = section_basis(x_nodes, r_nodes)
-        X = X + harmonic_compliance(basis, e, nu, r_h, r_c, mx.D, level.n_harmonics, rs, fix_end_faces_axially)
+        X = X + harmonic_compliance(basis, e, nu, r_h, r_c, mx.D, level.n_harmonics, rs, fix_end_faces_axially, axial)
         n_dofs += 3 * basis.N
     t1 = time.perf_counter()
     J = angular_integrals(np.linspace(0.0, math.pi, level.n_phi + 1), level.n_harmonics)

@@ -100,13 +100,18 @@ def harmonic_matrices(basis: Basis, young_pa: float, poisson: float) -> tuple[sp
 
 def harmonic_compliance(basis: Basis, young_pa: float, poisson: float, held_radius_m: float,
                         contact_radius_m: float, load_x: np.ndarray, n_max: int, radius_m: float,
-                        fix_end_faces_axially: bool = False) -> np.ndarray:
+                        fix_end_faces_axially: bool = False, held_axially: bool = True) -> np.ndarray:
     """``X[n, e, d]`` for n = 0 .. n_max: radial response of the contact surface, weighted by the
     axial multipliers (m^3/N per unit amplitude of the angular factor).
 
     ``load_x`` (n_lam_x, n_surface_nodes) is ``D_x`` of :mod:`fem_reference.solid.mortar` on the
     contact surface's nodes sorted by x; the traction is applied per unit of the bore's area
     (``radius_m``): ``K_n U = radius_m * D_x^T``, ``X_n = radius_m * D_x U_surface``.
+
+    ``held_axially`` False leaves the held surface free to slide axially (radial and
+    circumferential components held): the ring's rigid axial translation (harmonic 0 only) is then
+    removed by holding one node's axial component, which carries no reaction since a radial
+    pressure has no resultant along the axis.
     """
     K0, K1, K2, Kc = harmonic_matrices(basis, young_pa, poisson)
     loc = basis.doflocs
@@ -116,7 +121,7 @@ def harmonic_compliance(basis: Basis, young_pa: float, poisson: float, held_radi
     surf = surf[np.argsort(loc[0, surf])]
     if len(surf) != load_x.shape[1]:
         raise ValueError(f"contact surface has {len(surf)} nodes, mortar expects {load_x.shape[1]}")
-    fixed = [3 * held, 3 * held + 1, 3 * held + 2]
+    fixed = [3 * held, 3 * held + 1] + ([3 * held + 2] if held_axially else [])
     if fix_end_faces_axially:
         ends = np.flatnonzero(np.abs(np.abs(loc[0]) - np.max(np.abs(loc[0]))) < tol)
         fixed.append(3 * ends + 2)
@@ -127,6 +132,8 @@ def harmonic_compliance(basis: Basis, young_pa: float, poisson: float, held_radi
         if n == 0:
             K = Kc
             fix_n = np.union1d(fixed, 3 * np.arange(basis.N) + 1)        # V decouples at n = 0
+            if not (held_axially or fix_end_faces_axially):
+                fix_n = np.union1d(fix_n, [3 * held[0] + 2])              # the rigid axial translation
         else:
             K = K0 + n * K1 + (n * n) * K2
             fix_n = fixed

@@ -31,7 +31,9 @@ DATASET_OUT = "fem_reference/data/fem2d-reference.json"
 def _point_parser(prog: str, help_: str) -> argparse.ArgumentParser:
     ap = Parser(prog=prog, description=help_)
     ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="penetration Δr = r − δ0 [mm]")
-    ap.add_argument("--scene", default="clamped", help="clamped | clamped-stress | persson-<ratio> | paper-…")
+    ap.add_argument("--scene", default="clamped",
+                    help="a ring-pair file (.toml, schema ringcontact.ring-scene/1) or a scene name: clamped | "
+                         "clamped-stress | persson-40 | steel-in-aluminium (bundled files) | persson-<ratio> | paper-…")
     ap.add_argument("--h-mm", type=quantity("h_mm"), default=None,
                     help="contact element size [mm]; default: Richardson over 4, 2, 1 mm (+0.5 if needed)")
     ap.add_argument("--order", type=int, default=2, choices=(1, 2), help="element order")
@@ -44,11 +46,11 @@ def point_main(argv: list[str]) -> int:
     ap.add_argument("--json", action="store_true", help="print the full point record as JSON (SI units)")
     args = ap.parse_args(argv)
     from fem_reference.plane.solve import ContactModel
-    from fem_reference.scenes import by_name
+    from fem_reference.ring_scene import scene_2d
     from fem_reference.plane.sweep import Levels, arc_zone_rad, reference_point, spec_for
 
     try:
-        scene = by_name(args.scene)
+        scene = scene_2d(args.scene)
         if args.h_mm is None:
             rec = reference_point(Levels(scene, order=args.order), args.penetration_mm * MM)
         else:
@@ -94,10 +96,21 @@ def sweep_main(argv: list[str]) -> int:
                     help=f"output JSON (default {DATASET_OUT}: the committed copy when run from the repository root)")
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="run the scenes on the dask.distributed cluster at ADDRESS (the dask extra)")
+    ap.add_argument("--scene", action="append", default=None, metavar="SCENE",
+                    help="a ring-pair file (.toml) or a scene name, repeatable (default: clamped, clamped-stress, "
+                         "persson-40); a ring-pair file's own penetration points are used when it is the only scene")
     args = ap.parse_args(argv)
     try:
+        from fem_reference.plane.sweep import DEFAULT_SCENES
+        from fem_reference.ring_scene import is_file_argument, load
+
+        names = args.scene or list(DEFAULT_SCENES)
+        scenes = [load(n) if is_file_argument(n) else n for n in names]
+        kw = {}
+        if len(scenes) == 1 and not isinstance(scenes[0], str):
+            kw["penetrations_m"] = list(scenes[0].penetrations_2d_m)
         with connect(args.scheduler) as client:
-            path = regenerate(args.out, executor=client)
+            path = regenerate(args.out, executor=client, scene_names=scenes, **kw)
     except RingContactError as exc:
         return fail("ringcontact fem-sweep", exc)
     print(f"wrote {path}")
@@ -174,7 +187,7 @@ def vtu_main(argv: list[str]) -> int:
     """``fem-vtu``: write one solved point as VTU."""
     from fem_reference.plane.export import write_vtu
     from fem_reference.plane.solve import ContactModel
-    from fem_reference.scenes import by_name
+    from fem_reference.ring_scene import scene_2d
     from fem_reference.plane.sweep import spec_for
 
     ap = _point_parser("ringcontact fem-vtu", "export a solved point to VTU (ParaView)")
@@ -186,7 +199,7 @@ def vtu_main(argv: list[str]) -> int:
     if args.out is None:
         ap.error("--out: an output .vtu file is needed (ringcontact fem-vtu 0.01 --out p.vtu)")
     try:
-        scene = by_name(args.scene)
+        scene = scene_2d(args.scene)
         m = ContactModel.build(scene, spec_for(scene, (args.h_mm or 2.0) * MM, args.order))
         s = m.solve(args.penetration_mm * MM)
         path = write_vtu(args.out, m, s, warp_scale=args.scale)
