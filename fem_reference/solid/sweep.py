@@ -268,7 +268,8 @@ def _failed(summary, tasks: list[Task], store: ResultStore) -> Exception:
 def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVELS, scene: str = "clamped",
                   geom: RingPair3D | None = None, workers: int = 2, executor: cf.Executor | None = None,
                   cache: Path | None = None, progress: bool | None = None, resume: bool = True,
-                  check_level="auto") -> tuple[dict, list[dict]]:
+                  check_level="auto", label: str | None = None, description: str | None = None
+                  ) -> tuple[dict, list[dict]]:
     """Solve every (tilt, penetration) through an executor; returns (metadata, points).
 
     Parameters
@@ -287,6 +288,11 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
     check_level : str, MeshLevel3D or None
         The finer level every point is also solved on (``force_finer_n``, ``moment_finer_nm``);
         "auto": :data:`~fem_reference.solid.mesh.CHECK_LEVEL` for the default levels, else none.
+    label, description : str, optional
+        The name every point carries in its ``scene`` column (default: ``scene``, the boundary
+        conditions) and the scene's description in the metadata, e.g. a ring-pair file's name
+        (:mod:`fem_reference.ring_scene`); the boundary conditions are kept in
+        ``metadata["boundary_conditions"]``.
 
     Notes
     -----
@@ -331,7 +337,11 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
     points = [_row(store.load(t.key, t.params).info) for t in tasks]
     orders = pooled_orders(points)
     points = [apply_orders(p, orders) for p in points]
+    if label is not None:
+        points = [{**p, "scene": label} for p in points]
     meta = _metadata(geom, scene, levels, points, tilts_rad, penetrations_m, workers if own else "external executor")
+    if label is not None:
+        meta["scenes"] = {label: description or SCENES[scene]}
     meta["mesh"]["check_level"] = check.as_dict() if check else None
     meta["error_orders"] = orders
     meta["timings"] = {"total_s": time.perf_counter() - t0, "compliance_build_s": builds}
@@ -354,6 +364,7 @@ def _metadata(geom: RingPair3D, scene: str, levels: list[MeshLevel3D], points: l
         "package_versions": package_versions(PACKAGES),
         "machine": machine(),
         "scenes": {scene: SCENES[scene]},
+        "boundary_conditions": scene,
         "geometry": geom.as_dict(),
         "mesh": {"levels": [lv.as_dict() for lv in levels], "ndofs_levels": points[0]["ndofs_levels"] if points else [],
                  "model": "full rings of revolution; per level: 9-node quadratic (x, r) sections graded toward the "
@@ -416,7 +427,7 @@ def check_against_committed(path=DATASET_PATH, n_points: int = 3, use_cache: boo
     ds = read_dataset(path)
     geom = RingPair3D(**ds.metadata["geometry"])
     levels = [MeshLevel3D(**lv) for lv in ds.metadata["mesh"]["levels"]]
-    scene = ds.points[0]["scene"]
+    scene = ds.metadata.get("boundary_conditions", ds.points[0]["scene"])
     comps = [get_compliance(geom, lv, scene, use_cache=use_cache) for lv in levels]
     idx = np.unique(np.linspace(0, len(ds.points) - 1, n_points).round().astype(int))
     rows = []

@@ -28,8 +28,30 @@ from contact.errors import RingContactError  # noqa: E402
 from contact.units import ARCMIN, MM  # noqa: E402
 from reports.cli._edge import PUBLISHED, Parser, count, fail, in_file, out_dir, out_file, quantity, unit_keys  # noqa: E402
 
-SCENES_3D = ("clamped", "clamped-axially-fixed-ends")     # fem_reference.solid.solve.SCENES
+SCENES_3D = ("clamped", "clamped-axially-fixed-ends", "clamped-axially-free-outer", "clamped-axially-free-inner",
+             "clamped-axially-free")     # fem_reference.solid.compliance.SCENES (Table 1 rings)
 DATASET_OUT = "fem_reference/data/3d/fem3d-reference.json"
+SCENE_HELP = ("a ring-pair file (.toml, schema ringcontact.ring-scene/1), a bundled one (steel-in-aluminium), or the "
+              "boundary conditions on the Table 1 rings: " + " | ".join(SCENES_3D))
+
+
+def scene_3d(arg: str):
+    """``(RingPair3D, boundary-condition scene, label, ring scene or None)`` of a ``--scene`` value.
+
+    A boundary-condition name of :data:`SCENES_3D` keeps the Table 1 rings (``clamped`` is also the
+    bundled Table 1 ring-pair file: the same rings and conditions); anything else is a ring-pair file.
+    """
+    from fem_reference.ring_scene import is_file_argument, load
+    from fem_reference.solid.geometry import RingPair3D
+
+    if arg in SCENES_3D and not is_file_argument(arg):
+        return RingPair3D(), arg, arg, None
+    rs = load(arg)
+    if rs.bc_3d is None:
+        raise RingContactError(f"--scene = {arg}: hold = {rs.scene.support_hold!r} with bearing = "
+                               f"{rs.scene.bearing_drive!r} has no 3D model (the 3D reference is a body of "
+                               "revolution; see fem_reference/ring_scene.py HOLDS_3D)")
+    return rs.rings_3d(), rs.bc_3d, rs.name, rs
 
 
 def _levels():
@@ -68,7 +90,7 @@ def point_main(argv: list[str]) -> int:
     ap.add_argument("--tilt-axis", choices=("z", "y"), default="z",
                     help="z: translation along +y, tilt theta_z (canonical); y: translation along +z, tilt theta_y "
                          "(the rotated case: same magnitudes, vectors rotated, see docs/reference/contact-laws.md §1)")
-    ap.add_argument("--scene", default="clamped", choices=SCENES_3D, help="boundary-condition scene")
+    ap.add_argument("--scene", default="clamped", help=SCENE_HELP)
     ap.add_argument("--level", default=None, choices=_levels(),
                     help="one mesh level (Q0, Q1, Q2, E0…) instead of the three-level estimate")
     ap.add_argument("--edge-refined", action="store_true",
@@ -78,7 +100,7 @@ def point_main(argv: list[str]) -> int:
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
     ap.add_argument("--json", action="store_true", help="print the full record as JSON (SI units)")
     args = ap.parse_args(argv)
-    from fem_reference.solid.geometry import RingPair3D, reduce_motion, rotate_about_x
+    from fem_reference.solid.geometry import reduce_motion, rotate_about_x
     from fem_reference.solid.mesh import CHECK_LEVEL, DEFAULT_LEVELS, EDGE_CHECK_LEVEL, EDGE_LEVELS, LEVELS
     from fem_reference.solid.sweep import _jsonable, get_compliance, reference_point
 
@@ -86,7 +108,7 @@ def point_main(argv: list[str]) -> int:
         from contact.units import check_finite
         check_finite("penetration_mm", args.penetration_mm, "mm")
         check_finite("tilt_arcmin", args.tilt_arcmin, "arcmin")
-        geom = RingPair3D()
+        geom, bc, label, _ = scene_3d(args.scene)
         r = geom.clearance_m + args.penetration_mm * MM
         tilt = args.tilt_arcmin * ARCMIN
         if args.tilt_axis == "z":
@@ -97,10 +119,10 @@ def point_main(argv: list[str]) -> int:
         for n in names:
             if n not in LEVELS:
                 raise RingContactError(f"level = {n!r}: must be one of {sorted(LEVELS)}")
-        comps = [get_compliance(geom, LEVELS[n], args.scene, use_cache=not args.no_cache) for n in names]
+        comps = [get_compliance(geom, LEVELS[n], bc, use_cache=not args.no_cache) for n in names]
         check = None
         if args.check and not args.level:
-            check = get_compliance(geom, LEVELS[EDGE_CHECK_LEVEL if args.edge_refined else CHECK_LEVEL], args.scene,
+            check = get_compliance(geom, LEVELS[EDGE_CHECK_LEVEL if args.edge_refined else CHECK_LEVEL], bc,
                                    use_cache=not args.no_cache)
         m = canon.motion
         if len(comps) == 1:
@@ -111,7 +133,7 @@ def point_main(argv: list[str]) -> int:
         fy, fz = rotate_about_x(-rec["force_n"], 0.0, canon.frame_angle_rad)
         # moment vector (M_y, M_z) = (0, M_z) in the canonical frame, rotated with the frame
         my, mz = rotate_about_x(0.0, rec["moment_nm"], canon.frame_angle_rad)
-        rec.update({"tilt_axis": args.tilt_axis, "force_y_n": fy, "force_z_n": fz, "moment_y_nm": my,
+        rec.update({"scene": label, "boundary_conditions": bc, "tilt_axis": args.tilt_axis, "force_y_n": fy, "force_z_n": fz, "moment_y_nm": my,
                     "moment_z_nm": mz})
     except RingContactError as exc:
         return fail("ringcontact fem3d point", exc)
@@ -135,10 +157,20 @@ def sweep_main(argv: list[str]) -> int:
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="run on the dask.distributed cluster at ADDRESS (the dask extra; workers must see the "
                          "same $RINGCONTACT_CACHE)")
+    ap.add_argument("--scene", default="clamped",
+                    help=SCENE_HELP + "; a ring-pair file brings its own penetrations and tilts")
     args = ap.parse_args(argv)
     try:
+        geom, bc, label, rs = scene_3d(args.scene)
+        kw = {}
+        if rs is not None:
+            if not rs.needs_3d:
+                raise RingContactError(f"--scene = {args.scene}: its [range] tilt_arcmin is [0, 0] (no 3D work asked)")
+            kw = {"tilts_rad": list(rs.tilts_rad), "penetrations_m": list(rs.penetrations_3d_m), "label": label,
+                  "description": rs.scene.description}
         with connect(args.scheduler) as client:
-            path = regenerate(args.out, workers=args.workers, executor=client, resume=not args.fresh)
+            path = regenerate(args.out, workers=args.workers, executor=client, resume=not args.fresh,
+                              scene=bc, geom=geom, **kw)
     except RingContactError as exc:
         return fail("ringcontact fem3d sweep", exc)
     print(f"wrote {path}")
@@ -201,14 +233,14 @@ def vtu_main(argv: list[str]) -> int:
                 description="contact pressure and rigid gap on the support bore (half ring) as VTU")
     ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="mid-plane penetration Δr = r − δ0 [mm]")
     ap.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), default=0.0, help="tilt about z [arcmin]")
-    ap.add_argument("--scene", default="clamped", choices=SCENES_3D, help="boundary-condition scene")
+    ap.add_argument("--scene", default="clamped", help=SCENE_HELP)
     ap.add_argument("--level", default="Q2", choices=_levels(), help="mesh level (default Q2, the finest reference level)")
     ap.add_argument("--out", type=out_file, required=True, help="output .vtu file")
     ap.add_argument("--no-cache", action="store_true", help="do not read or write cached mesh levels")
     args = ap.parse_args(argv)
     from contact.units import check_finite
     from fem_reference.solid.export import write_pressure_vtu
-    from fem_reference.solid.geometry import RigidMotion, RingPair3D, rigid_gap_m
+    from fem_reference.solid.geometry import RigidMotion, rigid_gap_m
     from fem_reference.solid.mesh import LEVELS
     from fem_reference.solid.solve import solve_point
     from fem_reference.solid.sweep import get_compliance
@@ -218,8 +250,8 @@ def vtu_main(argv: list[str]) -> int:
         check_finite("tilt_arcmin", args.tilt_arcmin, "arcmin")
         if args.level not in LEVELS:
             raise RingContactError(f"level = {args.level!r}: must be one of {sorted(LEVELS)}")
-        geom = RingPair3D()
-        comp = get_compliance(geom, LEVELS[args.level], args.scene, use_cache=not args.no_cache)
+        geom, bc, _, _ = scene_3d(args.scene)
+        comp = get_compliance(geom, LEVELS[args.level], bc, use_cache=not args.no_cache)
         motion = RigidMotion.from_penetration(geom, args.penetration_mm * MM, args.tilt_arcmin * ARCMIN)
         res = solve_point(comp, motion)
         gap = rigid_gap_m(geom, motion, comp.lam_phi, comp.lam_x)
