@@ -45,6 +45,11 @@ class CalibratedLaw:
         ``path`` (repo-relative), ``points_sha256``, ``created_utc``, ``code_revision`` of the source.
     fit : dict
         Per-point penetration, FEM force, fit and leave-one-out errors; the family comparison.
+    validity_tilt_max_rad : float
+        Largest tilt (rad) the law was checked at against a 3D reference (0: straight ring only).
+    provenance : dict
+        Optional: where the law came from beyond its dataset (a ring-pair file's name and sha256,
+        the code version, the checks made; written by ``ringcontact bearing``, reports/bearing/).
     """
 
     name: str
@@ -57,6 +62,8 @@ class CalibratedLaw:
     validity_penetration_m: tuple
     dataset: dict
     fit: dict = field(default_factory=dict)
+    validity_tilt_max_rad: float = 0.0
+    provenance: dict = field(default_factory=dict)
 
     def force(self, penetration_m, *, strict: bool = False) -> laws.LawResult:
         """Line-contact force (N) at penetrations Δr (m).
@@ -170,6 +177,10 @@ class CalibratedLaw:
                "validity": {"penetration_min_m": self.validity_penetration_m[0],
                             "penetration_max_m": self.validity_penetration_m[1], "tilt_rad": 0.0},
                "dataset": self.dataset, "fit": self.fit}
+        if self.validity_tilt_max_rad:
+            doc["validity"]["tilt_max_rad"] = self.validity_tilt_max_rad
+        if self.provenance:
+            doc["provenance"] = self.provenance
         doc = _round_floats(doc)
         doc["sha256"] = document_sha256(doc)      # whole-file checksum: an edited modulus is refused on load
         return json.dumps(doc, indent=1, allow_nan=False) + "\n"
@@ -195,7 +206,9 @@ class CalibratedLaw:
                        parameter_units=dict(doc["parameter_units"]), geometry=SceneGeometry(**doc["geometry"]),
                        validity_penetration_m=(float(doc["validity"]["penetration_min_m"]),
                                                float(doc["validity"]["penetration_max_m"])),
-                       dataset=dict(doc["dataset"]), fit=dict(doc.get("fit", {})))
+                       dataset=dict(doc["dataset"]), fit=dict(doc.get("fit", {})),
+                       validity_tilt_max_rad=float(doc["validity"].get("tilt_max_rad", 0.0)),
+                       provenance=dict(doc.get("provenance", {})))
         except (KeyError, TypeError, ValueError) as exc:
             raise DatasetError(f"{source}: malformed calibrated law ({exc!r})") from exc
 

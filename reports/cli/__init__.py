@@ -33,6 +33,7 @@ JOBS: dict[str, tuple[str, str]] = {
     "fem-paper": ("reports.cli.fem:paper_main", "paper set-up study: which 2D BCs reproduce the paper's FEM loads"),
     "fem-vtu": ("reports.cli.fem:vtu_main", "export a solved 2D FEM point to VTU for ParaView"),
     "fem3d": ("reports.cli.fem3d", "3D tilted-ring FEM reference: point | sweep | check | report | vtu (mm, arcmin; --json)"),
+    "bearing": ("reports.cli.bearing", "your ring pair (a .toml ring-pair file) to a verified law: FEM 2D (+3D with tilt), calibration, accuracy report, law file"),
     "calibrate": ("reports.cli.calibrate", "fit and store one calibrated contact law per FEM scene (contact/calibrated/*.json)"),
     "orbit": ("reports.cli.orbit", "the periodic orbit at one speed by shooting: period, Floquet multipliers, stability, 1X-5X (--json)"),
     "branch": ("reports.cli.orbit:branch_main", "follow the periodic orbit over a speed range, bifurcations found (--json, --plot)"),

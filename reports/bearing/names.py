@@ -1,0 +1,11 @@
+"""What a ``ringcontact bearing`` run folder holds, and the error bound its law is checked against."""
+from __future__ import annotations
+
+LAW_ERROR_BOUND_REL = 0.02        # held-out error (2D, 3D zero tilt, 3D tilted) above which a law is flagged
+
+
+def file_names(name: str) -> dict[str, str]:
+    """The files of one run in its output folder, by role."""
+    return {"fem2d": f"fem2d-{name}.json", "fem3d": f"fem3d-{name}.json", "law": f"{name}-law.json",
+            "law2d": f"{name}-law-2d.json", "report": f"accuracy-{name}.md", "csv": f"accuracy-{name}.csv",
+            "timings": "timings.json", "summary": "summary.json"}

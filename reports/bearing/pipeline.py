@@ -1,0 +1,183 @@
+"""``ringcontact bearing FILE``: an engineer's ring-pair file to a verified, checksummed contact law.
+
+Stages (each timed, with the load average, into ``timings.json``):
+
+1. ``fem2d``: the 2D reference sweep at the file's penetration points, every point with its
+   Richardson error estimate (:mod:`fem_reference.plane.sweep`), one task per point on the local
+   pool or a dask cluster, kept in ``<out>/.sweep-fem2d`` so an interrupted run resumes;
+2. ``fem3d`` (only when ``[range] tilt_arcmin`` asks for tilt): the 3D tilt sweep of the
+   harmonic levels with the finer check level (:mod:`fem_reference.solid.sweep`), resumable
+   through its store under the cache;
+3. ``calibrate``: every law family fitted with leave-one-out hold-out (:mod:`contact.calibrate`)
+   on the 2D points and, with tilt, on the 3D zero-tilt points; the tilted 3D points are never
+   fitted, so they are held out as a whole;
+4. ``report``: the Tables 2-3 style accuracy report of this bearing (:mod:`reports.bearing.report`);
+5. the law file ``<name>-law.json``: the 3D-calibrated law when the range has tilt (the real ring,
+   free end faces), else the 2D one, with its validity range (penetration, tilt), provenance (the
+   ring-pair file's name and sha256, the code version) and the checks made; whole-file sha256.
+
+A law whose held-out error exceeds :data:`LAW_ERROR_BOUND_REL` (or whose family the compiled rotor
+kernel cannot evaluate) is still written, flagged in its file, the report and on the terminal.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import shutil
+import time
+from pathlib import Path
+
+import numpy as np
+
+from contact import calibrate as cal
+from contact.dataset import read_dataset, write_dataset
+from contact.files import atomic_write_text
+from fem_reference.ring_scene import RingScene
+from reports.bearing.names import LAW_ERROR_BOUND_REL, file_names
+from reports.bearing.report import write_report
+from sweep import utc_stamp
+
+STORE_2D = ".sweep-fem2d"
+
+
+def _load() -> float:
+    return round(os.getloadavg()[0], 2)
+
+
+class Stages:
+    """Wall time and load average of each stage, printed as it ends (``log``)."""
+
+    def __init__(self, log):
+        self.log, self.rows = log, []
+
+    def run(self, name: str, what: str, fn):
+        self.log(f"[{len(self.rows) + 1}] {name}: {what} ...")
+        t0, l0 = time.perf_counter(), _load()
+        out = fn()
+        row = {"stage": name, "wall_s": time.perf_counter() - t0, "load_average_1min_start": l0,
+               "load_average_1min_end": _load()}
+        self.rows.append(row)
+        self.log(f"[{len(self.rows)}] {name}: done in {row['wall_s']:.1f} s")
+        return out
+
+
+def run_fem2d(rs: RingScene, out: Path, *, workers: int, executor, fresh: bool, progress) -> Path:
+    """The 2D reference of the ring pair into ``fem2d-<name>.json`` (resumable store in ``.sweep-fem2d``)."""
+    from fem_reference.plane import sweep as plane
+
+    store = out / STORE_2D
+    if fresh and store.exists():
+        shutil.rmtree(store)
+    meta, points = plane.sweep_dataset([rs], penetrations_m=list(rs.penetrations_2d_m), workers=workers,
+                                       executor=executor, progress=progress, store=store, per_point=True)
+    meta["ring_scene"] = {"name": rs.name, "sha256": rs.sha256, "document": rs.document}
+    return write_dataset(out / file_names(rs.name)["fem2d"], meta, plane.COLUMNS, points)
+
+
+def run_fem3d(rs: RingScene, out: Path, *, workers: int, executor, fresh: bool, progress) -> Path:
+    """The 3D tilt reference of the ring pair into ``fem3d-<name>.json`` (resumable under the cache)."""
+    from fem_reference.solid import sweep as solid
+
+    meta, points = solid.sweep_dataset(tilts_rad=list(rs.tilts_rad), penetrations_m=list(rs.penetrations_3d_m),
+                                       scene=rs.bc_3d, geom=rs.rings_3d(), workers=workers, executor=executor,
+                                       progress=progress, resume=not fresh, label=rs.name,
+                                       description=rs.scene.description)
+    meta["ring_scene"] = {"name": rs.name, "sha256": rs.sha256, "document": rs.document}
+    return write_dataset(out / file_names(rs.name)["fem3d"], meta, solid.COLUMNS, points)
+
+
+def _calibrate(path: Path, name: str):
+    ds = read_dataset(path)
+    info = cal.dataset_provenance(path, ds)
+    info["path"] = path.name               # the run folder travels as a whole
+    law, fits = cal.calibrate_scene(ds, name, info)
+    return ds, law, fits
+
+
+def calibrate(rs: RingScene, path2: Path, path3: Path | None) -> dict:
+    """Fit the 2D (and 3D) laws, check the tilted points, flag what exceeds the bound."""
+    from reports.accuracy.tilted import table3_rows
+
+    ds2, law2, fits2 = _calibrate(path2, rs.name)
+    out = {"ds2": ds2, "law2": law2, "fits2": fits2, "ds3": None, "law3": None, "fits3": None, "rows3": []}
+    if path3 is not None:
+        ds3, law3, fits3 = _calibrate(path3, rs.name)
+        out.update(ds3=ds3, law3=law3, fits3=fits3, rows3=table3_rows(ds3, rs.name, law3))
+    chosen = out["law3"] or law2
+    fits = out["fits3"] or fits2
+    best = next(f for f in fits if f.family == chosen.family)
+    checks = {"holdout_max_rel_2d": next(f for f in fits2 if f.family == law2.family).holdout_max,
+              "fem2d_error_max_rel": float(max(p.get("force_error_rel") or 0.0 for p in ds2.points))}
+    warnings = []
+    if out["law3"] is not None:
+        checks["holdout_max_rel_3d_zero_tilt"] = best.holdout_max
+        tilted = [abs(r["calibrated-slices_pct"]) / 100 for r in out["rows3"]]
+        kernel = [abs(r["calibrated-kernel_pct"]) / 100 for r in out["rows3"] if np.isfinite(r["calibrated-kernel_pct"])]
+        checks["tilted_holdout_max_rel_slices"] = max(tilted, default=0.0)
+        checks["tilted_holdout_max_rel_kernel"] = max(kernel, default=math.nan)
+        checks["fem3d_error_max_rel"] = float(max(p.get("force_error_rel") or 0.0 for p in out["ds3"].points))
+    for key, val in checks.items():
+        if "holdout" in key and np.isfinite(val) and val > LAW_ERROR_BOUND_REL:
+            warnings.append(f"{key} = {100 * val:.2f} % exceeds the bound {100 * LAW_ERROR_BOUND_REL:g} %: "
+                            f"no law family describes this ring pair that well; see the report's families")
+    if chosen.family not in cal.KERNEL_LAW_CODE:
+        warnings.append(f"family {chosen.family!r} is not in the compiled rotor kernel: the law file cannot drive "
+                        "a rotor (families the rotor uses: " + ", ".join(cal.KERNEL_LAW_CODE) + ")")
+    out.update(chosen=chosen, checks=checks, warnings=warnings)
+    return out
+
+
+def law_file(rs: RingScene, fit: dict) -> cal.CalibratedLaw:
+    """The law to ship: validity range (penetration of the fitted points, the largest tilt checked),
+    provenance (ring-pair file, code version) and the checks with their bound."""
+    from reports.version import version_line
+
+    tilt_max = max(rs.tilts_rad, default=0.0) if fit["law3"] is not None else 0.0
+    prov = {"ring_scene": {"name": rs.name, "sha256": rs.sha256, "source": rs.source, "document": rs.document},
+            "code_version": version_line(), "created_utc": utc_stamp(),
+            "reference": "3d (free end faces), zero-tilt fit, tilted points held out" if fit["law3"] is not None
+            else f"2d (plane {rs.scene.plane})",
+            "checks": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["checks"].items()},
+            "error_bound_rel": LAW_ERROR_BOUND_REL, "warnings": list(fit["warnings"]),
+            "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE}
+    return dataclasses.replace(fit["chosen"], validity_tilt_max_rad=float(tilt_max), provenance=prov)
+
+
+def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: bool = False,
+        progress: bool | None = None, log=print) -> dict:
+    """Every stage for one ring pair into ``out``; returns the summary (also written as ``summary.json``)."""
+    import json
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    names = file_names(rs.name)
+    stages = Stages(log)
+    n2 = len(rs.penetrations_2d_m)
+    path2 = stages.run("fem2d", f"2D reference, {n2} penetrations x 3+ mesh levels",
+                       lambda: run_fem2d(rs, out, workers=workers, executor=executor, fresh=fresh, progress=progress))
+    path3 = None
+    if rs.needs_3d:
+        n3 = len(rs.penetrations_3d_m) * len(rs.tilts_rad)
+        path3 = stages.run("fem3d", f"3D tilt reference, {n3} points (boundary conditions {rs.bc_3d})",
+                           lambda: run_fem3d(rs, out, workers=workers, executor=executor, fresh=fresh,
+                                             progress=progress))
+    fit = stages.run("calibrate", "law families with hold-out", lambda: calibrate(rs, path2, path3))
+    law = law_file(rs, fit)
+    files = [atomic_write_text(out / names["law"], law.to_json())]
+    if fit["law3"] is not None:
+        files.append(atomic_write_text(out / names["law2d"], fit["law2"].to_json()))
+
+    files += stages.run("report", "accuracy report", lambda: write_report(rs, fit, law, out, stages.rows))
+    for w in fit["warnings"]:
+        log(f"warning: {w}")
+    summary = {"ring_scene": rs.name, "ring_scene_sha256": rs.sha256, "law_file": names["law"],
+               "law_name": law.name, "family": law.family, "parameters": law.parameters,
+               "validity_penetration_mm": [v * 1e3 for v in law.validity_penetration_m],
+               "validity_tilt_max_arcmin": law.validity_tilt_max_rad / (math.pi / 10800),
+               "checks": law.provenance["checks"], "warnings": fit["warnings"],
+               "stages": stages.rows, "files": sorted({Path(f).name for f in files} | {path2.name}
+                                                      | ({path3.name} if path3 else set()))}
+    atomic_write_text(out / names["timings"], json.dumps({"stages": stages.rows}, indent=1) + "\n")
+    atomic_write_text(out / names["summary"], json.dumps(summary, indent=1, allow_nan=False) + "\n")
+    return summary

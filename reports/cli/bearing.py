@@ -1,0 +1,64 @@
+"""``ringcontact bearing FILE``: a ring-pair file to a verified, checksummed contact law.
+
+    ringcontact bearing my-bearing.toml [--out DIR] [--workers 2] [--scheduler ADDRESS] [--fresh] [--json]
+
+FILE is a ring-pair file (schema ``ringcontact.ring-scene/1``, docs/ring-scene.md) or a bundled one by
+name (``clamped``, ``steel-in-aluminium``, ...). Runs the 2D reference sweep, the 3D tilt sweep when the
+range asks for tilt, calibration with held-out points, the accuracy report and the law file, into
+``DIR`` (default ``bearing-<name>`` in the working directory); progress on a terminal; an interrupted
+run resumes where it stopped (``--fresh`` starts over). The law file ``DIR/<name>-law.json`` is what a
+rotor scene names in ``[loose_support] law``. Stages are in :mod:`reports.bearing.pipeline`.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from contact.threads import set_thread_env, thread_share
+
+set_thread_env(thread_share(1))      # this process's share of the cores, before numpy loads (contact/threads.py)
+
+from contact.errors import RingContactError  # noqa: E402
+from reports.cli._edge import Parser, count, fail, out_dir  # noqa: E402
+
+PROG = "ringcontact bearing"
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``ringcontact bearing FILE [options]``."""
+    ap = Parser(prog=PROG, description="a ring-pair file to a verified contact law (FEM, calibration, report, law file)")
+    ap.add_argument("scene", metavar="FILE", help="ring-pair file (.toml) or the name of a bundled one")
+    ap.add_argument("--out", default=None, help="output folder (default: bearing-<name> in the working directory)")
+    ap.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="local processes (1-64)")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="run the FEM points on the dask.distributed cluster at ADDRESS (the dask extra)")
+    ap.add_argument("--fresh", action="store_true", help="recompute every point (ignore an interrupted run's points)")
+    ap.add_argument("--json", action="store_true", help="print the summary as JSON")
+    args = ap.parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        from fem_reference.ring_scene import load
+        from reports.bearing.pipeline import run
+        from sweep.cluster import connect
+
+        rs = load(args.scene)
+        try:
+            out = out_dir(args.out or f"bearing-{rs.name}")
+        except argparse.ArgumentTypeError as exc:   # the writable check, before any computing
+            ap.error(f"--out {exc}")
+        log = (lambda msg: print(msg, file=sys.stderr)) if args.json else print
+        with connect(args.scheduler) as client:
+            summary = run(rs, out, workers=args.workers, executor=client, fresh=args.fresh, log=log)
+    except RingContactError as exc:
+        return fail(PROG, exc)
+    if args.json:
+        print(json.dumps(summary, indent=1, allow_nan=False))
+    else:
+        print(f"law file {out}/{summary['law_file']}: {summary['law_name']} "
+              f"({'verified' if not summary['warnings'] else 'FLAGGED: ' + str(len(summary['warnings'])) + ' warning(s)'})")
+        print(f"report   {out}/accuracy-{rs.name}.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
