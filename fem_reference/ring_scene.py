@@ -348,6 +348,29 @@ def _check_resolution(origin: str, c_mm: float, ro_mm: float, pen_lo: float, pen
                          f"({_ARC_ELEMENTS * 180.0 / _PHI_ELEMENTS_3D:.2g} deg); raise the smallest penetration")
 
 
+def _range_points(origin: str, rng: dict, pen_lo: float, pen_hi: float, t_lo: float, t_hi: float):
+    """The 2D penetrations, 3D penetrations and tilts (mm, mm, arcmin): given, or :func:`default_grid`."""
+    p2 = _points(origin, "penetration_points_mm", rng.get("penetration_points_mm"), pen_lo, pen_hi, "mm",
+                 default_grid(pen_lo, pen_hi, 10))
+    if len(p2) < 4:
+        raise InputError(f"{_where(origin, 'range', 'penetration_points_mm')} = {p2} mm: need >= 4 points (a fit "
+                         "with hold-out)")
+    p3, tl = [], []
+    if t_hi > 0:
+        p3 = _points(origin, "penetration_points_3d_mm", rng.get("penetration_points_3d_mm"), pen_lo, pen_hi, "mm",
+                     default_grid(pen_lo, pen_hi, 6))
+        tl = _points(origin, "tilt_points_arcmin", rng.get("tilt_points_arcmin"), t_lo, t_hi, "arcmin",
+                     sorted({0.0, t_lo, t_hi / 4, t_hi / 2, t_hi} - ({0.0} if t_lo > 0 else set())))
+        if 0.0 not in tl:
+            tl = [0.0] + tl       # the 3D law is calibrated at zero tilt; the tilted points are held out
+        if len(p3) < 4:
+            raise InputError(f"{_where(origin, 'range', 'penetration_points_3d_mm')} = {p3} mm: need >= 4 points")
+    elif rng.get("penetration_points_3d_mm") or rng.get("tilt_points_arcmin"):
+        raise InputError(f"{_where(origin, 'range', 'tilt_arcmin')} = [0, 0] arcmin: no 3D work, so 3D point lists "
+                         "must not be given")
+    return p2, p3, tl
+
+
 def from_document(doc: dict, origin: str = "<string>") -> RingScene:
     """A parsed TOML document to a :class:`RingScene` (every key checked)."""
     if not isinstance(doc, dict):
@@ -379,24 +402,7 @@ def from_document(doc: dict, origin: str = "<string>") -> RingScene:
                          f"reference, which models a ring held the same all round: hold = {hold!r} with bearing = "
                          f"{drive!r} is not one of " + "; ".join(f"{h} + {d}" for h, d in HOLDS_3D)
                          + " (or set tilt_arcmin = [0, 0])")
-    p2 = _points(origin, "penetration_points_mm", rng.get("penetration_points_mm"), pen_lo, pen_hi, "mm",
-                 default_grid(pen_lo, pen_hi, 10))
-    if len(p2) < 4:
-        raise InputError(f"{_where(origin, 'range', 'penetration_points_mm')} = {p2} mm: need >= 4 points (a fit "
-                         "with hold-out)")
-    p3, tl = [], []
-    if t_hi > 0:
-        p3 = _points(origin, "penetration_points_3d_mm", rng.get("penetration_points_3d_mm"), pen_lo, pen_hi, "mm",
-                     default_grid(pen_lo, pen_hi, 6))
-        tl = _points(origin, "tilt_points_arcmin", rng.get("tilt_points_arcmin"), t_lo, t_hi, "arcmin",
-                     sorted({0.0, t_lo, t_hi / 4, t_hi / 2, t_hi} - ({0.0} if t_lo > 0 else set())))
-        if 0.0 not in tl:
-            tl = [0.0] + tl       # the 3D law is calibrated at zero tilt; the tilted points are held out
-        if len(p3) < 4:
-            raise InputError(f"{_where(origin, 'range', 'penetration_points_3d_mm')} = {p3} mm: need >= 4 points")
-    elif rng.get("penetration_points_3d_mm") or rng.get("tilt_points_arcmin"):
-        raise InputError(f"{_where(origin, 'range', 'tilt_arcmin')} = [0, 0] arcmin: no 3D work, so 3D point lists "
-                         "must not be given")
+    p2, p3, tl = _range_points(origin, rng, pen_lo, pen_hi, t_lo, t_hi)
     try:
         rings = RingPair(ring["inner_radius_mm"] * MM, ro_mm * MM, c_mm * MM, housing["outer_radius_mm"] * MM,
                          ring["width_mm"] * MM, Material(ring["youngs_modulus_gpa"] * GPA, ring["poisson_ratio"]),

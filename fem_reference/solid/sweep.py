@@ -289,10 +289,8 @@ def sweep_dataset(tilts_rad=None, penetrations_m=None, level_names=DEFAULT_LEVEL
         The finer level every point is also solved on (``force_finer_n``, ``moment_finer_nm``);
         "auto": :data:`~fem_reference.solid.mesh.CHECK_LEVEL` for the default levels, else none.
     label, description : str, optional
-        The name every point carries in its ``scene`` column (default: ``scene``, the boundary
-        conditions) and the scene's description in the metadata, e.g. a ring-pair file's name
-        (:mod:`fem_reference.ring_scene`); the boundary conditions are kept in
-        ``metadata["boundary_conditions"]``.
+        The ``scene`` column of every point (default ``scene``, the boundary conditions, which
+        ``metadata["boundary_conditions"]`` keeps) and its description, e.g. a ring-pair file's.
 
     Notes
     -----
