@@ -30,7 +30,7 @@ Optional keys: ``description``; in ``[range]`` the explicit point lists ``penetr
 named scenes (``clamped``, ``clamped-stress``, ``persson-40``, ``steel-in-aluminium``) are bundled
 files of this format in ``fem_reference/ring_scenes/``. Every key is checked when read; a bad value is
 refused with one line naming the file, the key, the value with its unit and what is allowed
-(:class:`~contact.errors.InputError`). The reference documentation is ``docs/ring-scene.md``; the
+(:class:`~contact.errors.InputError`). The reference documentation is ``docs/ring-scenes.rst``; the
 JSON Schema for editors, ``docs/ring-scene.schema.json``, is generated from :data:`KEYS` by
 :func:`json_schema`.
 
