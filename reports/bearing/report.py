@@ -143,7 +143,7 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
              f"- Law file `{names['law']}`: `{law.name}` ({law.family}), {pars}; reference: {law.provenance['reference']}.",
              f"- Valid for Δr = {law.validity_penetration_m[0] / MM:.4g} … {law.validity_penetration_m[1] / MM:.4g} mm"
              + (f", tilt up to {law.validity_tilt_max_rad / ARCMIN:g}′" if law.validity_tilt_max_rad else ", straight ring only") + ".",
-             "- Checks (bound on held-out errors " + f"{100 * LAW_ERROR_BOUND_REL:g} %): " + "; ".join(
+             "- Checks (bound on held-out errors " + f"{100 * law.provenance['error_bound_rel']:g} %): " + "; ".join(
                  f"{k} {100 * v:.3f} %" for k, v in checks.items() if v is not None) + ".",
              f"- **{'verified' if ok else 'flagged'}**" + ("" if ok else ": " + " ".join(warn)), "",
              "## Straight ring (2D, Table 2 style)", "",
