@@ -146,8 +146,10 @@ class RingScene:
         """The 3D reference's :class:`~fem_reference.solid.geometry.RingPair3D` of this pair."""
         from fem_reference.solid.geometry import RingPair3D
         r = self.scene.rings
+        # the housing's thickness rounded to 1e-12 m: 110.05 mm - 100.05 mm is 10 mm, not 10 mm - 1.4e-17 m
         return RingPair3D(bearing_inner_radius_m=r.inner_radius_m, bearing_outer_radius_m=r.outer_radius_m,
-                          clearance_m=r.clearance_m, support_thickness_m=r.support_outer_radius_m - r.bore_radius_m,
+                          clearance_m=r.clearance_m,
+                          support_thickness_m=round(r.support_outer_radius_m - r.bore_radius_m, 12),
                           width_m=r.width_m, young_bearing_pa=r.bearing.youngs_modulus_pa,
                           young_support_pa=r.support.youngs_modulus_pa, poisson_bearing=r.bearing.poisson_ratio,
                           poisson_support=r.support.poisson_ratio)

@@ -56,6 +56,8 @@ def test_bundled_table1_files_are_the_code_scenes():
     assert ring_scene.load("clamped").scene == clamped()
     assert ring_scene.load("clamped-stress").scene == clamped(plane="stress")
     assert ring_scene.load("persson-40").scene == persson(40.0)
+    from fem_reference.solid.geometry import RingPair3D
+    assert ring_scene.load("clamped").rings_3d() == RingPair3D()      # the committed 3D dataset's rings, exactly
     assert set(ring_scene.bundled()) >= {"clamped", "clamped-stress", "persson-40", "steel-in-aluminium"}
 
 
