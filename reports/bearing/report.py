@@ -143,8 +143,10 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
              f"- Law file `{names['law']}`: `{law.name}` ({law.family}), {pars}; reference: {law.provenance['reference']}.",
              f"- Valid for Δr = {law.validity_penetration_m[0] / MM:.4g} … {law.validity_penetration_m[1] / MM:.4g} mm"
              + (f", tilt up to {law.validity_tilt_max_rad / ARCMIN:g}′" if law.validity_tilt_max_rad else ", straight ring only") + ".",
-             "- Checks (bound on held-out errors " + f"{100 * law.provenance['error_bound_rel']:g} %): " + "; ".join(
-                 f"{k} {100 * v:.3f} %" for k, v in checks.items() if v is not None) + ".",
+             "- Checks: " + "; ".join(f"{k} {100 * v:.3f} %" for k, v in checks.items() if v is not None) + ".",
+             f"- Rule: a held-out error may exceed the FEM point's own stated error by at most "
+             f"{100 * law.provenance['error_bound_rel']:g} %; beyond it here: " + "; ".join(
+                 f"{k} {100 * v:+.3f} %" for k, v in law.provenance["checks_beyond_fem_error"].items() if v is not None) + ".",
              f"- **{'verified' if ok else 'flagged'}**" + ("" if ok else ": " + " ".join(warn)), "",
              "## Straight ring (2D, Table 2 style)", "",
              "Cells: `100 (P_law − P_FEM)/P_FEM` in %, signed; '–': the law has no solution there. Conformal law: "
