@@ -183,12 +183,21 @@ def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
     _, opened_report = job("report", "report", "--out", "rep")
     # shooting on a bundled scene (Jeffcott rotor, 3000 rpm: a synchronous orbit of period 1/50 s)
     _, opened_orbit = job("orbit", "orbit", "verify-jeffcott", "--speed-rpm", "3000", "--out", "orbit.json")
+    # your bearing: a bundled ring-pair file in a FEM job, and a file of one's own through `bearing` (2D only)
+    out, opened_ring = job("fem-point", "fem-point", "0.01", "--scene", "steel-in-aluminium", "--h-mm", "2", "--json")
+    assert json.loads(out)["scene"] == "steel-in-aluminium"
+    mine = (ROOT / "fem_reference" / "ring_scenes" / "steel-in-aluminium.toml").read_text(encoding="utf-8")
+    mine = mine.replace('name = "steel-in-aluminium"', 'name = "small-ring"').replace(
+        "tilt_arcmin = [0, 2]", "tilt_arcmin = [0, 0]\npenetration_points_mm = [0.004, 0.01, 0.02, 0.04]")
+    (work / "small.toml").write_text(mine, encoding="utf-8")
+    job("bearing", "bearing", "small.toml", "--out", "brg", "--workers", "1")
 
     # outputs: where asked (simulate's default folder is in the working directory), all 0644
     summary = json.loads((work / "simulate-out" / "simulate-summary.json").read_text(encoding="utf-8"))
     assert summary["revolutions"] == 2.0 and summary["steps"] > 0
     assert {"simulate.csv", "simulate.npz", "simulate-summary.json"} <= {p.name for p in (work / "simulate-out").iterdir()}
     assert {"laws-vs-paper.md", "accuracy-table2.md"} <= {p.name for p in (work / "rep").iterdir()}
+    assert {"small-ring-law.json", "accuracy-small-ring.md", "fem2d-small-ring.json"} <= {p.name for p in (work / "brg").iterdir()}
     orbit = json.loads((work / "orbit.json").read_text(encoding="utf-8"))
     assert orbit["converged"] and orbit["period_revs"] == 1 and abs(orbit["period_s"] - 0.02) < 1e-12
     written = [p for p in work.rglob("*") if p.is_file()]
@@ -208,7 +217,8 @@ def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
     assert site_packages / "rotor" / "scenes" / "verify-jeffcott.toml" in opened_orbit
     assert site_packages / "fem_reference" / "data" / "fem2d-reference.json" in opened_report
     assert site_packages / "fem_reference" / "data" / "3d" / "fem3d-reference.json" in opened_report
-    repo_files = sorted(str(p) for p in opened_law | opened_modes | opened_sim | opened_report | opened_orbit
+    assert site_packages / "fem_reference" / "ring_scenes" / "steel-in-aluminium.toml" in opened_ring
+    repo_files = sorted(str(p) for p in opened_law | opened_modes | opened_sim | opened_report | opened_orbit | opened_ring
                         if p.resolve().is_relative_to(ROOT) and not p.resolve().is_relative_to(Path(sys.prefix).resolve()))
     assert not repo_files, repo_files
     notes = _run([py, "-c", "from importlib.resources import files; "

@@ -4,6 +4,7 @@ Must show: the sweep equals the local pool bit for bit; a worker killed mid-swee
 finished point and the re-run resumes; the recorded host/commit are the worker's; closing the
 cluster logs no "worker still alive" warning.
 """
+import json
 import logging
 import os
 
@@ -184,3 +185,24 @@ def test_fem2d_scene_on_the_cluster_equals_the_local_run(cluster):
     assert [{k: v for k, v in p.items() if k not in drop} for p in on_dask] == \
            [{k: v for k, v in p.items() if k not in drop} for p in local]
     assert on_dask[0]["force_n"] > 1e5
+
+
+def test_bearing_job_on_the_cluster_equals_the_local_pool(cluster, tmp_path, capsys):
+    """``ringcontact bearing FILE --scheduler ADDRESS``: the 2D points computed by the cluster's workers are the
+    local pool's, bit for bit, and so is the law (a 2D-only variant of the bundled steel-in-aluminium pair)."""
+    from fem_reference.ring_scene import RING_SCENE_DIR
+    from contact.dataset import read_dataset
+    from reports.cli.bearing import main
+
+    text = RING_SCENE_DIR.joinpath("steel-in-aluminium.toml").read_text().replace(
+        "tilt_arcmin = [0, 2]", "tilt_arcmin = [0, 0]\npenetration_points_mm = [0.004, 0.01, 0.02, 0.04]")
+    f = tmp_path / "pair.toml"
+    f.write_text(text)
+    assert main([str(f), "--out", str(tmp_path / "pool"), "--workers", "2"]) == 0
+    assert main([str(f), "--out", str(tmp_path / "dask"), "--scheduler", cluster.scheduler_address]) == 0
+    a = read_dataset(tmp_path / "pool" / "fem2d-steel-in-aluminium.json").points
+    b = read_dataset(tmp_path / "dask" / "fem2d-steel-in-aluminium.json").points
+    assert [p["force_n"] for p in a] == [p["force_n"] for p in b] and len(a) == 4
+    law_a = json.loads((tmp_path / "pool" / "steel-in-aluminium-law.json").read_text())
+    law_b = json.loads((tmp_path / "dask" / "steel-in-aluminium-law.json").read_text())
+    assert law_a["parameters"] == law_b["parameters"]
