@@ -104,7 +104,7 @@ class RingScene:
     ----------
     name : str
         The file's ``name``; labels every dataset point and law made from it.
-    scene : Scene
+    scene : fem_reference.scenes.Scene
         The 2D scene (rings, plane, drive, hold) of :mod:`fem_reference.scenes`.
     penetration_range_m, tilt_range_rad : tuple of float
         ``[range]``: what the law must cover (m, rad).
@@ -425,7 +425,7 @@ def from_document(doc: dict, origin: str = "<string>") -> RingScene:
 
 
 def scene_2d(name_or_path: str) -> Scene:
-    """The 2D :class:`Scene` of a ``--scene`` value: a ring-pair file, a bundled one, or a generated name
+    """The 2D :class:`fem_reference.scenes.Scene` of a ``--scene`` value: a ring-pair file, a bundled one, or a generated name
     (``persson-<ratio>``, ``paper-…``; :func:`fem_reference.scenes.by_name`)."""
     text = str(name_or_path)
     if is_file_argument(text) or text in bundled():

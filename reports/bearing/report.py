@@ -58,7 +58,7 @@ def _timeit(fn, repeats: int = 7) -> float:
 
 
 def speed_rows(fit: dict, t2: dict) -> list[dict]:
-    """Per method: median time per point (s) and largest |error| (%) over the 2D points."""
+    """Per method: median time per point (s) and largest absolute error (%) over the 2D points."""
     from contact import laws
 
     geo = fit["law2"].geometry
