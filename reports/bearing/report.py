@@ -222,10 +222,13 @@ def force_figure(rs, fit: dict, t2: dict):
     ax2.plot(pen_mm, np.abs(t2["pct"]["calibrated-holdout"]), "o", color="C3", mfc="none", label="calibrated, held out")
     ax2.plot(pen_mm, 100 * t2["err"], "k--", label="FEM error estimate")
     ax2.axhline(100 * LAW_ERROR_BOUND_REL, color="r", lw=0.8, label="bound")
+    from matplotlib.ticker import FuncFormatter
     for a in (ax, ax2):
         a.set_xscale("log")
         a.set_yscale("log")
         a.grid(alpha=0.3, which="both")
+        a.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        a.xaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}" if str(f"{v:g}")[0] in "25" else ""))
     ax.set_ylabel("contact force (kN)")
     ax2.set_ylabel("|P_law − P_FEM| / P_FEM (%)")
     ax2.set_xlabel("penetration Δr (mm)")
