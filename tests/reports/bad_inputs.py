@@ -273,8 +273,54 @@ def _other_cases() -> list:
     return c
 
 
+RING_FILES = ("ring_crossing", "ring_bore_crossing", "ring_zero_clearance", "ring_nu_half", "ring_pa_modulus",
+              "ring_unresolved_range", "ring_unknown_key", "ring_bad_toml", "ring_schema", "ring_tilt_no_3d")
+
+
+def _bearing_cases() -> list:
+    """Ring-pair files refused by every job that takes one (``bearing`` and the FEM jobs' ``--scene``)."""
+    c = []
+    for name in RING_FILES:
+        f = "{" + name + "}"
+        c += [(f"bearing {name}", ["bearing", f, "--out", "{tmp}/o"], None),
+              (f"fem-point --scene {name}", ["fem-point", "0.01", "--scene", f], None),
+              (f"fem3d point --scene {name}", ["fem3d", "point", "0.01", "--scene", f], None)]
+    c += [("bearing missing file", ["bearing", "{missing}.toml", "--out", "{tmp}/o"], None),
+          ("bearing a directory", ["bearing", "{dir}/", "--out", "{tmp}/o"], None),
+          ("bearing nosuch name", ["bearing", "no-such-bearing", "--out", "{tmp}/o"], "no-such-bearing"),
+          ("fem-sweep --scene ring_nu_half", ["fem-sweep", "--scene", "{ring_nu_half}", "--out", "{tmp}/d.json"], None),
+          ("fem3d sweep --scene 2D only", ["fem3d", "sweep", "--scene", "clamped-stress", "--out", "{tmp}/d.json"],
+           "clamped-stress"),
+          ("fem3d point --scene half-clamped", ["fem3d", "point", "0.01", "--scene", "{ring_half_clamped}"], None)]
+    c += _num_cases("bearing", ["bearing", "{ring_good}", "--out", "{tmp}/o"], "--workers", ["0", "-1", "abc", "1000"], "")
+    c += _out_cases("bearing", ["bearing", "{ring_good}"], "--out", UNWRITABLE_DIRS[:2])
+    return c
+
+
 CASES = _law_cases() + _fem_cases() + _fem3d_cases() + _calibrate_cases() + _rotor_cases() + _simulate_cases() \
-    + _study_cases() + _orbit_cases() + _other_cases()
+    + _study_cases() + _orbit_cases() + _other_cases() + _bearing_cases()
+
+
+def _ring_inputs(root: Path, p: dict) -> None:
+    """Ring-pair files, each broken in one key (fem_reference/ring_scenes/steel-in-aluminium.toml as the base)."""
+    good = (ROOT / "fem_reference" / "ring_scenes" / "steel-in-aluminium.toml").read_text()
+    v = _scene_variant
+    rings = {"ring_good": good.replace("tilt_arcmin = [0, 2]", "tilt_arcmin = [0, 0]"),
+             "ring_crossing": v(good, "inner_radius_mm = 48.0", "inner_radius_mm = 60.0"),
+             "ring_bore_crossing": v(good, "outer_radius_mm = 75.0", "outer_radius_mm = 54.0"),
+             "ring_zero_clearance": v(good, "radial_clearance_mm = 0.03", "radial_clearance_mm = 0"),
+             "ring_nu_half": v(good, "poisson_ratio = 0.33", "poisson_ratio = 0.5"),
+             "ring_pa_modulus": v(good, "youngs_modulus_gpa = 72.0", "youngs_modulus_gpa = 72e9"),
+             "ring_unresolved_range": v(good, "penetration_mm = [0.004, 0.04]", "penetration_mm = [1e-7, 0.04]"),
+             "ring_unknown_key": v(good, "width_mm = 22.0", "width_mm = 22.0\nlength_mm = 3"),
+             "ring_bad_toml": "schema = [not toml\n",
+             "ring_schema": v(good, 'schema = "ringcontact.ring-scene/1"', 'schema = "ringcontact.ring-scene/7"'),
+             "ring_tilt_no_3d": v(good, 'hold = "clamped-outer-axially-free"', 'hold = "clamped-outer-upper"'),
+             "ring_half_clamped": v(good.replace("tilt_arcmin = [0, 2]", "tilt_arcmin = [0, 0]"),
+                                    'hold = "clamped-outer-axially-free"', 'hold = "clamped-outer-upper"')}
+    for k, text in rings.items():
+        p[k] = root / f"{k}.toml"
+        p[k].write_text(text)
 
 
 def _scene_variant(text: str, old: str, new: str) -> str:
@@ -330,6 +376,7 @@ def make_inputs(root: Path) -> dict[str, str]:
         p[k] = root / f"{k}.toml"
         p[k].write_text(text)
     p["nosuch_scene"] = "no-such-scene"
+    _ring_inputs(root, p)
     _redraw_inputs(root, p)
     return {k: str(v) for k, v in p.items()}
 
