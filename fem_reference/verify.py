@@ -193,7 +193,14 @@ def shrink_fit_pressure(interference_m: float, inner_radius_m: float, interface_
     Inner body a < r < b (far face r = a ``inner_face``), outer body b < r < c (far face r = c
     ``outer_face``), radial interference δ at r = b: ``δ = p (C_i + C_o)`` with each body's
     :func:`lame_face_compliance`. The suite's scenes are ``inner_face = 'fixed'`` (bearing inner
-    surface moved rigidly, here not at all) and ``outer_face = 'fixed'`` (support clamped).
+    surface moved rigidly, here not at all) and ``outer_face = 'fixed'`` (support clamped); then
+    ``u(a) = 0`` gives ``B = −A a²`` in the inner body and ``u(c) = 0`` ``B = −A c²`` in the outer one, so
+
+        ``p = δ / [ b(b² − a²)/(2(λ_i+μ_i) b² + 2μ_i a²) + b(c² − b²)/(2(λ_o+μ_o) b² + 2μ_o c²) ]``
+
+    (λ the plane Lamé constant: plane strain λ, plane stress 2μλ/(λ+2μ)). With both far faces
+    free and plane stress this is Shigley's :func:`press_fit_pressure_shigley`; plane strain is plane
+    stress with ``E → E/(1−ν²)``, ``ν → ν/(1−ν)``.
     """
     c_i = lame_face_compliance(inner_radius_m, interface_radius_m, inner, plane, "outer", inner_face)
     c_o = lame_face_compliance(interface_radius_m, outer_radius_m, outer, plane, "inner", outer_face)

@@ -59,6 +59,18 @@ def test_clamping_the_far_faces_stiffens_the_fit_and_thin_layers_reach_the_const
     assert thin == pytest.approx(h / constrained_modulus(ALUMINIUM, "strain"), rel=1e-3)
 
 
+@pytest.mark.parametrize("plane", ["strain", "stress"])
+def test_fixed_fixed_shrink_fit_is_the_explicit_formula(plane):
+    # The scenes' case (both far faces fixed), written out in shrink_fit_pressure's docstring from
+    # u = A r + B/r with u(a) = 0, u(c) = 0 (Lamé 1852), against the general 2x2 solve.
+    def term(r_far, m):
+        lam, mu = m.lame(plane)
+        return B * abs(r_far ** 2 - B ** 2) / (2 * (lam + mu) * B ** 2 + 2 * mu * r_far ** 2)
+
+    explicit = DELTA / (term(A, STEEL_208) + term(C, ALUMINIUM))
+    assert shrink_fit_pressure(DELTA, A, B, C, STEEL_208, ALUMINIUM, plane) == pytest.approx(explicit, rel=1e-12)
+
+
 @pytest.fixture(scope="module")
 def shrink_rows():
     return shrink_fit_study()
