@@ -19,7 +19,7 @@ from contact.units import GPA, MM
 from fem_reference.plane.geometry import Material, RingPair
 from fem_reference.plane.sweep import Levels, reference_point, richardson
 from fem_reference.scenes import Scene
-from fem_reference.verify import (composite_modulus, conformal_beta_factor, conformal_force, dundurs_constants,
+from fem_reference.verify import (composite_modulus, conformal_force, conformal_force_beta, dundurs_constants,
                                   shrink_fit_fem, shrink_fit_pressure, winkler_force, winkler_modulus)
 
 STEEL_208 = Material(208.0 * GPA, 0.30)
@@ -138,8 +138,8 @@ def persson_study(support: Material, plate_ratios=(10.0, 20.0, 40.0, 80.0),
     """Load vs measured half-angle on Persson's scene against the conformal law with E* and Dundurs' α.
 
     Each row: the FE reference point (default levels), the law at the measured angle with α
-    (``closed_form``), without α (``law_alpha0_n``) and times the first-order β factor
-    (``law_beta_n``, :func:`~fem_reference.verify.conformal_beta_factor`).
+    (``closed_form``), without α (``law_alpha0_n``) and with α and β (``law_beta_n``, solved
+    numerically, :func:`~fem_reference.verify.conformal_force_beta`).
     """
     rows = []
     for ratio in plate_ratios:
@@ -156,7 +156,7 @@ def persson_study(support: Material, plate_ratios=(10.0, 20.0, 40.0, 80.0),
                              plate_ratio=ratio, penetration_m=dr, half_angle_deg=math.degrees(eps),
                              half_angle_error_rel=p["half_angle_error_rel"], alpha=alpha, beta=beta,
                              law_alpha0_n=float(conformal_force(eps, rings.clearance_m, e_star, rings.width_m, 0.0)),
-                             law_beta_n=law * conformal_beta_factor(eps, alpha, beta),
+                             law_beta_n=conformal_force_beta(eps, rings.clearance_m, e_star, rings.width_m, alpha, beta),
                              wall_s=time.perf_counter() - t0))
     return rows
 
