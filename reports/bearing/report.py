@@ -131,6 +131,18 @@ def _tilt_lines(fit: dict) -> list[str]:
     return lines
 
 
+def _dundurs(law) -> str:
+    """α, β of the pair (plane stress, the paper's) and what the conformal rows do with β."""
+    from contact import laws
+    g = law.geometry
+    a, b = laws.dundurs_constants(g.bearing_E_Pa, g.bearing_nu, g.support_E_Pa, g.support_nu)
+    if abs(b) < 1e-12:
+        return f"(α = {a:.3f}, β = 0: the law is exact in β)"
+    return (f"(α = {a:.3f}, β = {b:.3f}; the rows use the β = 0 reading of the garbled β term, "
+            "docs/reference/contact-laws.md Q1: for a steel pin in aluminium the β term moves Persson's load by "
+            "2.6-6.2 %, reports/published/fem-verification-dissimilar.md)")
+
+
 def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]) -> str:
     names = file_names(rs.name)
     checks, warn = law.provenance["checks"], law.provenance["warnings"]
@@ -150,8 +162,8 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
              f"- **{'verified' if ok else 'flagged'}**" + ("" if ok else ": " + " ".join(warn)), "",
              "## Straight ring (2D, Table 2 style)", "",
              "Cells: `100 (P_law − P_FEM)/P_FEM` in %, signed; '–': the law has no solution there. Conformal law: "
-             "composite modulus and Dundurs α of the two materials (Dai et al. 2025 Eq. 5); Johnson and Pereira: "
-             "plane-strain composite modulus (their sources).", "", *_straight_lines(t2), ""]
+             "composite modulus and Dundurs α of the two materials (Dai et al. 2025 Eq. 5) " + _dundurs(law)
+             + "; Johnson and Pereira: plane-strain composite modulus (their sources).", "", *_straight_lines(t2), ""]
     fits = fit["fits3"] or fit["fits2"]
     lines += ["Families tried on the law's reference (held-out RMS / max):", ""]
     lines += [f"- {f.family}: {100 * f.holdout_rms:.3f} % / {100 * f.holdout_max:.3f} %"
