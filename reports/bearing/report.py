@@ -179,6 +179,8 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
     lines += [f"| {r['method']} | {r['time_per_point_s']:.3g} s | {r['max_abs_error_pct']:.3g} | {r['points_without_solution']} |"
               for r in speed]
     lines += ["", f"![speed]({Path(names['report']).stem}-speed.png)", "", "## Stages", "",
+              "Wall times of the run that wrote this report; FEM points kept from an earlier run of the same file "
+              "are read back, not recomputed (cold times of a new bearing: reports/published/perf-bearing.md).", "",
               "| stage | wall (s) | load average (1 min, start → end) |", "|---|---|---|"]
     lines += [f"| {s['stage']} | {s['wall_s']:.1f} | {s['load_average_1min_start']:.2f} → {s['load_average_1min_end']:.2f} |"
               for s in stages]
