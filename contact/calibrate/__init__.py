@@ -76,6 +76,7 @@ from contact.calibrate.fit import (DATA_3D_DIR, DATASET_2D, SELECTION_GAIN, Fami
                                    scene_points, select_family)
 from contact.calibrate.law import SCHEMA, VERSION, CalibratedLaw, CalibratedSupportParams
 from contact.calibrate.store import CALIBRATED_DIR, available, load_calibrated, write_calibrations
+from contact.calibrate.store import LAW_FILE_MAX_BYTES, LawFile, law_file_record, load_law_file, shipped_record
 from contact.errors import DatasetError, InputError
 
 __all__ = [
@@ -85,4 +86,5 @@ __all__ = [
     "check_calibrations", "committed_datasets", "conformal_compliance_force", "dataset_provenance", "family_force",
     "fit_family", "foundation_shape", "load_calibrated", "scene_geometry", "scene_points", "select_family",
     "write_calibrations",
+    "LAW_FILE_MAX_BYTES", "LawFile", "law_file_record", "load_law_file", "shipped_record",
 ]
