@@ -51,10 +51,11 @@ def _parser() -> argparse.ArgumentParser:
                    help="comma-separated station names (the scene's disk, bearing, support or node names); default: "
                         "the CSV gets the scene's disks, loose-support bearing station and supports (Table 4: disk1, "
                         "disk2, 5, s), --steady analyses every disk, bearing and support station")
-    p.add_argument("--law", default="conformal", metavar="LAW",
-                   help="radial contact law: conformal (default, the paper's law as published), pereira, or "
-                        "calibrated:<name>, a law fitted to a FEM scene (contact/calibrated/<name>.json; its "
-                        "clearance and ring width are the scene's)")
+    p.add_argument("--law", default=None, metavar="LAW",
+                   help="radial contact law instead of the scene's [loose_support] law (default: the scene's, "
+                        "conformal when it names none): conformal (the paper's law as published), pereira, "
+                        "calibrated:<name> (contact/calibrated/<name>.json) or the path of a calibrated-law file "
+                        "(.json); a calibrated law's clearance, ring width and materials must be the scene's")
     p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
     p.add_argument("--mu", type=quantity("mu"), default=None, help="end-face friction coefficient (default: scene)")
     p.add_argument("--preload-N", "--preload-n", dest="preload_n", type=quantity("preload_N"), default=None,
@@ -90,7 +91,7 @@ def _run(args) -> int:
                         or args.steps_per_rev % args.record_per_rev):
         raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
                          "dividing --steps-per-rev")   # refused before building or compiling anything
-    scene, model, system, validity_m = _system(args)
+    scene, model, system, law_info = _system(args)
     names = _dof_names(args, model, primary_only=True)
     idx = [model.dof_index(n) for n in names]
     omega = args.speed_rpm * 2 * math.pi / 60
@@ -117,13 +118,13 @@ def _run(args) -> int:
                "scheme": tr.scheme, "dt_s": dt, "steps": n_steps,
                "wall_s": round(compiled["compile_s"] + run_s, 3), "compile_s": round(compiled["compile_s"], 3),
                "run_s": round(run_s, 3), "compiled_from_cache": compiled["from_cache"],
-               "law": sup.law.name if sup is not None else None,
+               "law": sup.law.name if sup is not None else None, **law_info["note"],
                "clearance_mm": d0 * 1e3 if sup is not None else None,
                "max_r1_mm": float(r1.max() * 1e3), "max_r2_mm": float(r2.max() * 1e3),
                "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
                "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
-               **validity_summary(float(max(r1.max(), r2.max()) - d0), validity_m), **extra}
+               **validity_summary(float(max(r1.max(), r2.max()) - d0), law_info["validity_max_m"]), **extra}
     # one unit: the old run's files go, the new ones are renamed into place, the summary (with their
     # checksums) comes last; an interrupted run leaves no summary beside another run's CSV
     try:
@@ -153,7 +154,8 @@ def _dof_names(args, model, primary_only: bool) -> list[str]:
 
 
 def _system(args):
-    """``(scene, model, system, validity max penetration in m or None)`` from the checked arguments."""
+    """``(scene, model, system, law info)`` from the checked arguments; law info: ``note`` (summary fields
+    naming a calibrated law's file and checksum) and ``validity_max_m`` (m, None for an analytic law)."""
     from rotor.dynamics.build import system_from_model
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
@@ -173,13 +175,13 @@ def _system(args):
         check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True, upper=50.0)
         kw["misalignment_m"] = args.misalignment_mm * 1e-3
     clearance_m = kw.pop("clearance_m", None)
-    law, validity_m = _law(args, scene, clearance_m)
+    law, info = _law(args, scene, clearance_m)
     if law is not None:
         system = system_from_model(model, scene, omega, law=law, mu=args.mu, preload_N=args.preload_n, **kw)
     else:
         system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
                                    preload_N=args.preload_n, clearance_m=clearance_m, **kw)
-    return scene, model, system, validity_m
+    return scene, model, system, info
 
 
 def _steady_run(args, system, model, T: float, names: list[str], idx: list[int]):
@@ -236,23 +238,33 @@ def _trajectory_files(tr, system, names: list[str], idx: list[int], r1, r2, d0: 
 
 
 def _law(args, scene, clearance_m):
-    """``(SupportLaw or None, validity max penetration in m or None)`` for ``--law``.
+    """``(SupportLaw or None, law info)`` for ``--law`` (see :func:`_system` for the info).
 
-    ``calibrated:<name>`` loads the stored fit (contact.calibrate) with the scene's collision factor;
-    None means an analytic law of contact.loose_support chosen by name in ``system_from_model``.
+    None: the scene's law, or ``--law conformal|pereira``, built by ``system_from_model``. A calibrated
+    ``--law`` (``calibrated:<name>`` or a law file, :func:`rotor.model.loose_support_scene.law_record`) must
+    hold for the scene's geometry and takes the scene's collision factor.
     """
-    if args.law in ("conformal", "pereira"):
-        return None, None
-    if not args.law.startswith("calibrated:"):
-        raise InputError(f"law = {args.law!r}: must be conformal, pereira or calibrated:<name>")
-    from contact.calibrate import load_calibrated
-    from rotor.dynamics.kernels import support_law_from_params
+    from rotor.dynamics.build import calibrated_support_law
+    from rotor.model.loose_support_scene import geometry_mismatch, law_label, law_record
 
-    cal = load_calibrated(args.law.split(":", 1)[1])
-    over = {"c_c_s_per_m": scene.loose_support.collision_factor_s_m, "tilt_ignored": bool(args.tilt_ignored)}
-    if clearance_m is not None:
-        over["clearance_m"] = clearance_m      # refused unless it is the calibration's own
-    return support_law_from_params(cal.loose_support_params(**over)), float(cal.validity_penetration_m[1])
+    ls = scene.loose_support
+    if args.law is None:
+        return None, {"note": ls.law_note() if ls is not None else {},
+                      "validity_max_m": ls.validity_max_penetration_m if ls is not None else None}
+    rec = law_record(args.law, None, "--law")
+    if ls is None:
+        raise InputError(f"--law = {args.law}: scene {scene.name!r} has no [loose_support] to apply it to")
+    if rec is None:
+        return None, {"note": {}, "validity_max_m": None}
+    bad = geometry_mismatch(vars(ls), rec.law)
+    if bad is not None:
+        key, mine, theirs, unit = bad
+        raise InputError(f"--law = {args.law}: {law_label(args.law)} holds for {key} = {theirs:.6g} {unit} but scene "
+                         f"{scene.path} has {key} = {mine:.6g} {unit} in [loose_support]: leave out --law to use the "
+                         f"scene's law, or name a law calibrated for {mine:.6g} {unit}".replace("  ", " "))
+    law = calibrated_support_law(rec.law, args.law, ls.collision_factor_s_m, args.tilt_ignored, clearance_m)
+    return law, {"note": {"law_file": rec.path, "law_sha256": rec.sha256},
+                 "validity_max_m": float(rec.law.validity_penetration_m[1])}
 
 
 def validity_summary(max_edge_penetration_m: float, validity_max_m: float | None) -> dict:

@@ -1,6 +1,8 @@
 """A :class:`~rotor.dynamics.system.RotorSystem` from the rotor model of a scene (``rotor.model``)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from contact.errors import InputError
@@ -9,7 +11,7 @@ from rotor.dynamics.kernels import support_law_from_params
 from rotor.dynamics.system import HarmonicForce, LooseSupport, RotorSystem, SupportLaw
 
 
-def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | None = None, law_name: str = "conformal",
+def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | None = None, law_name: str | None = None,
                       tilt_ignored: bool = False,
                       mu: float | None = None, preload_N: float | None = None, clearance_m: float | None = None,
                       misalignment_m: float | None = None, nonlinear_coupling: bool = True) -> RotorSystem:
@@ -19,10 +21,11 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     ``Δq_m`` (the ``K_c Δq_m`` term moves to the static load, since the coupling spring is
     not shifted), unbalance (1X) and misalignment excitation (2X), the two linear 3a/3b rows
     ``model.B`` (not the squared g5), the cubic coupling remainder, and the loose support with
-    the contact law of the scene (``contact.loose_support``; the paper's conformal law as
-    published by default). Overrides: ``law`` (any :class:`SupportLaw`, e.g. a calibrated one
+    the contact law of the scene (its ``[loose_support] law``: an analytic law of
+    ``contact.loose_support``, the paper's conformal law as published by default, or a calibrated
+    law, :func:`calibrated_support_law`). Overrides: ``law`` (any :class:`SupportLaw`, e.g. a calibrated one
     wrapped by :func:`rotor.dynamics.kernels.support_law_from_params`), ``law_name`` (a law of
-    ``contact.loose_support`` by name: "conformal", "pereira"), ``tilt_ignored`` (paper §5.2,
+    ``contact.loose_support`` by name: "conformal", "pereira"; None: the scene's), ``tilt_ignored`` (paper §5.2,
     Fig. 16: no moment of any kind between bearing and support, neither from the contact law nor
     from the end faces, whose stick lock then has no tilt rows), ``mu``, ``preload_N``, ``clearance_m``, ``misalignment_m`` (δ, scales
     Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
@@ -72,14 +75,39 @@ def _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, cleara
 
     mu_v = ls.friction_coefficient if mu is None else mu
     pre_v = ls.preload_n if preload_N is None else preload_N
-    if law is None:
+    calibrated = getattr(ls, "calibrated", None) if law_name is None else None
+    if law is None and calibrated is not None:
+        from rotor.model.loose_support_scene import geometry_mismatch
+        bad = geometry_mismatch(vars(ls), calibrated)     # a scene edited after loading (dataclasses.replace)
+        if bad is not None:
+            raise InputError(f"{bad[0]} = {bad[1]:.6g} {bad[3]}: the scene's law {ls.law} holds for {bad[2]:.6g} "
+                             f"{bad[3]} only")
+        law = calibrated_support_law(calibrated, ls.law, ls.collision_factor_s_m, tilt_ignored, clearance_m)
+    elif law is None:
         params = LooseSupportParams(
             clearance_m=ls.clearance_m if clearance_m is None else clearance_m, width_m=ls.ring_width_m,
             bearing_E_Pa=ls.bearing_modulus_pa, bearing_nu=ls.bearing_poisson,
             support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson,
-            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored, law=law_name)
+            c_c_s_per_m=ls.collision_factor_s_m, tilt_ignored=tilt_ignored, law=law_name or ls.law)
         law = support_law_from_params(params)
     if law.tilt_ignored != bool(tilt_ignored) and tilt_ignored:
         raise InputError(f"tilt_ignored = True: the given law {law.name!r} passes moments; make it with tilt_ignored")
     return LooseSupport(tuple(model.loose_pair.bearing), tuple(model.loose_pair.support), law,
                         ls.ring_width_m, mu_v, pre_v, tilt_ignored=law.tilt_ignored)
+
+
+def calibrated_support_law(cal, label: str, collision_factor_s_m: float, tilt_ignored: bool = False,
+                           clearance_m: float | None = None) -> SupportLaw:
+    """The loose-support law of a calibrated law ``cal`` (:class:`contact.calibrate.law.CalibratedLaw`).
+
+    Clearance, width and materials are the calibration's; the collision factor ``c_c`` (s/m) is the
+    scene's. ``clearance_m`` (m), if given, must be the calibration's (relative 1e-6): a calibrated law
+    holds for its own geometry only. ``label`` names the law in that message (``calibrated:<name>`` or
+    the law file as typed).
+    """
+    own = float(cal.geometry.clearance_m)
+    if clearance_m is not None and not math.isclose(clearance_m, own, rel_tol=1e-6):
+        raise InputError(f"clearance_mm = {clearance_m * 1e3:.6g} mm: the law {label} holds for clearance_mm = "
+                         f"{own * 1e3:.6g} mm only (calibrate a law for that clearance, or use an analytic law)")
+    params = cal.loose_support_params(c_c_s_per_m=collision_factor_s_m, tilt_ignored=bool(tilt_ignored))
+    return support_law_from_params(params)

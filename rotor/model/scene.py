@@ -24,13 +24,14 @@ File layout (see ``rotor/scenes/*.toml`` for complete examples)::
     [[couplings]]  name, node_a, node_b, a0_n_m_per_rad, a1_n_m_per_rad3, equal_lateral,
                    shaft_mass_kg (m_sp), lever_mm (L)
     [[boundaries]] station, fixed = ["y", "z", ...]
-    [loose_support]  bearing_station, support, clearance_mm, ring_width_mm, ...
+    [loose_support]  bearing_station, support, clearance_mm, ring_width_mm, ..., law (rotor.model.loose_support_scene)
     [misalignment]   coupling, bearing_station, offset_mm, excitation (a reading of Eq. 34)
     [analysis]       max_speed_rpm, speed_points, modes
 """
 from __future__ import annotations
 
 import math
+import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -39,6 +40,7 @@ from typing import Any, Callable
 from contact.errors import DatasetError, InputError
 from contact.package_data import entries, shipped, stem
 from contact.plausible import check_field as _plausible
+from rotor.model.loose_support_scene import FROM_LAW, LooseSupport, complete_loose_support
 
 SCENE_DIR = shipped("rotor", "scenes")       # the bundled scenes, through importlib.resources (contact.package_data)
 SCHEMA = "ringcontact.rotor-scene/1"
@@ -147,22 +149,6 @@ class Coupling:
 class Boundary:
     station: str
     fixed: tuple[str, ...]
-
-
-@dataclass(frozen=True)
-class LooseSupport:
-    """Parameters of the bearing-in-support clearance (used by the nonlinear integrator)."""
-    bearing_station: str
-    support: str
-    clearance_m: float
-    ring_width_m: float
-    bearing_modulus_pa: float
-    bearing_poisson: float
-    support_modulus_pa: float
-    support_poisson: float
-    collision_factor_s_m: float
-    friction_coefficient: float
-    preload_n: float
 
 
 # Readings of Dai et al. 2025 Eq. 34, documented in rotor.model.assembly.harmonic_loads.
@@ -356,15 +342,16 @@ _BOUNDARY: list[Spec] = [
 _LOOSE: list[Spec] = [
     ("bearing_station", "bearing_station", "", _text, _any, _REQ),
     ("support", "support", "", _text, _any, _REQ),
-    ("clearance_mm", "clearance_m", "mm", _MM, _pos, _REQ),
-    ("ring_width_mm", "ring_width_m", "mm", _MM, _pos, _REQ),
-    ("bearing_modulus_gpa", "bearing_modulus_pa", "GPa", _GPA, _pos, _REQ),
-    ("bearing_poisson_ratio", "bearing_poisson", "", _ID, _nu, _REQ),
-    ("support_modulus_gpa", "support_modulus_pa", "GPa", _GPA, _pos, _REQ),
-    ("support_poisson_ratio", "support_poisson", "", _ID, _nu, _REQ),
+    ("clearance_mm", "clearance_m", "mm", _MM, _pos, FROM_LAW),        # FROM_LAW: required unless `law`
+    ("ring_width_mm", "ring_width_m", "mm", _MM, _pos, FROM_LAW),      # names a calibrated law, which then
+    ("bearing_modulus_gpa", "bearing_modulus_pa", "GPa", _GPA, _pos, FROM_LAW),   # supplies the value
+    ("bearing_poisson_ratio", "bearing_poisson", "", _ID, _nu, FROM_LAW),         # (rotor.model.loose_support_scene)
+    ("support_modulus_gpa", "support_modulus_pa", "GPa", _GPA, _pos, FROM_LAW),
+    ("support_poisson_ratio", "support_poisson", "", _ID, _nu, FROM_LAW),
     ("collision_factor_s_per_m", "collision_factor_s_m", "s/m", _ID, _nonneg, 0.0),
     ("friction_coefficient", "friction_coefficient", "", _ID, _nonneg, 0.0),
     ("preload_n", "preload_n", "N", _ID, _nonneg, 0.0),
+    ("law", "law", "", _text, _any, "conformal"),   # conformal, pereira, calibrated:<name> or a law file (.json)
 ]
 _MISALIGN: list[Spec] = [
     ("coupling", "coupling", "", _text, _any, _REQ),
@@ -505,9 +492,10 @@ def _parse_entries(doc: dict, origin: str, names: dict[str, Station], key: str, 
 
 
 def _parse_linked_table(doc: dict, origin: str, names: dict[str, Station], key: str, specs: list[Spec], cls,
-                        link: str, entries: tuple, entries_key: str):
+                        link: str, entries: tuple, entries_key: str, finish=None):
     """The optional ``[key]`` table as ``cls`` (None if absent): its ``bearing_station`` must
-    name a station and its field ``link`` one of ``entries`` (the ``[[entries_key]]`` array)."""
+    name a station and its field ``link`` one of ``entries`` (the ``[[entries_key]]`` array);
+    ``finish(fields)`` completes the fields before ``cls`` is built."""
     if key not in doc:
         return None
     where = f"{origin}: {key}"
@@ -515,11 +503,12 @@ def _parse_linked_table(doc: dict, origin: str, names: dict[str, Station], key: 
     _need_station(names, where, "bearing_station", kw["bearing_station"])
     if kw[link] not in {e.name for e in entries}:
         raise InputError(f"{where}.{link} = {kw[link]!r}: no such [[{entries_key}]] entry")
-    return cls(**kw)
+    return cls(**(finish(kw) if finish is not None else kw))
 
 
-def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
-    """Validate a parsed TOML document and build a :class:`Scene` (SI units)."""
+def parse_scene(doc: dict, *, origin: str = "<scene>", base_dir=None) -> Scene:
+    """Validate a parsed TOML document and build a :class:`Scene` (SI units); ``base_dir``: the folder a
+    relative law-file path is taken from (None: the working directory)."""
     _check_header(doc, origin)
     source = doc.get("source", "")
     materials = _parse_named(doc, origin, "materials", _MATERIAL, Material)
@@ -542,7 +531,7 @@ def parse_scene(doc: dict, *, origin: str = "<scene>") -> Scene:
                              f"same x_mm")
     boundaries = _parse_entries(doc, origin, names, "boundaries", _BOUNDARY, Boundary)
     loose = _parse_linked_table(doc, origin, names, "loose_support", _LOOSE, LooseSupport, "support", supports,
-                                "supports")
+                                "supports", lambda kw: complete_loose_support(kw, origin, base_dir))
     mis = _parse_linked_table(doc, origin, names, "misalignment", _MISALIGN, Misalignment, "coupling", couplings,
                               "couplings")
     analysis = Analysis(**_parse_table(doc.get("analysis", {}), _ANALYSIS, f"{origin}: analysis", Analysis))
@@ -588,7 +577,7 @@ def load_scene(path_or_name: str | Path) -> Scene:
         doc = tomllib.loads(data.decode("utf-8"))
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
         raise DatasetError(f"scene file {str(path)!r}: not valid TOML: {exc}") from None
-    return parse_scene(doc, origin=path.name)
+    return parse_scene(doc, origin=path.name, base_dir=path.parent if isinstance(path, os.PathLike) else None)
 
 
 def loads_scene(text: str, origin: str = "<string>") -> Scene:

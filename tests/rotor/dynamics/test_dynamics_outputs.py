@@ -172,7 +172,7 @@ def test_simulate_with_a_calibrated_law_and_its_validity_flag(tmp_path, capsys):
     capsys.readouterr()
     assert main(["simulate", "--speed-rpm", "10500", "--law", "calibrated:clamped-foundation",
                  "--clearance-mm", "0.03", "--out", str(out)]) == 2
-    assert "clearance_m = 3e-05 m" in capsys.readouterr().err
+    assert "clearance_mm = 0.03 mm" in capsys.readouterr().err
     assert main(["simulate", "--speed-rpm", "10500", "--law", "hertz", "--out", str(out)]) == 2
     assert "law = 'hertz'" in capsys.readouterr().err
     # the flag itself: beyond the range → True, within → False, analytic laws carry no range
