@@ -77,11 +77,21 @@ def _overrides(args) -> dict:
     return kw
 
 
-def _scene(args) -> tuple[str, list[str]]:
-    """The scene's name and response channels; a bad scene is refused here, before any computing."""
+def _scene(args) -> tuple:
+    """The scene's name, response channels and loose support; a bad scene is refused here, before any computing."""
     from rotor.studies.steady_state import _scene_model
     sc, model = _scene_model(args.scene)
-    return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")]
+    return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
+
+
+def law_fields(loose, max_edge_penetration_m: float) -> dict:
+    """The scene's law in a result: ``law`` (as the scene names it), a calibrated law's ``law_file`` and
+    ``law_sha256``, and the validity check of :func:`reports.cli.simulate.validity_summary`."""
+    from reports.cli.simulate import validity_summary
+    if loose is None:
+        return {}
+    return {"law": loose.law, **loose.law_note(),
+            **validity_summary(max_edge_penetration_m, loose.validity_max_penetration_m)}
 
 
 def _emit(args, result: dict, table: str) -> None:
@@ -141,10 +151,10 @@ def _orbit_table(d: dict) -> str:
 def _orbit(args) -> int:
     from rotor.studies.orbit import orbit
 
-    name, _ = _scene(args)
+    name, _, loose = _scene(args)
     res = orbit(args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, period_revs=args.period_revs,
                 **_overrides(args))
-    d = orbit_json(res, name)
+    d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m)}
     _emit(args, d, _orbit_table(d))
     if not res.converged:
         print(f"ringcontact orbit: error: no periodic orbit of {res.period_revs} revolution(s) at "
@@ -170,7 +180,7 @@ def _branch(args) -> int:
     from rotor.studies.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
-    name, channels = _scene(args)
+    name, channels, loose = _scene(args)
     station = args.station or channels[0]
     if station not in channels:
         raise InputError(f"--station = {station}: not a response channel of {name} "
@@ -181,6 +191,8 @@ def _branch(args) -> int:
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3)}
+    deepest_mm = max([p.get("max_edge_penetration_mm", 0.0) for p in d["points"]], default=0.0)
+    d.update(law_fields(loose, max(deepest_mm * 1e-3, res.start.max_edge_penetration_m)))   # deepest of the branch
     _emit(args, d, _branch_table(d))
     if args.plot is not None and d["points"]:
         from reports.bifurcation import bifurcation_figure

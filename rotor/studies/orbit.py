@@ -22,6 +22,7 @@ import numpy as np
 
 from contact.errors import InputError
 from contact.units import check_positive
+from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.studies.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
                                         speed_problem)
@@ -85,6 +86,9 @@ class OrbitResult:
         The reduced state, its monodromy and scales.
     q_m, v_m_s : numpy.ndarray
         (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring speed.
+    max_edge_penetration_m : float
+        Largest penetration of a ring edge past the clearance over the period (m, every step; 0 without
+        contact or without a loose support), the quantity of ``simulate``'s ``max_edge_penetration_mm``.
     """
 
     speed_rpm: float
@@ -105,6 +109,7 @@ class OrbitResult:
     shooting: ShootingResult
     q_m: np.ndarray
     v_m_s: np.ndarray
+    max_edge_penetration_m: float = 0.0
 
     @property
     def switch_free(self) -> bool:
@@ -122,6 +127,7 @@ class OrbitResult:
                 "transient_revs": self.transient_revs, "settled": self.shooting.settled,
                 "face_mode_changes": self.events,
                 "singular_directions": self.singular_directions, "switch_free": self.switch_free,
+                "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3,
                 "wall_s": self.wall_s, "backend": self.backend}
 
 
@@ -129,13 +135,25 @@ def velocity_amplitudes(flow: Flow, model, res_state, t0_s: float, modes, period
                         stations=None) -> dict:
     """1X-5X velocity amplitudes (mm/s) of ``<station>.y/z`` over one period recorded at every step from the
     reduced state at ``t0_s`` (stations: ``model.response_stations()`` by default)."""
+    return period_response(flow, model, res_state, t0_s, modes, period_revs, steps_per_rev, stations)[0]
+
+
+def period_response(flow: Flow, model, res_state, t0_s: float, modes, period_revs: int, steps_per_rev: int,
+                    stations=None) -> tuple[dict, float]:
+    """:func:`velocity_amplitudes` and the largest edge penetration past the clearance over the same
+    period (m, 0 without contact or without a loose support; :func:`rotor.dynamics.constraints.edge_offsets`)."""
     stations = model.response_stations() if stations is None else tuple(stations)
     names = [f"{s}.{c}" for s in stations for c in ("y", "z")]
     idx = [model.dof_index(n) for n in names]
     tr = record(flow, res_state, t0_s, period_revs * steps_per_rev, modes, 1)
     v = tr.v[:-1, idx]
     amps = np.abs(harmonic_amplitudes(v - v.mean(axis=0), period_revs, ORDERS))
-    return {n: [float(a) * 1e3 for a in amps[:, j]] for j, n in enumerate(names)}
+    sup = flow.system.support
+    pen = 0.0
+    if sup is not None:
+        r1, r2 = edge_offsets(tr.u, sup.width_m)
+        pen = max(float(max(r1.max(), r2.max())) - sup.law.clearance_m, 0.0)
+    return {n: [float(a) * 1e3 for a in amps[:, j]] for j, n in enumerate(names)}, pen
 
 
 def _overrides(kw: dict) -> dict:
@@ -165,18 +183,19 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     q0, v0 = linear_initial_state(system, 0.0) if start is None else start
     res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options,
                                period_hint=period_hint)
-    amps = velocity_amplitudes(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
+    amps, pen = period_response(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
     q, v = to_full(flow, res.state, 0.0)
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
                        res.floquet, amps, res.newton_iterations, res.residual, res.transient_revs, res.events,
-                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v)
+                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v, pen)
 
 
 @dataclass(frozen=True)
 class BranchResult:
     """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
     ``critical_kind``, ``leading_multiplier``, ``restarted`` (None, or how a point past a stick/slip switch was
-    shot: ``secant``, ``transient``, ``cold``), ``velocity_amplitudes_mm_s_1X_to_5X``), ``bifurcations`` (dicts: ``kind``,
+    shot: ``secant``, ``transient``, ``cold``), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``),
+    ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
     (the :class:`rotor.studies.continuation.Branch`)."""
 
@@ -230,8 +249,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
              "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted))}
         if amplitudes:
             flow = pb.flow(p.parameter)
-            d["velocity_amplitudes_mm_s_1X_to_5X"] = velocity_amplitudes(flow, model, p.state, 0.0, res.modes,
-                                                                         pb.period_revs, n)
+            amps, pen = period_response(flow, model, p.state, 0.0, res.modes, pb.period_revs, n)
+            d["velocity_amplitudes_mm_s_1X_to_5X"], d["max_edge_penetration_mm"] = amps, pen * 1e3
         pts.append(d)
     bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index} for b in br.bifurcations)
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
