@@ -197,8 +197,13 @@ def _sweep(tasks, out: Path, args, description: dict):
 
     sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
     import dataclasses
-    manifest = {"study": args.study, "description": description, "scene_name": sc.name,
-                "scene": dataclasses.asdict(sc), **_mesh(args)}
+    scene_doc = dataclasses.asdict(sc)
+    if sc.loose_support is not None:
+        scene_doc["loose_support"].pop("calibrated", None)     # named by law_file and law_sha256
+        if sc.loose_support.calibrated is not None:
+            print(f"study {args.study}: law {sc.loose_support.law_file} (sha256 {sc.loose_support.law_sha256})")
+    manifest = {"study": args.study, "description": description, "scene_name": sc.name, "scene": scene_doc,
+                **_mesh(args)}
     t0 = time.perf_counter()
     with connect(args.scheduler) as client:
         s = run_sweep(tasks, out, executor=client, max_workers=args.workers, manifest=manifest,
@@ -228,7 +233,8 @@ def _run(args) -> int:
     if args.study == "sensitivity":
         return _sensitivity(args)
     from rotor.model.scene import load_scene
-    load_scene(args.scene)          # a bad scene is refused here, not by every point of the sweep
+    scene = load_scene(args.scene)  # a bad scene is refused here, not by every point of the sweep
+    _law_clearances(args, scene)
     out = Path(args.out)
     figs = Path(args.figures) if args.figures else out / "figures"
     opts = _options(args)
@@ -238,6 +244,30 @@ def _run(args) -> int:
     for f in study(args, out, figs, opts):
         print(f"  wrote {f}")
     return 0
+
+
+def _law_clearances(args, scene) -> None:
+    """Refuse, before any point, a clearance other than a calibrated law's own (the law holds for its geometry)."""
+    ls = scene.loose_support
+    if ls is None or ls.calibrated is None:
+        return
+    own_mm = ls.clearance_m * 1e3
+    wanted = {"params": ("--clearances-mm", getattr(args, "clearances_mm", None)),
+              "map": ("--clearances-mm", getattr(args, "clearances_mm", None)),
+              "testrig": ("the test rig's clearances", "0.01,0.05"),
+              "cascade": ("--clearance-mm", None if getattr(args, "clearance_mm", None) is None
+                          else str(args.clearance_mm))}.get(args.study)
+    if wanted is None or wanted[1] is None:
+        return
+    for text in wanted[1].split(","):
+        try:
+            value = float(text)
+        except ValueError:
+            continue                # a malformed list is refused with its own message later
+        if abs(value - own_mm) > 1e-6 * own_mm:
+            raise InputError(f"{wanted[0]} = {text.strip()} mm: scene {scene.path} names the calibrated law "
+                             f"{ls.law}, which holds for clearance_mm = {own_mm:.6g} mm only (use a scene with an "
+                             "analytic law to vary the clearance)")
 
 
 def _export(args) -> int:

@@ -160,6 +160,12 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
         for r, p in zip(rows, points):
             r += [p.info.get(k, "") for k in ("classification", "classified_by", "stable", "spectral_radius",
                                                "critical_kind")]
+    if any("law_validity_max_penetration_m" in p.info for p in points):   # a calibrated law: its fitted range
+        header += ["max_edge_penetration_mm", "law_validity_max_penetration_mm", "beyond_law_validity"]
+        for r, p in zip(rows, points):
+            r += [p.info.get("max_edge_penetration_m", float("nan")) * 1e3,
+                  p.info.get("law_validity_max_penetration_m", float("nan")) * 1e3,
+                  int(p.info.get("beyond_law_validity", False))]
     files.append(write_csv(figs / f"{prefix}.csv", header, rows))
     return files
 

@@ -526,8 +526,20 @@ def point_record(res: SteadyResult, sc, model, system, opts: SteadyStateOptions,
             "static": bool(res.static), "wall_s": float(res.wall_s),
             "law": system.support.law.name if system.support is not None else None,
             "elements_per_segment": elements_per_segment, "n_dofs": int(model.n_dofs),
-            "options": dataclasses.asdict(opts), **res.regime()}
+            "options": dataclasses.asdict(opts), **res.regime(), **_law_info(sc, res)}
     return arrays, info
+
+
+def _law_info(sc, res: SteadyResult) -> dict:
+    """A calibrated law's file, checksum and validity check of a point (empty for an analytic law): the
+    deepest edge penetration past the clearance over the recorded samples (m) against the law's fitted range."""
+    ls = sc.loose_support
+    if ls is None or ls.calibrated is None:
+        return {}
+    pen = max(float(max(res.r1.max(), res.r2.max())) - res.clearance_m, 0.0) if len(res.r1) else 0.0
+    top = ls.validity_max_penetration_m
+    return {**ls.law_note(), "max_edge_penetration_m": pen, "law_validity_max_penetration_m": top,
+            "beyond_law_validity": bool(pen > top)}
 
 
 def sweep_tasks(scene: str, speeds_rpm, *, prefix: str = "rpm", **overrides) -> list:
