@@ -60,10 +60,21 @@ CROSS_CHECKS = (
     "`material` names a [[materials]] entry",
     "disks, point_masses, bearings, supports, boundaries: `station` names a station",
     "couplings: `node_a` and `node_b` name stations at the same x_mm",
-    "loose_support: `bearing_station` names a station, `support` a [[supports]] entry",
+    "loose_support: `bearing_station` names a station, `support` a [[supports]] entry; clearance_mm, ring_width_mm, "
+    "the moduli and Poisson ratios are required unless `law` names a calibrated law (then they are the law's, and "
+    "must equal it where given)",
     "misalignment: `bearing_station` names a station, `coupling` a [[couplings]] entry",
     "names are unique within materials and stations; supports and elements do not reuse a station name",
 )
+
+
+# what a key's value means, where its name and unit do not say it
+KEY_TEXT = {
+    "law": "contact law: conformal (the paper's, as published), pereira, calibrated:<name> (a law shipped in "
+           "contact/calibrated/) or the path of a calibrated-law file (.json, relative to the scene file's folder); "
+           "a calibrated law must hold for this table's geometry (rotor/model/loose_support_scene.py)",
+}
+FROM_LAW_TEXT = "required unless `law` names a calibrated law, whose value it then takes (and must equal if given)"
 
 
 def _scale(conv) -> float:
@@ -109,11 +120,13 @@ def _property(spec) -> dict:
         if conv is sc._int:          # integer bounds written as integers
             bounds = {k: int(v) if float(v).is_integer() else v for k, v in bounds.items()}
         prop = {"type": "integer" if conv is sc._int else "number", **bounds}
-    text = [f"unit {unit}" if unit else "", f"read as {attr}" + (" (SI)" if unit else "")]
+    text = [f"unit {unit}" if unit else "", f"read as {attr}" + (" (SI)" if unit else ""), KEY_TEXT.get(key, "")]
     if key in RANGES:
         text.append(f"plausible: {RANGES[key][5]}")
+    if default is sc.FROM_LAW:
+        text.append(FROM_LAW_TEXT)
     prop["description"] = "; ".join(t for t in text if t)
-    if default is not sc._REQ:
+    if default not in (sc._REQ, sc.FROM_LAW):
         typed = default / _scale(conv) if conv not in (sc._text, sc._int, sc._bool, sc._dofs) else default
         prop["default"] = round(typed, 12) if isinstance(typed, float) else typed
     return prop
@@ -202,7 +215,8 @@ def table_rows(schema: dict) -> list[tuple[str, str, list[list[str]]]]:
         rows = []
         for key, p in item["properties"].items():
             unit = p["description"].split(";")[0].removeprefix("unit ") if p["description"].startswith("unit ") else ""
-            need = "required" if key in item["required"] else f"default {json.dumps(p.get('default'), ensure_ascii=False)}"
+            need = ("required" if key in item["required"] else "required unless `law` is calibrated"
+                    if FROM_LAW_TEXT in p["description"] else f"default {json.dumps(p.get('default'), ensure_ascii=False)}")
             notes = "; ".join(t for t in p["description"].split("; ") if not t.startswith("unit "))
             rows.append([key, p["type"] + (f" [{unit}]" if unit else ""), need, _allowed(p), notes])
         optional = "" if name in schema["required"] else " Optional."

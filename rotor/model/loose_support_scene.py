@@ -41,12 +41,7 @@ GEOMETRY_KEYS = {
 
 @dataclass(frozen=True)
 class LooseSupport:
-    """Parameters of the bearing-in-support clearance (used by the nonlinear integrator), SI.
-
-    ``law`` is the scene's ``law`` key as typed; for a calibrated law ``law_file`` is the file read
-    (resolved path, or the shipped entry), ``law_sha256`` its checksum and ``calibrated`` the
-    :class:`contact.calibrate.law.CalibratedLaw` (not compared, not in ``repr``).
-    """
+    """Parameters of the bearing-in-support clearance (used by the nonlinear integrator) and its contact law."""
     bearing_station: str
     support: str
     clearance_m: float
@@ -58,10 +53,10 @@ class LooseSupport:
     collision_factor_s_m: float
     friction_coefficient: float
     preload_n: float
-    law: str = ANALYTIC_LAWS[0]
-    law_file: str = ""
-    law_sha256: str = ""
-    calibrated: object = field(default=None, compare=False, repr=False)
+    law: str = ANALYTIC_LAWS[0]         # the scene's `law` key as typed
+    law_file: str = ""                  # a calibrated law's file as read (resolved path, or the shipped entry)
+    law_sha256: str = ""                # its checksum (the file's "sha256" key, verified)
+    calibrated: object = field(default=None, compare=False, repr=False)   # its contact.calibrate.law.CalibratedLaw
 
     @property
     def validity_max_penetration_m(self) -> float | None:
