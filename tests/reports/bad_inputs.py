@@ -170,6 +170,10 @@ def _simulate_cases() -> list:
           ("simulate --dofs nosuch", [*b, "--dofs", "nosuch.y"], "nosuch"),
           ("simulate --law nosuch", [*b, "--law", "nosuch"], "nosuch"),
           ("simulate --law calibrated:nosuch", [*b, "--law", "calibrated:nosuch"], "nosuch"),
+          ("simulate --law missing law file", [*b, "--law", "{tmp}/missing.json"], "missing.json"),
+          ("simulate --law not a law file", [*b, "--law", "{not_json}"], "not.json"),
+          ("simulate --law edited law file", [*b, "--law", "{edited_law_dir}/clamped-foundation.json"],
+           "clamped-foundation.json"),
           ("simulate --steady reference", [*b, "--steady", "--scheme", "reference"], None),
           ("simulate no speed", ["simulate", "--out", "{tmp}/o"], None)]
     for name in ("nosuch_scene", "bad_toml", "huge_modulus", "thin_shaft"):
