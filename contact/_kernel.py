@@ -235,7 +235,8 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     slices = p[2] == 2.0
     if slices:
         P, S, Pp, Pt, Sp, St = _slices(pen, t, l0, partial, p)
-        d = 0.5 * l0 - S / P
+        # a grazing edge (pen ~1e-21 m) gives P = 0 in floating point (h ~ Δ^1.5 underflows): no load, no arm
+        d = 0.5 * l0 - S / P if P > 0.0 else 0.5 * (l0 - l)
     else:
         P = l * hv
         d = 0.5 * (l0 - l)
@@ -263,7 +264,7 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
                 elif j == 3:
                     dt = thz / t
             dP = Pp * dpen + Pt * dt
-            dd = -((Sp * dpen + St * dt) * P - S * dP) / (P * P)
+            dd = -((Sp * dpen + St * dt) * P - S * dP) / (P * P) if P > 0.0 else 0.0
         else:
             if partial:
                 dt = 0.0
