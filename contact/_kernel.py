@@ -235,7 +235,8 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     slices = p[2] == 2.0
     if slices:
         P, S, Pp, Pt, Sp, St = _slices(pen, t, l0, partial, p)
-        # a grazing edge (pen ~1e-21 m) gives P = 0 in floating point (h ~ Δ^1.5 underflows): no load, no arm
+        # P = 0 where the slice length pen/t underflows (t = inf: a shooting trial state with |θ| ~ 1e155 rad,
+        # rejected by its line search): no load, the arm of the analytic laws, no division by zero
         d = 0.5 * l0 - S / P if P > 0.0 else 0.5 * (l0 - l)
     else:
         P = l * hv

@@ -294,3 +294,17 @@ def test_kernel_slice_jacobian_against_central_differences(y_off, thy, thz):
                                                                  (fm.Fy_N, fm.Fz_N, fm.My_Nm, fm.Mz_Nm))], dtype=float)
         scale = np.abs(J[:, j]).max()
         np.testing.assert_allclose(J[:, j], fd, rtol=2e-5, atol=2e-5 * scale)
+
+
+def test_kernel_slice_load_that_underflows_is_no_division_by_zero():
+    # A Newton trial state of the shooting (rotor.studies.shooting) reached |θ| ~ 1e155 rad (measured on
+    # paper-table4 at 10 500 rpm with this law): the tilt magnitude overflows to inf, the partial patch's length
+    # pen/t and its load P are 0, and the moment arm S/P stopped the whole orbit with ZeroDivisionError. Such
+    # a state is rejected by the line search; the kernel only has to return finite numbers for it.
+    law = cal.load_calibrated("clamped-foundation")
+    params = law.loose_support_params()
+    x = (law.geometry.clearance_m, 0.0, 1.8e155, -3.1e155)
+    f, J = loose_support_jacobian(params, *x)
+    r = loose_support_force(params, *x)
+    assert np.all(np.isfinite(f)) and np.all(np.isfinite(J))
+    assert np.isfinite([r.Fy_N, r.Fz_N, r.My_Nm, r.Mz_Nm]).all()
