@@ -24,7 +24,7 @@ def available(directory=CALIBRATED_DIR) -> list[str]:
     return [stem(e) for e in entries(directory, ".json")]
 
 
-#: largest law file read by path (bytes): a calibrated law is a few kB (contact/calibrated/*.json)
+#: largest law file read by path (bytes): a calibrated law is a few kB (``contact/calibrated/*.json``)
 LAW_FILE_MAX_BYTES = 1_000_000
 
 
