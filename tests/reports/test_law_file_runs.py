@@ -165,3 +165,34 @@ def test_study_cascade_on_the_scene_law_file(law_scene, tmp_path, capsys):
     manifest = json.loads((tmp_path / "file" / "sweep.json").read_text())
     ls = manifest["scene"]["loose_support"]
     assert ls["law_file"] == str(law.resolve()) and ls["law_sha256"] == json.loads(law.read_text())["sha256"]
+
+
+def test_a_bearing_job_law_file_runs_the_rotor(tmp_path, capsys):
+    """The issue's path end to end: ``ringcontact bearing`` on the small ring pair of
+    tests/reports/test_bearing_job.py writes its law file; a rotor scene names it and leaves out the clearance,
+    ring width and materials, which are then the pair's (0.02 mm, 12 mm, 210/110 GPa); simulate runs on it."""
+    from contact.calibrate import load_law_file
+    from rotor.model.scene import load_scene
+    from test_bearing_job import SMALL
+
+    (tmp_path / "small.toml").write_text(SMALL, encoding="utf-8")
+    rc, _, err = _run(["bearing", tmp_path / "small.toml", "--out", tmp_path / "bearing", "--workers", 1], capsys)
+    assert rc == 0, err
+    law_path = tmp_path / "bearing" / "small-ring-law.json"
+    text = scene_path("paper-table4").read_text(encoding="utf-8")
+    for key in ("clearance_mm = 0.05\n", "ring_width_mm = 30\n", "bearing_modulus_gpa = 204\n",
+                "bearing_poisson_ratio = 0.3\n", "support_modulus_gpa = 204\n", "support_poisson_ratio = 0.3\n"):
+        assert text.count(key) == 1
+        text = text.replace(key, "")
+    scene = tmp_path / "rotor.toml"
+    scene.write_text(text.replace("preload_n = 5000\n", 'preload_n = 5000\nlaw = "bearing/small-ring-law.json"\n'),
+                     encoding="utf-8")
+    law, ls = load_law_file(law_path), load_scene(scene).loose_support
+    assert (ls.clearance_m, ls.ring_width_m, ls.support_modulus_pa) == \
+        (law.geometry.clearance_m, law.geometry.width_m, law.geometry.support_E_Pa)
+    s, _ = _simulate(tmp_path, capsys, "sim", "--scene", scene)
+    assert s["law"] == law.name and s["law_file"] == str(law_path.resolve())
+    assert s["clearance_mm"] == pytest.approx(law.geometry.clearance_m * 1e3)
+    assert s["law_validity_max_penetration_mm"] == pytest.approx(law.validity_penetration_m[1] * 1e3)
+    assert s["max_edge_penetration_mm"] > 0 and s["beyond_law_validity"] is (
+        s["max_edge_penetration_mm"] > s["law_validity_max_penetration_mm"])
