@@ -196,6 +196,7 @@ def _sweep(tasks, out: Path, args, description: dict):
     from rotor.studies.steady_state import _scene_model
 
     sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
+    _same_law(out, sc)
     import dataclasses
     scene_doc = dataclasses.asdict(sc)
     if sc.loose_support is not None:
@@ -244,6 +245,26 @@ def _run(args) -> int:
     for f in study(args, out, figs, opts):
         print(f"  wrote {f}")
     return 0
+
+
+def _same_law(out: Path, sc) -> None:
+    """Refuse to add to a study whose stored points were computed with another contact law: an analytic law by
+    name, a calibrated one by its file's checksum (a refitted law file is another law). The points' parameters
+    name the scene file only, so they alone would be reused."""
+    from sweep.store import ResultStore
+
+    store = ResultStore(out)
+    before = store.read_manifest(required=False)
+    if not before or not store.points.is_dir() or not any(store.points.glob("*.json")):
+        return
+    old = (before.get("scene") or {}).get("loose_support") or {}
+    ls = sc.loose_support
+    was = old.get("law_sha256") or old.get("law", "conformal")
+    now = ("conformal" if ls is None else ls.law_sha256 or ls.law)
+    if was != now:
+        said = {True: "the law file with sha256 ", False: ""}
+        raise InputError(f"--out = {out}: its points were computed with {said[len(was) == 64]}{was}, the scene now "
+                         f"names {said[len(now) == 64]}{now}; use another --out (or remove {out}) for this law")
 
 
 def _law_clearances(args, scene) -> None:

@@ -165,6 +165,10 @@ def test_study_cascade_on_the_scene_law_file(law_scene, tmp_path, capsys):
     manifest = json.loads((tmp_path / "file" / "sweep.json").read_text())
     ls = manifest["scene"]["loose_support"]
     assert ls["law_file"] == str(law.resolve()) and ls["law_sha256"] == json.loads(law.read_text())["sha256"]
+    # the same folder with another law (the bundled scene's conformal): refused, not resumed with the stored points
+    rc, _, err = _run(["study", "cascade", "--rpm-min", 6000, "--rpm-max", 7000, "--points", 2, "--misalignment-mm", 3,
+                       "--max-revs", 300, "--workers", 1, "--no-progress", "--out", tmp_path / "file"], capsys)
+    assert rc == 2 and err.count("\n") == 1 and f"computed with the law file with sha256 {ls['law_sha256']}" in err
 
 
 def test_a_bearing_job_law_file_runs_the_rotor(tmp_path, capsys):
