@@ -138,7 +138,8 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
     info = {"dt_s": dt, "record_every": rec, "sample_rate_hz": 1.0 / (rec * dt), "segments": n_seg,
             "segment_steps": seg_steps, "steps": n_seg * seg_steps, "least_residual_steps": int(unconv),
             "clearance_m": float(sys0.support.law.clearance_m), "accel_rpm_per_s": wdot * 30 / math.pi,
-            "wall_s": time.perf_counter() - t_wall, "law": sys0.support.law.name}
+            "wall_s": time.perf_counter() - t_wall, "law": sys0.support.law.name,
+            **(sc.loose_support.law_note() if sc.loose_support is not None else {})}   # a calibrated law's file
     return {"arrays": arrays, "info": info}
 
 
