@@ -242,5 +242,5 @@ def plane_strain_3d_study(level_names=("Q0", "Q1", "Q2"), penetrations_m=(0.01 *
 
 
 def within(row: dict) -> bool:
-    """|FEM − closed form| ≤ stated error."""
+    """The absolute difference FEM − closed form is within the stated error."""
     return abs(row["fem"] - row["closed_form"]) <= row["fem_error_abs"]

@@ -2,7 +2,7 @@
 
     ringcontact bearing my-bearing.toml [--out DIR] [--workers 2] [--scheduler ADDRESS] [--fresh] [--json]
 
-FILE is a ring-pair file (schema ``ringcontact.ring-scene/1``, docs/ring-scene.md) or a bundled one by
+FILE is a ring-pair file (schema ``ringcontact.ring-scene/1``, docs/ring-scenes.rst) or a bundled one by
 name (``clamped``, ``steel-in-aluminium``, ...). Runs the 2D reference sweep, the 3D tilt sweep when the
 range asks for tilt, calibration with held-out points, the accuracy report and the law file, into
 ``DIR`` (default ``bearing-<name>`` in the working directory); progress on a terminal; an interrupted
