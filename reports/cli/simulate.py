@@ -30,7 +30,7 @@ import numpy as np
 
 from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
-from contact.units import check_positive
+from contact.units import ARCMIN, check_positive
 from reports.cli._edge import Parser, count, fail, out_dir, quantity
 from rotor.dynamics import constraints as cons
 
@@ -124,7 +124,9 @@ def _run(args) -> int:
                "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
                "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
-               **validity_summary(float(max(r1.max(), r2.max()) - d0), law_info["validity_max_m"]), **extra}
+               **validity_summary(float(max(r1.max(), r2.max()) - d0), law_info["validity_max_m"]),
+               **tilt_validity_summary(np.hypot(tr.u[:, 2], tr.u[:, 3]), (r1 > d0) | (r2 > d0),
+                                       law_info.get("validity_tilt_rad")), **extra}
     # one unit: the old run's files go, the new ones are renamed into place, the summary (with their
     # checksums) comes last; an interrupted run leaves no summary beside another run's CSV
     try:
@@ -133,6 +135,10 @@ def _run(args) -> int:
         raise OutputError(f"--out = {args.out}: the run's files could not be written ({exc.strerror or exc}); "
                           "the folder holds no summary, so no complete run") from None
     print(json.dumps(summary, indent=2))
+    if summary.get("beyond_law_tilt_validity"):
+        print(f"ringcontact simulate: warning: the largest tilt in contact {summary['max_tilt_in_contact_arcmin']:.4g} "
+              f"arcmin exceeds the tilt the calibrated law was checked at ({summary['law_tilt_checked_up_to_arcmin']:.4g} "
+              "arcmin): the law was extrapolated", file=sys.stderr)
     if summary.get("beyond_law_validity"):
         print(f"ringcontact simulate: warning: the largest edge penetration {summary['max_edge_penetration_mm']:.4g} mm "
               f"exceeds the calibrated law's validity range ({summary['law_validity_max_penetration_mm']:.4g} mm): "
@@ -249,8 +255,10 @@ def _law(args, scene, clearance_m):
 
     ls = scene.loose_support
     if args.law is None:
+        cal = ls.calibrated if ls is not None else None
         return None, {"note": ls.law_note() if ls is not None else {},
-                      "validity_max_m": ls.validity_max_penetration_m if ls is not None else None}
+                      "validity_max_m": ls.validity_max_penetration_m if ls is not None else None,
+                      "validity_tilt_rad": float(cal.validity_tilt_max_rad) if cal is not None else None}
     rec = law_record(args.law, None, "--law")
     if ls is None:
         raise InputError(f"--law = {args.law}: scene {scene.name!r} has no [loose_support] to apply it to")
@@ -264,7 +272,8 @@ def _law(args, scene, clearance_m):
                          f"scene's law, or name a law calibrated for {mine:.6g} {unit}".replace("  ", " "))
     law = calibrated_support_law(rec.law, args.law, ls.collision_factor_s_m, args.tilt_ignored, clearance_m)
     return law, {"note": {"law_file": rec.path, "law_sha256": rec.sha256},
-                 "validity_max_m": float(rec.law.validity_penetration_m[1])}
+                 "validity_max_m": float(rec.law.validity_penetration_m[1]),
+                 "validity_tilt_rad": float(rec.law.validity_tilt_max_rad)}
 
 
 def validity_summary(max_edge_penetration_m: float, validity_max_m: float | None) -> dict:
@@ -273,6 +282,24 @@ def validity_summary(max_edge_penetration_m: float, validity_max_m: float | None
     if validity_max_m is not None:
         out["law_validity_max_penetration_mm"] = validity_max_m * 1e3
         out["beyond_law_validity"] = bool(max_edge_penetration_m > validity_max_m)
+    return out
+
+
+def tilt_validity_summary(tilt_rad: np.ndarray, in_contact: np.ndarray, validity_tilt_rad: float | None) -> dict:
+    """The largest relative tilt while in contact (arcmin) against a calibrated law's checked tilt range.
+
+    A law checked against a 3D reference up to a tilt (``ringcontact bearing`` with a tilt range) flags a
+    run that went beyond it (``beyond_law_tilt_validity``); a law fitted at zero tilt only says so
+    (``law_tilt_checked_up_to_arcmin`` = 0) and flags nothing: its tilt model was never compared.
+    """
+    if validity_tilt_rad is None:
+        return {}
+    t = np.abs(tilt_rad[in_contact]) if np.any(in_contact) else np.zeros(1)
+    worst = float(t.max())
+    out = {"max_tilt_in_contact_arcmin": worst / ARCMIN,
+           "law_tilt_checked_up_to_arcmin": float(f"{validity_tilt_rad / ARCMIN:.9g}")}
+    if validity_tilt_rad > 0:
+        out["beyond_law_tilt_validity"] = bool(worst > validity_tilt_rad * (1 + 1e-9))
     return out
 
 

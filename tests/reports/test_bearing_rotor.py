@@ -1,0 +1,67 @@
+"""The second ring pair's law driving a rotor: rotor/scenes/table4-steel-in-aluminium.toml names the law file
+that ``ringcontact bearing steel-in-aluminium`` wrote (reports/published/bearing-steel-in-aluminium/), and
+simulate, orbit and a small study cascade run on it."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from contact.calibrate import CalibratedLaw
+from fem_reference import ring_scene
+from rotor.model.scene import load_scene
+
+ROOT = Path(__file__).resolve().parents[2]
+LAW = ROOT / "rotor" / "scenes" / "laws" / "steel-in-aluminium-law.json"
+SCENE = "table4-steel-in-aluminium"
+
+
+def test_the_bundled_law_is_the_published_one_for_the_bundled_ring_pair():
+    """Provenance chain: ring-pair file -> published run -> the rotor's copy of the law, checksums equal."""
+    assert LAW.read_bytes() == (ROOT / "reports/published/bearing-steel-in-aluminium/steel-in-aluminium-law.json").read_bytes()
+    law = CalibratedLaw.from_json(LAW.read_text())
+    assert law.provenance["ring_scene"]["sha256"] == ring_scene.load("steel-in-aluminium").sha256
+    assert law.provenance["warnings"] == [] and law.validity_tilt_max_rad > 0
+
+
+def test_scene_takes_its_geometry_from_the_law():
+    """The scene gives no clearance, width or materials: they are the ring-pair file's
+    (fem_reference/ring_scenes/steel-in-aluminium.toml: 0.03 mm, 22 mm, 208 GPa/0.29, 72 GPa/0.33)."""
+    ls = load_scene(SCENE).loose_support
+    assert (ls.clearance_m, ls.ring_width_m, ls.bearing_modulus_pa, ls.bearing_poisson, ls.support_modulus_pa,
+            ls.support_poisson) == pytest.approx((3e-5, 0.022, 208e9, 0.29, 72e9, 0.33))
+    assert ls.calibrated.name == "steel-in-aluminium-3d-foundation"
+
+
+def test_simulate_with_the_law_reports_contact_and_validity(tmp_path, capsys):
+    from reports.cli.simulate import main
+    assert main(["--scene", SCENE, "--speed-rpm", "6000", "--revolutions", "60", "--out", str(tmp_path / "s")]) == 0
+    s = json.loads((tmp_path / "s" / "simulate-summary.json").read_text())
+    assert s["law"] == "steel-in-aluminium-3d-foundation" and Path(s["law_file"]).name == LAW.name
+    assert s["contact_fraction"] > 0 and s["max_edge_penetration_mm"] > 0
+    assert s["beyond_law_validity"] is False and s["law_validity_max_penetration_mm"] == pytest.approx(0.04)
+    assert s["law_tilt_checked_up_to_arcmin"] == pytest.approx(2.0) and s["beyond_law_tilt_validity"] is False
+    assert 0 < s["max_tilt_in_contact_arcmin"] < 2.0
+
+
+def test_small_cascade_with_the_law(tmp_path, capsys):
+    from reports.cli.study import main
+    out = tmp_path / "c"
+    assert main(["cascade", "--scene", SCENE, "--rpm-min", "6000", "--rpm-max", "9000", "--points", "2",
+                 "--max-revs", "200", "--out", str(out), "--no-progress", "--workers", "1"]) == 0
+    rows = (out / "figures" / "study-cascade.csv").read_text().splitlines()
+    head = rows[0].split(",")
+    assert len(rows) == 3 and "beyond_law_validity" in head
+    for r in rows[1:]:
+        cells = dict(zip(head, r.split(",")))
+        assert float(cells["contact_fraction"]) > 0 and cells["beyond_law_validity"] == "0"
+
+
+def test_orbit_with_the_law(tmp_path, capsys):
+    """The periodic orbit at 6000 rpm (measured: period 2 revolutions, stable) names the law and its validity."""
+    from reports.cli.orbit import main
+    assert main([SCENE, "--speed-rpm", "6000", "--out", str(tmp_path / "o.json")]) == 0
+    d = json.loads((tmp_path / "o.json").read_text())
+    assert d["converged"] and Path(d["law_file"]).name == LAW.name
+    assert 0 < d["max_edge_penetration_mm"] < 0.04 and d["beyond_law_validity"] is False
