@@ -12,10 +12,12 @@ reads the penetration at the ring centre plane, ``edge`` at the leading edge (Q9
 reference note).
 
 A calibrated law (:mod:`contact.calibrate`, fitted to a FEM scene) is chosen with
-``--law calibrated:<name>`` (``ringcontact calibrate`` lists them in contact/calibrated/). Its
-geometry and materials are those of its scene (passing others is an error); tilted points use
-its slice-integrated tilt model, and points whose deepest slice lies above the calibration's
-validity range are flagged ``outside_domain`` (no extrapolation).
+``--law calibrated:<name>`` (``ringcontact calibrate`` lists them in contact/calibrated/), or a law
+file by path (``--law my-bearing-law.json``, written by ``ringcontact bearing``). Its geometry and
+materials are those of its scene (passing others is an error); tilted points use its slice-integrated
+tilt model, and points whose deepest slice lies above the calibration's validity range, or whose tilt
+exceeds the tilt a law file was checked at against the 3D reference, are flagged ``outside_domain``
+(no extrapolation).
 
 Examples::
 
@@ -24,6 +26,7 @@ Examples::
     ringcontact law --penetration-mm 0.01 0.05 --tilt-arcmin 0.5 1 2
     ringcontact law --csv points.csv --clearance-mm 0.05 --width-mm 30 --json
     ringcontact law --law calibrated:clamped-foundation --penetration-mm 0.01 0.02 --tilt-arcmin 0 1
+    ringcontact law --law bearing-my-bearing/my-bearing-law.json --penetration-mm 0.01 --tilt-arcmin 0 1 3
 """
 from __future__ import annotations
 
@@ -52,8 +55,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "clearance 0.05 mm); a calibrated law brings its own.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("--law", default="conformal", metavar="LAW",
-                   help="contact law: " + ", ".join(sorted(laws.LAWS)) + ", or calibrated:<name> with <name> one of "
-                        + ", ".join(calibrate.available()))
+                   help="contact law: " + ", ".join(sorted(laws.LAWS)) + ", calibrated:<name> with <name> one of "
+                        + ", ".join(calibrate.available()) + ", or a law file (.json) of `ringcontact bearing`")
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--penetration-mm", type=quantity("penetration_mm"), nargs="+", metavar="MM",
                      help="penetration(s) Δr = |r| − δ0 in mm")
@@ -139,8 +142,10 @@ def resolve_geometry(args: argparse.Namespace) -> calibrate.CalibratedLaw | None
     Analytic laws take the paper's Table 1 for anything not given. A calibrated law takes its
     scene's values; a different value given on the command line raises :class:`InputError`.
     """
-    if args.law.startswith(CALIBRATED_PREFIX):
-        law = calibrate.load_calibrated(args.law[len(CALIBRATED_PREFIX):])
+    is_file = args.law.lower().endswith(".json")
+    if args.law.startswith(CALIBRATED_PREFIX) or is_file:
+        law = (calibrate.load_law_file(args.law) if is_file
+               else calibrate.load_calibrated(args.law[len(CALIBRATED_PREFIX):]))
         own = _geometry_of_calibrated(law)
         for key, val in own.items():
             given = getattr(args, key)
@@ -163,12 +168,13 @@ def _evaluate_calibrated(law: calibrate.CalibratedLaw, pen_mm: np.ndarray, tilt_
     """Points of a calibrated law: slice-integrated tilt (:meth:`CalibratedLaw.tilted`), validity flagged."""
     width_m = law.geometry.width_m
     top_m = law.validity_penetration_m[1]
+    top_tilt = law.validity_tilt_max_rad      # > 0: the tilt the law was checked at against a 3D reference
     points = []
     for pm, ta in zip(pen_mm, tilt_arcmin):
         tilt_rad = abs(float(ta)) * ARCMIN
         centre_m = float(pm) * MM - (0.5 * tilt_rad * width_m if penetration_at == "edge" else 0.0)
         edge_m = centre_m + 0.5 * tilt_rad * width_m
-        ok = edge_m <= top_m * (1 + 1e-12)
+        ok = edge_m <= top_m * (1 + 1e-12) and (top_tilt <= 0 or tilt_rad <= top_tilt * (1 + 1e-9))
         if edge_m > 0.0:
             load, moment, width = law.tilted(centre_m, tilt_rad)
         else:

@@ -65,3 +65,22 @@ def test_orbit_with_the_law(tmp_path, capsys):
     d = json.loads((tmp_path / "o.json").read_text())
     assert d["converged"] and Path(d["law_file"]).name == LAW.name
     assert 0 < d["max_edge_penetration_mm"] < 0.04 and d["beyond_law_validity"] is False
+
+
+def test_law_job_evaluates_a_law_file_and_flags_beyond_its_checked_range(capsys):
+    """``ringcontact law --law FILE``: the law file's own geometry; at zero tilt its 3D-calibrated force at a
+    fitted point within its held-out error of the 3D FEM (reports/published/bearing-steel-in-aluminium/
+    fem3d-steel-in-aluminium.json); beyond the fitted penetration or the checked tilt: outside_domain, no number."""
+    from contact.dataset import read_dataset
+    from reports.cli.law import main
+    assert main(["--law", str(LAW), "--penetration-mm", "0.01", "0.05", "--tilt-arcmin", "0", "1", "3", "--json"]) == 0
+    pts = json.loads(capsys.readouterr().out)["points"]
+    by = {(p["penetration_mm"], p["tilt_arcmin"]): p for p in pts}
+    fem = next(p for p in read_dataset(ROOT / "reports/published/bearing-steel-in-aluminium/fem3d-steel-in-aluminium.json").points
+               if abs(p["penetration_m"] - 1e-5) < 1e-12 and p["tilt_rad"] == 0.0)
+    law = CalibratedLaw.from_json(LAW.read_text())
+    held_out = law.provenance["checks"]["holdout_max_rel_3d_zero_tilt"]
+    assert abs(by[(0.01, 0.0)]["force_N"] / fem["force_n"] - 1) <= held_out
+    assert by[(0.01, 1.0)]["outside_domain"] is False
+    assert by[(0.05, 0.0)]["outside_domain"] is True and by[(0.05, 0.0)]["force_N"] is None
+    assert by[(0.01, 3.0)]["outside_domain"] is True and by[(0.01, 3.0)]["force_N"] is None
