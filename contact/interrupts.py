@@ -18,6 +18,7 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
+import sys
 import threading
 
 #: the signals a job handles, and the exit status for each (128 + signal number, as a shell reports it)
@@ -34,18 +35,21 @@ class Interrupted(KeyboardInterrupt):
         self.signum = int(signum)
 
 
-def keep(exc: BaseException, text: str) -> None:
-    """Note on an interruption ``exc`` what it keeps (the first note, from the innermost code, wins)."""
+def keep(exc: BaseException, text: str, where=None) -> None:
+    """Note on an interruption ``exc`` what it keeps (the first note, from the innermost code, wins);
+    ``where``: the folder the note is about; the note is told only if that folder is still there when the
+    job ends (a temporary directory on the way out is not)."""
     if not getattr(exc, _KEPT, None):
         try:
-            setattr(exc, _KEPT, str(text))
+            setattr(exc, _KEPT, (str(text), None if where is None else os.fspath(where)))
         except AttributeError:
             pass
 
 
 def kept(exc: BaseException) -> str:
-    """What ``exc`` was noted to keep (:func:`keep`), or ``""``."""
-    return getattr(exc, _KEPT, "") or ""
+    """What ``exc`` was noted to keep (:func:`keep`), or ``""`` (none, or its folder is gone)."""
+    text, where = getattr(exc, _KEPT, None) or ("", None)
+    return text if where is None or os.path.isdir(where) else ""
 
 
 def stop_children(grace_s: float = 0.0) -> int:
@@ -128,6 +132,26 @@ def finish(exc: KeyboardInterrupt) -> tuple[int, str]:
     stop_children()
     what = kept(exc) or "no output half-written (every file is written whole or not at all); run again"
     return 128 + int(signum), f"interrupted ({signal.Signals(signum).name}): {what}"
+
+
+def busy_threads(grace_s: float = 1.0) -> list[str]:
+    """Names of the threads (not daemons) still running after ``grace_s`` seconds: a point computing in a
+    thread pool, which Python would wait for at exit."""
+    others = [t for t in threading.enumerate() if t is not threading.current_thread() and not t.daemon]
+    for t in others:
+        t.join(grace_s / max(len(others), 1))
+    return [t.name for t in others if t.is_alive()]
+
+
+def exit_now(status: int) -> None:
+    """End the process with ``status`` without waiting for threads (after an interruption, when
+    :func:`busy_threads` names some: they compute a point nobody will store)."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(status)
 
 
 def worker_signals() -> None:

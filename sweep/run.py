@@ -220,7 +220,7 @@ def _interrupted(store: ResultStore, summary: SweepSummary, todo: list, exc: Bas
                                                                            for t, done in todo),
                  **({"signal": signum} if signum else {}), reason=type(exc).__name__)
     if isinstance(exc, KeyboardInterrupt):
-        keep(exc, f"finished points kept in {store.root}; run again to resume")
+        keep(exc, f"finished points kept in {store.root}; run again to resume", where=store.root)
 
 
 def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, executor=None, max_workers: int = 2,

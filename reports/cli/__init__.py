@@ -95,6 +95,8 @@ def _run(job: str, rest: list[str]) -> int:
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: temporaries removed, workers stopped, one line
         status, text = interrupts.finish(exc)
         print(f"ringcontact {job}: {text}", file=sys.stderr)
+        if isinstance(exc, interrupts.Interrupted) and interrupts.busy_threads():
+            interrupts.exit_now(status)   # a thread still computing a point would hold the exit until it is done
         return status
     except BrokenPipeError:          # output piped into head & co.
         sys.stderr.close()
