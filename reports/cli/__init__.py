@@ -58,6 +58,7 @@ def _ranges() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
+    program = argv is None            # the ringcontact process itself, not a caller in Python
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0] in {"-h", "--help", "help"}:
         print(_usage())
@@ -78,11 +79,12 @@ def main(argv: list[str] | None = None) -> int:
               file=sys.stderr)
         return 2
     with interrupts.handled():       # SIGINT and SIGTERM: one orderly way out (contact.interrupts)
-        return _run(job, rest)
+        return _run(job, rest, program)
 
 
-def _run(job: str, rest: list[str]) -> int:
-    """Run ``job``'s entry on ``rest``: its exit status, every failure and interruption as one line."""
+def _run(job: str, rest: list[str], program: bool = False) -> int:
+    """Run ``job``'s entry on ``rest``: its exit status, every failure and interruption as one line
+    (``program``: this is the ringcontact process, which may end at once after an interruption)."""
     module_name, _, func_name = JOBS[job][0].partition(":")
     try:
         entry = getattr(importlib.import_module(module_name), func_name or "main")
@@ -95,7 +97,7 @@ def _run(job: str, rest: list[str]) -> int:
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: temporaries removed, workers stopped, one line
         status, text = interrupts.finish(exc)
         print(f"ringcontact {job}: {text}", file=sys.stderr)
-        if isinstance(exc, interrupts.Interrupted) and interrupts.busy_threads():
+        if program and isinstance(exc, interrupts.Interrupted) and interrupts.busy_threads():
             interrupts.exit_now(status)   # a thread still computing a point would hold the exit until it is done
         return status
     except BrokenPipeError:          # output piped into head & co.

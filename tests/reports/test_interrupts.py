@@ -235,3 +235,23 @@ def test_a_sweep_left_running_by_a_dead_process_is_told_as_interrupted(tmp_path)
         run_sweep(tasks, store, executor=ex, progress=False, log=said.append)
     assert any(f"interrupted (pid {pid} no longer running); resuming" in m for m in said), said
     assert run_status(store.root)["complete"]
+
+
+def test_the_handlers_come_back_and_a_note_about_a_vanished_folder_is_not_told(tmp_path):
+    from contact import interrupts
+
+    before = {s: signal.getsignal(s) for s in interrupts.SIGNALS}
+    with interrupts.handled():
+        assert all(signal.getsignal(s) is not before[s] for s in interrupts.SIGNALS)
+        with pytest.raises(interrupts.Interrupted) as info:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(5)                            # the handler raises at the next bytecode
+        assert all(signal.getsignal(s) == signal.SIG_IGN for s in interrupts.SIGNALS)  # once on the way out
+    assert {s: signal.getsignal(s) for s in interrupts.SIGNALS} == before
+    exc = info.value
+    interrupts.keep(exc, "finished points kept in inner", where=tmp_path / "inner")
+    interrupts.keep(exc, "outer note")                         # the innermost note wins
+    (tmp_path / "inner").mkdir()
+    assert interrupts.finish(exc) == (143, "interrupted (SIGTERM): finished points kept in inner")
+    (tmp_path / "inner").rmdir()                               # a temporary store removed on the way out
+    assert "finished points" not in interrupts.finish(exc)[1]
