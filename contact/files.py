@@ -58,6 +58,13 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
 
 def _temporary(path: Path, data: bytes) -> str:
     """``data`` written and synced to a temporary file beside ``path`` (mode as ``open()`` gives); its name."""
+    return _new_temporary(path, lambda fh, name: fh.write(data))
+
+
+def _new_temporary(path: Path, write) -> str:
+    """A temporary file beside ``path`` (``.NAME.PID.XXXXXXXX.tmp``, held in :data:`_LIVE`), filled by
+    ``write(binary file object, its name)``, synced, mode as ``open()`` gives; its name. Removed if anything
+    fails."""
     path.parent.mkdir(parents=True, exist_ok=True)
     folder = str(path.parent.resolve())
     if folder not in _SWEPT:
@@ -67,8 +74,8 @@ def _temporary(path: Path, data: bytes) -> str:
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".tmp", dir=path.parent)
         _LIVE.add(tmp)
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
+        with os.fdopen(fd, "r+b") as fh:
+            write(fh, tmp)
             fh.flush()
             os.fchmod(fh.fileno(), 0o666 & ~_umask())
             os.fsync(fh.fileno())
@@ -76,6 +83,20 @@ def _temporary(path: Path, data: bytes) -> str:
         _discard([tmp] if tmp else [])
         raise
     return tmp
+
+
+def atomic_write_via(path: str | os.PathLike, write_to_name) -> Path:
+    """Atomic write for a library that writes only to a file name (meshio): ``write_to_name(tmp)`` writes a
+    temporary of this module beside ``path`` (its name ends in ``.tmp``: name the format explicitly, e.g.
+    ``meshio.write(tmp, mesh, file_format="vtu")``), which is then renamed over ``path``."""
+    path = Path(path)
+    tmp = _new_temporary(path, lambda fh, name: write_to_name(name))
+    try:
+        _replace(tmp, path)
+    except BaseException:
+        _discard([tmp])
+        raise
+    return path
 
 
 def _discard(paths) -> None:
