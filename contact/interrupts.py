@@ -2,9 +2,9 @@
 
 :func:`handled` turns SIGINT and SIGTERM into :class:`Interrupted` (a ``KeyboardInterrupt``, so every
 ``except BaseException``/``finally`` on the way out runs as it does for Ctrl-C); on the first signal the
-local worker processes (every ``multiprocessing`` child: process pools, a local dask cluster) are
-stopped at once, so no ``shutdown(wait=True)`` on the way out waits for a point to finish, and further
-signals are ignored while the job cleans up. :func:`finish` then removes what is left (this process's
+local worker processes (every ``multiprocessing`` child: the local process pools) are stopped at once,
+so no ``shutdown(wait=True)`` on the way out waits for a point to finish, and further signals are
+ignored while the job cleans up. :func:`finish` then removes what is left (this process's
 temporaries, children still running) and gives the one line to print.
 
 Code on the way out may say what an interruption keeps (:func:`keep`: "finished points kept in DIR;
