@@ -47,7 +47,11 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
     """Write ``data`` to a temporary file beside ``path`` (``.NAME.*.tmp``), fsync, then rename over ``path``
     (mode 0666 less the umask, as ``open()`` gives)."""
     path = Path(path)
-    tmp = _temporary(path, data)
+    return _rename_into(_temporary(path, data), path)
+
+
+def _rename_into(tmp: str, path: Path) -> Path:
+    """Rename the temporary ``tmp`` over ``path`` (removed if that fails); ``path``."""
     try:
         _replace(tmp, path)
     except BaseException:
@@ -90,13 +94,7 @@ def atomic_write_via(path: str | os.PathLike, write_to_name) -> Path:
     temporary of this module beside ``path`` (its name ends in ``.tmp``: name the format explicitly, e.g.
     ``meshio.write(tmp, mesh, file_format="vtu")``), which is then renamed over ``path``."""
     path = Path(path)
-    tmp = _new_temporary(path, lambda fh, name: write_to_name(name))
-    try:
-        _replace(tmp, path)
-    except BaseException:
-        _discard([tmp])
-        raise
-    return path
+    return _rename_into(_new_temporary(path, lambda fh, name: write_to_name(name)), path)
 
 
 def _discard(paths) -> None:
