@@ -9,16 +9,32 @@ first, the new files are written to temporary names and renamed, and the summary
 carrying the SHA-256 of every file it describes. Interrupted anywhere, the folder holds either a
 complete run or files without a summary, never a summary beside files of another run;
 :func:`check_run_files` tells which.
+
+Temporaries are named ``.NAME.PID.XXXXXXXX.tmp`` (PID: the writing process). An interruption that
+reaches Python (Ctrl-C, SIGTERM through :mod:`contact.interrupts`) removes them on its way out
+(:func:`discard_own_temporaries`); those of a writer killed outright (kill -9, power loss) are removed
+by the next process writing into the same folder (:func:`remove_stale_temporaries`): only names of
+this pattern whose writer is no longer running, or which are older than :data:`STALE_AFTER_S`.
 """
 from __future__ import annotations
 
 import hashlib
 import json
 import os
+import re
 import tempfile
+import time
 from pathlib import Path
 
 from contact.errors import DatasetError
+
+
+#: a temporary of this module: ``.NAME.[PID.]RANDOM.tmp`` (no PID: written by an older version)
+_TEMPORARY = re.compile(r"^\.(?P<stem>.+)\.(?P<random>[A-Za-z0-9_]+)\.tmp$")
+#: a temporary older than this is stale whoever wrote it (a writer holds one for a single write and rename)
+STALE_AFTER_S = 3600.0
+_LIVE: set[str] = set()          # temporaries this process holds right now
+_SWEPT: set[str] = set()         # folders this process has already cleared of stale temporaries
 
 
 def _umask() -> int:
@@ -31,9 +47,13 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
     """Write ``data`` to a temporary file beside ``path`` (``.NAME.*.tmp``), fsync, then rename over ``path``
     (mode 0666 less the umask, as ``open()`` gives)."""
     path = Path(path)
-    tmp = _temporary(path, data)
+    return _rename_into(_temporary(path, data), path)
+
+
+def _rename_into(tmp: str, path: Path) -> Path:
+    """Rename the temporary ``tmp`` over ``path`` (removed if that fails); ``path``."""
     try:
-        os.replace(tmp, path)
+        _replace(tmp, path)
     except BaseException:
         _discard([tmp])
         raise
@@ -42,26 +62,104 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
 
 def _temporary(path: Path, data: bytes) -> str:
     """``data`` written and synced to a temporary file beside ``path`` (mode as ``open()`` gives); its name."""
+    return _new_temporary(path, lambda fh, name: fh.write(data))
+
+
+def _new_temporary(path: Path, write) -> str:
+    """A temporary file beside ``path`` (``.NAME.PID.XXXXXXXX.tmp``, held in :data:`_LIVE`), filled by
+    ``write(binary file object, its name)``, synced, mode as ``open()`` gives; its name. Removed if anything
+    fails."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    folder = str(path.parent.resolve())
+    if folder not in _SWEPT:
+        _SWEPT.add(folder)
+        remove_stale_temporaries(path.parent)
+    tmp = None
     try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".tmp", dir=path.parent)
+        _LIVE.add(tmp)
+        with os.fdopen(fd, "r+b") as fh:
+            write(fh, tmp)
             fh.flush()
             os.fchmod(fh.fileno(), 0o666 & ~_umask())
             os.fsync(fh.fileno())
     except BaseException:
-        _discard([tmp])
+        _discard([tmp] if tmp else [])
         raise
     return tmp
 
 
+def atomic_write_via(path: str | os.PathLike, write_to_name) -> Path:
+    """Atomic write for a library that writes only to a file name (meshio): ``write_to_name(tmp)`` writes a
+    temporary of this module beside ``path`` (its name ends in ``.tmp``: name the format explicitly, e.g.
+    ``meshio.write(tmp, mesh, file_format="vtu")``), which is then renamed over ``path``."""
+    path = Path(path)
+    return _rename_into(_new_temporary(path, lambda fh, name: write_to_name(name)), path)
+
+
 def _discard(paths) -> None:
     for p in paths:
+        _LIVE.discard(str(p))
         try:
             os.unlink(p)
         except FileNotFoundError:
             pass
+
+
+def _replace(tmp: str, path) -> None:
+    os.replace(tmp, path)
+    _LIVE.discard(tmp)
+
+
+def discard_own_temporaries() -> list[str]:
+    """Remove the temporaries this process is writing (an interruption's way out); returns their names."""
+    held = sorted(_LIVE)
+    _discard(held)
+    return held
+
+
+def writer_running(pid: int) -> bool:
+    """Is process ``pid`` (of this machine) still running? (a process of another user counts as running)"""
+    try:
+        os.kill(int(pid), 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError, ValueError):
+        return True
+    return True
+
+
+def _stale(entry: os.DirEntry, max_age_s: float, now: float) -> bool:
+    """Is ``entry``, a temporary of this module, no longer being written? (see the module docstring)"""
+    pid = _TEMPORARY.match(entry.name)["stem"].rpartition(".")[2]
+    if pid.isdigit() and not writer_running(int(pid)):
+        return True
+    try:
+        return now - entry.stat(follow_symlinks=False).st_mtime > max_age_s
+    except FileNotFoundError:
+        return False
+
+
+def remove_stale_temporaries(*folders: str | os.PathLike, max_age_s: float = STALE_AFTER_S) -> list[Path]:
+    """Delete the temporaries of this module (``.NAME.[PID.]RANDOM.tmp``) left in ``folders`` by writers
+    that are gone: whose process is no longer running, or older than ``max_age_s`` (0: every one, for a
+    caller that knows nobody else writes there, e.g. holding the folder's lock). Returns those removed.
+    """
+    removed, now = [], time.time()
+    for folder in folders:
+        try:
+            entries = list(os.scandir(folder))
+        except (FileNotFoundError, NotADirectoryError):
+            continue
+        for e in entries:
+            if (_TEMPORARY.match(e.name) and e.is_file(follow_symlinks=False)
+                    and (max_age_s <= 0 or _stale(e, max_age_s, now))):
+                try:
+                    os.unlink(e.path)
+                    removed.append(Path(e.path))
+                except FileNotFoundError:
+                    pass
+    return removed
 
 
 def atomic_write_text(path: str | os.PathLike, text: str) -> Path:
@@ -97,7 +195,7 @@ def write_run_files(out: str | os.PathLike, prefix: str, files: dict[str, bytes]
         for name, data in files.items():
             temporaries[name] = _temporary(out / name, data)
         for name, tmp in temporaries.items():
-            os.replace(tmp, out / name)
+            _replace(tmp, out / name)
     except BaseException:
         _discard(temporaries.values())
         raise

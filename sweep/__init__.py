@@ -18,10 +18,10 @@ from sweep.progress import Progress
 from sweep.provenance import (code_revision, environment, machine, package_versions, revision_label, utc_stamp,
                               worker_stamp)
 from sweep.run import SweepSummary, as_executor, local_pool, run_sweep
-from sweep.store import FORMAT, ResultStore, append_timing, load_sweep, read_timing, run_status, write_status
+from sweep.store import FORMAT, ResultStore, append_timing, load_sweep, read_timing, run_state, run_status, write_status
 from sweep.tasks import PointResult, Task, point_tasks
 
 __all__ = ["FORMAT", "DirectoryBusy", "DirectoryLock", "PointResult", "Progress", "ResultStore", "SweepSummary",
            "Task", "append_timing", "as_executor", "local_pool", "code_revision", "environment", "load_sweep", "machine",
-           "package_versions", "point_tasks", "read_timing", "revision_label", "run_status", "run_sweep", "utc_stamp", "worker_stamp",
+           "package_versions", "point_tasks", "read_timing", "revision_label", "run_state", "run_status", "run_sweep", "utc_stamp", "worker_stamp",
            "write_status"]

@@ -8,7 +8,7 @@ host, start time, read from the lock file).
 
 :func:`remove_stale_temporaries` deletes the temporaries of :mod:`contact.files` (``.NAME.*.tmp``)
 that a writer killed mid-write left behind; called only while holding the lock, when nobody else
-can be writing them.
+can be writing them (outside a locked directory, :mod:`contact.files` removes only those of dead writers).
 
 Note: ``flock`` is per machine on most network file systems; on a cluster only the client
 process writes the result directory (workers return their results to it), so one machine
@@ -23,6 +23,7 @@ import platform
 import time
 from pathlib import Path
 
+from contact import files
 from contact.errors import RingContactError
 
 
@@ -90,18 +91,7 @@ class DirectoryLock:
 def remove_stale_temporaries(*folders: str | os.PathLike) -> list[Path]:
     """Delete the atomic-write temporaries (``.NAME.*.tmp``) in ``folders``; returns those removed.
 
-    Call only while holding the folders' :class:`DirectoryLock`: then no live writer owns them.
+    Call only while holding the folders' :class:`DirectoryLock`: then no live writer owns them, and
+    every one goes whatever its age (:func:`contact.files.remove_stale_temporaries` with ``max_age_s=0``).
     """
-    removed = []
-    for folder in folders:
-        folder = Path(folder)
-        if not folder.is_dir():
-            continue
-        for p in folder.iterdir():
-            if p.name.startswith(".") and p.name.endswith(".tmp") and p.is_file():
-                try:
-                    p.unlink()
-                    removed.append(p)
-                except FileNotFoundError:
-                    pass
-    return removed
+    return files.remove_stale_temporaries(*folders, max_age_s=0)

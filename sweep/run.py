@@ -13,7 +13,10 @@ Faults it guards against:
   same directory is refused, or waits ``lock_wait_s``); temporaries left by a killed writer are
   removed when the next one takes the lock;
 - the local pool's workers watch their parent and exit when it dies (kill -9 included), so none is
-  left orphaned;
+  left orphaned; they leave Ctrl-C to their parent (no traceback of their own);
+- an interruption (Ctrl-C, SIGTERM through :mod:`contact.interrupts`) marks ``status.json``
+  ``interrupted`` and notes that the finished points are kept; a ``running`` mark whose process died
+  (kill -9) is named when the next run starts (:func:`sweep.store.run_state`);
 - every point's provenance (host, pid, package version, git commit, BLAS threads) is taken in the
   process that computed it (:func:`sweep.provenance.worker_stamp`), not in the client;
 - a damaged ``sweep.json`` is refused with its name; a damaged or deleted point record is
@@ -32,10 +35,11 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from contact.errors import InputError
+from contact.interrupts import keep, worker_signals
 from sweep.guard import DirectoryLock, remove_stale_temporaries
 from sweep.progress import Progress
 from sweep.provenance import code_revision, environment, worker_stamp
-from sweep.store import ResultStore, write_status
+from sweep.store import ResultStore, run_state, write_status
 from sweep.tasks import Task
 
 
@@ -77,8 +81,11 @@ def die_with_parent(parent_pid: int, period_s: float = 0.5) -> None:
     """Pool-worker initializer: exit as soon as ``parent_pid`` is no longer this process's parent.
 
     A daemon thread polls ``os.getppid()``; it works whatever killed the parent (kill -9 included),
-    on any POSIX system, and from whichever thread the pool started the worker.
+    on any POSIX system, and from whichever thread the pool started the worker. Ctrl-C is left to the
+    parent, which stops its workers, and SIGTERM ends a worker quietly (:func:`contact.interrupts.worker_signals`):
+    no worker prints a traceback of its own.
     """
+    worker_signals()
     threading.Thread(target=_watch_parent, args=(int(parent_pid), float(period_s)), daemon=True,
                      name="ringcontact-parent-watch").start()
 
@@ -194,8 +201,6 @@ def _execute(todo: list[tuple[Task, dict | None]], executor, max_workers: int, s
             futures[ex.submit(_call, t.func, t.params, stored)] = (t, stored)
         _collect(futures, store, summary, prog, say)
     except BaseException:
-        write_status(store.root, "interrupted",
-                     tasks=len(summary.reused) + sum(len(t.points) - len(done or {}) for t, done in todo))
         for f in futures:
             f.cancel()
         if own:
@@ -206,6 +211,16 @@ def _execute(todo: list[tuple[Task, dict | None]], executor, max_workers: int, s
         prog.close()
         if own:
             ex.shutdown(wait=True)
+
+
+def _interrupted(store: ResultStore, summary: SweepSummary, todo: list, exc: BaseException) -> None:
+    """Mark the run directory ``interrupted`` and say what the interruption keeps (:func:`contact.interrupts.keep`)."""
+    signum = getattr(exc, "signum", None)
+    write_status(store.root, "interrupted", tasks=len(summary.reused) + sum(len(t.points) - len(done or {})
+                                                                           for t, done in todo),
+                 **({"signal": signum} if signum else {}), reason=type(exc).__name__)
+    if isinstance(exc, KeyboardInterrupt):
+        keep(exc, f"finished points kept in {store.root}; run again to resume", where=store.root)
 
 
 def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, executor=None, max_workers: int = 2,
@@ -234,8 +249,8 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
     Returns
     -------
     SweepSummary. Failed tasks are listed with their error, not raised; an interruption
-    (KeyboardInterrupt) cancels pending tasks and re-raises: finished points stay on disk,
-    and the next call resumes with the rest. A damaged ``sweep.json`` raises
+    (KeyboardInterrupt) cancels pending tasks, marks the directory ``interrupted`` and re-raises:
+    finished points stay on disk, and the next call resumes with the rest. A damaged ``sweep.json`` raises
     :class:`~contact.errors.DatasetError` naming it, before anything is computed.
     """
     store = store if isinstance(store, ResultStore) else ResultStore(store)
@@ -252,14 +267,22 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
             say(f"sweep: removed {len(removed)} temporary file(s) left by an interrupted writer: "
                 f"{', '.join(p.name for p in removed[:3])}")
         _write_manifest(store, tasks, manifest)
-        write_status(store.root, "running")
-        todo = _plan(tasks, store, summary, say, resume)
-        if isinstance(progress, Progress):
-            prog = progress
-        else:
-            prog = Progress(len(todo), label=label, enabled=(None if progress is None else bool(progress)))
-        if todo:
-            _execute(todo, executor, max_workers, store, summary, prog, say)
+        previous = run_state(store.root)
+        if previous and previous.startswith("interrupted ("):
+            say(f"sweep: {store.root}: the previous run was {previous}; resuming")
+        write_status(store.root, "running", pid=os.getpid(), host=platform.node(), since_utc=_now())
+        todo = []
+        try:
+            todo = _plan(tasks, store, summary, say, resume)
+            if isinstance(progress, Progress):
+                prog = progress
+            else:
+                prog = Progress(len(todo), label=label, enabled=(None if progress is None else bool(progress)))
+            if todo:
+                _execute(todo, executor, max_workers, store, summary, prog, say)
+        except BaseException as exc:
+            _interrupted(store, summary, todo, exc)
+            raise
         write_status(store.root, "incomplete" if summary.failed else "complete", tasks=len(keys),
                      failed=sorted(summary.failed))
     summary.wall_s = time.perf_counter() - t_start

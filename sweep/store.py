@@ -31,13 +31,14 @@ import hashlib
 import io
 import json
 import os
+import platform
 import time
 from pathlib import Path
 
 import numpy as np
 
 from contact.errors import DatasetError
-from contact.files import atomic_write_bytes, atomic_write_text
+from contact.files import atomic_write_bytes, atomic_write_text, writer_running
 from sweep.tasks import PointResult, Task, point_tasks
 
 FORMAT = "ringcontact.sweep-point/1"
@@ -238,16 +239,35 @@ STATUS_FILE = "status.json"
 
 
 def write_status(root: str | os.PathLike, state: str, **fields) -> Path:
-    """Mark a run directory ``state`` (running | interrupted | incomplete | complete), atomically."""
+    """Mark a run directory ``state`` (running | interrupted | incomplete | complete), atomically.
+
+    A ``running`` mark carries the writer's ``pid`` and ``host``, so a reader can tell a run that is going
+    on from one whose process died without a word (kill -9, power loss): :func:`run_state`."""
     doc = {"state": state, "complete": state == "complete", **fields}
     return atomic_write_text(Path(root) / STATUS_FILE, json.dumps(doc, indent=1, sort_keys=True, default=_json_default) + "\n")
+
+
+def run_state(root: str | os.PathLike) -> str | None:
+    """The state ``<root>/status.json`` records (None: no readable status file); a ``running`` mark whose
+    writer, on this host, is no longer running reads ``interrupted (pid N no longer running)``."""
+    try:
+        doc = json.loads((Path(root) / STATUS_FILE).read_text(encoding="utf-8"))
+        state = str(doc.get("state", "unknown"))
+    except (OSError, ValueError, AttributeError):
+        return None
+    pid = doc.get("pid")
+    if (state == "running" and isinstance(pid, int) and pid > 0 and doc.get("host") == platform.node()
+            and not writer_running(pid)):
+        return f"interrupted (pid {pid} no longer running)"
+    return state
 
 
 def run_status(root: str | os.PathLike) -> dict:
     """Is ``root`` a finished run directory? ``{"complete": bool, "tasks": n, "done": m, "why": text}``.
 
     Complete means: ``sweep.json`` lists the tasks, the last run ended ``complete`` and every task has
-    its point record (each is still verified by checksum when it is loaded).
+    its point record (each is still verified by checksum when it is loaded). A run left ``running`` by a
+    process that died is told as such (:func:`run_state`).
     """
     root = Path(root)
     out = {"complete": False, "tasks": 0, "done": 0, "why": ""}
@@ -259,9 +279,8 @@ def run_status(root: str | os.PathLike) -> dict:
     out["tasks"] = len(tasks)
     missing = [k for k in tasks if not (root / "points" / f"{k}.json").exists()]
     out["done"] = len(tasks) - len(missing)
-    try:
-        state = json.loads((root / STATUS_FILE).read_text(encoding="utf-8")).get("state", "unknown")
-    except (OSError, ValueError, AttributeError):
+    state = run_state(root)
+    if state is None:
         state = "complete" if out["done"] == out["tasks"] else "unknown"   # a run from before status files
     if state != "complete" or out["done"] < out["tasks"] or not tasks:
         out["why"] = f"state {state}, {out['done']} of {out['tasks']} points" + (

@@ -9,7 +9,9 @@ imported only when their job runs, so ``ringcontact --help`` stays instant.
 Whatever goes wrong, the user sees ONE line on stderr, never a traceback: a suite error
 (:class:`~contact.errors.RingContactError`) as ``ringcontact JOB: error: MESSAGE`` with exit status
 2 (bad input) or 1 (a computation that failed); anything else as an internal error with exit
-status 1 (``RINGCONTACT_DEBUG=1`` shows the traceback). ``ringcontact --version`` prints the
+status 1 (``RINGCONTACT_DEBUG=1`` shows the traceback); an interruption (Ctrl-C, SIGTERM) as
+``ringcontact JOB: interrupted (SIGINT): WHAT WAS KEPT`` with exit status 130 (SIGINT) or 143 (SIGTERM),
+its temporaries removed and its worker processes stopped (:mod:`contact.interrupts`). ``ringcontact --version`` prints the
 version and the commit it was built from; ``ringcontact --ranges`` the plausible range of every
 physical input (:mod:`contact.plausible`).
 """
@@ -19,6 +21,7 @@ import importlib
 import os
 import sys
 
+from contact import interrupts
 from contact.errors import RingContactError
 
 # job name -> (module, one-line help). Keep sorted by data-flow layer.
@@ -55,6 +58,7 @@ def _ranges() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
+    program = argv is None            # the ringcontact process itself, not a caller in Python
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0] in {"-h", "--help", "help"}:
         print(_usage())
@@ -74,15 +78,28 @@ def main(argv: list[str] | None = None) -> int:
         print(f"ringcontact: error: job = {job!r}: unknown (jobs: {', '.join(JOBS)}; ringcontact --help)",
               file=sys.stderr)
         return 2
+    with interrupts.handled():       # SIGINT and SIGTERM: one orderly way out (contact.interrupts)
+        return _run(job, rest, program)
+
+
+def _run(job: str, rest: list[str], program: bool = False) -> int:
+    """Run ``job``'s entry on ``rest``: its exit status, every failure and interruption as one line
+    (``program``: this is the ringcontact process, which may end at once after an interruption)."""
     module_name, _, func_name = JOBS[job][0].partition(":")
-    entry = getattr(importlib.import_module(module_name), func_name or "main")
     try:
+        entry = getattr(importlib.import_module(module_name), func_name or "main")
         return int(entry(rest) or 0)
     except SystemExit as exc:         # argparse: --help (0) or its one-line error (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     except RingContactError as exc:  # safety net: every job reports suite errors the same way
         print(f"ringcontact {job}: error: {' '.join(str(exc).split())}", file=sys.stderr)
         return int(getattr(exc, "exit_status", 2))
+    except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: temporaries removed, workers stopped, one line
+        status, text = interrupts.finish(exc)
+        print(f"ringcontact {job}: {text}", file=sys.stderr)
+        if program and isinstance(exc, interrupts.Interrupted) and interrupts.busy_threads():
+            interrupts.exit_now(status)   # a thread still computing a point would hold the exit until it is done
+        return status
     except BrokenPipeError:          # output piped into head & co.
         sys.stderr.close()
         return 0
@@ -93,7 +110,6 @@ def main(argv: list[str] | None = None) -> int:
               "(a bug: please report it with the command line; RINGCONTACT_DEBUG=1 shows the traceback)",
               file=sys.stderr)
         return 1
-
 
 if __name__ == "__main__":
     sys.exit(main())

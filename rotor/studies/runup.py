@@ -157,8 +157,11 @@ def run_runup(spec: RunupSpec, out, executor=None) -> dict:
     task = Task("runup", _runup_task, params)
     import concurrent.futures as cf
 
-    with cf.ThreadPoolExecutor(max_workers=1) as local:  # one task: no process start-up
+    local = cf.ThreadPoolExecutor(max_workers=1)  # one task: no process start-up
+    try:
         s = run_sweep([task], out, executor=executor or local, manifest={"study": "runup", "spec": params})
+    finally:   # interrupted: do not wait here for the simulation still running in the thread
+        local.shutdown(wait=False, cancel_futures=True)
     if s.failed:
         raise InputError(f"run-up failed: {s.failed['runup']}")
     return ResultStore(out).load("runup", params).info
