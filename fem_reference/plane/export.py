@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contact.files import atomic_write_bytes
+from contact.files import atomic_write_via
 from fem_reference.plane.contact_solver import ContactSolution
 from fem_reference.plane.mesh import BEARING, SUPPORT
 
@@ -71,11 +71,7 @@ def write_vtu(path, model, sol: ContactSolution, warp_scale: float = 1.0) -> Pat
     m = meshio.Mesh(pts, cells, point_data={"displacement_m": disp, "warp_m": disp * warp_scale,
                                               "contact_pressure_pa": pressure}, cell_data=cell_data)
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.writing.vtu")
-    meshio.write(tmp, m, binary=True)
-    data = tmp.read_bytes()
-    tmp.unlink()
-    return atomic_write_bytes(path, data)
+    return atomic_write_via(path, lambda tmp: meshio.write(tmp, m, file_format="vtu", binary=True))
 
 
 def _slave_facets(model):

@@ -146,10 +146,15 @@ def _gmsh_triangles(rings: RingPair, spec: MeshSpec, size_expr: str):
     """
     import gmsh
 
+    from contact.interrupts import handlers_kept
+
     hc = spec.h_contact_m
     with _GMSH_LOCK:
-        # gmsh's Ctrl-C handler can only be installed from the main thread (dask workers run tasks in threads)
-        gmsh.initialize(readConfigFiles=False, interruptible=threading.current_thread() is threading.main_thread())
+        # gmsh installs signal handlers of its own (SIGTERM to its default action, SIGINT when interruptible)
+        # and never puts them back: the suite's handlers (contact/interrupts.py) are kept around it, so an
+        # interrupted job still ends with one line and no temporaries
+        with handlers_kept():
+            gmsh.initialize(readConfigFiles=False, interruptible=False)
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.model.add("rings")

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from contact.errors import InputError
-from contact.files import atomic_write_bytes
+from contact.files import atomic_write_via
 
 
 def bore_surface(phi_grid_rad: np.ndarray, x_grid_m: np.ndarray, radius_m: float):
@@ -68,8 +68,4 @@ def write_pressure_vtu(path, result, geom, gap_m: np.ndarray | None = None) -> P
     path = Path(path)
     if path.suffix != ".vtu":
         raise InputError(f"out = {path}: must end in .vtu")
-    tmp = path.with_name(f".{path.name}.writing.vtu")
-    meshio.write(tmp, mesh, binary=True)
-    blob = tmp.read_bytes()
-    tmp.unlink()
-    return atomic_write_bytes(path, blob)
+    return atomic_write_via(path, lambda tmp: meshio.write(tmp, mesh, file_format="vtu", binary=True))

@@ -146,9 +146,6 @@ CASCADE = ["study", "cascade", "--points", "2", "--rpm-min", "9000", "--rpm-max"
            "--steps-per-rev", "4096", "--out", "out", "--no-progress"]
 
 FEM_VTU = ["fem-vtu", "0.01", "out/p.vtu", "--h-mm", "0.5"]
-GMSH = pytest.mark.xfail(strict=True, reason="gmsh.initialize() leaves SIGINT/SIGTERM at their default action until "
-                         "fem_reference/plane/mesh.py calls it inside contact.interrupts.handlers_kept()")
-
 CASES = {
     "simulate": (["simulate", "--speed-rpm", "10500", "--revolutions", "3000", "--out", "out"], _cpu(1.5), signal.SIGINT),
     "study cascade": (CASCADE, _sweep_running, signal.SIGINT),
@@ -159,8 +156,8 @@ CASES = {
     "report": (["report", "--out", "out"], _file("out/laws-vs-paper.csv"), signal.SIGINT),
     # at 2.5 CPU seconds fem-vtu is solving, gmsh has meshed (0.7-1.1 s) and left SIGINT and SIGTERM at their
     # default action (gmsh 4: initialize() sets them, finalize() does not restore them): the job dies without a word
-    "fem-vtu": pytest.param(FEM_VTU, _cpu(2.5), signal.SIGINT, marks=GMSH),
-    "fem-vtu (SIGTERM)": pytest.param(FEM_VTU, _cpu(2.5), signal.SIGTERM, marks=GMSH),
+    "fem-vtu": pytest.param(FEM_VTU, _cpu(2.5), signal.SIGINT),
+    "fem-vtu (SIGTERM)": pytest.param(FEM_VTU, _cpu(2.5), signal.SIGTERM),
     "fem3d vtu": (["fem3d", "vtu", "0.02", "--out", "out/q.vtu", "--no-cache"], _cpu(2.5), signal.SIGINT),
     "calibrate": (["calibrate", "--out", "out"] + ["--dataset", D2] * 10, _cpu(2.0), signal.SIGTERM),
 }
