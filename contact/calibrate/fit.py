@@ -24,6 +24,21 @@ from contact.package_data import entries, location, shipped, shipped_name
 DATASET_2D = shipped("fem_reference", "data", "fem2d-reference.json")
 DATA_3D_DIR = shipped("fem_reference", "data", "3d")
 SELECTION_GAIN = 2.0          # a k+1-parameter family must at least halve the held-out RMS error
+#: a calibration whose held-out error exceeds a point's own stated FEM error by more than this is flagged
+#: (its file's ``fit.warning``, the calibrate job's output, ringcontact bearing's law file and report)
+HOLDOUT_BOUND_REL = 0.02
+
+
+def holdout_warning(holdout_rel_err, fem_error_rel, what: str = "held-out error") -> str | None:
+    """The warning of a fit whose held-out error (-) goes beyond the FEM's stated error (-) by more than
+    :data:`HOLDOUT_BOUND_REL` at some point, else None."""
+    h = np.abs(np.asarray(holdout_rel_err, dtype=float))
+    excess = h - np.asarray(fem_error_rel, dtype=float)
+    if not np.any(excess > HOLDOUT_BOUND_REL):
+        return None
+    i = int(np.argmax(excess))
+    return (f"{what} {100 * h[i]:.2f} % is {100 * excess[i]:.2f} % beyond the FEM's stated error, more than the "
+            f"bound {100 * HOLDOUT_BOUND_REL:g} %: no law family describes these data that well")
 
 
 @dataclass(frozen=True)
@@ -212,6 +227,9 @@ def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | 
     }
     if best.family == "foundation":
         fit_doc["foundation_modulus_estimate_Pa_per_m"] = geo.foundation_modulus_estimate_Pa_per_m()
+    warning = holdout_warning(best.holdout_rel_err, fem_err)
+    if warning is not None:
+        fit_doc["warning"] = f"scene {scene!r}: {warning}"
     law = CalibratedLaw(
         name=f"{scene}{'-3d' if geo.plane == '3d' else ''}-{best.family}", scene=scene, family=best.family, parameters=best.parameters,
         parameter_std=best.parameter_std, parameter_units=dict(PARAMETERS[best.family]), geometry=geo,

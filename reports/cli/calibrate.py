@@ -42,6 +42,9 @@ def main(argv: list[str] | None = None) -> int:
             pars = ", ".join(f"{k} = {v:.6g} ± {law.parameter_std[k]:.2g} {law.parameter_units[k]}"
                              for k, v in law.parameters.items())
             print(f"{law.name}: {pars}; hold-out max {100 * law.fit['holdout_max_rel']:.3f} % -> {f}")
+            if law.fit.get("warning"):
+                print(f"ringcontact calibrate: warning: {law.name}: {law.fit['warning']} (flagged in {f.name})",
+                      file=sys.stderr)
     except RingContactError as exc:
         return fail("ringcontact calibrate", exc)
     return 0
