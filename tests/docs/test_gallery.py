@@ -26,7 +26,7 @@ def _load(name: str):
     return module
 
 
-TESTED = {"conformal_law", "calibrated_law", "fem_point", "rotor_campbell", "rotor_transient"}
+TESTED = {"conformal_law", "calibrated_law", "fem_point", "rotor_campbell", "rotor_transient", "your_bearing"}
 
 
 def test_every_example_is_tested():
@@ -131,3 +131,25 @@ def test_rotor_transient(capsys):
     assert tr.unconverged_steps == 0
     ex.main()
     assert "balance closes" in capsys.readouterr().out
+
+
+def test_your_bearing(tmp_path, capsys):
+    """The law of the example's ring pair reproduces its own 2D FEM points held out within the job's bound
+    (contact.calibrate.fit.HOLDOUT_BOUND_REL), the rotor took the law's clearance and width (the example's
+    ring-pair text: 0.03 mm, 22 mm), and the bearing hit its support at 6 000 rpm."""
+    import json
+
+    from contact.calibrate.fit import HOLDOUT_BOUND_REL
+    from rotor.dynamics import constraints as cons
+
+    ex = _load("your_bearing")
+    summary = ex.law_for_my_bearing(tmp_path)
+    assert summary["warnings"] == [] and summary["checks"]["holdout_max_rel_2d"] < HOLDOUT_BOUND_REL
+    assert json.loads((tmp_path / "my-bearing-law.json").read_text())["name"] == summary["law_name"]
+    scene, system, tr = ex.rotor_with_my_bearing(tmp_path)
+    ls = scene.loose_support
+    assert (ls.clearance_m, ls.ring_width_m) == pytest.approx((3e-5, 0.022))
+    r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
+    assert max(r1.max(), r2.max()) > system.support.law.clearance_m
+    ex.main()
+    assert "in contact" in capsys.readouterr().out
