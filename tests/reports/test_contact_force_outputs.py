@@ -148,3 +148,20 @@ def test_cascade_csv_has_peak_force_and_shares_per_speed(tmp_path):
     point = np.load(out / "points" / f"rpm{SPEED:.1f}.npz")
     fc = point["f_contact"]
     assert float(high["peak_contact_force_N"]) == pytest.approx(np.hypot(fc[:, 0], fc[:, 1]).max(), rel=1e-5)
+
+
+def test_runup_records_the_force_and_its_note_names_the_peak(tmp_path):
+    """A short ramp at the small clearance (0.15 s: the note's 0.1 s STFT window fits): the stored force history,
+    the info's summary over it, the note."""
+    from reports.studies.runup import runup_note
+    from rotor.studies.runup import RunupSpec, run_runup
+
+    spec = RunupSpec(rpm_start=10000, rpm_end=10500, duration_s=0.15, clearance_m=CLEARANCE_MM * 1e-3)
+    info = run_runup(spec, tmp_path / "runup")
+    point = np.load(tmp_path / "runup" / "points" / "runup.npz")
+    force = np.hypot(point["f_contact"][:, 0], point["f_contact"][:, 1])
+    assert info["contact_share"] == pytest.approx(np.mean(force > 0)) and info["contact_share"] > 0
+    assert info["peak_contact_force_N"] == force.max()
+    assert info["peak_contact_force_t_s"] == point["t"][np.argmax(force)]
+    assert point["face_force"].shape == (force.size, 2, 2)
+    assert f"Peak radial contact force on the bearing {force.max():.4g} N" in runup_note(tmp_path / "runup")
