@@ -27,8 +27,9 @@ stationary axes, the moment about the ring's mid-plane; ``face_right_force_y_N``
 ``peak_contact_force_N`` at ``peak_contact_force_t_s``, ``mean_contact_force_N`` (over the samples in
 contact), ``peak_contact_moment_Nm``, ``contact_share``, ``separation_share``, ``stick_share_right_face``,
 ``stick_share_left_face``, ``peak_face_force_N``, all over the recorded samples. The older keys stay:
-``contact_fraction`` (an edge past the clearance; ``contact_share`` counts the samples with a force, which
-differ only where the collision damping clips the force to zero on a fast separation) and
+``contact_fraction`` (an edge of the tilted ring past the clearance; ``contact_share`` counts the samples
+with a force: they differ where the collision damping clips the force to zero on a fast separation and, with
+``--tilt-ignored``, where only the tilt the law ignores puts an edge past the clearance) and
 ``stick_fraction_right``/``_left`` (the same numbers as ``stick_share_*_face``, except that with the tilt
 ignored ``stick_share_left_face`` is None: there is one centred face). ``stick_right``/``stick_left`` stay in
 the CSV beside ``face_*_stuck``, ``f_contact``/``face_force`` in the NPZ beside the named arrays.
