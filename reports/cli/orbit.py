@@ -11,8 +11,13 @@ production scheme's period map from a short transient) and prints its period, Fl
 stability, the kind of the critical multiplier (the one that leaves the unit circle first: ``fold`` through
 +1, ``period_doubling`` through −1, ``neimark_sacker`` a complex pair), the 1X–5X velocity amplitudes at
 every station (``velocity_amplitudes_mm_s_1X_to_5X``, the key and quantity of ``simulate --steady``),
-the Newton iterations, the residual and the wall time. ``branch`` follows the orbit over a speed range by
-pseudo-arclength continuation (:func:`rotor.studies.orbit.branch`) and lists each point and the
+the Newton iterations, the residual and the wall time, and the loose support over one period (the keys of
+``simulate``'s summary, :mod:`rotor.dynamics.support_record`: ``peak_contact_force_N`` and its time after
+phase 0 ``peak_contact_force_t_s``, ``mean_contact_force_N``, ``peak_contact_moment_Nm``, ``contact_share``,
+``separation_share``, ``stick_share_right_face``, ``stick_share_left_face``, ``peak_face_force_N``), which
+tell an orbit whose ring stays stuck (contact share 0, stick shares 1) from one that slips and hits.
+``branch`` follows the orbit over a speed range by pseudo-arclength continuation
+(:func:`rotor.studies.orbit.branch`) and lists each point (with the same support fields) and the
 bifurcations met; ``--plot`` draws the bifurcation diagram (:mod:`reports.bifurcation`).
 
 Exit status 1 (one line on stderr, after the results are written) when the orbit did not converge or the
@@ -145,7 +150,19 @@ def _orbit_table(d: dict) -> str:
              f"  {'channel':<14}" + "".join(f"{k}X mm/s".rjust(12) for k in range(1, 6))]
     for name, amps in d["velocity_amplitudes_mm_s_1X_to_5X"].items():
         lines.append(f"  {name:<14}" + "".join(f"{a:12.5g}" for a in amps))
+    if "contact_share" in d:
+        lines.append(f"  loose support over the period: {_support_line(d)}")
     return "\n".join(lines)
+
+
+def _share(x) -> str:
+    return "-" if x is None else f"{100 * x:.0f} %"
+
+
+def _support_line(d: dict) -> str:
+    """Contact and stick of one orbit in words (the JSON's ``contact_share``, ``peak_contact_force_N`` …)."""
+    return (f"contact {_share(d['contact_share'])} of the time, peak contact force {d['peak_contact_force_N']:.4g} N, "
+            f"faces stuck {_share(d['stick_share_right_face'])} (right) / {_share(d['stick_share_left_face'])} (left)")
 
 
 def _orbit(args) -> int:
@@ -168,9 +185,11 @@ def _orbit(args) -> int:
 def _branch_table(d: dict) -> str:
     lines = [f"branch {d['scene']} {d['rpm_start']:g} -> {d['rpm_end']:g} rpm: {len(d['points'])} orbits, "
              f"period {d['period_revs']} rev, stopped: {d['stop']}, {d['wall_s']:.1f} s",
-             f"  {'speed rpm':>10} {'stable':>7} {'radius':>9} {'leading':>13}"]
+             f"  {'speed rpm':>10} {'stable':>7} {'radius':>9} {'leading':>13} {'contact':>8} {'peak N':>10}"]
     for p in d["points"]:
-        lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} {p['leading_multiplier']:>13}")
+        lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} "
+                     f"{p['leading_multiplier']:>13} {_share(p.get('contact_share')):>8} "
+                     f"{p.get('peak_contact_force_N', float('nan')):10.4g}")
     lines.append("  bifurcations: " + ("; ".join(f"{b['kind']} at {b['speed_rpm']:.1f} rpm" for b in d["bifurcations"])
                                        or "none"))
     return "\n".join(lines)

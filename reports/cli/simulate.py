@@ -9,12 +9,30 @@ or, for one steady-state point (transient detected and discarded, then 64 kept r
     ringcontact simulate --speed-rpm 10500 --steady --revolutions 64 --out runs/b
 
 writes ``runs/b/simulate.csv`` (time, named DOFs, relative edge offsets r1/r2, relative tilts,
-stick/slip of each end face, contact flags), ``runs/b/simulate.npz`` (full state) and
+stick/slip of each end face, contact flags, the contact force and moment on the bearing and the end-face
+forces), ``runs/b/simulate.npz`` (full state, and the same force columns by the same names) and
 ``runs/b/simulate-summary.json``, as one unit (:func:`contact.files.write_run_files`): the previous
 run's ``simulate.*`` files and summary are removed first, the new files written to temporary names and
 renamed, the summary last with the SHA-256 of each file it describes (``"files"``), so an interrupted
 run never leaves one run's CSV beside another's summary. Engineer units at the edge (``_rpm``, ``_mm``,
 ``_n``), SI inside.
+
+The headline answer, how hard the ring hits its support (:mod:`rotor.dynamics.support_record`, which
+states the sign conventions; the summary repeats them in ``contact_force_convention``): CSV and NPZ
+columns ``contact_force_y_N``, ``contact_force_z_N``, ``contact_force_N`` (magnitude),
+``contact_moment_y_Nm``, ``contact_moment_z_Nm``, ``contact_moment_Nm``: the radial contact force and
+moment of the support's bore ON the bearing outer ring (the support gets the opposite), in the rotor's
+stationary axes, the moment about the ring's mid-plane; ``face_right_force_y_N`` … ``face_left_force_z_N``
+(end-face friction on the bearing), ``face_right_stuck``, ``face_left_stuck`` (1 = stuck). Summary:
+``peak_contact_force_N`` at ``peak_contact_force_t_s``, ``mean_contact_force_N`` (over the samples in
+contact), ``peak_contact_moment_Nm``, ``contact_share``, ``separation_share``, ``stick_share_right_face``,
+``stick_share_left_face``, ``peak_face_force_N``, all over the recorded samples. The older keys stay:
+``contact_fraction`` (an edge of the tilted ring past the clearance; ``contact_share`` counts the samples
+with a force: they differ where the collision damping clips the force to zero on a fast separation and, with
+``--tilt-ignored``, where only the tilt the law ignores puts an edge past the clearance) and
+``stick_fraction_right``/``_left`` (the same numbers as ``stick_share_*_face``, except that with the tilt
+ignored ``stick_share_left_face`` is None: there is one centred face). ``stick_right``/``stick_left`` stay in
+the CSV beside ``face_*_stuck``, ``f_contact``/``face_force`` in the NPZ beside the named arrays.
 """
 from __future__ import annotations
 
@@ -33,6 +51,7 @@ from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
 from reports.cli._edge import Parser, count, fail, out_dir, quantity
 from rotor.dynamics import constraints as cons
+from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -126,7 +145,9 @@ def _run(args) -> int:
                "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
                **validity_summary(float(max(r1.max(), r2.max()) - d0), law_info["validity_max_m"]),
                **tilt_validity_summary(np.hypot(tr.u[:, 2], tr.u[:, 3]), (r1 > d0) | (r2 > d0),
-                                       law_info.get("validity_tilt_rad")), **extra}
+                                       law_info.get("validity_tilt_rad")),
+               **contact_summary(tr.t, tr.f_contact, tr.modes, tr.face_force, sup.faces()[2] if sup is not None else 0),
+               "contact_force_convention": CONVENTION, **extra}
     # one unit: the old run's files go, the new ones are renamed into place, the summary (with their
     # checksums) comes last; an interrupted run leaves no summary beside another run's CSV
     try:
@@ -226,20 +247,23 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
 
 
 def _trajectory_files(tr, system, names: list[str], idx: list[int], r1, r2, d0: float) -> dict[str, bytes]:
-    """The contents of ``simulate.csv`` (time, the named DOFs, edge offsets, tilts, stick/slip, contact flags)
-    and ``simulate.npz`` (full state)."""
+    """The contents of ``simulate.csv`` (time, the named DOFs, edge offsets, tilts, stick/slip, contact flags,
+    contact force and moment, end-face forces: :func:`rotor.dynamics.support_record.contact_columns`) and
+    ``simulate.npz`` (full state and the same force columns by name)."""
     cols = {"t_s": tr.t}
     for n, i in zip(names, idx):
         cols[f"{n}_m" if n.split(".")[-1] in ("y", "z") else f"{n}_rad"] = tr.q[:, i]
     cols.update({"r1_m": r1, "r2_m": r2, "tilt_y_rad": tr.u[:, 2], "tilt_z_rad": tr.u[:, 3],
                  "stick_right": tr.modes[:, 0], "stick_left": tr.modes[:, 1],
                  "contact_edge1": (r1 > d0).astype(int), "contact_edge2": (r2 > d0).astype(int)})
+    forces = contact_columns(tr.f_contact, tr.face_force, tr.modes)
+    cols.update(forces)
     buf = io.StringIO()
     buf.write(",".join(cols) + "\n")
     np.savetxt(buf, np.column_stack(list(cols.values())), delimiter=",", fmt="%.9g")
     b = io.BytesIO()
     np.savez_compressed(b, t=tr.t, q=tr.q, v=tr.v, u=tr.u, w=tr.w, f_contact=tr.f_contact, face_force=tr.face_force,
-                        modes=tr.modes, dof_names=np.array(system.dof_names))
+                        modes=tr.modes, dof_names=np.array(system.dof_names), **forces)
     return {"simulate.csv": buf.getvalue().encode("utf-8"), "simulate.npz": b.getvalue()}
 
 

@@ -132,7 +132,8 @@ def cascade_redraw(csv_path, figs, prefix: str, title: str = ""):
 def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "") -> list[Path]:
     """Velocity-y spectrum cascades at disk 1, disk 2, 3# bearing (Fig. 12 / 16), the relative-tilt
     cascade (Fig. 17) from the full spectra of the study, and ``<prefix>.csv`` with 1X–5X per speed,
-    convergence and regime."""
+    convergence and regime, and (points that record it) the loose support's peak and mean contact force (N),
+    peak contact moment (N m), contact share and each face's stick share (:data:`CONTACT_COLUMNS`)."""
     figs = Path(figs)
     points = load_points(out, tasks)
 
@@ -160,6 +161,10 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
         for r, p in zip(rows, points):
             r += [p.info.get(k, "") for k in ("classification", "classified_by", "stable", "spectral_radius",
                                                "critical_kind")]
+    if any("peak_contact_force_N" in p.info for p in points):   # the support's contact force and face stick
+        header += list(CONTACT_COLUMNS)
+        for r, p in zip(rows, points):
+            r += [_number(p.info.get(k)) for k in CONTACT_COLUMNS]
     if any("law_validity_max_penetration_m" in p.info for p in points):   # a calibrated law: its fitted range
         header += ["max_edge_penetration_mm", "law_validity_max_penetration_mm", "beyond_law_validity"]
         for r, p in zip(rows, points):
@@ -168,6 +173,16 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
                   int(p.info.get("beyond_law_validity", False))]
     files.append(write_csv(figs / f"{prefix}.csv", header, rows))
     return files
+
+
+#: the point info's contact fields (rotor.dynamics.support_record.contact_summary) the cascade CSV carries
+CONTACT_COLUMNS = ("peak_contact_force_N", "mean_contact_force_N", "peak_contact_moment_Nm", "contact_share",
+                   "stick_share_right_face", "stick_share_left_face")
+
+
+def _number(x) -> float:
+    """A CSV cell of an info field: NaN where the point has none (no contact, or stored before the field)."""
+    return float("nan") if x is None else float(x)
 
 
 def _fmt(x, unit="", d=3):

@@ -74,9 +74,22 @@ def runup_note(out) -> str:
     lines += ["", f"- First radial contact during the ramp: {first:.0f} rpm." if first is not None else
               "- No radial contact during the ramp.",
               f"- Contact during {100 * contact.mean():.1f} % of the run; end faces stuck "
-              f"{100 * np.mean((r['modes'][:, 0] == 1) & (r['modes'][:, 1] == 1)):.1f} % of the time.", "",
+              f"{100 * np.mean((r['modes'][:, 0] == 1) & (r['modes'][:, 1] == 1)):.1f} % of the time.", *_force_line(r),
+              "",
               "Linear forward 1X critical speeds of this rotor (support locked, `rotor-table4.md`): 2 441, 4 271 and "
               "9 608 rpm. Compare with the steady-state cascade (`study-cascade.md`): in the ramp the harmonics and "
               "the broadband band appear at speeds close to, but not identical with, the steady-state ones, since "
               "a ramp passes through regimes with coexisting states in the order it meets them.", ""]
     return "\n".join(lines)
+
+
+def _force_line(r: dict) -> list[str]:
+    """The peak contact force of the ramp and its speed (a run stored before the run-up recorded the force: none)."""
+    if "f_contact" not in r:
+        return []
+    force = np.hypot(r["f_contact"][:, 0], r["f_contact"][:, 1])
+    k = int(np.argmax(force))
+    if force[k] == 0:
+        return ["- No contact force on the bearing during the ramp."]
+    return [f"- Peak radial contact force on the bearing {force[k]:.4g} N at {r['rpm'][k]:.0f} rpm "
+            f"(t = {r['t'][k]:.4g} s; mean {force[force > 0].mean():.4g} N while in contact)."]

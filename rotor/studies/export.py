@@ -83,8 +83,9 @@ def to_xarray(run: str | os.PathLike, tasks=None):
     rows = _point_rows(points)
     if dim == "speed_rpm":
         rows = [{k: v for k, v in r.items() if k != "speed_rpm"} for r in rows]
-    ds = table_to_xarray(rows, {"clearance_m": "m", "misalignment_m": "m", "wall_s": "s", "speed_rpm": "rpm"},
-                         dim=dim, coords=coords)
+    units = {"clearance_m": "m", "misalignment_m": "m", "wall_s": "s", "speed_rpm": "rpm", "peak_contact_force_N": "N",
+             "mean_contact_force_N": "N", "peak_contact_moment_Nm": "N m", "peak_contact_force_t_s": "s"}
+    ds = table_to_xarray(rows, units, dim=dim, coords=coords)
     if dim == "point":
         ds = ds.set_coords([c for c in ("speed_rpm", "clearance_m", "misalignment_m") if c in ds])
     pdims = (dim, "station", "direction", "harmonic")

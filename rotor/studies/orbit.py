@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -24,6 +24,7 @@ from contact.errors import InputError
 from contact.units import check_positive
 from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
+from rotor.dynamics.support_record import contact_summary
 from rotor.studies.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
                                         speed_problem)
 from rotor.studies.floquet import FloquetResult
@@ -89,6 +90,13 @@ class OrbitResult:
     max_edge_penetration_m : float
         Largest penetration of a ring edge past the clearance over the period (m, every step; 0 without
         contact or without a loose support), the quantity of ``simulate``'s ``max_edge_penetration_mm``.
+    contact : dict
+        The loose support over the same period (every step, phase 0 to the period's end), the keys and
+        quantities of ``simulate``'s summary (:func:`rotor.dynamics.support_record.contact_summary`):
+        ``peak_contact_force_N`` at ``peak_contact_force_t_s`` (s after phase 0), ``mean_contact_force_N``,
+        ``peak_contact_moment_Nm``, ``contact_share``, ``separation_share``, ``stick_share_right_face``,
+        ``stick_share_left_face``, ``peak_face_force_N``; empty without a loose support. A ring stuck on a
+        linear orbit has ``contact_share`` 0 and both faces' stick share 1; a slipping, hitting one does not.
     """
 
     speed_rpm: float
@@ -110,6 +118,7 @@ class OrbitResult:
     q_m: np.ndarray
     v_m_s: np.ndarray
     max_edge_penetration_m: float = 0.0
+    contact: dict = field(default_factory=dict)
 
     @property
     def switch_free(self) -> bool:
@@ -127,7 +136,7 @@ class OrbitResult:
                 "transient_revs": self.transient_revs, "settled": self.shooting.settled,
                 "face_mode_changes": self.events,
                 "singular_directions": self.singular_directions, "switch_free": self.switch_free,
-                "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3,
+                "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3, **self.contact,
                 "wall_s": self.wall_s, "backend": self.backend}
 
 
@@ -139,9 +148,11 @@ def velocity_amplitudes(flow: Flow, model, res_state, t0_s: float, modes, period
 
 
 def period_response(flow: Flow, model, res_state, t0_s: float, modes, period_revs: int, steps_per_rev: int,
-                    stations=None) -> tuple[dict, float]:
-    """:func:`velocity_amplitudes` and the largest edge penetration past the clearance over the same
-    period (m, 0 without contact or without a loose support; :func:`rotor.dynamics.constraints.edge_offsets`)."""
+                    stations=None) -> tuple[dict, float, dict]:
+    """:func:`velocity_amplitudes`, the largest edge penetration past the clearance over the same period (m, 0
+    without contact or without a loose support; :func:`rotor.dynamics.constraints.edge_offsets`) and the
+    contact force and face stick over it (:func:`rotor.dynamics.support_record.contact_summary`, the time of
+    the peak counted from ``t0_s``; empty without a loose support)."""
     stations = model.response_stations() if stations is None else tuple(stations)
     names = [f"{s}.{c}" for s in stations for c in ("y", "z")]
     idx = [model.dof_index(n) for n in names]
@@ -149,11 +160,14 @@ def period_response(flow: Flow, model, res_state, t0_s: float, modes, period_rev
     v = tr.v[:-1, idx]
     amps = np.abs(harmonic_amplitudes(v - v.mean(axis=0), period_revs, ORDERS))
     sup = flow.system.support
-    pen = 0.0
+    pen, contact = 0.0, {}
     if sup is not None:
         r1, r2 = edge_offsets(tr.u, sup.width_m)
         pen = max(float(max(r1.max(), r2.max())) - sup.law.clearance_m, 0.0)
-    return {n: [float(a) * 1e3 for a in amps[:, j]] for j, n in enumerate(names)}, pen
+        one = slice(0, -1)   # one period: the last sample starts the next one
+        contact = contact_summary(tr.t[one] - t0_s, tr.f_contact[one], tr.modes[one], tr.face_force[one],
+                                  sup.faces()[2])
+    return {n: [float(a) * 1e3 for a in amps[:, j]] for j, n in enumerate(names)}, pen, contact
 
 
 def _overrides(kw: dict) -> dict:
@@ -183,18 +197,19 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     q0, v0 = linear_initial_state(system, 0.0) if start is None else start
     res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options,
                                period_hint=period_hint)
-    amps, pen = period_response(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
+    amps, pen, contact = period_response(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
     q, v = to_full(flow, res.state, 0.0)
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
                        res.floquet, amps, res.newton_iterations, res.residual, res.transient_revs, res.events,
-                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v, pen)
+                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v, pen, contact)
 
 
 @dataclass(frozen=True)
 class BranchResult:
     """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
     ``critical_kind``, ``leading_multiplier``, ``restarted`` (None, or how a point past a stick/slip switch was
-    shot: ``secant``, ``transient``, ``cold``), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``),
+    shot: ``secant``, ``transient``, ``cold``), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``
+    and the contact fields of :attr:`OrbitResult.contact`),
     ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
     (the :class:`rotor.studies.continuation.Branch`)."""
@@ -249,8 +264,9 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
              "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted))}
         if amplitudes:
             flow = pb.flow(p.parameter)
-            amps, pen = period_response(flow, model, p.state, 0.0, res.modes, pb.period_revs, n)
+            amps, pen, contact = period_response(flow, model, p.state, 0.0, res.modes, pb.period_revs, n)
             d["velocity_amplitudes_mm_s_1X_to_5X"], d["max_edge_penetration_mm"] = amps, pen * 1e3
+            d.update(contact)
         pts.append(d)
     bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index} for b in br.bifurcations)
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)

@@ -34,6 +34,7 @@ from contact.units import check_positive
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import HarmonicForce, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
+from rotor.dynamics.support_record import contact_summary
 
 @dataclass(frozen=True)
 class RunupSpec:
@@ -70,7 +71,10 @@ class RunupSpec:
 
 
 def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
-    """Integrate the ramp; returns arrays (t s, rpm, q m, v m/s, u, r1/r2 m, modes) and info.
+    """Integrate the ramp; returns arrays (t s, rpm, q m, v m/s, u, r1/r2 m, modes, ``f_contact`` (N, N m) and
+    ``face_force`` (N) on the bearing, :mod:`rotor.dynamics.support_record`) and info, with the contact summary
+    over the whole ramp (:func:`rotor.dynamics.support_record.contact_summary`: ``peak_contact_force_N`` at
+    ``peak_contact_force_t_s`` from the ramp's start, ``contact_share``, ``stick_share_right_face`` …).
 
     ``progress(fraction)`` is called after each segment if given.
     """
@@ -97,7 +101,7 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
     modes = (cons.STICK, cons.STICK)
     phi = 0.0
     t_real = 0.0
-    out = {k: [] for k in ("t", "rpm", "q", "v", "u", "modes")}
+    out = {k: [] for k in ("t", "rpm", "q", "v", "u", "modes", "f_contact", "face_force")}
     unconv = 0
     pre_cache = None
     for j in range(n_seg):
@@ -125,6 +129,8 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
         out["v"].append(tr.v[sl][:, idx])
         out["u"].append(tr.u[sl])
         out["modes"].append(tr.modes[sl])
+        out["f_contact"].append(tr.f_contact[sl])
+        out["face_force"].append(tr.face_force[sl])
         q, v = tr.q[-1].copy(), tr.v[-1].copy()
         modes = tuple(int(m) for m in tr.modes[-1])
         phi += w * seg_steps * dt
@@ -139,7 +145,9 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
             "segment_steps": seg_steps, "steps": n_seg * seg_steps, "least_residual_steps": int(unconv),
             "clearance_m": float(sys0.support.law.clearance_m), "accel_rpm_per_s": wdot * 30 / math.pi,
             "wall_s": time.perf_counter() - t_wall, "law": sys0.support.law.name,
-            **(sc.loose_support.law_note() if sc.loose_support is not None else {})}   # a calibrated law's file
+            **(sc.loose_support.law_note() if sc.loose_support is not None else {}),   # a calibrated law's file
+            **contact_summary(arrays["t"], arrays["f_contact"], arrays["modes"], arrays["face_force"],
+                              sys0.support.faces()[2])}
     return {"arrays": arrays, "info": info}
 
 

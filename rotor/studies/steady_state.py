@@ -35,6 +35,7 @@ from contact.units import check_positive
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
+from rotor.dynamics.support_record import contact_summary
 
 # Stations come from the scene (rotor.model.assembly.RotorModel.response_stations): every disk, bearing
 # and support station is recorded, the primary ones (disks, the loose support's bearing station,
@@ -480,7 +481,9 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
     ``spec_u`` (J, 4) amplitude spectra on exact bins; the last ``history_revs`` revolutions of
     ``t`` (s), ``q`` (m), ``v`` (m/s), ``u`` (m, rad), ``r1``/``r2`` (m), ``modes`` and
     ``f_contact`` (N, N m), ``q_all`` (all DOFs, m/rad) with ``dof_names`` and the misalignment
-    offset ``offset`` (m, rad). Info: convergence, regime (stick/slip/impact), revolutions, timing.
+    offset ``offset`` (m, rad). Info: convergence, regime (stick/slip/impact), revolutions, timing, and the
+    contact force and face stick over the whole record (:func:`rotor.dynamics.support_record.contact_summary`:
+    ``peak_contact_force_N``, ``mean_contact_force_N``, ``contact_share``, ``stick_share_right_face`` …).
     """
     opts = SteadyStateOptions(**(options or {}))
     sc, model, system = point_system(scene, speed_rpm, clearance_m=clearance_m, misalignment_m=misalignment_m,
@@ -526,7 +529,9 @@ def point_record(res: SteadyResult, sc, model, system, opts: SteadyStateOptions,
             "static": bool(res.static), "wall_s": float(res.wall_s),
             "law": system.support.law.name if system.support is not None else None,
             "elements_per_segment": elements_per_segment, "n_dofs": int(model.n_dofs),
-            "options": dataclasses.asdict(opts), **res.regime(), **_law_info(sc, res)}
+            "options": dataclasses.asdict(opts), **res.regime(), **_law_info(sc, res),
+            **(contact_summary(res.t, res.f_contact, res.modes, n_faces=res.n_faces)
+               if system.support is not None else {})}
     return arrays, info
 
 
