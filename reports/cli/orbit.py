@@ -89,14 +89,23 @@ def _scene(args) -> tuple:
     return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
 
 
-def law_fields(loose, max_edge_penetration_m: float) -> dict:
+def law_fields(loose, max_edge_penetration_m: float, max_tilt_in_contact_arcmin: float | None = None) -> dict:
     """The scene's law in a result: ``law`` (as the scene names it), a calibrated law's ``law_file`` and
-    ``law_sha256``, and the validity check of :func:`reports.cli.simulate.validity_summary`."""
-    from reports.cli.simulate import validity_summary
+    ``law_sha256``, and the validity checks of :func:`reports.cli.simulate.validity_summary` and, for a law
+    checked against a 3D reference up to a tilt, :func:`reports.cli.simulate.tilt_validity_summary`."""
+    import numpy as np
+
+    from contact.units import ARCMIN
+    from reports.cli.simulate import tilt_validity_summary, validity_summary
     if loose is None:
         return {}
-    return {"law": loose.law, **loose.law_note(),
-            **validity_summary(max_edge_penetration_m, loose.validity_max_penetration_m)}
+    out = {"law": loose.law, **loose.law_note(),
+           **validity_summary(max_edge_penetration_m, loose.validity_max_penetration_m)}
+    if loose.calibrated is not None and max_tilt_in_contact_arcmin is not None:
+        out.update(tilt_validity_summary(np.array([max_tilt_in_contact_arcmin * ARCMIN]), np.array([True]),
+                                         float(loose.calibrated.validity_tilt_max_rad)))
+        out.pop("max_tilt_in_contact_arcmin", None)      # the orbit's own field says it
+    return out
 
 
 def _emit(args, result: dict, table: str) -> None:
@@ -171,7 +180,8 @@ def _orbit(args) -> int:
     name, _, loose = _scene(args)
     res = orbit(args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, period_revs=args.period_revs,
                 **_overrides(args))
-    d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m)}
+    d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m,
+                                              res.contact.get("max_tilt_in_contact_arcmin"))}
     _emit(args, d, _orbit_table(d))
     if not res.converged:
         print(f"ringcontact orbit: error: no periodic orbit of {res.period_revs} revolution(s) at "
@@ -211,7 +221,9 @@ def _branch(args) -> int:
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3)}
     deepest_mm = max([p.get("max_edge_penetration_mm", 0.0) for p in d["points"]], default=0.0)
-    d.update(law_fields(loose, max(deepest_mm * 1e-3, res.start.max_edge_penetration_m)))   # deepest of the branch
+    tilt = max([p.get("max_tilt_in_contact_arcmin", 0.0) for p in d["points"]], default=0.0)
+    d.update(law_fields(loose, max(deepest_mm * 1e-3, res.start.max_edge_penetration_m),    # deepest of the branch
+                        max(tilt, res.start.contact.get("max_tilt_in_contact_arcmin", 0.0))))
     _emit(args, d, _branch_table(d))
     if args.plot is not None and d["points"]:
         from reports.bifurcation import bifurcation_figure

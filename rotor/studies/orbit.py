@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contact.errors import InputError
-from contact.units import check_positive
+from contact.units import ARCMIN, check_positive
 from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.dynamics.support_record import contact_summary
@@ -167,6 +167,9 @@ def period_response(flow: Flow, model, res_state, t0_s: float, modes, period_rev
         one = slice(0, -1)   # one period: the last sample starts the next one
         contact = contact_summary(tr.t[one] - t0_s, tr.f_contact[one], tr.modes[one], tr.face_force[one],
                                   sup.faces()[2])
+        hit = (r1 > sup.law.clearance_m) | (r2 > sup.law.clearance_m)
+        tilt = np.hypot(tr.u[:, 2], tr.u[:, 3])[hit]
+        contact["max_tilt_in_contact_arcmin"] = float(tilt.max()) / ARCMIN if tilt.size else 0.0
     return {n: [float(a) * 1e3 for a in amps[:, j]] for j, n in enumerate(names)}, pen, contact
 
 

@@ -65,6 +65,8 @@ def test_orbit_with_the_law(tmp_path, capsys):
     d = json.loads((tmp_path / "o.json").read_text())
     assert d["converged"] and Path(d["law_file"]).name == LAW.name
     assert 0 < d["max_edge_penetration_mm"] < 0.04 and d["beyond_law_validity"] is False
+    assert 0 < d["max_tilt_in_contact_arcmin"] < 2.0 and d["law_tilt_checked_up_to_arcmin"] == pytest.approx(2.0)
+    assert d["beyond_law_tilt_validity"] is False
 
 
 def test_law_job_evaluates_a_law_file_and_flags_beyond_its_checked_range(capsys):
