@@ -143,6 +143,7 @@ def _run(args) -> int:
                "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
                "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
+               **step_limit_summary(tr.omega_dt_max, args.steps_per_rev),
                **validity_summary(float(max(r1.max(), r2.max()) - d0), law_info["validity_max_m"]),
                **tilt_validity_summary(np.hypot(tr.u[:, 2], tr.u[:, 3]), (r1 > d0) | (r2 > d0),
                                        law_info.get("validity_tilt_rad")),
@@ -156,6 +157,11 @@ def _run(args) -> int:
         raise OutputError(f"--out = {args.out}: the run's files could not be written ({exc.strerror or exc}); "
                           "the folder holds no summary, so no complete run") from None
     print(json.dumps(summary, indent=2))
+    if summary.get("step_limit_exceeded"):
+        print(f"ringcontact simulate: warning: the contact step limit was crossed during the run (largest ω_c·Δt "
+              f"{summary['max_omega_c_dt']:.3g} > {STEP_LIMIT_OMEGA_DT:g}: a contact event took fewer than about three "
+              f"steps, impacts are under-resolved); run again with --steps-per-rev about "
+              f"{summary['steps_per_rev_for_step_limit']} or more", file=sys.stderr)
     if summary.get("beyond_law_tilt_validity"):
         print(f"ringcontact simulate: warning: the largest tilt in contact {summary['max_tilt_in_contact_arcmin']:.4g} "
               f"arcmin exceeds the tilt the calibrated law was checked at ({summary['law_tilt_checked_up_to_arcmin']:.4g} "
@@ -298,6 +304,21 @@ def _law(args, scene, clearance_m):
     return law, {"note": {"law_file": rec.path, "law_sha256": rec.sha256},
                  "validity_max_m": float(rec.law.validity_penetration_m[1]),
                  "validity_tilt_rad": float(rec.law.validity_tilt_max_rad)}
+
+
+STEP_LIMIT_OMEGA_DT = 2.0     # ω_c Δt above which a contact event is crossed in fewer than ~3 steps (rotor/dynamics/system.py)
+
+
+def step_limit_summary(omega_dt_max: float, steps_per_rev: int) -> dict:
+    """The contact step limit monitored over the run: the pre-run check (:func:`rotor.dynamics.system.check_time_step`)
+    probes the law at 0.2 δ0, a run that penetrates deeper meets a stiffer law; the largest ω_c·Δt met is compared
+    with :data:`STEP_LIMIT_OMEGA_DT` and, when crossed, the steps per revolution that would keep it named."""
+    if not math.isfinite(omega_dt_max):
+        return {}
+    out = {"step_limit_omega_c_dt": STEP_LIMIT_OMEGA_DT, "step_limit_exceeded": bool(omega_dt_max > STEP_LIMIT_OMEGA_DT)}
+    if out["step_limit_exceeded"]:
+        out["steps_per_rev_for_step_limit"] = int(math.ceil(steps_per_rev * omega_dt_max / STEP_LIMIT_OMEGA_DT * 1.25))
+    return out
 
 
 def validity_summary(max_edge_penetration_m: float, validity_max_m: float | None) -> dict:

@@ -86,3 +86,21 @@ def test_law_job_evaluates_a_law_file_and_flags_beyond_its_checked_range(capsys)
     assert by[(0.01, 1.0)]["outside_domain"] is False
     assert by[(0.05, 0.0)]["outside_domain"] is True and by[(0.05, 0.0)]["force_N"] is None
     assert by[(0.01, 3.0)]["outside_domain"] is True and by[(0.01, 3.0)]["force_N"] is None
+
+
+def test_a_run_that_crosses_the_contact_step_limit_says_so(tmp_path, capsys):
+    """The numerical guard during a run: 38 steps a revolution pass the pre-run check (the law probed at 0.2 δ0,
+    rotor/dynamics/system.py) but the ring at 17 000 rpm penetrates deeper (about 0.33 δ0), where the law is
+    stiffer: the run meets ω_c·Δt > 2 (measured 3.0). The summary and stderr say so and name a finer step, with
+    which the same run stays below the limit (measured 1.69 at 72 steps)."""
+    from reports.cli.simulate import STEP_LIMIT_OMEGA_DT, main
+    argv = ["--scene", SCENE, "--speed-rpm", "17000", "--revolutions", "200", "--record-per-rev", "1"]
+    assert main([*argv, "--steps-per-rev", "38", "--out", str(tmp_path / "coarse")]) == 0
+    s = json.loads((tmp_path / "coarse" / "simulate-summary.json").read_text())
+    assert s["max_omega_c_dt"] > STEP_LIMIT_OMEGA_DT and s["step_limit_exceeded"] is True
+    assert "contact step limit was crossed" in capsys.readouterr().err
+    n = s["steps_per_rev_for_step_limit"]
+    assert main([*argv, "--steps-per-rev", str(n), "--out", str(tmp_path / "fine")]) == 0
+    f = json.loads((tmp_path / "fine" / "simulate-summary.json").read_text())
+    assert f["step_limit_exceeded"] is False and f["max_omega_c_dt"] <= STEP_LIMIT_OMEGA_DT
+    assert "step limit" not in capsys.readouterr().err
