@@ -35,6 +35,17 @@ SCENE_HELP = ("a ring-pair file (.toml, schema ringcontact.ring-scene/1), a bund
               "boundary conditions on the Table 1 rings: " + " | ".join(SCENES_3D))
 
 
+def check_penetration_3d(geom, penetration_mm: float) -> None:
+    """The mid-plane penetration (mm) of a 3D point: the bearing moved along +y, so more than −δ0 (a centre
+    on the other side is the same contact mirrored, not a negative penetration), and at most 2 % of the
+    ring radius (the small-strain model, as the 2D reference)."""
+    from contact.errors import InputError
+    lo, hi = -geom.clearance_m / MM, 0.02 * geom.bearing_outer_radius_m / MM
+    if not lo < penetration_mm <= hi:
+        raise InputError(f"penetration_mm = {penetration_mm:g} mm: must be in ({lo:g}, {hi:g}] mm (more than minus the "
+                         f"clearance: the ring is moved along +y; at most 2 % of the ring radius: small strain)")
+
+
 def scene_3d(arg: str):
     """``(RingPair3D, boundary-condition scene, label, ring scene or None)`` of a ``--scene`` value.
 
@@ -109,6 +120,7 @@ def point_main(argv: list[str]) -> int:
         check_finite("penetration_mm", args.penetration_mm, "mm")
         check_finite("tilt_arcmin", args.tilt_arcmin, "arcmin")
         geom, bc, label, _ = scene_3d(args.scene)
+        check_penetration_3d(geom, args.penetration_mm)
         r = geom.clearance_m + args.penetration_mm * MM
         tilt = args.tilt_arcmin * ARCMIN
         if args.tilt_axis == "z":
@@ -251,6 +263,7 @@ def vtu_main(argv: list[str]) -> int:
         if args.level not in LEVELS:
             raise RingContactError(f"level = {args.level!r}: must be one of {sorted(LEVELS)}")
         geom, bc, _, _ = scene_3d(args.scene)
+        check_penetration_3d(geom, args.penetration_mm)
         comp = get_compliance(geom, LEVELS[args.level], bc, use_cache=not args.no_cache)
         motion = RigidMotion.from_penetration(geom, args.penetration_mm * MM, args.tilt_arcmin * ARCMIN)
         res = solve_point(comp, motion)

@@ -25,7 +25,7 @@ import sys
 
 import numpy as np
 
-from contact.errors import RingContactError
+from contact.errors import InputError, RingContactError
 from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
 
 RPM = 30 / math.pi
@@ -189,7 +189,12 @@ def cmd_response(args) -> int:
     for name, v, unit in (("--speed-rpm", args.speed_rpm, "rpm"), ("--revolutions", args.revolutions, "rev")):
         if not (math.isfinite(v) and v > 0):
             raise_input(f"{name} = {v:g} {unit}: must be finite and > 0")
-    stations = [x.strip() for x in args.stations.split(",") if x.strip()] if args.stations else None
+    stations = None
+    if args.stations is not None:
+        stations = [x.strip() for x in args.stations.split(",")]
+        if not all(stations):
+            raise InputError(f"--stations = {args.stations!r}: an empty name in the list; give comma-separated "
+                             "station, disk, bearing or support names (or leave --stations out for the default)")
     summary = run_response(args.scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
                            stations=stations, steps_per_rev=args.steps_per_rev, record_per_rev=args.record_per_rev,
                            elements=args.elements)

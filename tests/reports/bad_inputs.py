@@ -96,7 +96,7 @@ def _fem3d_cases() -> list:
     c = []
     for sub in ("point", "vtu"):
         tail = ["--out", "{tmp}/p.vtu"] if sub == "vtu" else []
-        for v in NUMBERS_BAD + ["5", "-5"]:
+        for v in NUMBERS_BAD + ["5", "-5", "-1", "-0.05", "3"]:     # -1: the centre past the bore (was a 50.7 MN answer)
             c.append((f"fem3d {sub} penetration {v}", ["fem3d", sub, *tail, "--", v] if v.startswith("-")
                       else ["fem3d", sub, v, *tail], f"{v} mm" if v != "abc" else "abc"))
         b = ["fem3d", sub, "0.02", *tail]
@@ -152,6 +152,8 @@ def _rotor_cases() -> list:
     c += [("rotor unbalance --order 3", ["rotor", "unbalance", "verify-jeffcott", "--order", "3"], None),
           ("rotor unbalance --nodes nosuch", ["rotor", "unbalance", "verify-jeffcott", "--nodes", "nosuch"], "nosuch"),
           ("rotor nosuch", ["rotor", "nosuch"], None), ("rotor no sub", ["rotor"], None)]
+    resp = ["rotor", "response", "verify-jeffcott", "--speed-rpm", "3000", "--out", "{tmp}/r"]
+    c += [(f"rotor response --stations {v or 'EMPTY'}", [*resp, "--stations", v], None) for v in (",,,", "", "a,,b")]
     c += _out_cases("rotor report", ["rotor", "report"], "--out", UNWRITABLE_DIRS)
     return c
 
