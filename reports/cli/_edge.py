@@ -139,6 +139,8 @@ def in_file(text: str) -> Path:
         raise argparse.ArgumentTypeError(f"= {text}: no such file")
     if p.is_dir():
         raise argparse.ArgumentTypeError(f"= {text}: is a directory, a file is needed")
+    if not p.is_file():       # a FIFO, a device (a link to /dev/zero), a socket: reading it blocks or never ends
+        raise argparse.ArgumentTypeError(f"= {text}: not a regular file (a pipe, device or socket); a file is needed")
     return p
 
 

@@ -195,6 +195,8 @@ def vtu_main(argv: list[str]) -> int:
     ap.add_argument("--out", dest="out_flag", type=out_file, default=None, help="output .vtu file")
     ap.add_argument("--scale", type=quantity("scale"), default=1.0, help="displacement magnification stored as 'warp' [-]")
     args = ap.parse_args(argv)
+    if args.out is not None and args.out_flag is not None and Path(args.out) != Path(args.out_flag):
+        ap.error(f"--out = {args.out_flag}: the output is also given as {args.out}; give it once")
     args.out = args.out_flag or args.out
     if args.out is None:
         ap.error("--out: an output .vtu file is needed (ringcontact fem-vtu 0.01 --out p.vtu)")

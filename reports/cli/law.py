@@ -108,6 +108,15 @@ def read_points_csv(path: Path) -> tuple[np.ndarray, np.ndarray]:
     header, rows = _csv_rows(path)
     if "penetration_mm" not in header or not rows:
         raise DatasetError(f"--csv = {path}: needs a header with a column 'penetration_mm' and at least one row")
+    names = [h.strip() for h in header]
+    twice = sorted({h for h in names if names.count(h) > 1})
+    if twice:
+        raise DatasetError(f"--csv = {path}: column {twice[0]!r} appears {names.count(twice[0])} times in the header "
+                           "(which one is meant?)")
+    unknown = [h for h in names if h not in ("penetration_mm", "tilt_arcmin")]
+    if unknown:
+        raise DatasetError(f"--csv = {path}: column {unknown[0]!r} unknown (the columns are penetration_mm and, "
+                           "optionally, tilt_arcmin)")
     cols = [(k, header.index(k)) for k in ("penetration_mm", "tilt_arcmin") if k in header]
     out = {"penetration_mm": [], "tilt_arcmin": []}
     for line, row in enumerate(rows, start=2):

@@ -54,7 +54,7 @@ def _law_cases() -> list:
           ("law grid too large", ["law", "--penetration-mm", *[f"{0.001 * i:g}" for i in range(1, 201)],
                                   "--tilt-arcmin", *[f"{0.01 * i:g}" for i in range(200)]], None)]
     for name in ("ragged", "empty_cell", "header_only", "no_column", "nan_csv", "deep_csv", "binary", "huge_csv",
-                 "text_value", "missing", "dir"):
+                 "text_value", "missing", "dir", "fifo", "zero_link", "dup_column", "unknown_column"):
         c.append((f"law --csv {name}", ["law", "--csv", "{" + name + "}"], None))
     return c
 
@@ -73,6 +73,7 @@ def _fem_cases() -> list:
               (f"{job} --order 3", [*b, "--order", "3"], None),
               (f"{job} --order abc", [*b, "--order", "abc"], None)]
     c += _out_cases("fem-vtu", ["fem-vtu", "0.01"], "", UNWRITABLE_FILES)
+    c += [("fem-vtu two outputs", ["fem-vtu", "0.01", "{tmp}/a.vtu", "--out", "{tmp}/b.vtu"], None)]
     c += _num_cases("fem-vtu", ["fem-vtu", "0.01", "{tmp}/p.vtu"], "--scale", ["nan", "inf", "-inf", "1e30", "abc"], "")
     c += _out_cases("fem-sweep", ["fem-sweep"], "--out", UNWRITABLE_FILES)
     c += [("fem-sweep extra", ["fem-sweep", "now"], None)]
@@ -344,10 +345,17 @@ def make_inputs(root: Path) -> dict[str, str]:
             "empty_cell": "penetration_mm,tilt_arcmin\n0.01,\n,1\n", "header_only": "penetration_mm\n",
             "no_column": "pen,tilt\n0.01,1\n", "nan_csv": "penetration_mm\nnan\n", "deep_csv": "penetration_mm\n5\n",
             "text_value": "penetration_mm\nten\n",
-            "huge_csv": "penetration_mm,tilt_arcmin\n" + "0.01,1\n" * 200_000}
+            "huge_csv": "penetration_mm,tilt_arcmin\n" + "0.01,1\n" * 200_000,
+            "dup_column": "penetration_mm,penetration_mm\n0.01,0.02\n", "unknown_column": "penetration_mm,speed\n0.01,3\n"}
     for k, text in csvs.items():
         p[k] = root / f"{k}.csv"
         p[k].write_text(text)
+    p["fifo"] = root / "points.fifo"          # reading a pipe nobody writes to blocks forever
+    if not p["fifo"].exists():
+        os.mkfifo(p["fifo"])
+    p["zero_link"] = root / "zero.csv"        # a link to a device that never ends
+    if not p["zero_link"].is_symlink():
+        p["zero_link"].symlink_to("/dev/zero")
     p["binary"] = root / "binary.bin"
     p["binary"].write_bytes(bytes(range(256)) * 4)
     p["empty_file"] = root / "empty.json"
