@@ -104,3 +104,17 @@ def test_a_run_that_crosses_the_contact_step_limit_says_so(tmp_path, capsys):
     f = json.loads((tmp_path / "fine" / "simulate-summary.json").read_text())
     assert f["step_limit_exceeded"] is False and f["max_omega_c_dt"] <= STEP_LIMIT_OMEGA_DT
     assert "step limit" not in capsys.readouterr().err
+
+
+def test_a_run_beyond_the_budget_is_refused_before_it_starts(tmp_path, capsys):
+    """Long work announced before it starts: 100 000 revolutions recorded at every step of 256 would hold
+    2.56e7 records (tens of GiB); refused at once with the estimate and the flag that accepts it, nothing written.
+    The estimate's step cost is the measured one (reports/published/perf-period-map.md)."""
+    from reports.cli.simulate import MEMORY_BUDGET_BYTES, work_estimate, main
+    assert main(["--speed-rpm", "10500", "--revolutions", "100000", "--record-per-rev", "256",
+                 "--out", str(tmp_path / "big")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "GiB of records" in err[0] and "--accept-long" in err[0] and "100000 rev" in err[0]
+    assert not (tmp_path / "big").exists() or not any((tmp_path / "big").iterdir())
+    secs, nbytes = work_estimate(25_600_000, 25_600_001, 28, "production")
+    assert nbytes > MEMORY_BUDGET_BYTES and 60 < secs < 600      # 1.8 min of stepping: the records are the problem
