@@ -59,7 +59,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
     p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
     p.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
-    p.add_argument("--steps-per-rev", type=count(16, 100000), default=256, help="time steps per revolution (default 256)")
+    p.add_argument("--steps-per-rev", type=count(16, 100000), default=None,
+                   help="time steps per revolution (default: chosen as orbit and the studies do, 256 or more where the "
+                        "contact step limit needs it, a multiple of --record-per-rev; rotor.studies.steady_state.step_per_rev)")
     p.add_argument("--record-per-rev", type=count(1, 100000), default=64, help="recorded samples per revolution (default 64)")
     p.add_argument("--scheme", choices=("production", "reference"), default="production",
                    help="production (fast, default) or the paper's reference scheme (slow)")
@@ -140,7 +142,7 @@ def _run(args) -> int:
     from rotor.dynamics.reference import simulate_reference
 
     if args.steady and (args.scheme != "production" or int(round(args.revolutions)) < 1
-                        or args.steps_per_rev % args.record_per_rev):
+                        or (args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev)):
         raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
                          "dividing --steps-per-rev")   # refused before building or compiling anything
     scene, model, system, law_info = _system(args)
@@ -177,6 +179,7 @@ def _run(args) -> int:
                "contact_fraction": float(np.mean((r1 > d0) | (r2 > d0))),
                "stick_fraction_right": float(tr.modes[:, 0].mean()), "stick_fraction_left": float(tr.modes[:, 1].mean()),
                "least_residual_steps": int(tr.unconverged_steps), "max_omega_c_dt": tr.omega_dt_max,
+               "steps_per_rev": args.steps_per_rev, "steps_per_rev_chosen": bool(args.steps_chosen),
                **step_limit_summary(tr.omega_dt_max, args.steps_per_rev),
                **validity_summary(float(max(r1.max(), r2.max()) - d0), law_info["validity_max_m"]),
                **tilt_validity_summary(np.hypot(tr.u[:, 2], tr.u[:, 3]), (r1 > d0) | (r2 > d0),
@@ -229,8 +232,9 @@ def _system(args):
 
     check_positive("speed_rpm", args.speed_rpm, "rpm", upper=1e5)
     check_positive("revolutions", args.revolutions, "rev", upper=1e6)
-    check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e6)
-    check_positive("record_per_rev", args.record_per_rev, "samples", upper=args.steps_per_rev)
+    if args.steps_per_rev is not None:
+        check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e6)
+        check_positive("record_per_rev", args.record_per_rev, "samples", upper=args.steps_per_rev)
     scene = load_scene(args.scene)
     model = assemble(scene)
     omega = args.speed_rpm * 2 * math.pi / 60
@@ -248,6 +252,10 @@ def _system(args):
     else:
         system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
                                    preload_N=args.preload_n, clearance_m=clearance_m, **kw)
+    args.steps_chosen = args.steps_per_rev is None
+    if args.steps_chosen:     # as orbit and the studies: the contact step limit with a margin, whole record samples
+        from rotor.studies.steady_state import SteadyStateOptions, step_per_rev
+        args.steps_per_rev = step_per_rev(system, SteadyStateOptions(samples_per_rev=args.record_per_rev))
     return scene, model, system, info
 
 
