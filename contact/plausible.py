@@ -44,6 +44,7 @@ RANGES: dict[str, tuple[float, float, str, bool, bool, str]] = {
     "ring_width_mm": (1.0, 500.0, "mm", True, True, "ring width l0 (paper 30 mm)"),
     "mass_kg": (0.0, 1e6, "kg", True, True, "up to a 1000 t turbine-generator rotor part"),
     "shaft_mass_kg": (0.0, 1e6, "kg", True, True, "up to a 1000 t rotor part"),
+    "unbalance_g_mm": (0.0, 1e8, "g·mm", True, True, "100 kg·m: far beyond any balance grade of a 1000 t rotor part"),
     "stiffness_n_per_m": (0.0, 1e13, "N/m", True, True, "stiffer than 1e13 N/m is a rigid boundary: fix the DOF"),
     "max_speed_rpm": (0.0, 200000.0, "rpm", False, True, "200 000 rpm: beyond any aero-engine spool"),
     "friction_coefficient": (0.0, 2.0, "-", True, True, "dry friction coefficient"),

@@ -152,6 +152,9 @@ def _run(args) -> int:
     T = 2 * math.pi / omega
     dt = T / args.steps_per_rev
     n_steps = int(round(args.revolutions * args.steps_per_rev))
+    if n_steps < 1:
+        raise InputError(f"--revolutions = {args.revolutions:g} rev: less than one time step at {args.steps_per_rev} "
+                         f"steps a revolution; at least {1 / args.steps_per_rev:.3g} rev")
     rec = max(1, args.steps_per_rev // args.record_per_rev)
     check_budget(args, n_steps, n_steps // rec + 1, model.n_dofs)
     run = simulate_production if args.scheme == "production" else simulate_reference

@@ -135,7 +135,7 @@ def _rotor_cases() -> list:
     c = []
     for sub in ("modes", "campbell", "critical-speeds", "unbalance"):
         for name in ("nosuch_scene", "bad_toml", "huge_modulus", "thin_shaft", "neg_density", "empty_file", "dir",
-                     "binary", "unknown_field"):
+                     "binary", "unknown_field", "huge_unbalance"):
             c.append((f"rotor {sub} scene {name}", ["rotor", sub, "{" + name + "}"], None))
         b = ["rotor", sub, "verify-jeffcott"]
         c += _num_cases(f"rotor {sub}", b, "--elements", ["0", "-1", "100000", "abc"], "")
@@ -162,7 +162,7 @@ def _rotor_cases() -> list:
 def _simulate_cases() -> list:
     b, c = ["simulate", "--speed-rpm", "10500", "--out", "{tmp}/o"], []
     c += _num_cases("simulate", ["simulate", "--out", "{tmp}/o"], "--speed-rpm", NUMBERS_BAD + ["-1", "0"], "rpm")
-    c += _num_cases("simulate", b, "--revolutions", NUMBERS_BAD + ["0", "-1"], "rev")
+    c += _num_cases("simulate", b, "--revolutions", NUMBERS_BAD + ["0", "-1", "0.001"], "rev")
     c += _num_cases("simulate", b, "--steps-per-rev", ["0", "-1", "1000000000", "abc"], "")
     c += _num_cases("simulate", b, "--record-per-rev", ["0", "-1", "100000", "abc"], "")
     c += _num_cases("simulate", b, "--mu", NUMBERS_BAD + ["-0.3", "5"], "")
@@ -385,7 +385,8 @@ def make_inputs(root: Path) -> dict[str, str]:
                                                                                "youngs_modulus_gpa = 200e9 # "),
               "thin_shaft": _scene_variant(scene, "outer_diameter_mm = ", "outer_diameter_mm = 0.02 # "),
               "neg_density": _scene_variant(scene, "density_kg_m3 = ", "density_kg_m3 = -7800 # "),
-              "unknown_field": _scene_variant(scene, "density_kg_m3 = ", "density_kg = 7800\ndensity_kg_m3 = ")}
+              "unknown_field": _scene_variant(scene, "density_kg_m3 = ", "density_kg = 7800\ndensity_kg_m3 = "),
+              "huge_unbalance": _scene_variant(scene, "unbalance_g_mm = ", "unbalance_g_mm = 1e300 # ")}
     for k, text in scenes.items():
         p[k] = root / f"{k}.toml"
         p[k].write_text(text)
