@@ -89,9 +89,10 @@ def _parser() -> argparse.ArgumentParser:
                         "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
                         "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
                         "amplitudes of --dofs in the summary")
-    p.add_argument("--max-revs", type=count(1, 100000), default=8000,
+    p.add_argument("--max-revs", type=count(24, 100000), default=None,
                    help="--steady: transient cap in revolutions (default 8000: at the paper's point A the end faces "
-                        "creep for about 2 000 revolutions before the ring settles)")
+                        "creep for about 2 000 revolutions before the ring settles; at least 24, the detector's "
+                        "shortest transient)")
     p.add_argument("--accept-long", action="store_true",
                    help=f"run even when the estimate exceeds the budget ({WORK_BUDGET_S / 60:g} min of stepping or "
                         f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB of records)")
@@ -141,6 +142,9 @@ def _run(args) -> int:
     from rotor.dynamics.production import simulate_production, warm_up
     from rotor.dynamics.reference import simulate_reference
 
+    if args.max_revs is not None and not args.steady:
+        raise InputError(f"--max-revs = {args.max_revs} rev: the transient cap of --steady, which is not given "
+                         "(add --steady, or leave --max-revs out)")
     if args.steady and (args.scheme != "production" or int(round(args.revolutions)) < 1
                         or (args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev)):
         raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
@@ -276,7 +280,7 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     # decay, subharmonic periods); its own record is one period only: the kept revolutions are
     # integrated below from its end state so that every field of the trajectory is written
     opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
-                              spectrum_revs=1, max_revs=int(args.max_revs))
+                              spectrum_revs=1, max_revs=int(args.max_revs or 8000))
     q_start, v_start = linear_initial_state(system, 0.0)
     ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
     conv = ss.convergence

@@ -163,6 +163,8 @@ def _simulate_cases() -> list:
     b, c = ["simulate", "--speed-rpm", "10500", "--out", "{tmp}/o"], []
     c += _num_cases("simulate", ["simulate", "--out", "{tmp}/o"], "--speed-rpm", NUMBERS_BAD + ["-1", "0"], "rpm")
     c += _num_cases("simulate", b, "--revolutions", NUMBERS_BAD + ["0", "-1", "0.001"], "rev")
+    c += [("simulate --max-revs without --steady", [*b, "--max-revs", "100"], "100 rev"),
+          ("simulate --steady --max-revs 10", [*b, "--steady", "--max-revs", "10"], None)]
     c += _num_cases("simulate", b, "--steps-per-rev", ["0", "-1", "1000000000", "abc"], "")
     c += _num_cases("simulate", b, "--record-per-rev", ["0", "-1", "100000", "abc"], "")
     c += _num_cases("simulate", b, "--mu", NUMBERS_BAD + ["-0.3", "5"], "")
