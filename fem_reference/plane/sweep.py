@@ -421,7 +421,9 @@ def check_against_committed(path=DATASET_PATH, n_points: int = 3, scene_names=No
     for name in scene_names or ds.scenes():
         pts = ds.select(scene=name)
         idx = np.unique(np.linspace(0, len(pts) - 1, n_points).round().astype(int))
-        lv = Levels(scene_2d(name), levels, order)
+        own = ds.metadata.get("ring_scene") or {}       # a ring-pair file's dataset carries its document
+        sc = from_document(own["document"], name).scene if own.get("name") == name else scene_2d(name)
+        lv = Levels(sc, levels, order)
         for i in idx:
             old = pts[i]
             new = reference_point(lv, old["penetration_m"])
