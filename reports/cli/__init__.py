@@ -41,6 +41,7 @@ JOBS: dict[str, tuple[str, str]] = {
     "orbit": ("reports.cli.orbit", "the periodic orbit at one speed by shooting: period, Floquet multipliers, stability, 1X-5X (--json)"),
     "branch": ("reports.cli.orbit:branch_main", "follow the periodic orbit over a speed range, bifurcations found (--json, --plot)"),
     "study": ("reports.cli.study", "steady-state sweeps, cascades, test rig, run-up, regime map (resumable, parallel)"),
+    "scenes": ("reports.cli.scenes", "the bundled rotor scenes and ring-pair files: list | show NAME | schema rotor|ring"),
     "report": ("reports.cli.report", "build the committed reports/ from the committed datasets (the main job)"),
 }
 
