@@ -27,7 +27,7 @@ ROOT = DOCS.parent
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from rotor.model.scene_schema import (CROSS_CHECKS, TABLES, TOP_TEXT, scene_schema,  # noqa: E402,F401
+from rotor.model.scene_schema import (CROSS_CHECKS, FROM_LAW_TEXT, TABLES, TOP_TEXT, scene_schema,  # noqa: E402,F401
                                       schema_text)
 
 SCHEMA_FILE = DOCS / "scene.schema.json"
