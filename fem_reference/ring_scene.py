@@ -430,7 +430,13 @@ def scene_2d(name_or_path: str) -> Scene:
     text = str(name_or_path)
     if is_file_argument(text) or text in bundled():
         return load(text).scene
-    return by_name(text)
+    try:
+        return by_name(text)
+    except InputError as exc:
+        if ": unknown" not in str(exc):      # a generated name with a bad parameter keeps its own message
+            raise
+        raise InputError(f"scene = {text!r}: unknown (bundled ring-pair files: {', '.join(bundled())}; generated: "
+                         "persson-<plate ratio>, paper-…; or a path to a .toml ring-pair file)") from None
 
 
 # ---------------------------------------------------------------------------------------------

@@ -29,15 +29,23 @@ SELECTION_GAIN = 2.0          # a k+1-parameter family must at least halve the h
 HOLDOUT_BOUND_REL = 0.02
 
 
+def holdout_excess(holdout_rel_err, fem_error_rel) -> float:
+    """The largest amount (-) by which a held-out error goes beyond its point's stated FEM error (the rule of
+    :data:`HOLDOUT_BOUND_REL`); points whose error is not finite (a law without a value) are left out, NaN if none."""
+    h = np.abs(np.asarray(holdout_rel_err, dtype=float))
+    ok = np.isfinite(h)
+    return float((h[ok] - np.asarray(fem_error_rel, dtype=float)[ok]).max()) if ok.any() else math.nan
+
+
 def holdout_warning(holdout_rel_err, fem_error_rel, what: str = "held-out error") -> str | None:
     """The warning of a fit whose held-out error (-) goes beyond the FEM's stated error (-) by more than
     :data:`HOLDOUT_BOUND_REL` at some point, else None."""
-    h = np.abs(np.asarray(holdout_rel_err, dtype=float))
-    excess = h - np.asarray(fem_error_rel, dtype=float)
-    if not np.any(excess > HOLDOUT_BOUND_REL):
+    excess = holdout_excess(holdout_rel_err, fem_error_rel)
+    if not excess > HOLDOUT_BOUND_REL:
         return None
-    i = int(np.argmax(excess))
-    return (f"{what} {100 * h[i]:.2f} % is {100 * excess[i]:.2f} % beyond the FEM's stated error, more than the "
+    h = np.abs(np.asarray(holdout_rel_err, dtype=float))
+    i = int(np.nanargmax(h - np.asarray(fem_error_rel, dtype=float)))
+    return (f"{what} {100 * h[i]:.2f} % is {100 * excess:.2f} % beyond the FEM's stated error, more than the "
             f"bound {100 * HOLDOUT_BOUND_REL:g} %: no law family describes these data that well")
 
 
