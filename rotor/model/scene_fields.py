@@ -1,0 +1,134 @@
+"""Field tables of the rotor scene file: converters to SI, checks, and the parse of one TOML table.
+
+A field is a :data:`Spec` ``(toml key, python attribute, unit shown in messages, converter, check,
+default)``; :func:`parse_table` turns one TOML table into the keyword arguments of a dataclass of
+:mod:`rotor.model.scene`, naming the file, entry, field, value and unit in every refusal.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+from contact.errors import InputError
+from contact.plausible import check_field as _plausible
+
+_DOF_INPUT = {"y": "y", "z": "z", "θy": "θy", "θz": "θz", "theta_y": "θy", "theta_z": "θz"}
+
+_REQ = object()  # marker: field is required
+
+
+def _num(scale: float = 1.0):
+    return lambda v: float(v) * scale
+
+
+_ID, _MM = _num(), _num(1e-3)
+_GPA, _DEG = _num(1e9), _num(math.pi / 180)
+_MRAD = _num(1e-3)
+_GMM = _num(1e-6)        # g·mm -> kg·m
+_RPM = _num(math.pi / 30)
+
+
+def _text(v):
+    if not isinstance(v, str) or not v.strip():
+        raise TypeError("must be a non-empty string")
+    return v
+
+
+def _int(v):
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise TypeError("must be an integer")
+    return v
+
+
+def _bool(v):
+    if not isinstance(v, bool):
+        raise TypeError("must be true or false")
+    return v
+
+
+def _dofs(v):
+    if not isinstance(v, list) or not v:
+        raise TypeError("must be a non-empty list of 'y', 'z', 'theta_y', 'theta_z'")
+    out = []
+    for item in v:
+        if item not in _DOF_INPUT:
+            raise TypeError(f"unknown DOF {item!r} (use 'y', 'z', 'theta_y', 'theta_z')")
+        out.append(_DOF_INPUT[item])
+    return tuple(out)
+
+
+# checks on the SI value
+def _pos(v):
+    return v > 0
+
+
+def _nonneg(v):
+    return v >= 0
+
+
+def _any(v):
+    return True
+
+
+def _nu(v):
+    return -1 < v < 0.5
+
+
+#: message of each check, by check function (rotor.model.scene adds its own)
+CHECK_TEXT = {_pos: "must be > 0", _nonneg: "must be >= 0", _nu: "must be in (-1, 0.5)", _any: ""}
+
+# (toml key, python attribute, unit shown in messages, converter, check, default)
+Spec = tuple[str, str, str, Callable[[Any], Any], Callable[[Any], bool], Any]
+
+_UNIT_TOKENS = {"mm", "kg", "gpa", "n", "g", "deg", "mrad", "rpm", "s", "m"}
+
+
+def _bases(specs: list[Spec]) -> dict[str, str]:
+    """Map each field's base name (its key cut at the first unit token) to the full key."""
+    out = {}
+    for key, _, unit, *_ in specs:
+        if not unit:
+            continue
+        tokens = key.split("_")
+        for i, tok in enumerate(tokens):
+            if i > 0 and tok in _UNIT_TOKENS:
+                out["_".join(tokens[:i])] = key
+                break
+    return out
+
+
+def parse_table(raw: Any, specs: list[Spec], where: str, cls):
+    if not isinstance(raw, dict):
+        raise InputError(f"{where}: must be a table, got {type(raw).__name__}")
+    known = {s[0] for s in specs}
+    bases = _bases(specs)
+    for key in raw:
+        if key in known:
+            continue
+        for base, good in sorted(bases.items(), key=lambda kv: -len(kv[0])):
+            if key.startswith(base + "_"):
+                raise InputError(f"{where}.{key}: unknown unit {key[len(base) + 1:]!r} for {base!r}; "
+                                 f"write it as {good!r}")
+        raise InputError(f"{where}.{key}: unknown field; allowed fields are {', '.join(sorted(known))}")
+    kwargs = {}
+    for key, attr, unit, conv, check, default in specs:
+        if key not in raw:
+            if default is _REQ:
+                raise InputError(f"{where}: missing field {key!r}" + (f" ({unit})" if unit else ""))
+            kwargs[attr] = default
+            continue
+        value = raw[key]
+        try:
+            if conv not in (_text, _int, _bool, _dofs) and (isinstance(value, bool) or not isinstance(value, (int, float))):
+                raise TypeError("must be a number")
+            si = conv(value)
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"{where}.{key} = {value!r}: {exc}") from None
+        shown = f"{value:g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else repr(value)
+        if isinstance(si, float) and not math.isfinite(si):
+            raise InputError(f"{where}.{key} = {shown} {unit}: must be finite")
+        if not check(si):
+            raise InputError(f"{where}.{key} = {shown} {unit}".rstrip() + f": {CHECK_TEXT[check]}")
+        _plausible(where, key, value, shown, si)      # inside contact.plausible.RANGES[key]
+        kwargs[attr] = si
+    return kwargs
