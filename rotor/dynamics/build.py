@@ -31,6 +31,7 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     Δq_m and the 2X excitation, which are both linear in δ for small angles; 0 removes both).
     """
     from rotor.model import assembly as rm
+    from rotor.model.static_load import static_load
     from rotor.model.topology import require_ground
 
     ls = scene.loose_support
@@ -57,7 +58,7 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     orders = np.array(sorted(loads), dtype=float)
     cos = np.array([loads[k][0] * (scale if k == 2 else 1.0) for k in sorted(loads)]).reshape(len(orders), n)
     sin = np.array([loads[k][1] * (scale if k == 2 else 1.0) for k in sorted(loads)]).reshape(len(orders), n)
-    static = -model.K_c @ off
+    static = -model.K_c @ off + static_load(model)     # gravity and [[static_loads]] (rotor.model.static_load)
     force = HarmonicForce(static, orders, cos, sin, float(speed_rad_s))
     L = np.asarray(model.B, dtype=float)  # the two linear 3a/3b rows (not the squared g5)
     coupling = None

@@ -143,8 +143,8 @@ def modes(model: RotorModel, speed_rad_s: float = 0.0, *, n_modes: int | None = 
     T, M, C, G, K = _reduced(model, lock_loose_support)
     r = M.shape[0]
     V = (C if damped else 0 * C) - speed_rad_s * G
-    if not np.any(V) and np.all(np.linalg.eigvalsh(M) > 0):
-        # no gyroscopic or damping term: symmetric problem K φ = ω² M φ (cheaper, real planar modes)
+    if not np.any(V) and np.allclose(K, K.T, rtol=0, atol=1e-12 * abs(K).max()) and np.all(np.linalg.eigvalsh(M) > 0):
+        # no gyroscopic or damping term, K symmetric (no cross-coupled bearing): K φ = ω² M φ (cheaper, real planar modes)
         w2, vec = sla.eigh(K, M)
         keep = w2 > 1e-10 * max(1.0, abs(w2).max())          # drop rigid-body modes
         lam, vec = 1j * np.sqrt(w2[keep]), vec[:, keep].astype(complex)

@@ -70,6 +70,9 @@ class RotorModel:
     dof_names : ``"node.dof"`` for each retained DOF, e.g. ``"2.y"``, ``"s.θz"``.
     node_names, node_x_m : every node (retained or not) and its axial position (m).
     aliases : element name -> node name (``"disk1" -> "2"``), usable in :meth:`dof_index`.
+    unit_acceleration_load : (n, 2) array, the load (N, N·m) on each retained DOF of a uniform
+        acceleration of 1 m/s² along y (column 0) and z (column 1): ``M u`` with the full mass matrix,
+        fixed nodes included (used by ``rotor.model.static_load``).
     """
 
     scene: Scene
@@ -88,6 +91,7 @@ class RotorModel:
     loose_pair: LoosePair | None = None
     shaft_nodes: tuple[tuple[str, ...], ...] = ()
     _index: dict = field(default_factory=dict, repr=False)
+    unit_acceleration_load: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def n_dofs(self) -> int:
@@ -215,8 +219,8 @@ def _full_matrices(scene: Scene, names: list[str], node_pos: dict[str, int], sha
         add(el.ground_spring(0.0, mass_kg=pm.mass_kg, inertia_kg_m2=pm.diametral_inertia_kg_m2), pm.station)
         aliases[pm.name] = pm.station
     for br in scene.bearings:
-        add(el.ground_spring(br.stiffness_n_m, br.damping_n_s_m, br.angular_stiffness_n_m_rad,
-                             br.angular_damping_n_m_s_rad), br.station)
+        add(el.ground_bearing(br.lateral_stiffness_n_m, br.lateral_damping_n_s_m, br.angular_stiffness_n_m_rad,
+                              br.angular_damping_n_m_s_rad), br.station)
         aliases[br.name] = br.station
     for sp in scene.supports:
         add(el.ground_spring(sp.stiffness_n_m, sp.damping_n_s_m, sp.angular_stiffness_n_m_rad,
@@ -279,6 +283,9 @@ def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bo
                                              rotary_inertia=rotary_inertia, gyroscopic=gyroscopic)
     keep, dof_names = _free_dofs(scene, names, node_pos)
     index = {nm: i for i, nm in enumerate(dof_names)}
+    unit = np.zeros((M.shape[0], 2))
+    unit[0::4, 0] = 1.0          # every node's y (DOFS order y, z, θy, θz)
+    unit[1::4, 1] = 1.0
     sub = np.ix_(keep, keep)
     B, cnames, cdofs = _coupling_constraints(scene, index, len(keep))
 
@@ -292,7 +299,7 @@ def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bo
     model = RotorModel(scene=scene, node_names=tuple(names), node_x_m=np.array(xs), dof_names=dof_names,
                        M=M[sub], C=C[sub], G=G[sub], K=K[sub], K_c=Kc[sub], B=B, constraint_names=tuple(cnames),
                        aliases=aliases, couplings=tuple(cdofs), loose_pair=loose, shaft_nodes=tuple(shaft_nodes),
-                       _index=index)
+                       _index=index, unit_acceleration_load=(M @ unit)[keep])
     return model
 
 

@@ -241,6 +241,48 @@ def ground_spring(stiffness_n_m: float, damping_n_s_m: float = 0.0, angular_stif
         C=np.diag([damping_n_s_m, damping_n_s_m, angular_damping_n_m_s_rad, angular_damping_n_m_s_rad]))
 
 
+def ground_bearing(stiffness_n_m, damping_n_s_m, angular_stiffness_n_m_rad: float = 0.0,
+                   angular_damping_n_m_s_rad: float = 0.0) -> ElementMatrices:
+    """Linear bearing on one node, to ground (4×4), with 2×2 lateral stiffness and damping matrices.
+
+    ``stiffness_n_m = [[k_yy, k_yz], [k_zy, k_zz]]`` (N/m) and ``damping_n_s_m`` alike (N·s/m) act on
+    ``(y, z)``: the force on the rotor is ``−K [y, z] − C [ẏ, ż]`` (an anisotropic bearing has
+    ``k_yy ≠ k_zz``; a fluid-film bearing cross-couples, ``k_yz ≠ k_zy``: Friswell et al. 2010, §5.5).
+    The tilt DOFs get the isotropic ``kθ``, ``cθ``.
+    """
+    K2, C2 = np.asarray(stiffness_n_m, dtype=float), np.asarray(damping_n_s_m, dtype=float)
+    for name, v, unit in (("stiffness_n_m", K2, "N/m"), ("damping_n_s_m", C2, "N·s/m")):
+        if v.shape != (2, 2) or not np.all(np.isfinite(v)):
+            raise InputError(f"{name} = {v.tolist()}: must be a finite 2×2 matrix ({unit})")
+        if v[0, 0] < 0 or v[1, 1] < 0:
+            raise InputError(f"{name} = {v.tolist()} {unit}: direct terms must be >= 0")
+    g = ground_spring(0.0, 0.0, angular_stiffness_n_m_rad, angular_damping_n_m_s_rad)
+    K, C = g.K.copy(), g.C.copy()
+    K[:2, :2], C[:2, :2] = K2, C2
+    return ElementMatrices(M=g.M, G=g.G, K=K, C=C)
+
+
+def disk_properties(density_kg_m3: float, outer_diameter_m: float, inner_diameter_m: float,
+                    width_m: float) -> tuple[float, float, float]:
+    """Mass (kg), polar and diametral inertia (kg·m²) of a uniform annular disk.
+
+    ``m = ρ π (D² − d²) w / 4``, ``Ip = m (D² + d²) / 8``, ``Id = Ip / 2 + m w² / 12`` (a thick
+    annulus about a diameter through its centre; e.g. Friswell et al. 2010, §2.4 and Example 5.9.1,
+    whose disks are bored to the shaft diameter).
+    """
+    for name, v in (("density_kg_m3", density_kg_m3), ("outer_diameter_m", outer_diameter_m),
+                    ("inner_diameter_m", inner_diameter_m), ("width_m", width_m)):
+        if not math.isfinite(v) or v < 0:
+            raise InputError(f"{name} = {v}: must be finite and >= 0")
+    if not (inner_diameter_m < outer_diameter_m and width_m > 0):
+        raise InputError(f"disk: inner_diameter_m = {inner_diameter_m} must be < outer_diameter_m = "
+                         f"{outer_diameter_m} and width_m = {width_m} > 0")
+    D2, d2 = outer_diameter_m ** 2, inner_diameter_m ** 2
+    m = density_kg_m3 * math.pi * (D2 - d2) * width_m / 4
+    ip = m * (D2 + d2) / 8
+    return m, ip, ip / 2 + m * width_m ** 2 / 12
+
+
 def node_spring(stiffness_n_m: float, damping_n_s_m: float = 0.0, angular_stiffness_n_m_rad: float = 0.0,
                 angular_damping_n_m_s_rad: float = 0.0) -> ElementMatrices:
     """Isotropic linear spring/damper between two nodes (8×8): ``[[k, −k], [−k, k]]`` per DOF."""

@@ -17,8 +17,10 @@ File layout (see ``rotor/scenes/*.toml`` for complete examples)::
     [[disks]]      name, station, mass_kg, polar_inertia_kg_m2, diametral_inertia_kg_m2,
                    unbalance_g_mm, unbalance_phase_deg, skew_mrad, skew_phase_deg
     [[point_masses]] name, station, mass_kg, diametral_inertia_kg_m2
+    [[disks]]      ... or from geometry: outer_diameter_mm, inner_diameter_mm, thickness_mm, material
     [[bearings]]   name, station, stiffness_n_per_m, damping_n_s_per_m,
-                   angular_stiffness_n_m_per_rad, angular_damping_n_m_s_per_rad
+                   angular_stiffness_n_m_per_rad, angular_damping_n_m_s_per_rad,
+                   stiffness_{yy,zz,yz,zy}_n_per_m, damping_{yy,zz,yz,zy}_n_s_per_m (anisotropic, cross-coupled)
     [[supports]]   name, station, mass_kg, inertia_kg_m2, stiffness_n_per_m, damping_n_s_per_m,
                    angular_stiffness_n_m_per_rad, angular_damping_n_m_s_per_rad
     [[couplings]]  name, node_a, node_b, a0_n_m_per_rad, a1_n_m_per_rad3, equal_lateral,
@@ -27,6 +29,8 @@ File layout (see ``rotor/scenes/*.toml`` for complete examples)::
     [loose_support]  bearing_station, support, clearance_mm, ring_width_mm, ..., law (rotor.model.loose_support_scene)
     [misalignment]   coupling, bearing_station, offset_mm, excitation (a reading of Eq. 34)
     [analysis]       max_speed_rpm, speed_points, modes
+    [gravity]        acceleration_y_m_per_s2, acceleration_z_m_per_s2 (on every mass; rotor.model.static_load)
+    [[static_loads]] name, station, force_y_n, force_z_n, moment_y_n_m, moment_z_n_m
 """
 from __future__ import annotations
 
@@ -40,7 +44,9 @@ from contact.errors import DatasetError, InputError
 from contact.package_data import entries, shipped, stem
 from rotor.model.loose_support_scene import FROM_LAW, LooseSupport, complete_loose_support
 from rotor.model.scene_fields import (_DEG, _DOF_INPUT, _GMM, _GPA, _ID, _MM, _MRAD, _REQ, _RPM,  # noqa: F401
+                                      FROM_GEOMETRY,
                                       CHECK_TEXT, Spec, _any, _bool, _dofs, _int, _nonneg, _nu, _pos, _text)
+from rotor.model.scene_fields import bearing_fields, disk_fields
 from rotor.model.scene_fields import parse_table as _parse_table
 
 SCENE_DIR = shipped("rotor", "scenes")       # the bundled scenes, through importlib.resources (contact.package_data)
@@ -78,7 +84,11 @@ class Shaft:
 
 @dataclass(frozen=True)
 class Disk:
-    """Rigid disk (Dai et al. 2025, Eqs. 39–40): unbalance ``m·e`` and principal-axis skew ``τ``."""
+    """Rigid disk (Dai et al. 2025, Eqs. 39–40): unbalance ``m·e`` and principal-axis skew ``τ``.
+
+    In a scene file the mass and inertias are given, or computed from the disk's geometry
+    (``outer_diameter_mm``, ``inner_diameter_mm``, ``thickness_mm``, ``material``:
+    :func:`rotor.model.elements.disk_properties`)."""
     name: str
     station: str
     mass_kg: float
@@ -101,13 +111,67 @@ class PointMass:
 
 @dataclass(frozen=True)
 class Bearing:
-    """Isotropic linear bearing from a station to ground."""
+    """Linear bearing from a station to ground: isotropic, anisotropic or cross-coupled.
+
+    The lateral force on the rotor is ``f = −K [y, z] − C [ẏ, ż]`` with ``K = [[k_yy, k_yz], [k_zy, k_zz]]``
+    (N/m) and ``C`` alike (N·s/m). The direct terms default to the isotropic ``stiffness_n_m`` /
+    ``damping_n_s_m``, the cross terms to 0 (Friswell et al. 2010, §5.9: Examples 5.9.2 anisotropic,
+    5.9.4 cross-coupled). ``stiffness_n_m`` may be None only when both direct stiffnesses are given.
+    """
     name: str
     station: str
-    stiffness_n_m: float
+    stiffness_n_m: float | None
     damping_n_s_m: float = 0.0
     angular_stiffness_n_m_rad: float = 0.0
     angular_damping_n_m_s_rad: float = 0.0
+    stiffness_yy_n_m: float | None = None
+    stiffness_zz_n_m: float | None = None
+    stiffness_yz_n_m: float = 0.0
+    stiffness_zy_n_m: float = 0.0
+    damping_yy_n_s_m: float | None = None
+    damping_zz_n_s_m: float | None = None
+    damping_yz_n_s_m: float = 0.0
+    damping_zy_n_s_m: float = 0.0
+
+    def __post_init__(self):
+        for d in ("yy", "zz"):
+            if getattr(self, f"stiffness_{d}_n_m") is None:
+                if self.stiffness_n_m is None:
+                    raise InputError(f"bearing {self.name!r}: stiffness_n_m or both stiffness_yy_n_m and "
+                                     f"stiffness_zz_n_m must be given (N/m)")
+                object.__setattr__(self, f"stiffness_{d}_n_m", self.stiffness_n_m)
+            if getattr(self, f"damping_{d}_n_s_m") is None:
+                object.__setattr__(self, f"damping_{d}_n_s_m", self.damping_n_s_m)
+
+    @property
+    def lateral_stiffness_n_m(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """``((k_yy, k_yz), (k_zy, k_zz))`` (N/m)."""
+        return ((self.stiffness_yy_n_m, self.stiffness_yz_n_m), (self.stiffness_zy_n_m, self.stiffness_zz_n_m))
+
+    @property
+    def lateral_damping_n_s_m(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """``((c_yy, c_yz), (c_zy, c_zz))`` (N·s/m)."""
+        return ((self.damping_yy_n_s_m, self.damping_yz_n_s_m), (self.damping_zy_n_s_m, self.damping_zz_n_s_m))
+
+
+@dataclass(frozen=True)
+class Gravity:
+    """Uniform acceleration field on every mass of the rotor, in the lateral plane (m/s²)."""
+    acceleration_y_m_s2: float = 0.0
+    acceleration_z_m_s2: float = 0.0
+
+
+@dataclass(frozen=True)
+class StaticLoad:
+    """Constant force (N) and moment (N·m) on a station: a weight not in the model, a fluid or gear load.
+
+    ``moment_y_n_m`` acts on the θy DOF, ``moment_z_n_m`` on θz (conventions of rotor.model.elements)."""
+    name: str
+    station: str
+    force_y_n: float = 0.0
+    force_z_n: float = 0.0
+    moment_y_n_m: float = 0.0
+    moment_z_n_m: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -190,6 +254,8 @@ class Scene:
     loose_support: LooseSupport | None = None
     misalignment: Misalignment | None = None
     analysis: Analysis = field(default_factory=Analysis)
+    gravity: Gravity | None = None
+    static_loads: tuple[StaticLoad, ...] = ()
     path: str = ""
 
     def station(self, name: str) -> Station:
@@ -230,9 +296,13 @@ _SHAFT: list[Spec] = [
 _DISK: list[Spec] = [
     ("name", "name", "", _text, _any, _REQ),
     ("station", "station", "", _text, _any, _REQ),
-    ("mass_kg", "mass_kg", "kg", _ID, _nonneg, _REQ),
-    ("polar_inertia_kg_m2", "polar_inertia_kg_m2", "kg·m^2", _ID, _nonneg, _REQ),
-    ("diametral_inertia_kg_m2", "diametral_inertia_kg_m2", "kg·m^2", _ID, _nonneg, _REQ),
+    ("mass_kg", "mass_kg", "kg", _ID, _nonneg, FROM_GEOMETRY),
+    ("polar_inertia_kg_m2", "polar_inertia_kg_m2", "kg·m^2", _ID, _nonneg, FROM_GEOMETRY),
+    ("diametral_inertia_kg_m2", "diametral_inertia_kg_m2", "kg·m^2", _ID, _nonneg, FROM_GEOMETRY),
+    ("outer_diameter_mm", "outer_diameter_m", "mm", _MM, _pos, None),
+    ("inner_diameter_mm", "inner_diameter_m", "mm", _MM, _nonneg, None),
+    ("thickness_mm", "thickness_m", "mm", _MM, _pos, None),
+    ("material", "material", "", _text, _any, None),
     ("unbalance_g_mm", "unbalance_kg_m", "g·mm", _GMM, _nonneg, 0.0),
     ("unbalance_phase_deg", "unbalance_phase_rad", "deg", _DEG, _any, 0.0),
     ("skew_mrad", "skew_rad", "mrad", _MRAD, _any, 0.0),
@@ -247,10 +317,18 @@ _POINT_MASS: list[Spec] = [
 _BEARING: list[Spec] = [
     ("name", "name", "", _text, _any, _REQ),
     ("station", "station", "", _text, _any, _REQ),
-    ("stiffness_n_per_m", "stiffness_n_m", "N/m", _ID, _nonneg, _REQ),
+    ("stiffness_n_per_m", "stiffness_n_m", "N/m", _ID, _nonneg, None),
     ("damping_n_s_per_m", "damping_n_s_m", "N·s/m", _ID, _nonneg, 0.0),
     ("angular_stiffness_n_m_per_rad", "angular_stiffness_n_m_rad", "N·m/rad", _ID, _nonneg, 0.0),
     ("angular_damping_n_m_s_per_rad", "angular_damping_n_m_s_rad", "N·m·s/rad", _ID, _nonneg, 0.0),
+    ("stiffness_yy_n_per_m", "stiffness_yy_n_m", "N/m", _ID, _nonneg, None),
+    ("stiffness_zz_n_per_m", "stiffness_zz_n_m", "N/m", _ID, _nonneg, None),
+    ("stiffness_yz_n_per_m", "stiffness_yz_n_m", "N/m", _ID, _any, 0.0),
+    ("stiffness_zy_n_per_m", "stiffness_zy_n_m", "N/m", _ID, _any, 0.0),
+    ("damping_yy_n_s_per_m", "damping_yy_n_s_m", "N·s/m", _ID, _nonneg, None),
+    ("damping_zz_n_s_per_m", "damping_zz_n_s_m", "N·s/m", _ID, _nonneg, None),
+    ("damping_yz_n_s_per_m", "damping_yz_n_s_m", "N·s/m", _ID, _any, 0.0),
+    ("damping_zy_n_s_per_m", "damping_zy_n_s_m", "N·s/m", _ID, _any, 0.0),
 ]
 _SUPPORT: list[Spec] = [
     ("name", "name", "", _text, _any, _REQ),
@@ -296,6 +374,18 @@ _MISALIGN: list[Spec] = [
     ("offset_mm", "offset_m", "mm", _MM, _any, _REQ),
     ("excitation", "excitation", "", _text, _excitation, MISALIGNMENT_EXCITATIONS[0]),
 ]
+_GRAVITY: list[Spec] = [
+    ("acceleration_y_m_per_s2", "acceleration_y_m_s2", "m/s^2", _ID, _any, 0.0),
+    ("acceleration_z_m_per_s2", "acceleration_z_m_s2", "m/s^2", _ID, _any, 0.0),
+]
+_STATIC_LOAD: list[Spec] = [
+    ("name", "name", "", _text, _any, _REQ),
+    ("station", "station", "", _text, _any, _REQ),
+    ("force_y_n", "force_y_n", "N", _ID, _any, 0.0),
+    ("force_z_n", "force_z_n", "N", _ID, _any, 0.0),
+    ("moment_y_n_m", "moment_y_n_m", "N·m", _ID, _any, 0.0),
+    ("moment_z_n_m", "moment_z_n_m", "N·m", _ID, _any, 0.0),
+]
 _ANALYSIS: list[Spec] = [
     ("max_speed_rpm", "max_speed_rad_s", "rpm", _RPM, _pos, Analysis.max_speed_rad_s),
     ("speed_points", "speed_points", "", _int, _pos, Analysis.speed_points),
@@ -314,7 +404,7 @@ def _check_header(doc: dict, origin: str) -> None:
     """Only known top-level fields, the right schema, and a name and a title."""
     allowed = {"schema", "name", "title", "source", "materials", "stations", "shafts", "disks", "point_masses",
                "bearings", "supports", "couplings", "boundaries", "loose_support", "misalignment", "analysis",
-               "notes", "assumptions"}
+               "gravity", "static_loads", "notes", "assumptions"}
     for key in doc:
         if key not in allowed:
             raise InputError(f"{origin}: unknown top-level field {key!r}; allowed are {', '.join(sorted(allowed))}")
@@ -363,15 +453,16 @@ def _parse_shafts(doc: dict, origin: str, names: dict[str, Station], materials: 
 
 
 def _parse_entries(doc: dict, origin: str, names: dict[str, Station], key: str, specs: list[Spec], cls,
-                   station_fields=("station",)) -> tuple:
-    """The ``[[key]]`` array of tables as ``cls`` instances; ``station_fields`` must name stations."""
+                   station_fields=("station",), finish=None) -> tuple:
+    """The ``[[key]]`` array of tables as ``cls`` instances; ``station_fields`` must name stations;
+    ``finish(fields, where)`` completes the fields before ``cls`` is built."""
     out = []
     for i, raw in enumerate(_list(doc, key, origin)):
         where = f"{origin}: {key}[{i}]"
         kw = _parse_table(raw, specs, where, cls)
         for f in station_fields:
             _need_station(names, where, f, kw[f])
-        out.append(cls(**kw))
+        out.append(cls(**(kw if finish is None else finish(kw, where))))
     return tuple(out)
 
 
@@ -401,9 +492,11 @@ def parse_scene(doc: dict, *, origin: str = "<scene>", base_dir=None) -> Scene:
         raise InputError(f"{origin}: missing [[stations]] (at least two)")
     stations = list(names.values())
     shafts = _parse_shafts(doc, origin, names, materials)
-    disks = _parse_entries(doc, origin, names, "disks", _DISK, Disk)
+    disks = _parse_entries(doc, origin, names, "disks", _DISK, Disk, finish=disk_fields(materials))
     point_masses = _parse_entries(doc, origin, names, "point_masses", _POINT_MASS, PointMass)
-    bearings = _parse_entries(doc, origin, names, "bearings", _BEARING, Bearing)
+    bearings = _parse_entries(doc, origin, names, "bearings", _BEARING, Bearing, finish=bearing_fields)
+    static_loads = _parse_entries(doc, origin, names, "static_loads", _STATIC_LOAD, StaticLoad)
+    gravity = Gravity(**_parse_table(doc["gravity"], _GRAVITY, f"{origin}: gravity", Gravity)) if "gravity" in doc else None
     supports = _parse_entries(doc, origin, names, "supports", _SUPPORT, SupportNode)
     for sp in supports:
         if sp.name in names:
@@ -420,14 +513,15 @@ def parse_scene(doc: dict, *, origin: str = "<scene>", base_dir=None) -> Scene:
                               "couplings")
     analysis = Analysis(**_parse_table(doc.get("analysis", {}), _ANALYSIS, f"{origin}: analysis", Analysis))
     all_names = [s.name for s in stations] + [s.name for s in supports]
-    for group in (disks, point_masses, bearings):
+    for group in (disks, point_masses, bearings, static_loads):
         for e in group:
             if e.name in all_names:
                 raise InputError(f"{origin}: element name {e.name!r} clashes with a node name")
     return Scene(name=doc["name"], title=doc["title"], source=source, materials=tuple(materials.values()),
                  stations=tuple(stations), shafts=tuple(shafts), disks=disks, point_masses=point_masses,
                  bearings=bearings, supports=supports, couplings=couplings, boundaries=boundaries,
-                 loose_support=loose, misalignment=mis, analysis=analysis, path=origin)
+                 loose_support=loose, misalignment=mis, analysis=analysis, gravity=gravity,
+                 static_loads=static_loads, path=origin)
 
 
 def scene_path(path_or_name: str | Path):

@@ -2,7 +2,8 @@
 
 A field is a :data:`Spec` ``(toml key, python attribute, unit shown in messages, converter, check,
 default)``; :func:`parse_table` turns one TOML table into the keyword arguments of a dataclass of
-:mod:`rotor.model.scene`, naming the file, entry, field, value and unit in every refusal.
+:mod:`rotor.model.scene`, naming the file, entry, field, value and unit in every refusal;
+:func:`disk_fields` and :func:`bearing_fields` complete an entry whose fields depend on each other.
 """
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from contact.plausible import check_field as _plausible
 _DOF_INPUT = {"y": "y", "z": "z", "θy": "θy", "θz": "θz", "theta_y": "θy", "theta_z": "θz"}
 
 _REQ = object()  # marker: field is required
+FROM_GEOMETRY = object()  # marker: required unless the entry's geometry keys give it (a disk's mass and inertias)
 
 
 def _num(scale: float = 1.0):
@@ -132,3 +134,45 @@ def parse_table(raw: Any, specs: list[Spec], where: str, cls):
         _plausible(where, key, value, shown, si)      # inside contact.plausible.RANGES[key]
         kwargs[attr] = si
     return kwargs
+
+
+def disk_fields(materials: dict):
+    """A disk's mass and inertias as given, or from its geometry (``outer_diameter_mm``, ``thickness_mm``,
+    ``material``, optional ``inner_diameter_mm``), never both."""
+    from rotor.model.elements import disk_properties
+
+    def finish(kw: dict, where: str) -> dict:
+        geo = {k: kw.pop(a) for k, a in (("outer_diameter_mm", "outer_diameter_m"), ("inner_diameter_mm", "inner_diameter_m"),
+                                        ("thickness_mm", "thickness_m"), ("material", "material"))}
+        given = [k for k in ("mass_kg", "polar_inertia_kg_m2", "diametral_inertia_kg_m2") if kw[k] is not FROM_GEOMETRY]
+        if any(v is not None for v in geo.values()):
+            if given:
+                raise InputError(f"{where}.{given[0]}: give either the mass and inertias or the geometry "
+                                 f"(outer_diameter_mm, thickness_mm, material), not both")
+            for k in ("outer_diameter_mm", "thickness_mm", "material"):
+                if geo[k] is None:
+                    raise InputError(f"{where}: missing field {k!r} (a disk from geometry needs outer_diameter_mm, "
+                                     f"thickness_mm and material; inner_diameter_mm is optional)")
+            bore = geo["inner_diameter_mm"] or 0.0
+            if bore >= geo["outer_diameter_mm"]:
+                raise InputError(f"{where}.inner_diameter_mm = {bore * 1e3:g} mm: must be < outer_diameter_mm = "
+                                 f"{geo['outer_diameter_mm'] * 1e3:g} mm")
+            if geo["material"] not in materials:
+                raise InputError(f"{where}.material = {geo['material']!r}: no such material (have {', '.join(materials)})")
+            m, ip, idd = disk_properties(materials[geo["material"]].density_kg_m3, geo["outer_diameter_mm"], bore,
+                                         geo["thickness_mm"])
+            kw.update(mass_kg=m, polar_inertia_kg_m2=ip, diametral_inertia_kg_m2=idd)
+        for k, unit in (("mass_kg", "kg"), ("polar_inertia_kg_m2", "kg·m^2"), ("diametral_inertia_kg_m2", "kg·m^2")):
+            if kw[k] is FROM_GEOMETRY:
+                raise InputError(f"{where}: missing field {k!r} ({unit}) (or give the disk's geometry: "
+                                 f"outer_diameter_mm, thickness_mm, material)")
+        return kw
+    return finish
+
+
+def bearing_fields(kw: dict, where: str) -> dict:
+    """``stiffness_n_per_m`` is required unless both direct stiffnesses are given."""
+    if kw["stiffness_n_m"] is None and (kw["stiffness_yy_n_m"] is None or kw["stiffness_zz_n_m"] is None):
+        raise InputError(f"{where}: missing field 'stiffness_n_per_m' (N/m) (or give both stiffness_yy_n_per_m and "
+                         f"stiffness_zz_n_per_m)")
+    return kw

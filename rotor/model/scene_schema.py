@@ -29,6 +29,8 @@ TABLES = {
     "loose_support": (sc._LOOSE, sc.LooseSupport, False),
     "misalignment": (sc._MISALIGN, sc.Misalignment, False),
     "analysis": (sc._ANALYSIS, sc.Analysis, False),
+    "gravity": (sc._GRAVITY, sc.Gravity, False),
+    "static_loads": (sc._STATIC_LOAD, sc.StaticLoad, True),
 }
 TOP_TEXT = {
     "schema": "format name and version; must be exactly this string",
@@ -47,6 +49,11 @@ CROSS_CHECKS = (
     "the moduli and Poisson ratios are required unless `law` names a calibrated law (then they are the law's, and "
     "must equal it where given)",
     "misalignment: `bearing_station` names a station, `coupling` a [[couplings]] entry",
+    "bearings: stiffness_n_per_m is required unless both stiffness_yy_n_per_m and stiffness_zz_n_per_m are given; "
+    "the direct terms default to stiffness_n_per_m / damping_n_s_per_m, the cross terms to 0",
+    "disks: mass_kg and the inertias, or outer_diameter_mm, width_mm and material (a [[materials]] entry) with an "
+    "optional inner_diameter_mm < outer_diameter_mm, never both",
+    "static_loads: `station` names a station",
     "names are unique within materials and stations; supports and elements do not reuse a station name",
 )
 
@@ -56,7 +63,14 @@ KEY_TEXT = {
     "law": "contact law: conformal (the paper's, as published), pereira, calibrated:<name> (a law shipped in "
            "contact/calibrated/) or the path of a calibrated-law file (.json, relative to the scene file's folder); "
            "a calibrated law must hold for this table's geometry (rotor/model/loose_support_scene.py)",
+    "stiffness_yz_n_per_m": "cross-coupled stiffness: force on y per unit z displacement (sign as typed; a fluid-film "
+                            "bearing has k_yz = -k_zy)",
+    "stiffness_zy_n_per_m": "cross-coupled stiffness: force on z per unit y displacement",
+    "acceleration_y_m_per_s2": "gravity along the rotor's y axis on every mass (e.g. -9.81 with y pointing up)",
+    "acceleration_z_m_per_s2": "gravity along the rotor's z axis on every mass",
 }
+FROM_GEOMETRY_TEXT = ("required unless the disk's geometry is given (outer_diameter_mm, thickness_mm, material, optional "
+                      "inner_diameter_mm), never both")
 FROM_LAW_TEXT = "required unless `law` names a calibrated law, whose value it then takes (and must equal if given)"
 
 
@@ -108,8 +122,10 @@ def _property(spec) -> dict:
         text.append(f"plausible: {RANGES[key][5]}")
     if default is sc.FROM_LAW:
         text.append(FROM_LAW_TEXT)
+    if default is sc.FROM_GEOMETRY:
+        text.append(FROM_GEOMETRY_TEXT)
     prop["description"] = "; ".join(t for t in text if t)
-    if default not in (sc._REQ, sc.FROM_LAW):
+    if default not in (sc._REQ, sc.FROM_LAW, sc.FROM_GEOMETRY, None):
         typed = default / _scale(conv) if conv not in (sc._text, sc._int, sc._bool, sc._dofs) else default
         prop["default"] = round(typed, 12) if isinstance(typed, float) else typed
     return prop

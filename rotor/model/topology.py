@@ -100,7 +100,7 @@ def _components(model, lock: bool) -> list[list[str]]:
 
 def _grounded_nodes(scene) -> set[str]:
     """Nodes with a lateral spring to ground or a boundary condition on y or z."""
-    out = {b.station for b in scene.bearings if b.stiffness_n_m > 0}
+    out = {b.station for b in scene.bearings if b.stiffness_yy_n_m > 0 or b.stiffness_zz_n_m > 0}
     out |= {sp.name for sp in scene.supports if sp.stiffness_n_m > 0}
     out |= {bc.station for bc in scene.boundaries if {"y", "z"} & set(bc.fixed)}
     return out
@@ -120,10 +120,12 @@ def _rigid_body_station(model, lock: bool) -> tuple[str, str] | None:
     K = T.T @ model.K_total @ T
     d = np.sqrt(np.abs(np.diag(K)))
     d[d == 0] = 1.0
-    w, v = np.linalg.eigh(K / np.outer(d, d))        # diagonal scaling: m and rad DOFs side by side
-    if w[0] > 1e-9 * max(w[-1], 1.0):
+    # diagonal scaling: m and rad DOFs side by side; singular values, since cross-coupled bearings
+    # make K unsymmetric (for a symmetric K they are the eigenvalues' magnitudes)
+    _, w, vt = np.linalg.svd(K / np.outer(d, d))
+    if w[-1] > 1e-9 * max(w[0], 1.0):
         return None
-    q = T @ (v[:, 0] / d)
+    q = T @ (vt[-1] / d)
     names = {s.name for s in model.scene.stations} | {s.name for s in model.scene.supports}
     best = None
     for i, nm in enumerate(model.dof_names):
