@@ -202,6 +202,30 @@ def cmd_response(args) -> int:
     return 0
 
 
+def cmd_static(args) -> int:
+    from rotor.linear.static import static_deflection
+    scene, model = _load(args)
+    st = static_deflection(model)
+    total = st.load_N[[i for i, n in enumerate(model.dof_names) if n.endswith(".y")]].sum(), \
+        st.load_N[[i for i, n in enumerate(model.dof_names) if n.endswith(".z")]].sum()
+    stations = [{"station": n, "y_um": y * 1e6, "z_um": z * 1e6}
+                for n in [s.name for s in scene.stations] + [s.name for s in scene.supports]
+                for y, z in [st.displacement_m(n)]]
+    reactions = [{"element": k, "force_y_N": fy, "force_z_N": fz} for k, (fy, fz) in st.reactions_N.items()]
+    data = {"scene": scene.name, "dofs": model.n_dofs, "loose_support": "locked" if scene.loose_support else None,
+            "load_on_free_dofs_y_N": float(total[0]), "load_on_free_dofs_z_N": float(total[1]),
+            "stations": stations, "reactions": reactions}
+    lines = [scene.title, f"static deflection under gravity and static loads ({model.n_dofs} DOFs"
+             + (", loose support locked: the clearance is a time-integration question)" if scene.loose_support else ")"),
+             f"load on the free DOFs: y {total[0]:.6g} N, z {total[1]:.6g} N (loads on fixed DOFs go to ground)",
+             f"{'station':>12} {'y (um)':>12} {'z (um)':>12}"]
+    lines += [f"{r['station']:>12} {r['y_um']:>12.4f} {r['z_um']:>12.4f}" for r in stations]
+    lines += [f"{'element':>12} {'F_y (N)':>12} {'F_z (N)':>12}"]
+    lines += [f"{r['element']:>12} {r['force_y_N']:>12.4f} {r['force_z_N']:>12.4f}" for r in reactions]
+    _emit(args, data, "\n".join(lines))
+    return 0
+
+
 def cmd_report(args) -> int:
     from reports.rotor_linear import build_reports
     for p in build_reports(args.out):
@@ -252,6 +276,11 @@ def _parser() -> argparse.ArgumentParser:
     sp.add_argument("--plot", type=out_prefix, default=None,
                     help="write PREFIX-unbalance.png and .svg (--order 2: PREFIX-misalignment.png and .svg)")
     sp.set_defaults(func=cmd_unbalance)
+    sp = sub.add_parser("static", help="static deflection and bearing reactions under gravity and static loads")
+    sp.add_argument("scene", help="scene file (.toml) or bundled scene name (see 'ringcontact rotor scenes')")
+    sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override, 1-64)")
+    sp.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    sp.set_defaults(func=cmd_static)
     sp = sub.add_parser("response", help="linear time response of the stations (loose support locked), CSV")
     sp.add_argument("scene", help="scene file (.toml) or bundled scene name")
     sp.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")

@@ -153,6 +153,9 @@ def _rotor_cases() -> list:
     c += [("rotor unbalance --order 3", ["rotor", "unbalance", "verify-jeffcott", "--order", "3"], None),
           ("rotor unbalance --nodes nosuch", ["rotor", "unbalance", "verify-jeffcott", "--nodes", "nosuch"], "nosuch"),
           ("rotor nosuch", ["rotor", "nosuch"], None), ("rotor no sub", ["rotor"], None)]
+    c += [(f"rotor static scene {name}", ["rotor", "static", "{" + name + "}"], None)
+          for name in ("nosuch_scene", "bad_toml", "neg_density", "empty_file", "dir", "unknown_field")]
+    c += _num_cases("rotor static", ["rotor", "static", "verify-jeffcott"], "--elements", ["0", "-1", "100000", "abc"], "")
     resp = ["rotor", "response", "verify-jeffcott", "--speed-rpm", "3000", "--out", "{tmp}/r"]
     c += [(f"rotor response --stations {v or 'EMPTY'}", [*resp, "--stations", v], None) for v in (",,,", "", "a,,b")]
     c += _out_cases("rotor report", ["rotor", "report"], "--out", UNWRITABLE_DIRS)
