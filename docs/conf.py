@@ -47,5 +47,8 @@ myst_heading_anchors = 3
 suppress_warnings = []
 
 html_theme = "alabaster"
-html_static_path: list[str] = []
+# a wide page: code and command lines at full width, gallery figures readable (docs/_static/ringcontact.css)
+html_theme_options = {"page_width": "min(96%, 1400px)", "sidebar_width": "230px", "body_max_width": "none"}
+html_static_path = ["_static"]
+html_css_files = ["ringcontact.css"]
 html_title = f"ringcontact {release}"

@@ -9,7 +9,8 @@
 - ``.. ringcontact-scene-keys::``: every table and key of a rotor scene TOML file, from the same
   generator as ``docs/scene.schema.json`` (:mod:`scene_schema`);
 - ``.. ringcontact-fem-scenes::``: the named boundary-condition scenes of :mod:`fem_reference.scenes`;
-- ``.. ringcontact-gallery::``: every ``docs/examples/*.py``, its docstring as text and its code.
+- ``.. ringcontact-gallery::``: every ``docs/examples/*.py``, its docstring as text, its code, and its
+  printed output and figure, run at build time (``docs/_ext/gallery_run.py``).
 """
 from __future__ import annotations
 
@@ -235,8 +236,25 @@ class GalleryDirective(Directive):
             block = nodes.literal_block(text=text)
             block["language"] = "python"
             sec += block
+            sec += self._result(path)
             out.append(sec)
         return out
+
+    def _result(self, path: Path) -> list[nodes.Node]:
+        """The example's printed output and its figure, run at build time (``gallery_run``)."""
+        from gallery_run import run_example
+        try:
+            printed, png = run_example(path)
+        except Exception as exc:                     # the build fails with the example's error
+            return [self.state.document.reporter.error(f"gallery example {path.name}: {exc}")]
+        result: list[nodes.Node] = [nodes.paragraph(text="Output:")]
+        shown = nodes.literal_block(text=printed.rstrip() + "\n")
+        shown["language"] = "text"
+        result.append(shown)
+        if png is not None:
+            rel = "/" + png.relative_to(DOCS).as_posix()
+            result.append(nodes.image(uri=rel, alt=f"figure of {path.name}", classes=["gallery-figure"]))
+        return result
 
 
 def setup(app):

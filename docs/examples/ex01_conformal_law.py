@@ -34,7 +34,9 @@ def tilted(penetration_mm, tilt_arcmin):
     return aligned_tilt_contact(pen, tilt, clearance_m=TABLE1["clearance_m"], width_m=WIDTH_M, force_per_width=per_width)
 
 
-def main() -> None:
+def main():
+    """Print the tables; return the figure (force against penetration, straight and tilted)."""
+    import matplotlib.pyplot as plt
     print("penetration (mm)   force (N)")
     for p, f in zip(PENETRATIONS_MM, straight()):
         print(f"{p:16.3f} {f:11.0f}")
@@ -48,6 +50,17 @@ def main() -> None:
         cells = "  ".join(f"{force[i, j]:9.0f} N {c.Mz_Nm[i, j]:6.0f} Nm {c.width_1_m[i, j] * 1e3:4.1f} mm"
                           for j in range(len(TILTS_ARCMIN)))
         print(f"Δr = {p:.3f} mm   {cells}")
+    fine = np.linspace(0.001, 0.05, 50)
+    ct = tilted(fine, TILTS_ARCMIN)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.6), layout="constrained")
+    ax1.plot(PENETRATIONS_MM, straight() / 1e3, "o-", label="straight")
+    for j, t in enumerate(TILTS_ARCMIN):
+        ax1.plot(fine, np.hypot(ct.Fy_N[:, j], ct.Fz_N[:, j]) / 1e3, label=f"tilt {t:g}′")
+        ax2.plot(fine, ct.Mz_Nm[:, j], label=f"tilt {t:g}′")
+    ax1.set(xlabel="penetration Δr (mm)", ylabel="contact force (kN)", title="Conformal law, Table 1 rings")
+    ax2.set(xlabel="penetration Δr (mm)", ylabel="moment M_z (N·m)", title="Tilt moment (partial patch)")
+    ax1.legend(), ax2.legend()
+    return fig
 
 
 if __name__ == "__main__":

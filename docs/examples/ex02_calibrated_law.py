@@ -36,13 +36,23 @@ def compare(scene: str = "clamped") -> dict:
             "conformal_N": paper.require_in_domain()}
 
 
-def main() -> None:
+def main():
+    """Print the comparison; return the figure (FEM, calibrated and conformal forces)."""
+    import matplotlib.pyplot as plt
     r = compare()
     law = r["law"]
     print(f"{law.name}: family {law.family}, parameters {law.parameters} ({law.parameter_units})")
     print("Δr (mm)   FEM (N)   calibrated (N)  error (%)   conformal law (N)")
     for p, f, c, k in zip(PENETRATIONS_M * 1e3, r["fem_N"], r["calibrated_N"], r["conformal_N"]):
         print(f"{p:7.2f} {f:10.0f} {c:14.0f} {100 * (c - f) / f:10.2f} {k:16.0f}")
+    fig, ax = plt.subplots(figsize=(6, 3.6), layout="constrained")
+    mm = PENETRATIONS_M * 1e3
+    ax.plot(mm, r["fem_N"] / 1e3, "ko", label="2D FEM reference")
+    ax.plot(mm, r["calibrated_N"] / 1e3, "-", label=f"calibrated ({law.family})")
+    ax.plot(mm, r["conformal_N"] / 1e3, "--", label="conformal law (paper)")
+    ax.set(xlabel="penetration Δr (mm)", ylabel="contact force (kN)", title=f"Scene {law.name}: law against FEM")
+    ax.legend()
+    return fig
 
 
 if __name__ == "__main__":

@@ -32,7 +32,9 @@ def forward_criticals_rpm(scene_name: str, max_rpm: float) -> list[float]:
     return [c.speed_rad_s * RPM for c in found]
 
 
-def main() -> None:
+def main():
+    """Print the frequencies and critical speeds; return the Campbell diagram of the Table 4 rotor."""
+    import matplotlib.pyplot as plt
     print("verify-jeffcott forward 1X critical speed: "
           + ", ".join(f"{s:.1f} rpm" for s in forward_criticals_rpm("verify-jeffcott", 3000)))
     scene = load_scene("paper-table4")
@@ -46,6 +48,18 @@ def main() -> None:
         print(f"  {w * RPM:7.0f} rpm: " + " ".join(f"{f:7.1f}" for f in row))
     print("paper-table4 forward 1X critical speeds: "
           + ", ".join(f"{s:.1f} rpm" for s in forward_criticals_rpm("paper-table4", 18000)))
+    fine = np.linspace(0, 18000, 37) / RPM
+    cf = campbell(model, fine, n_modes=6)
+    fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
+    for label, color in (("forward", "C0"), ("backward", "C3"), ("mixed", "0.5")):
+        i, j = np.nonzero(np.array(cf.whirl) == label)
+        if i.size:
+            ax.plot(fine[i] * RPM, cf.frequency_hz[i, j], ".", color=color, label=f"{label} whirl")
+    ax.plot(fine * RPM, fine * RPM / 60, "k--", label="1X")
+    ax.set(xlabel="speed (rpm)", ylabel="whirl frequency (Hz)", title="Campbell diagram, paper-table4 (six lowest whirl frequencies)",
+           ylim=(0, 1.1 * cf.frequency_hz.max()))
+    ax.legend()
+    return fig
 
 
 if __name__ == "__main__":

@@ -39,7 +39,9 @@ def run():
     return system, simulate_production(system, dt, REVOLUTIONS * STEPS_PER_REV)
 
 
-def main() -> None:
+def main():
+    """Print the run's summary; return the figure (edge offsets and contact force against time)."""
+    import matplotlib.pyplot as plt
     system, tr = run()
     r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
     clearance = system.support.law.clearance_m
@@ -51,6 +53,16 @@ def main() -> None:
     print(f"largest contact force {np.hypot(tr.f_contact[:, 0], tr.f_contact[:, 1]).max() / 1e3:.1f} kN")
     print(f"energy (J): input {eb.input[-1]:.4g}, viscous {eb.damping[-1]:.4g}, friction {eb.friction[-1]:.4g}, "
           f"impact {eb.impact[-1]:.4g}; balance closes to {eb.relative_closure():.1e} of the input work")
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 4.8), sharex=True, layout="constrained")
+    ms = tr.t * 1e3
+    ax1.plot(ms, r1 * 1e3, lw=0.8, label="edge 1 offset r1")
+    ax1.plot(ms, r2 * 1e3, lw=0.8, label="edge 2 offset r2")
+    ax1.axhline(clearance * 1e3, color="k", ls="--", lw=0.8, label="clearance δ0")
+    ax1.set(ylabel="offset (mm)", title=f"paper-table4 at {SPEED_RPM:g} rpm, from rest")
+    ax1.legend(loc="lower right", fontsize=8)
+    ax2.plot(ms, np.hypot(tr.f_contact[:, 0], tr.f_contact[:, 1]) / 1e3, lw=0.8)
+    ax2.set(xlabel="time (ms)", ylabel="contact force (kN)")
+    return fig
 
 
 if __name__ == "__main__":

@@ -71,7 +71,10 @@ def rotor_with_my_bearing(out: Path, speed_rpm: float = 6000.0, revolutions: int
     return scene, system, simulate_production(system, 2 * math.pi / omega / 256, revolutions * 256)
 
 
-def main() -> None:
+def main():
+    """Print the law and the rotor run; return the figure (contact force against time in the rotor)."""
+    import matplotlib.pyplot as plt
+
     from rotor.dynamics import constraints as cons
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -86,6 +89,14 @@ def main() -> None:
         print(f"rotor {scene.name!r} with {scene.loose_support.calibrated.name}: clearance {d0 * 1e3:g} mm, "
               f"in contact {np.mean((r1 > d0) | (r2 > d0)):.0%} of the time, largest contact force "
               f"{np.hypot(tr.f_contact[:, 0], tr.f_contact[:, 1]).max() / 1e3:.2f} kN")
+        fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.6), layout="constrained")
+        pen = np.linspace(*summary["validity_penetration_mm"], 40) * 1e-3
+        law = scene.loose_support.calibrated
+        ax1.plot(pen * 1e3, law.force(pen).force_N / 1e3)
+        ax1.set(xlabel="penetration Δr (mm)", ylabel="contact force (kN)", title=f"law {summary['law_name']}")
+        ax2.plot(tr.t * 1e3, np.hypot(tr.f_contact[:, 0], tr.f_contact[:, 1]) / 1e3, lw=0.8)
+        ax2.set(xlabel="time (ms)", ylabel="contact force (kN)", title=f"{scene.name} at 6000 rpm")
+    return fig
 
 
 if __name__ == "__main__":

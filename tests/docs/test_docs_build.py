@@ -100,6 +100,25 @@ def test_api_and_gallery_pages(site):
         assert f"docs/examples/{path.name}" in gallery
 
 
+def test_gallery_shows_each_example_output_and_figure(site):
+    """Every example was run by the build: its printed output is on the page (the cached
+    ``docs/_generated/gallery/<stem>.txt``, first line checked) and its figure is an image on the page
+    whose file the site holds, a PNG of real content (> 10 kB: a blank 900×360 Agg canvas is ~3 kB)."""
+    sys.path.insert(0, str(DOCS / "_ext"))
+    from gallery_run import OUT
+    from ringcontact_docs import example_files
+
+    raw = (site / "gallery.html").read_text(encoding="utf-8")
+    text = " ".join(_text(site, "gallery.html").split())
+    images = re.findall(r'<img alt="figure of ([\w.]+)" class="gallery-figure" src="([^"]+)"', raw)
+    assert sorted(name for name, _ in images) == sorted(p.name for p in example_files())
+    for name, src in images:
+        data = (site / src).read_bytes()
+        assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10_000, name
+        first = (OUT / f"{Path(name).stem}.txt").read_text(encoding="utf-8").strip().splitlines()[0]
+        assert " ".join(first.split()) in text, name
+
+
 def test_tests_cited_by_the_pages_exist():
     """A test the hand-written pages name as evidence (``test_...``) is defined in tests/."""
     cited = set()

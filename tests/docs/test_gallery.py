@@ -26,6 +26,17 @@ def _load(name: str):
     return module
 
 
+def _check_figure(fig) -> None:
+    """``main()`` returns the figure the gallery page shows: axes with data and labels."""
+    from matplotlib.figure import Figure
+    import matplotlib.pyplot as plt
+    assert isinstance(fig, Figure) and fig.axes
+    for ax in fig.axes:
+        assert ax.get_ylabel() and any(len(line.get_xdata()) > 1 for line in ax.get_lines())
+    assert fig.axes[-1].get_xlabel()          # shared x axes carry the label on the bottom panel
+    plt.close(fig)
+
+
 TESTED = {"conformal_law", "calibrated_law", "fem_point", "rotor_campbell", "rotor_transient", "your_bearing"}
 
 
@@ -58,7 +69,7 @@ def test_conformal_law(capsys):
     theta = math.radians(2 / 60)
     assert float(c.width_1_m[0, 0]) == pytest.approx((0.002e-3 + theta * ex.WIDTH_M / 2) / theta, rel=1e-9)
     assert float(c.Mz_Nm[0, 0]) < -1.0
-    ex.main()
+    _check_figure(ex.main())
     assert "286731" in capsys.readouterr().out
 
 
@@ -79,7 +90,7 @@ def test_calibrated_law(capsys):
     # same report, "conformal, plane stress (paper)": the paper's law is 84–89 % below these rings
     assert 100 * (r["conformal_N"] - r["fem_N"]) / r["fem_N"] == pytest.approx(
         [-83.73, -86.86, -87.96, -88.46, -88.68], abs=0.006)
-    ex.main()
+    _check_figure(ex.main())
     assert "clamped-foundation" in capsys.readouterr().out
 
 
@@ -97,7 +108,7 @@ def test_fem_point(capsys):
         assert s.force_n == pytest.approx(committed, rel=1e-6)
     # the coarse 2 mm level is within 1e-4 of the extrapolated reference (its Richardson error 3.7e-5)
     assert s.force_n == pytest.approx(ref["force_n"], rel=1e-4)
-    ex.main()
+    _check_figure(ex.main())
     assert "h = 2 mm" in capsys.readouterr().out
 
 
@@ -108,7 +119,7 @@ def test_rotor_campbell(capsys):
     assert jeffcott == pytest.approx(1137.3, abs=0.05)
     # reports/published/rotor-mesh.md, paper-table4 forward critical speeds, 1 element per segment
     assert ex.forward_criticals_rpm("paper-table4", 18000) == pytest.approx([2441.4, 4270.5, 9608.2], abs=0.05)
-    ex.main()
+    _check_figure(ex.main())
     out = capsys.readouterr().out
     assert "Campbell diagram" in out and "9608.2 rpm" in out
 
@@ -129,7 +140,7 @@ def test_rotor_transient(capsys):
     # tests/rotor/dynamics/test_dynamics_verification.py holds the scheme to 1 % of the input work
     assert eb.relative_closure() < 0.01
     assert tr.unconverged_steps == 0
-    ex.main()
+    _check_figure(ex.main())
     assert "balance closes" in capsys.readouterr().out
 
 
@@ -151,5 +162,5 @@ def test_your_bearing(tmp_path, capsys):
     assert (ls.clearance_m, ls.ring_width_m) == pytest.approx((3e-5, 0.022))
     r1, r2 = cons.edge_offsets(tr.u, system.support.width_m)
     assert max(r1.max(), r2.max()) > system.support.law.clearance_m
-    ex.main()
+    _check_figure(ex.main())
     assert "in contact" in capsys.readouterr().out
