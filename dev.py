@@ -103,6 +103,12 @@ def _ensure_gmsh_libraries() -> None:
         sys.exit("dev.py: gmsh still fails to import:\n" + probe.stderr)
 
 
+def _ensure_chromium() -> None:
+    """The docs tests screenshot the built gallery with headless Chromium (docs/_ext/screenshots.py)."""
+    if not any(shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")):
+        _apt_install(["chromium"])
+
+
 def main(argv: list[str]) -> int:
     if not argv or argv[0] not in {"demo", "test", "setup"}:
         print(__doc__)
@@ -111,6 +117,8 @@ def main(argv: list[str]) -> int:
     _ensure_venv()
     _ensure_installed()
     _ensure_gmsh_libraries()
+    if job in ("test", "setup"):
+        _ensure_chromium()
     if job == "setup":
         return 0
     # One BLAS thread per process: on 2 shared cores, threaded OpenBLAS made small dense

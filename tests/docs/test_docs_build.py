@@ -119,6 +119,26 @@ def test_gallery_shows_each_example_output_and_figure(site):
         assert " ".join(first.split()) in text, name
 
 
+def test_gallery_screenshot_shows_every_figure(site, tmp_path):
+    """The gallery page as a browser draws it (headless Chromium, docs/_ext/screenshots.py): the figures
+    are on the rendered page, not only in the HTML. Each example's figure draws its first series in
+    matplotlib's first colour (#1f77b4), which nothing else on the page uses: the screenshot must show
+    that colour in as many separate bands down the page as there are figures."""
+    sys.path.insert(0, str(DOCS / "_ext"))
+    import matplotlib.image as mpimg
+    import numpy as np
+    from ringcontact_docs import example_files
+    from screenshots import chromium, screenshot
+
+    assert chromium() is not None, "chromium not installed (python3 dev.py test installs it with apt)"
+    img = mpimg.imread(screenshot(site / "gallery.html", tmp_path / "gallery.png"))[..., :3]
+    blue = np.all(np.abs(img - np.array([0x1F, 0x77, 0xB4]) / 255) < 6 / 255, axis=-1)
+    rows = np.flatnonzero(blue.sum(axis=1) > 0)
+    bands = 1 + int(np.sum(np.diff(rows) > 150)) if rows.size else 0
+    assert blue.sum() > 300 * len(example_files())
+    assert bands == len(example_files()), (bands, img.shape)
+
+
 def test_tests_cited_by_the_pages_exist():
     """A test the hand-written pages name as evidence (``test_...``) is defined in tests/."""
     cited = set()
