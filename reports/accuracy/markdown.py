@@ -110,7 +110,9 @@ def _closing_lines(tables: list[dict], t3: dict) -> list[str]:
     lines += [f"Selection rule: {tables[0]['law'].fit['selection_rule']}.", "",
               "![force–displacement](accuracy-force-displacement.png)", "",
               "Top: force against penetration, FEM with its Richardson error bar (smaller than the markers). "
-              "Bottom: percentage difference of each law, with the FEM error band shaded.", "",
+              "Middle: each analytic law as a ratio to the FEM on a log axis (1 = exact; 2 and 1/2 equally far). "
+              "Bottom: the calibrated law's percentage difference, fitted and held out, with the FEM error band "
+              "shaded (linear axis).", "",
               "About the paper's percentages: they compare the paper's law with the paper's own FEM, whose boundary",
               "conditions are not stated; its implied loads (within −6 … +12 % of the conformal law) sit between our",
               "`persson` (far softer) and `clamped` (far stiffer) scenes. So the paper's and our percentages measure",

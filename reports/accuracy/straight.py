@@ -144,16 +144,20 @@ def table2_csv(tables: list[dict]) -> str:
 
 
 def make_figure(tables: list[dict]):
+    """Force against penetration per scene (top), each analytic law as a ratio to the FEM on a log axis
+    (middle) and the calibrated law's difference in % against the FEM's own error band (bottom)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FormatStrFormatter
 
     n = len(tables)
-    fig, axes = plt.subplots(2, n, figsize=(4.6 * n, 7.2), squeeze=False, sharex=True)
+    fig, axes = plt.subplots(3, n, figsize=(4.6 * n, 10.0), squeeze=False, sharex=True,
+                             gridspec_kw={"height_ratios": [1.2, 1.0, 0.8]})
     styles = {"conformal-plane-stress": ("C0", "-"), "conformal-plane-strain": ("C0", ":"), "johnson": ("C1", "-"),
               "pereira": ("C2", "-"), "calibrated-fit": ("C3", "-")}
     for k, t in enumerate(tables):
-        ax, ax2 = axes[0, k], axes[1, k]
+        ax, ax2, ax3 = axes[0, k], axes[1, k], axes[2, k]
         geo = t["geometry"]
         pen_mm = np.linspace(0.0005, 0.05, 200)
         curves = law_forces(geo, pen_mm * MM)
@@ -170,22 +174,30 @@ def make_figure(tables: list[dict]):
         ax.grid(alpha=0.3, which="both")
         if k == 0:
             ax.legend(fontsize=7, loc="lower right")
-        # bottom: percentage difference at the FEM points
+        # middle: each analytic law as a ratio to the FEM (log axis: 2 and 1/2 equally far from 1)
         fem_laws = law_forces(geo, t["penetration_m"])
-        fem_laws["calibrated-fit"] = t["law"].force(t["penetration_m"]).force_N
         for key, (c, ls) in styles.items():
-            ax2.plot(fem_pen, 100 * (fem_laws[key] - fem_f) / fem_f, color=c, ls=ls, marker=".", lw=1.2)
-        ax2.plot(fem_pen, 100 * t["chosen"].holdout_rel_err, color="C3", ls="none", marker="o", mfc="none",
-                 label="calibrated, held out")
-        ax2.fill_between(fem_pen, -100 * t["fem_error_rel"], 100 * t["fem_error_rel"], color="k", alpha=0.25,
-                         label="FEM error band")
-        ax2.set_yscale("symlog", linthresh=1.0)
-        ax2.axhline(0, color="k", lw=0.6)
-        ax2.set_xlabel("penetration Δr (mm)")
-        ax2.set_ylabel("(P_law − P_FEM)/P_FEM (%)")
+            if key != "calibrated-fit":
+                ax2.plot(fem_pen, fem_laws[key] / fem_f, color=c, ls=ls, marker=".", lw=1.2, label=LAW_LABELS[key])
+        ax2.set_yscale("log")
+        for axis in (ax2.yaxis.set_major_formatter, ax2.yaxis.set_minor_formatter):
+            axis(FormatStrFormatter("%g"))          # ratios as numbers (0.2, 3), not powers of ten
+        ax2.axhline(1.0, color="k", lw=0.8)
+        ax2.set_ylabel("P_law / P_FEM (analytic laws)")
         ax2.grid(alpha=0.3, which="both")
+        # bottom: the calibrated law's difference in %, fitted and held out, against the FEM's own error band
+        fit = t["law"].force(t["penetration_m"]).force_N
+        ax3.plot(fem_pen, 100 * (fit - fem_f) / fem_f, color="C3", marker=".", lw=1.2, label="calibrated, fit on all")
+        ax3.plot(fem_pen, 100 * t["chosen"].holdout_rel_err, color="C3", ls="none", marker="o", mfc="none",
+                 label="calibrated, held out")
+        ax3.fill_between(fem_pen, -100 * t["fem_error_rel"], 100 * t["fem_error_rel"], color="k", alpha=0.25,
+                         label="FEM error band")
+        ax3.axhline(0, color="k", lw=0.6)
+        ax3.set_xlabel("penetration Δr (mm)")
+        ax3.set_ylabel("calibrated: (P − P_FEM)/P_FEM (%)")
+        ax3.grid(alpha=0.3)
         if k == 0:
-            ax2.legend(fontsize=7, loc="lower right")
+            ax3.legend(fontsize=7, loc="best")
     fig.suptitle("Analytic laws against the 2D FEM reference (Table 1 rings)")
     fig.tight_layout()
     png, svg = io.BytesIO(), io.BytesIO()
