@@ -51,6 +51,7 @@ RANGES: dict[str, tuple[float, float, str, bool, bool, str]] = {
     "stiffness_zz_n_per_m": (0.0, 1e13, "N/m", True, True, "stiffer than 1e13 N/m is a rigid boundary: fix the DOF"),
     "stiffness_yz_n_per_m": (-1e13, 1e13, "N/m", True, True, "cross-coupling beyond a rigid boundary's stiffness"),
     "stiffness_zy_n_per_m": (-1e13, 1e13, "N/m", True, True, "cross-coupling beyond a rigid boundary's stiffness"),
+    "speed_table_rpm": (0.0, 200000.0, "rpm", True, True, "200 000 rpm: beyond any aero-engine spool"),
     "acceleration_y_m_per_s2": (-1e4, 1e4, "m/s^2", True, True, "1000 g: a shock test, not a steady load"),
     "acceleration_z_m_per_s2": (-1e4, 1e4, "m/s^2", True, True, "1000 g: a shock test, not a steady load"),
     "force_y_n": (-1e9, 1e9, "N", True, True, "1 GN: beyond any rotor's static load"),

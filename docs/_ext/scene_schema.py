@@ -39,6 +39,8 @@ SCHEMA_FILE = DOCS / "scene.schema.json"
 def _allowed(prop: dict) -> str:
     if "enum" in prop:
         return " | ".join(str(v) for v in prop["enum"])
+    if prop.get("type") == ["number", "array"]:            # a value or a speed table of values
+        return _allowed({**prop, "type": "number"}) + ", or a list of such (one per speed_table_rpm speed)"
     if prop.get("type") == "array":
         return "list of " + " | ".join(prop["items"]["enum"])
     lo = ("[" + f"{prop['minimum']:g}") if "minimum" in prop else ("(" + f"{prop['exclusiveMinimum']:g}"
@@ -75,7 +77,8 @@ def table_rows(schema: dict) -> list[tuple[str, str, list[list[str]]]]:
             need = ("required" if key in item["required"] else "required unless `law` is calibrated"
                     if FROM_LAW_TEXT in p["description"] else f"default {json.dumps(p.get('default'), ensure_ascii=False)}")
             notes = "; ".join(t for t in p["description"].split("; ") if not t.startswith("unit "))
-            rows.append([key, p["type"] + (f" [{unit}]" if unit else ""), need, _allowed(p), notes])
+            kind = " or ".join(p["type"]) if isinstance(p["type"], list) else p["type"]
+            rows.append([key, kind + (f" [{unit}]" if unit else ""), need, _allowed(p), notes])
         optional = "" if name in schema["required"] else " Optional."
         out.append((heading, (item.get("description", "") + optional).strip(), rows))
     return out

@@ -37,6 +37,7 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     ls = scene.loose_support
     n = model.n_dofs
     check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True, upper=1e4)
+    model = model.at_speed(speed_rad_s)          # bearings with a speed table (rotor.model.scene.Bearing)
     require_ground(model, "time integration")   # a free rotor has no rest position (rotor.model.topology)
     sup = None if ls is None else _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m)
     if ls is None:

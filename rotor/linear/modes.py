@@ -140,6 +140,7 @@ def modes(model: RotorModel, speed_rad_s: float = 0.0, *, n_modes: int | None = 
     """
     if not math.isfinite(speed_rad_s):
         raise InputError(f"speed_rad_s = {speed_rad_s}: must be finite")
+    model = model.at_speed(speed_rad_s)          # bearings with a speed table (rotor.model.scene.Bearing)
     T, M, C, G, K = _reduced(model, lock_loose_support)
     r = M.shape[0]
     V = (C if damped else 0 * C) - speed_rad_s * G

@@ -38,7 +38,8 @@ class StaticDeflection:
 
 
 def static_deflection(model: RotorModel, *, lock_loose_support: bool = True) -> StaticDeflection:
-    """Deflection of ``model`` under gravity and the scene's static loads (see the module docstring)."""
+    """Deflection of ``model`` under gravity and the scene's static loads (see the module docstring); a
+    bearing with a speed table takes its values at rest."""
     f = static_load(model)
     T = constraint_basis(model, lock_loose_support=lock_loose_support)
     Kr = T.T @ model.K_total @ T
@@ -52,7 +53,7 @@ def static_deflection(model: RotorModel, *, lock_loose_support: bool = True) -> 
         raise InputError(f"scene {model.scene.name!r}: static deflection not finite (the rotor is not held)")
     sc = model.scene
     reactions = {}
-    for name, station, K2 in ([(b.name, b.station, np.array(b.lateral_stiffness_n_m)) for b in sc.bearings]
+    for name, station, K2 in ([(b.name, b.station, b.lateral_at(0.0)[0]) for b in sc.bearings]
                               + [(s.name, s.name, s.stiffness_n_m * np.eye(2)) for s in sc.supports]):
         yz = np.array([q[model._index[f"{station}.{d}"]] if f"{station}.{d}" in model._index else 0.0 for d in ("y", "z")])
         fy, fz = K2 @ yz

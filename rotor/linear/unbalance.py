@@ -57,6 +57,9 @@ def forced_response(model: RotorModel, speeds_rad_s, *, order: int = 1, lock_loo
     M, C, G, K = (T.T @ X @ T for X in (model.M, model.C, model.G, model.K_total))
     out = np.zeros((len(speeds), model.n_dofs), complex)
     for i, w in enumerate(speeds):
+        if model.speed_bearings:                   # bearings with a speed table: K and C at this speed
+            at_w = model.at_speed(w)
+            C, K = T.T @ at_w.C @ T, T.T @ at_w.K_total @ T
         a, b = harmonic_loads(model, w)[order]
         fhat = a - 1j * b                      # a cos + b sin = Re((a − i b) e^{iωt})
         nw = order * w

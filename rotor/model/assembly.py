@@ -20,6 +20,8 @@ with one element per shaft).
 """
 from __future__ import annotations
 
+import dataclasses
+
 import math
 from dataclasses import dataclass, field
 
@@ -70,6 +72,8 @@ class RotorModel:
     dof_names : ``"node.dof"`` for each retained DOF, e.g. ``"2.y"``, ``"s.θz"``.
     node_names, node_x_m : every node (retained or not) and its axial position (m).
     aliases : element name -> node name (``"disk1" -> "2"``), usable in :meth:`dof_index`.
+    speed_bearings : ``(Bearing, (y index, z index))`` of each bearing with a speed table (index −1: a
+        fixed DOF); :meth:`at_speed` takes the model to a speed.
     unit_acceleration_load : (n, 2) array, the load (N, N·m) on each retained DOF of a uniform
         acceleration of 1 m/s² along y (column 0) and z (column 1): ``M u`` with the full mass matrix,
         fixed nodes included (used by ``rotor.model.static_load``).
@@ -92,6 +96,23 @@ class RotorModel:
     shaft_nodes: tuple[tuple[str, ...], ...] = ()
     _index: dict = field(default_factory=dict, repr=False)
     unit_acceleration_load: np.ndarray | None = field(default=None, repr=False)
+    speed_bearings: tuple = ()
+
+    def at_speed(self, speed_rad_s: float) -> "RotorModel":
+        """This model with its speed-dependent bearings at ``speed_rad_s`` (rad/s): ``K`` and ``C`` built at rest
+        (:meth:`rotor.model.scene.Bearing.lateral_at`) plus each table bearing's change from rest to that
+        speed. A model without such bearings, or one already taken to a speed, is returned as it is."""
+        if not self.speed_bearings:
+            return self
+        K, C = self.K.copy(), self.C.copy()
+        for br, dofs in self.speed_bearings:
+            (k0, c0), (k1, c1) = br.lateral_at(0.0), br.lateral_at(float(speed_rad_s))
+            for a, ia in enumerate(dofs):
+                for b, ib in enumerate(dofs):
+                    if ia >= 0 and ib >= 0:
+                        K[ia, ib] += k1[a, b] - k0[a, b]
+                        C[ia, ib] += c1[a, b] - c0[a, b]
+        return dataclasses.replace(self, K=K, C=C, speed_bearings=())
 
     @property
     def n_dofs(self) -> int:
@@ -219,8 +240,8 @@ def _full_matrices(scene: Scene, names: list[str], node_pos: dict[str, int], sha
         add(el.ground_spring(0.0, mass_kg=pm.mass_kg, inertia_kg_m2=pm.diametral_inertia_kg_m2), pm.station)
         aliases[pm.name] = pm.station
     for br in scene.bearings:
-        add(el.ground_bearing(br.lateral_stiffness_n_m, br.lateral_damping_n_s_m, br.angular_stiffness_n_m_rad,
-                              br.angular_damping_n_m_s_rad), br.station)
+        add(el.ground_bearing(*br.lateral_at(0.0), br.angular_stiffness_n_m_rad, br.angular_damping_n_m_s_rad),
+            br.station)
         aliases[br.name] = br.station
     for sp in scene.supports:
         add(el.ground_spring(sp.stiffness_n_m, sp.damping_n_s_m, sp.angular_stiffness_n_m_rad,
@@ -299,7 +320,9 @@ def assemble(scene: Scene, *, elements_per_segment: int | None = None, shear: bo
     model = RotorModel(scene=scene, node_names=tuple(names), node_x_m=np.array(xs), dof_names=dof_names,
                        M=M[sub], C=C[sub], G=G[sub], K=K[sub], K_c=Kc[sub], B=B, constraint_names=tuple(cnames),
                        aliases=aliases, couplings=tuple(cdofs), loose_pair=loose, shaft_nodes=tuple(shaft_nodes),
-                       _index=index, unit_acceleration_load=(M @ unit)[keep])
+                       _index=index, unit_acceleration_load=(M @ unit)[keep],
+                       speed_bearings=tuple((br, tuple(index.get(f"{br.station}.{d}", -1) for d in ("y", "z")))
+                                            for br in scene.bearings if br.speed_dependent))
     return model
 
 

@@ -40,12 +40,15 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from contact.errors import DatasetError, InputError
 from contact.package_data import entries, shipped, stem
 from rotor.model.loose_support_scene import FROM_LAW, LooseSupport, complete_loose_support
-from rotor.model.scene_fields import (_DEG, _DOF_INPUT, _GMM, _GPA, _ID, _MM, _MRAD, _REQ, _RPM,  # noqa: F401
+from rotor.model.scene_fields import (_DEG, _DOF_INPUT, _GMM, _GPA, _ID, _IDT, _MM, _MRAD, _REQ, _RPM, _RPMT,  # noqa: F401
                                       FROM_GEOMETRY,
-                                      CHECK_TEXT, Spec, _any, _bool, _dofs, _int, _nonneg, _nu, _pos, _text)
+                                      CHECK_TEXT, TABLE_CONVERTERS, Spec, _any, _bool, _dofs, _int, _nonneg, _nu, _pos,
+                                      _text)
 from rotor.model.scene_fields import bearing_fields, disk_fields
 from rotor.model.scene_fields import parse_table as _parse_table
 
@@ -111,12 +114,15 @@ class PointMass:
 
 @dataclass(frozen=True)
 class Bearing:
-    """Linear bearing from a station to ground: isotropic, anisotropic or cross-coupled.
+    """Linear bearing from a station to ground: isotropic, anisotropic, cross-coupled, speed-dependent.
 
     The lateral force on the rotor is ``f = −K [y, z] − C [ẏ, ż]`` with ``K = [[k_yy, k_yz], [k_zy, k_zz]]``
     (N/m) and ``C`` alike (N·s/m). The direct terms default to the isotropic ``stiffness_n_m`` /
     ``damping_n_s_m``, the cross terms to 0 (Friswell et al. 2010, §5.9: Examples 5.9.2 anisotropic,
     5.9.4 cross-coupled). ``stiffness_n_m`` may be None only when both direct stiffnesses are given.
+    With a ``speed_table_rad_s`` (ascending, rad/s) each of the eight lateral coefficients may be a tuple
+    of the same length (a fluid-film bearing's table): :meth:`lateral_at` interpolates linearly in the
+    speed and holds the end values outside the table.
     """
     name: str
     station: str
@@ -124,14 +130,15 @@ class Bearing:
     damping_n_s_m: float = 0.0
     angular_stiffness_n_m_rad: float = 0.0
     angular_damping_n_m_s_rad: float = 0.0
-    stiffness_yy_n_m: float | None = None
-    stiffness_zz_n_m: float | None = None
-    stiffness_yz_n_m: float = 0.0
-    stiffness_zy_n_m: float = 0.0
-    damping_yy_n_s_m: float | None = None
-    damping_zz_n_s_m: float | None = None
-    damping_yz_n_s_m: float = 0.0
-    damping_zy_n_s_m: float = 0.0
+    stiffness_yy_n_m: float | tuple[float, ...] | None = None
+    stiffness_zz_n_m: float | tuple[float, ...] | None = None
+    stiffness_yz_n_m: float | tuple[float, ...] = 0.0
+    stiffness_zy_n_m: float | tuple[float, ...] = 0.0
+    damping_yy_n_s_m: float | tuple[float, ...] | None = None
+    damping_zz_n_s_m: float | tuple[float, ...] | None = None
+    damping_yz_n_s_m: float | tuple[float, ...] = 0.0
+    damping_zy_n_s_m: float | tuple[float, ...] = 0.0
+    speed_table_rad_s: tuple[float, ...] = ()
 
     def __post_init__(self):
         for d in ("yy", "zz"):
@@ -144,14 +151,18 @@ class Bearing:
                 object.__setattr__(self, f"damping_{d}_n_s_m", self.damping_n_s_m)
 
     @property
-    def lateral_stiffness_n_m(self) -> tuple[tuple[float, float], tuple[float, float]]:
-        """``((k_yy, k_yz), (k_zy, k_zz))`` (N/m)."""
-        return ((self.stiffness_yy_n_m, self.stiffness_yz_n_m), (self.stiffness_zy_n_m, self.stiffness_zz_n_m))
+    def speed_dependent(self) -> bool:
+        """True if a coefficient follows the speed table."""
+        return any(isinstance(getattr(self, f"{q}_{d}_{u}"), tuple)
+                   for q, u in (("stiffness", "n_m"), ("damping", "n_s_m")) for d in ("yy", "yz", "zy", "zz"))
 
-    @property
-    def lateral_damping_n_s_m(self) -> tuple[tuple[float, float], tuple[float, float]]:
-        """``((c_yy, c_yz), (c_zy, c_zz))`` (N·s/m)."""
-        return ((self.damping_yy_n_s_m, self.damping_yz_n_s_m), (self.damping_zy_n_s_m, self.damping_zz_n_s_m))
+    def lateral_at(self, speed_rad_s: float = 0.0) -> tuple:
+        """``(K, C)``: the 2×2 lateral stiffness (N/m) and damping (N·s/m) at ``speed_rad_s`` (rad/s)."""
+        def at(v):
+            return float(np.interp(speed_rad_s, self.speed_table_rad_s, v)) if isinstance(v, tuple) else float(v)
+        return tuple(np.array([[at(getattr(self, f"{q}_{a}_{u}")), at(getattr(self, f"{q}_{b}_{u}"))]
+                               for a, b in (("yy", "yz"), ("zy", "zz"))])
+                     for q, u in (("stiffness", "n_m"), ("damping", "n_s_m")))
 
 
 @dataclass(frozen=True)
@@ -321,14 +332,15 @@ _BEARING: list[Spec] = [
     ("damping_n_s_per_m", "damping_n_s_m", "N·s/m", _ID, _nonneg, 0.0),
     ("angular_stiffness_n_m_per_rad", "angular_stiffness_n_m_rad", "N·m/rad", _ID, _nonneg, 0.0),
     ("angular_damping_n_m_s_per_rad", "angular_damping_n_m_s_rad", "N·m·s/rad", _ID, _nonneg, 0.0),
-    ("stiffness_yy_n_per_m", "stiffness_yy_n_m", "N/m", _ID, _nonneg, None),
-    ("stiffness_zz_n_per_m", "stiffness_zz_n_m", "N/m", _ID, _nonneg, None),
-    ("stiffness_yz_n_per_m", "stiffness_yz_n_m", "N/m", _ID, _any, 0.0),
-    ("stiffness_zy_n_per_m", "stiffness_zy_n_m", "N/m", _ID, _any, 0.0),
-    ("damping_yy_n_s_per_m", "damping_yy_n_s_m", "N·s/m", _ID, _nonneg, None),
-    ("damping_zz_n_s_per_m", "damping_zz_n_s_m", "N·s/m", _ID, _nonneg, None),
-    ("damping_yz_n_s_per_m", "damping_yz_n_s_m", "N·s/m", _ID, _any, 0.0),
-    ("damping_zy_n_s_per_m", "damping_zy_n_s_m", "N·s/m", _ID, _any, 0.0),
+    ("stiffness_yy_n_per_m", "stiffness_yy_n_m", "N/m", _IDT, _nonneg, None),
+    ("stiffness_zz_n_per_m", "stiffness_zz_n_m", "N/m", _IDT, _nonneg, None),
+    ("stiffness_yz_n_per_m", "stiffness_yz_n_m", "N/m", _IDT, _any, 0.0),
+    ("stiffness_zy_n_per_m", "stiffness_zy_n_m", "N/m", _IDT, _any, 0.0),
+    ("damping_yy_n_s_per_m", "damping_yy_n_s_m", "N·s/m", _IDT, _nonneg, None),
+    ("damping_zz_n_s_per_m", "damping_zz_n_s_m", "N·s/m", _IDT, _nonneg, None),
+    ("damping_yz_n_s_per_m", "damping_yz_n_s_m", "N·s/m", _IDT, _any, 0.0),
+    ("damping_zy_n_s_per_m", "damping_zy_n_s_m", "N·s/m", _IDT, _any, 0.0),
+    ("speed_table_rpm", "speed_table_rad_s", "rpm", _RPMT, _nonneg, ()),
 ]
 _SUPPORT: list[Spec] = [
     ("name", "name", "", _text, _any, _REQ),

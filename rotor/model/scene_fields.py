@@ -83,6 +83,9 @@ CHECK_TEXT = {_pos: "must be > 0", _nonneg: "must be >= 0", _nu: "must be in (-1
 Spec = tuple[str, str, str, Callable[[Any], Any], Callable[[Any], bool], Any]
 
 _UNIT_TOKENS = {"mm", "kg", "gpa", "n", "g", "deg", "mrad", "rpm", "s", "m"}
+_IDT, _RPMT = _num(), _num(math.pi / 30)    # the same converters for keys that also take a speed table (a list)
+#: converters whose keys take a list (a speed table) as well as one number
+TABLE_CONVERTERS = (_IDT, _RPMT)
 
 
 def _bases(specs: list[Spec]) -> dict[str, str]:
@@ -120,20 +123,30 @@ def parse_table(raw: Any, specs: list[Spec], where: str, cls):
             kwargs[attr] = default
             continue
         value = raw[key]
-        try:
-            if conv not in (_text, _int, _bool, _dofs) and (isinstance(value, bool) or not isinstance(value, (int, float))):
-                raise TypeError("must be a number")
-            si = conv(value)
-        except (TypeError, ValueError) as exc:
-            raise InputError(f"{where}.{key} = {value!r}: {exc}") from None
-        shown = f"{value:g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else repr(value)
-        if isinstance(si, float) and not math.isfinite(si):
-            raise InputError(f"{where}.{key} = {shown} {unit}: must be finite")
-        if not check(si):
-            raise InputError(f"{where}.{key} = {shown} {unit}".rstrip() + f": {CHECK_TEXT[check]}")
-        _plausible(where, key, value, shown, si)      # inside contact.plausible.RANGES[key]
-        kwargs[attr] = si
+        if isinstance(value, list) and conv in TABLE_CONVERTERS:      # a speed table: each entry checked alike
+            if not 2 <= len(value) <= 200:
+                raise InputError(f"{where}.{key} = {value!r}: a speed table has 2 to 200 entries")
+            kwargs[attr] = tuple(_field_value(where, key, unit, conv, check, v) for v in value)
+            continue
+        kwargs[attr] = _field_value(where, key, unit, conv, check, value)
     return kwargs
+
+
+def _field_value(where: str, key: str, unit: str, conv, check, value):
+    """One typed value converted to SI and checked (sign, finite, plausible range)."""
+    try:
+        if conv not in (_text, _int, _bool, _dofs) and (isinstance(value, bool) or not isinstance(value, (int, float))):
+            raise TypeError("must be a number")
+        si = conv(value)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{where}.{key} = {value!r}: {exc}") from None
+    shown = f"{value:g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else repr(value)
+    if isinstance(si, float) and not math.isfinite(si):
+        raise InputError(f"{where}.{key} = {shown} {unit}: must be finite")
+    if not check(si):
+        raise InputError(f"{where}.{key} = {shown} {unit}".rstrip() + f": {CHECK_TEXT[check]}")
+    _plausible(where, key, value, shown, si)      # inside contact.plausible.RANGES[key]
+    return si
 
 
 def disk_fields(materials: dict):
@@ -171,8 +184,25 @@ def disk_fields(materials: dict):
 
 
 def bearing_fields(kw: dict, where: str) -> dict:
-    """``stiffness_n_per_m`` is required unless both direct stiffnesses are given."""
+    """``stiffness_n_per_m`` is required unless both direct stiffnesses are given; a coefficient given as a
+    list follows ``speed_table_rpm`` (ascending, the same length), which is then required."""
     if kw["stiffness_n_m"] is None and (kw["stiffness_yy_n_m"] is None or kw["stiffness_zz_n_m"] is None):
         raise InputError(f"{where}: missing field 'stiffness_n_per_m' (N/m) (or give both stiffness_yy_n_per_m and "
                          f"stiffness_zz_n_per_m)")
+    table = kw["speed_table_rad_s"]
+    if isinstance(table, float):
+        raise InputError(f"{where}.speed_table_rpm = {table * 30 / math.pi:g} rpm: must be a list of speeds (rpm)")
+    tables = {k: v for k, v in kw.items() if isinstance(v, tuple) and k != "speed_table_rad_s"}
+    if tables and not table:
+        raise InputError(f"{where}.{next(iter(tables)).replace('_n_m', '_n_per_m').replace('_n_s_m', '_n_s_per_m')}: "
+                         f"a list needs speed_table_rpm (the speeds it is given at, rpm)")
+    if table and any(b <= a for a, b in zip(table, table[1:])):
+        raise InputError(f"{where}.speed_table_rpm = {[round(w * 30 / math.pi, 6) for w in table]}: must be ascending")
+    for k, v in tables.items():
+        if len(v) != len(table):
+            key = k.replace("_n_m", "_n_per_m").replace("_n_s_m", "_n_s_per_m")
+            raise InputError(f"{where}.{key}: {len(v)} values for {len(table)} speeds of speed_table_rpm")
+    if table and not tables:
+        raise InputError(f"{where}.speed_table_rpm: no coefficient is a list (give e.g. stiffness_yy_n_per_m as one "
+                         f"value per speed)")
     return kw

@@ -117,6 +117,9 @@ def _property(spec) -> dict:
         if conv is sc._int:          # integer bounds written as integers
             bounds = {k: int(v) if float(v).is_integer() else v for k, v in bounds.items()}
         prop = {"type": "integer" if conv is sc._int else "number", **bounds}
+        if conv in sc.TABLE_CONVERTERS:          # one value, or one per speed of the bearing's speed table
+            prop = {"type": ["number", "array"], **bounds, "items": {"type": "number", **bounds}, "minItems": 2,
+                    "maxItems": 200}
     text = [f"unit {unit}" if unit else "", f"read as {attr}" + (" (SI)" if unit else ""), KEY_TEXT.get(key, "")]
     if key in RANGES:
         text.append(f"plausible: {RANGES[key][5]}")
@@ -125,7 +128,7 @@ def _property(spec) -> dict:
     if default is sc.FROM_GEOMETRY:
         text.append(FROM_GEOMETRY_TEXT)
     prop["description"] = "; ".join(t for t in text if t)
-    if default not in (sc._REQ, sc.FROM_LAW, sc.FROM_GEOMETRY, None):
+    if default not in (sc._REQ, sc.FROM_LAW, sc.FROM_GEOMETRY, None, ()):
         typed = default / _scale(conv) if conv not in (sc._text, sc._int, sc._bool, sc._dofs) else default
         prop["default"] = round(typed, 12) if isinstance(typed, float) else typed
     return prop

@@ -100,7 +100,7 @@ def _components(model, lock: bool) -> list[list[str]]:
 
 def _grounded_nodes(scene) -> set[str]:
     """Nodes with a lateral spring to ground or a boundary condition on y or z."""
-    out = {b.station for b in scene.bearings if b.stiffness_yy_n_m > 0 or b.stiffness_zz_n_m > 0}
+    out = {b.station for b in scene.bearings if np.diag(b.lateral_at(0.0)[0]).max() > 0}
     out |= {sp.name for sp in scene.supports if sp.stiffness_n_m > 0}
     out |= {bc.station for bc in scene.boundaries if {"y", "z"} & set(bc.fixed)}
     return out

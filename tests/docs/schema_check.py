@@ -1,8 +1,8 @@
 """A minimal JSON Schema validator for the keywords ``docs/scene.schema.json`` uses (test helper).
 
-Supported: ``type``, ``properties``, ``required``, ``additionalProperties`` (true/false),
-``minimum``, ``exclusiveMinimum``, ``maximum``, ``exclusiveMaximum``, ``enum``, ``items``,
-``minItems``, ``pattern``; annotations (``$schema``, ``$id``, ``title``, ``description``,
+Supported: ``type`` (a name or a list of names), ``properties``, ``required``, ``additionalProperties``
+(true/false), ``minimum``, ``exclusiveMinimum``, ``maximum``, ``exclusiveMaximum``, ``enum``, ``items``,
+``minItems``, ``maxItems``, ``pattern``; annotations (``$schema``, ``$id``, ``title``, ``description``,
 ``default``) are ignored. Any other keyword raises ``ValueError``: a schema that starts using one
 must extend this helper (or the suite must take on the ``jsonschema`` package), never be
 validated partially. Semantics follow draft 2020-12 for these keywords; booleans are not numbers.
@@ -13,10 +13,12 @@ import re
 
 ANNOTATIONS = {"$schema", "$id", "title", "description", "default"}
 KEYWORDS = {"type", "properties", "required", "additionalProperties", "minimum", "exclusiveMinimum", "maximum",
-            "exclusiveMaximum", "enum", "items", "minItems", "pattern"}
+            "exclusiveMaximum", "enum", "items", "minItems", "maxItems", "pattern"}
 
 
-def _is_type(value, name: str) -> bool:
+def _is_type(value, name) -> bool:
+    if isinstance(name, list):
+        return any(_is_type(value, n) for n in name)
     if name == "object":
         return isinstance(value, dict)
     if name == "array":
@@ -54,6 +56,8 @@ def errors(value, schema: dict, where: str = "$") -> list[str]:
     if isinstance(value, list):
         if "minItems" in schema and len(value) < schema["minItems"]:
             out.append(f"{where}: {len(value)} items, fewer than {schema['minItems']}")
+        if "maxItems" in schema and len(value) > schema["maxItems"]:
+            out.append(f"{where}: {len(value)} items, more than {schema['maxItems']}")
         if "items" in schema:
             for i, item in enumerate(value):
                 out += errors(item, schema["items"], f"{where}[{i}]")

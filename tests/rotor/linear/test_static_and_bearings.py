@@ -190,3 +190,73 @@ def test_bad_new_keys_one_line(snippet, message):
     base = _rigid_rotor(_bearing("b0", "s0", stiffness_n_per_m=1e6) + _bearing("b2", "s2", stiffness_n_per_m=1e6))
     with pytest.raises(InputError, match=message):
         loads_scene(base + snippet)
+
+
+def _table_rotor(extra_keys: str = "") -> str:
+    """The rigid rotor on two bearings whose direct stiffness follows a speed table (a fluid-film bearing's
+    stiffening with speed, linear in the speed here: k(Ω) = k0 + k1 Ω on 0–6 000 rpm)."""
+    b = "".join(f'[[bearings]]\nname = "{n}"\nstation = "{st}"\nspeed_table_rpm = [0, 3000, 6000]\n'
+                f'stiffness_yy_n_per_m = [{K0}, {K0 + K1 * 100 * math.pi}, {K0 + K1 * 200 * math.pi}]\n'
+                f'stiffness_zz_n_per_m = [{K0}, {K0 + K1 * 100 * math.pi}, {K0 + K1 * 200 * math.pi}]\n' + extra_keys
+                for n, st in (("b0", "s0"), ("b2", "s2")))
+    return _rigid_rotor(b)
+
+
+K0, K1 = 2.0e5, 400.0        # N/m and N·s/m (k at 6000 rpm: 2.0e5 + 400 × 628.3 = 4.5e5 N/m)
+
+
+@pytest.mark.parametrize("speed_rpm", [0.0, 1500.0, 4500.0, 9000.0])
+def test_speed_table_bearings_follow_the_speed(speed_rpm):
+    """Bounce frequency sqrt(2 k(Ω)/m) of the rigid rotor (closed form) with k interpolated in the table,
+    held at its last value beyond it (9 000 rpm); to 5e-6, the rigid-shaft idealisation's own error."""
+    m = assemble(loads_scene(_table_rotor()))
+    w = speed_rpm * math.pi / 30
+    k = K0 + K1 * min(w, 200 * math.pi)
+    f = np.sort(modes(m, w).frequency_hz) * 2 * math.pi
+    assert f[0] == pytest.approx(math.sqrt(2 * k / 10), rel=5e-6)    # the shaft's own flexibility: ~1e-6 of k
+
+
+def test_speed_table_critical_speed_and_forced_response():
+    """The 1X critical speed solves m Ω² = 2 (k0 + k1 Ω) (closed form, inside the table); the unbalance
+    response of the table rotor peaks there, not at the rest frequency sqrt(2 k0/m)."""
+    from rotor.linear.modes import critical_speeds
+    from rotor.linear.unbalance import forced_response
+    text = _table_rotor().replace('diametral_inertia_kg_m2 = 0.05\n', 'diametral_inertia_kg_m2 = 0.05\nunbalance_g_mm = 100\n')
+    m = assemble(loads_scene(text))
+    exact = (2 * K1 + math.sqrt(4 * K1 ** 2 + 8 * 10 * K0)) / (2 * 10)
+    crit = [c for c in critical_speeds(m, 600.0, orders=(1,), families=("forward",)) if c.branch == 0]
+    assert crit and crit[0].speed_rad_s == pytest.approx(exact, rel=1e-6)
+    speeds = np.linspace(100, 400, 601)
+    resp = forced_response(m, speeds)
+    peak = speeds[np.argmax(abs(resp.amplitudes[:, m.dof_index("s1.y")]))]
+    assert peak == pytest.approx(exact, abs=0.5) and abs(peak - math.sqrt(2 * K0 / 10)) > 20
+
+
+def test_speed_table_reaches_the_time_integration():
+    """The time integration's stiffness is the table's at the run speed: K at 4 500 rpm minus K at rest is
+    the interpolated change on each bearing's y and z rows."""
+    from rotor.dynamics.build import system_from_model
+    scene = loads_scene(_table_rotor())
+    m = assemble(scene)
+    w = 4500 * math.pi / 30
+    dk = system_from_model(m, scene, w).K - (m.K + m.K_c)
+    i = m.dof_index("s0.y")
+    assert dk[i, i] == pytest.approx(K1 * w, rel=1e-9)
+    assert abs(dk).sum() == pytest.approx(4 * K1 * w, rel=1e-9)      # y and z of both bearings, nothing else
+
+
+@pytest.mark.parametrize("keys, message", [
+    ('speed_table_rpm = [0, 3000]\nstiffness_yy_n_per_m = [1e6, 2e6, 3e6]\nstiffness_zz_n_per_m = 1e6\n',
+     r"stiffness_yy_n_per_m: 3 values for 2 speeds of speed_table_rpm"),
+    ('stiffness_yy_n_per_m = [1e6, 2e6]\nstiffness_zz_n_per_m = 1e6\n', r"a list needs speed_table_rpm"),
+    ('speed_table_rpm = [3000, 0]\nstiffness_yy_n_per_m = [1e6, 2e6]\nstiffness_zz_n_per_m = 1e6\n', r"must be ascending"),
+    ('speed_table_rpm = [0, 3000]\nstiffness_yy_n_per_m = [1e6, -2e6]\nstiffness_zz_n_per_m = 1e6\n',
+     r"stiffness_yy_n_per_m = -2e\+06 N/m: must be >= 0"),
+    ('speed_table_rpm = [0, 3000]\nstiffness_n_per_m = 1e6\n', r"no coefficient is a list"),
+    ('speed_table_rpm = [0, 1e9]\nstiffness_yy_n_per_m = [1e6, 2e6]\nstiffness_zz_n_per_m = 1e6\n',
+     r"speed_table_rpm = 1e\+09 rpm: must be in"),
+])
+def test_bad_speed_tables_one_line(keys, message):
+    text = _rigid_rotor(f'[[bearings]]\nname = "b0"\nstation = "s0"\n{keys}' + _bearing("b2", "s2", stiffness_n_per_m=1e6))
+    with pytest.raises(InputError, match=message):
+        loads_scene(text)
