@@ -33,16 +33,13 @@ from pathlib import Path
 
 from contact.errors import InputError, RingContactError
 from reports.cli._edge import Parser, count, fail, out_file, out_prefix, quantity
+from reports.cli._scene_options import add_scene_options, finish, scene_from_args
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("scene", help="scene name or TOML path (e.g. paper-table4)")
+    add_scene_options(p)
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=None,
                    help="time steps per revolution (default: 256, more where the contact step limit needs it)")
-    p.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance (mm, default: scene)")
-    p.add_argument("--misalignment-mm", type=quantity("misalignment_mm"), default=None,
-                   help="misalignment δ (mm, default: scene)")
-    p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
     p.add_argument("--json", action="store_true", help="print the result as JSON (default: a short table)")
     p.add_argument("--out", type=out_file, default=None, help="also write the JSON result to this file")
 
@@ -74,18 +71,15 @@ def _branch_parser() -> argparse.ArgumentParser:
 
 
 def _overrides(args) -> dict:
-    kw = {"tilt_ignored": bool(args.tilt_ignored)}
-    if args.clearance_mm is not None:
-        kw["clearance_m"] = args.clearance_mm * 1e-3
-    if args.misalignment_mm is not None:
-        kw["misalignment_m"] = args.misalignment_mm * 1e-3
-    return kw
+    """The scene overrides given (:func:`reports.cli._scene_options.scene_from_args`), ``tilt_ignored`` always."""
+    return {"tilt_ignored": False, **scene_from_args(args).overrides}
 
 
 def _scene(args) -> tuple:
-    """The scene's name, response channels and loose support; a bad scene is refused here, before any computing."""
+    """The scene's name, response channels and loose support (with ``--law``); a bad scene or law is refused here,
+    before any computing."""
     from rotor.studies.steady_state import _scene_model
-    sc, model = _scene_model(args.scene)
+    sc, model = _scene_model(args.scene, None, _overrides(args).get("law"))
     return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
 
 
@@ -118,7 +112,8 @@ def _emit(args, result: dict, table: str) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """``ringcontact orbit``."""
-    args = _orbit_parser().parse_args(argv)
+    p = _orbit_parser()
+    args = finish(p, p.parse_args(argv))
     try:
         return _orbit(args)
     except RingContactError as e:
@@ -128,7 +123,7 @@ def main(argv: list[str] | None = None) -> int:
 def branch_main(argv: list[str] | None = None) -> int:
     """``ringcontact branch``."""
     p = _branch_parser()
-    args = p.parse_args(argv)
+    args = finish(p, p.parse_args(argv))
     if args.rpm_end == args.rpm_start:
         p.error(f"argument --rpm-end: = {args.rpm_end:g} rpm: must differ from --rpm-start = {args.rpm_start:g} rpm")
     try:

@@ -27,14 +27,17 @@ import numpy as np
 
 from contact.errors import InputError, RingContactError
 from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
+from reports.cli._scene_options import add_scene_options, finish, linear_scene
 
 RPM = 30 / math.pi
 
 
-def _load(args):
+def _load(args, misalignment: bool = False):
+    """Scene (with ``--misalignment-mm`` where ``misalignment``; the other loose-support overrides refused:
+    :func:`reports.cli._scene_options.linear_scene`) and its assembled model."""
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
-    scene = load_scene(args.scene)
+    scene = linear_scene(args, load_scene(args.scene), misalignment=misalignment)
     return scene, assemble(scene, elements_per_segment=args.elements)
 
 
@@ -160,7 +163,7 @@ def cmd_critical(args) -> int:
 
 def cmd_unbalance(args) -> int:
     from rotor.linear.unbalance import forced_response
-    scene, model = _load(args)
+    scene, model = _load(args, misalignment=args.order == 2)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(wmax / (args.points or scene.analysis.speed_points), wmax,
                          args.points or scene.analysis.speed_points)
@@ -195,7 +198,9 @@ def cmd_response(args) -> int:
         if not all(stations):
             raise InputError(f"--stations = {args.stations!r}: an empty name in the list; give comma-separated "
                              "station, disk, bearing or support names (or leave --stations out for the default)")
-    summary = run_response(args.scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
+    from rotor.model.scene import load_scene
+    scene = linear_scene(args, load_scene(args.scene), misalignment=True)
+    summary = run_response(scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
                            stations=stations, steps_per_rev=args.steps_per_rev, record_per_rev=args.record_per_rev,
                            elements=args.elements)
     _emit(args, summary, summary_table(summary) + f"\nwrote {args.out}/response.csv, response-summary.json")
@@ -215,7 +220,7 @@ def _parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="cmd", required=True)
 
     def common(sp, speed_range=True):
-        sp.add_argument("scene", help="scene file (.toml) or bundled scene name (see 'ringcontact rotor scenes')")
+        add_scene_options(sp)
         sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override, 1-64)")
         sp.add_argument("--open-support", action="store_true",
                         help="leave the loose-support bearing and support unconnected (default: locked together)")
@@ -253,7 +258,7 @@ def _parser() -> argparse.ArgumentParser:
                     help="write PREFIX-unbalance.png and .svg (--order 2: PREFIX-misalignment.png and .svg)")
     sp.set_defaults(func=cmd_unbalance)
     sp = sub.add_parser("response", help="linear time response of the stations (loose support locked), CSV")
-    sp.add_argument("scene", help="scene file (.toml) or bundled scene name")
+    add_scene_options(sp)
     sp.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
     sp.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
     sp.add_argument("--method", choices=("harmonic", "newmark"), default="harmonic",
@@ -273,7 +278,9 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
+    p = _parser()
+    args = p.parse_args(argv)
+    args = finish(p, args, sub=args.cmd)
     for name in ("modes", "points", "elements", "steps_per_rev", "record_per_rev"):
         v = getattr(args, name, None)
         if v is not None and v < 1:
