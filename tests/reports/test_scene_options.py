@@ -150,7 +150,8 @@ def test_simulate_override_equals_scene_file(edited_scene, tmp_path, capsys):
 
 
 @pytest.mark.parametrize("job,argv", [("orbit", ["--speed-rpm", 3000]),
-                                      ("branch", ["--rpm-start", 3000, "--rpm-end", 3010, "--max-points", 2])])
+                                      pytest.param("branch", ["--rpm-start", 3000, "--rpm-end", 3010, "--max-points", 2],
+                                                   marks=pytest.mark.slow)])     # branch: orbit's own _overrides
 def test_orbit_and_branch_override_equals_scene_file(job, argv, edited_scene, tmp_path, capsys):
     rc_o = _run([job, "paper-table4", *argv, *OVERRIDES_E2E, "--json", "--out", tmp_path / "o.json"])
     rc_f = _run([job, "--scene", edited_scene, *argv, "--json", "--out", tmp_path / "f.json"])
