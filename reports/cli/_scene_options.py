@@ -89,11 +89,6 @@ def finish(parser: argparse.ArgumentParser, args: argparse.Namespace, sub: str |
     return args
 
 
-def given(args) -> list[str]:
-    """The override flags given on the command line."""
-    return [flag for flag, (attr, _, _) in OVERRIDES.items() if getattr(args, attr, None) not in (None, False)]
-
-
 def scene_from_args(args) -> SceneChoice:
     """The scene and the overrides given (SI keywords of :func:`rotor.studies.steady_state.point_system`)."""
     kw = {}
@@ -118,7 +113,7 @@ def refuse_overrides(args, flags, why: str) -> None:
     says what the job does instead."""
     for flag in flags:
         value = getattr(args, OVERRIDES[flag][0], None)
-        if value not in (None, False):
+        if _given(value):
             shown = "" if value is True else f" = {value:g}" if isinstance(value, float) else f" = {value}"
             unit = {"--preload-N": " N", "--clearance-mm": " mm", "--misalignment-mm": " mm"}.get(flag, "")
             raise InputError(f"{flag}{shown}{unit if shown else ''}: {why}")
@@ -147,3 +142,36 @@ def linear_scene(args, scene, *, misalignment: bool):
         raise InputError(f"--misalignment-mm = {args.misalignment_mm:g} mm: scene {scene.name!r} has no "
                          "[misalignment] to scale; set it in the scene")
     return replace(scene, misalignment=replace(scene.misalignment, offset_m=args.misalignment_mm * 1e-3))
+
+
+def add_progress_option(p: argparse.ArgumentParser) -> None:
+    """``--progress``: the progress line on stderr also when it is not a terminal (default: only on a terminal,
+    :func:`sweep.progress.on_terminal`); never on stdout, so ``--json`` output stays clean."""
+    p.add_argument("--progress", action="store_true", default=None,
+                   help="progress on stderr (compile, transient, Newton residual per iteration, branch points and "
+                        "time left) even when stderr is not a terminal (default: only on a terminal)")
+
+
+def warm_up_shown(label: str, args, warm_up) -> dict:
+    """Run ``warm_up()`` (a compile of the step loop, or its load from the disk cache) with the seconds shown on a
+    terminal while it lasts more than a second (:class:`sweep.progress.Elapsed`); its result."""
+    from sweep.progress import Elapsed
+    with Elapsed(label, "compiling the step loop, first run only", enabled=getattr(args, "progress", None)):
+        return warm_up()
+
+
+def override_words(args) -> str:
+    """The overrides given, as typed options (`` --mu 0 --law pereira``), for a command a message suggests."""
+    words = []
+    for flag, (attr, _, _) in OVERRIDES.items():
+        value = getattr(args, attr, None)
+        if value is True:
+            words.append(flag)
+        elif _given(value):
+            words.append(f"{flag} {value:g}" if isinstance(value, float) else f"{flag} {value}")
+    return "".join(" " + w for w in words)
+
+
+def _given(value) -> bool:
+    """An override given: not None and not an unset flag (a value of 0 is given: ``--mu 0``)."""
+    return value is not None and value is not False

@@ -50,7 +50,8 @@ from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
 from reports.cli._edge import Parser, count, fail, out_dir, quantity
-from reports.cli._scene_options import add_scene_options, finish, max_revs, scene_from_args
+from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, max_revs, scene_from_args,
+                                        warm_up_shown)
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
 
@@ -82,6 +83,7 @@ def _parser() -> argparse.ArgumentParser:
                    help=f"run even when the estimate exceeds the budget ({WORK_BUDGET_S / 60:g} min of stepping or "
                         f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB of records)")
     p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
+    add_progress_option(p)
     return p
 
 
@@ -148,12 +150,16 @@ def _run(args) -> int:
     rec = max(1, args.steps_per_rev // args.record_per_rev)
     check_budget(args, n_steps, n_steps // rec + 1, model.n_dofs)
     run = simulate_production if args.scheme == "production" else simulate_reference
-    compiled = warm_up()  # compile or load the step loop now (the --steady detector uses it too)
+    # compile or load the step loop now (the --steady detector uses it too), the seconds shown on a terminal
+    compiled = warm_up_shown("ringcontact simulate", args, warm_up)
     t0 = time.perf_counter()
     extra = {}
     if args.steady:
+        from sweep.progress import Events, reporting
         amp_names = _dof_names(args, model, primary_only=False)
-        tr, dt, n_steps, extra = _steady_run(args, system, model, T, amp_names, [model.dof_index(n) for n in amp_names])
+        with reporting(Events("ringcontact simulate --steady", enabled=args.progress)) as events, events:
+            tr, dt, n_steps, extra = _steady_run(args, system, model, T, amp_names,
+                                                 [model.dof_index(n) for n in amp_names])
     else:
         tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
     run_s = time.perf_counter() - t0

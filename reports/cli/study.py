@@ -221,7 +221,22 @@ def _sweep(tasks, out: Path, args, description: dict):
     if s.failed:
         raise FailedPointsError(f"{len(s.failed)} of {n_points} points failed (FAILED lines above); no figures "
                                 f"written; the finished points stay in {out}, a rerun computes only the rest")
+    _say_unsettled(out, point_tasks(tasks), args)
     return s, wall
+
+
+def _say_unsettled(out: Path, tasks, args) -> None:
+    """Count the points whose transient reached no steady state within the cap (``converged`` False) and say so."""
+    from sweep.store import ResultStore
+
+    store = ResultStore(out)
+    keys = [t.key for t in tasks if not store.info(t.key).get("converged", True)]
+    if keys:
+        speeds = ", ".join(f"{store.info(k).get('speed_rpm', float('nan')):g}" for k in keys[:8])
+        print(f"study {args.study}: {len(keys)} of {len(tasks)} points not converged within --max-revs = "
+              f"{max_revs(args)} revolutions (at {speeds}{' …' if len(keys) > 8 else ''} rpm): their amplitudes are "
+              "those of the last revolutions, not of a steady state (converged = 0 in the CSV, marked in the "
+              "figures); a higher --max-revs, or --method shooting for the periodic orbit")
 
 
 def _run(args) -> int:

@@ -36,6 +36,7 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
+from sweep.progress import report
 
 # Stations come from the scene (rotor.model.assembly.RotorModel.response_stations): every disk, bearing
 # and support station is recorded, the primary ones (disks, the loose support's bearing station,
@@ -410,6 +411,7 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
         modes = tuple(int(m) for m in tr.modes[-1])
         P.extend(tr.q[TRANSIENT_SAMPLES_PER_REV::TRANSIENT_SAMPLES_PER_REV, pidx])
         revs += n_rev
+        report("transient", revs=revs, max_revs=opts.max_revs)
         if revs < opts.min_revs:
             continue
         seg = tr.q[:, pidx]
