@@ -115,3 +115,21 @@ def test_branch_says_why_there_was_no_orbit_at_the_start(one_iteration, capsys):
     assert len(err) == 1 and err[0].startswith("ringcontact branch: error: no orbit at the start (--rpm-start): "
                                                "no periodic orbit at 15000 rpm: 3 Newton attempts")
     assert "What to try: --period-revs" in err[0]
+
+
+def test_cascade_marks_and_counts_points_not_converged(tmp_path, monkeypatch, capsys):
+    """The bundled verify-jeffcott rotor has no damping: its transient never decays, so no speed converges
+    within 24 revolutions; the summary counts them, the CSV says converged 0 and the figure rings them."""
+    import reports.station_cascade as sc
+    drawn = []
+    real_save = sc.save
+    monkeypatch.setattr(sc, "save", lambda fig, path: (drawn.append(fig), real_save(fig, path))[1])
+    assert cli.main(["study", "cascade", "verify-jeffcott", "--rpm-min", "300", "--rpm-max", "900", "--points", "2",
+                     "--max-revs", "24", "--workers", "1", "--no-progress", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "study cascade: 2 of 2 points not converged within --max-revs = 24 revolutions (at 300, 900 rpm)" in out
+    rows = (tmp_path / "figures" / "cascade-stations.csv").read_text().splitlines()
+    col = rows[0].split(",").index("converged")
+    assert [r.split(",")[col] for r in rows[1:]] == ["0", "0"]
+    labels = [ln.get_label() for ax in drawn[0].axes for ln in ax.get_lines()]
+    assert "not converged (2 of 2)" in labels
