@@ -155,11 +155,8 @@ def _run(args) -> int:
     t0 = time.perf_counter()
     extra = {}
     if args.steady:
-        from sweep.progress import Events, reporting
         amp_names = _dof_names(args, model, primary_only=False)
-        with reporting(Events("ringcontact simulate --steady", enabled=args.progress)) as events, events:
-            tr, dt, n_steps, extra = _steady_run(args, system, model, T, amp_names,
-                                                 [model.dof_index(n) for n in amp_names])
+        tr, dt, n_steps, extra = _steady_run(args, system, model, T, amp_names, [model.dof_index(n) for n in amp_names])
     else:
         tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
     run_s = time.perf_counter() - t0
@@ -266,6 +263,7 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     from rotor.dynamics.production import simulate_production
     from rotor.dynamics.initial import linear_initial_state
     from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
+    from sweep.progress import Events, reporting
 
     keep = int(round(args.revolutions))   # the options were checked by _run before any work
     # detection by rotor.studies.steady_state (displacement Poincaré samples with the projected tail of the
@@ -274,7 +272,8 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
                               spectrum_revs=1, max_revs=max_revs(args))
     q_start, v_start = linear_initial_state(system, 0.0)
-    ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
+    with reporting(Events("ringcontact simulate --steady", enabled=args.progress)) as events, events:  # on a terminal
+        ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
     conv = ss.convergence
     period = conv.period if conv.converged else 1
     keep = int(math.ceil(keep / period) * period)  # whole periods: exact DFT bins
