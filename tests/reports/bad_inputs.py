@@ -332,6 +332,11 @@ def _scene_option_cases() -> list:
           ("shared study map --clearance-mm (swept)", ["study", "map", "--out", "{tmp}/o", "--clearance-mm", "0.08"], "0.08 mm"),
           ("shared simulate --mu on a scene without loose support",
            ["simulate", "verify-jeffcott", "--speed-rpm", "3000", "--out", "{tmp}/o", "--mu", "0.2"], None)]
+    for sub in ("modes", "campbell", "critical-speeds", "unbalance"):          # the table's units
+        c += [(f"rotor {sub} --units {v}", ["rotor", sub, "verify-jeffcott", "--units", v], v) for v in ("khz", "rpm")]
+    c += _num_cases("rotor campbell", ["rotor", "campbell", "verify-jeffcott"], "--orders", ["0", "21", "abc"], "")
+    c += [("rotor critical-speeds --backward=yes", ["rotor", "critical-speeds", "verify-jeffcott", "--backward=yes"],
+           None)]
     return c
 
 
