@@ -335,6 +335,8 @@ def _scene_option_cases() -> list:
     for sub in ("modes", "campbell", "critical-speeds", "unbalance"):          # the table's units
         c += [(f"rotor {sub} --units {v}", ["rotor", sub, "verify-jeffcott", "--units", v], v) for v in ("khz", "rpm")]
     c += _num_cases("rotor campbell", ["rotor", "campbell", "verify-jeffcott"], "--orders", ["0", "21", "abc"], "")
+    c += [("orbit --out /dev/null (a device: an atomic write would replace it)",
+           ["orbit", "paper-table4", "--speed-rpm", "3000", "--out", "/dev/null"], "/dev/null")]
     c += [("rotor critical-speeds --backward=yes", ["rotor", "critical-speeds", "verify-jeffcott", "--backward=yes"],
            None)]
     return c
