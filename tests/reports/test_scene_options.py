@@ -7,8 +7,9 @@ run a scene must be exactly :data:`ROTOR_COMMANDS`, each parses the scene in bot
 overrides to the same :class:`~reports.cli._scene_options.SceneChoice`, with identical option strings and
 defaults. End to end (lean): simulate, orbit, branch and ``rotor unbalance`` run once with the overrides
 and once on a scene file holding the same values, and must agree to the last digit (the override and the
-file reach the same code: rotor.dynamics.build.system_from_model); ``study cascade`` stores each point with
-the overridden law, clearance and friction; the linear jobs refuse what a locked support cannot apply.
+file reach the same code: rotor.dynamics.build.system_from_model); every study builds its points' tasks with
+the overrides (one computed: it used the law and clearance), the whole ``study cascade`` run is the slow case;
+the linear jobs refuse what a locked support cannot apply.
 """
 from __future__ import annotations
 
@@ -180,6 +181,50 @@ def test_modes_refuse_what_a_locked_support_cannot_apply(option, capsys):
     assert len(err) == 1 and err[0].startswith(f"ringcontact rotor modes: error: {option[0]}")
 
 
+class _Tasks(Exception):
+    """Raised by the stand-in of the study's sweep with the tasks it was given."""
+
+
+STUDY_ARGS = {"cascade": ["--rpm-min", "3000", "--rpm-max", "3000", "--points", "1"],
+              "point": ["--speed-rpm", "3000"], "params": ["--rpm-max", "3000", "--points", "1"],
+              "testrig": [], "map": ["--rpm-max", "3000", "--points", "1"],
+              "runup": ["--rpm-start", "3000", "--rpm-end", "3100", "--duration-s", "0.3"]}
+#: the overrides a study varies itself (refused there: tests/reports/bad_inputs.py)
+OWN = {"testrig": ("--clearance-mm", "--misalignment-mm"), "map": ("--clearance-mm",)}
+
+
+@pytest.mark.parametrize("sub", sorted(STUDY_ARGS))
+def test_every_study_point_gets_the_overrides(sub, tmp_path, monkeypatch):
+    """The tasks each study builds (what its points are computed from) hold every override given, and one of
+    them, computed, used the law and clearance (rotor.studies.steady_state.run_point)."""
+    from reports.cli import study
+    from rotor.studies import runup
+
+    def capture(tasks, *a, **k):
+        raise _Tasks(tasks)
+    monkeypatch.setattr(study, "_sweep", capture)
+    monkeypatch.setattr(runup, "run_runup", lambda spec, *a, **k: capture([spec]))
+    typed = dict(zip(OVERRIDES_E2E[::2], OVERRIDES_E2E[1::2]))
+    argv = [a for f, v in typed.items() if f not in OWN.get(sub, ()) for a in (f, v)]
+    with pytest.raises(_Tasks) as got:
+        study.main([sub, "paper-table4", *STUDY_ARGS[sub], "--out", str(tmp_path), *argv])
+    si = {"--law": ("law", "pereira"), "--clearance-mm": ("clearance_m", 0.08e-3), "--mu": ("mu", 0.2),
+          "--preload-N": ("preload_n", 3000.0), "--misalignment-mm": ("misalignment_m", 1e-3)}
+    want = dict(si[f] for f in typed if f not in OWN.get(sub, ()))
+    tasks = got.value.args[0]
+    if sub == "params":       # the curves that vary the clearance or the misalignment hold their own value of it
+        tasks = [t for t in tasks if t.key.startswith("base-")]
+    assert tasks
+    for task in tasks:
+        params = vars(task) if sub == "runup" else task.params
+        assert {k: params[k] for k in want} == want
+    if sub == "cascade":
+        task = got.value.args[0][0]
+        _, info = task.func(**{**task.params, "options": {"steps_per_rev": 64, "max_revs": 24}})
+        assert info["law"] == "pereira" and info["clearance_m"] == pytest.approx(0.08e-3, rel=1e-12)
+
+
+@pytest.mark.slow
 def test_study_cascade_points_hold_the_overrides(tmp_path, capsys):
     out = tmp_path / "c"
     assert _run(["study", "cascade", "paper-table4", "--rpm-min", 3000, "--rpm-max", 3000, "--points", 1,
