@@ -38,7 +38,7 @@ from contact.package_data import shipped
 from contact.units import check_positive
 from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, out_file, quantity
 from reports.cli._scene_options import (DEFAULT_SCENE, add_scene_options, finish, max_revs, refuse_overrides,
-                                        scene_from_args)
+                                        scene_from_args, warm_up_shown)
 
 
 def _common(p: argparse.ArgumentParser, out: str, scene: str = DEFAULT_SCENE):
@@ -208,6 +208,7 @@ def _sweep(tasks, out: Path, args, description: dict):
             print(f"study {args.study}: law {sc.loose_support.law_file} (sha256 {sc.loose_support.law_sha256})")
     manifest = {"study": args.study, "description": description, "scene_name": sc.name, "scene": scene_doc,
                 **_mesh(args)}
+    _compile_first(args)
     t0 = time.perf_counter()
     with connect(args.scheduler) as client:
         s = run_sweep(tasks, out, executor=client, max_workers=args.workers, manifest=manifest,
@@ -223,6 +224,19 @@ def _sweep(tasks, out: Path, args, description: dict):
                                 f"written; the finished points stay in {out}, a rerun computes only the rest")
     _say_unsettled(out, point_tasks(tasks), args)
     return s, wall
+
+
+def _compile_first(args) -> None:
+    """Compile the step loop here (or load it from the disk cache), its seconds shown on a terminal, so that the
+    local workers load it from the disk cache instead of each compiling it unseen (not for a cluster: its
+    workers have their own cache)."""
+    if args.scheduler is not None:
+        return
+    if getattr(args, "method", "transient") == "shooting":
+        from rotor.dynamics.period_map import warm_up
+    else:
+        from rotor.dynamics.production import warm_up
+    warm_up_shown(f"study {args.study}", argparse.Namespace(progress=False if args.no_progress else None), warm_up)
 
 
 def _say_unsettled(out: Path, tasks, args) -> None:
@@ -460,6 +474,7 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
                      steps_per_rev=int(args.steps_per_rev), **_ov(args))
     from sweep.cluster import connect
 
+    _compile_first(args)
     with connect(args.scheduler) as client:
         info = run_runup(spec, out, executor=client)
     print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")
