@@ -164,8 +164,8 @@ class Elapsed(Line):
         self._stop.set()
         if self._thread is not None:
             self._thread.join()
-        if self._width:
-            self.close(f"done in {time.monotonic() - self.t0:.0f} s")
+        if self._width:     # a step cut short (Ctrl-C, an error) only ends the line
+            self.close(f"done in {time.monotonic() - self.t0:.0f} s" if exc[0] is None else None)
 
 
 class Events(Line):
