@@ -26,7 +26,8 @@ def report(kind: str, **fields) -> None:
     """Tell the listener installed by :func:`reporting` (if any) that ``kind`` happened, with ``fields``:
     ``transient`` (``revs``, ``max_revs``), ``newton`` (``iteration``, ``residual``), ``attempt`` (a finished
     Newton attempt: ``period_revs``, ``transient_revs``, ``iterations``, ``residual``, ``converged``),
-    ``branch_point`` (``points``, ``max_points``, ``parameter``, ``start``, ``end``)."""
+    ``branch_point`` (``points``, ``max_points``, ``parameter``, ``start``, ``end``: the time left is from the
+    share of the range or of the points done, whichever is larger)."""
     listener = _LISTENER.get()
     if listener is not None:
         listener(kind, fields)
@@ -196,7 +197,8 @@ class Events(Line):
         elif kind == "branch_point":
             span = f["end"] - f["start"]
             frac = min(max((f["parameter"] - f["start"]) / span, 0.0), 1.0) if span else 0.0
+            done = max(frac, f["points"] / f["max_points"])     # the branch ends at the range's end or its last point
             el = time.monotonic() - self.t0
-            left = el * (1.0 - frac) / frac if frac > 0 else math.inf
+            left = el * (1.0 - done) / done if done > 0 else math.inf
             self.show(f"point {f['points']} (at most {f['max_points']}) at {f['parameter'] * self.factor:.1f} "
                       f"{self.unit}, {100 * frac:.0f} % of the range, ~{eta_text(left)} left")

@@ -59,6 +59,8 @@ def test_branch_point_shows_speed_share_and_time_left():
     ev("branch_point", {"points": 5, "max_points": 400, "parameter": 150.0, "start": 100.0, "end": 300.0})
     # 25 % done in 30 s: 90 s left at that rate; the parameter shown times the unit factor 2
     assert "point 5 (at most 400) at 300.0 rpm, 25 % of the range, ~1m30s left" in tty.getvalue()
+    ev("branch_point", {"points": 200, "max_points": 400, "parameter": 150.0, "start": 100.0, "end": 300.0})
+    assert "point 200 (at most 400) at 300.0 rpm, 25 % of the range, ~0m30s left" in tty.getvalue()  # half the points
 
 
 def test_elapsed_is_quiet_for_a_quick_step_and_counts_a_slow_one():
