@@ -28,7 +28,7 @@ def run_response(scene_name: str, speed_rpm: float, revolutions: float, out: str
 
     Parameters
     ----------
-    scene_name : scene file or bundled name.
+    scene_name : scene file or bundled name, or a loaded :class:`rotor.model.scene.Scene`.
     speed_rpm : spin speed (rpm), > 0.
     revolutions : duration (revolutions of the spin), > 0.
     out : output directory.
@@ -44,7 +44,7 @@ def run_response(scene_name: str, speed_rpm: float, revolutions: float, out: str
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
 
-    scene = load_scene(scene_name)
+    scene = load_scene(scene_name) if isinstance(scene_name, (str, Path)) else scene_name
     model = assemble(scene, elements_per_segment=elements)
     names = list(stations) if stations else list(model.response_stations())
     cols = [model.dof_index(f"{s}.{d}") for s in names for d in ("y", "z")]

@@ -74,7 +74,7 @@ def arguments(parser: argparse.ArgumentParser) -> list[Argument]:
     for action in parser._actions:
         if isinstance(action, (argparse._HelpAction, argparse._SubParsersAction)) or action.help == argparse.SUPPRESS:
             continue
-        name = ", ".join(action.option_strings) or action.dest
+        name = ", ".join(action.option_strings) or action.metavar or action.dest
         if action.nargs == 0:
             value = "(flag)"
         elif action.choices is not None:

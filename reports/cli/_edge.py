@@ -92,6 +92,8 @@ def _probe(path: Path, kind: str) -> Path:
             raise argparse.ArgumentTypeError(f"= {shown}: is a file, a directory is needed")
         if kind == "file" and path.is_dir():
             raise argparse.ArgumentTypeError(f"= {shown}: is a directory, a file name is needed")
+        if kind == "file" and not path.is_file():    # /dev/null: the atomic rename would replace the device
+            raise argparse.ArgumentTypeError(f"= {shown}: not a regular file (a device, pipe or socket); name a file")
     base = path if (kind == "dir" and path.is_dir()) else path.parent
     while not base.exists():
         base = base.parent

@@ -27,24 +27,24 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import time
 from pathlib import Path
 
 from contact.errors import InputError, RingContactError
 from reports.cli._edge import Parser, count, fail, out_file, out_prefix, quantity
+from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, override_words,
+                                        scene_from_args, warm_up_shown)
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("scene", help="scene name or TOML path (e.g. paper-table4)")
+    add_scene_options(p)
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=None,
                    help="time steps per revolution (default: 256, more where the contact step limit needs it)")
-    p.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance (mm, default: scene)")
-    p.add_argument("--misalignment-mm", type=quantity("misalignment_mm"), default=None,
-                   help="misalignment δ (mm, default: scene)")
-    p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
     p.add_argument("--json", action="store_true", help="print the result as JSON (default: a short table)")
     p.add_argument("--out", type=out_file, default=None, help="also write the JSON result to this file")
+    add_progress_option(p)
 
 
 def _orbit_parser() -> argparse.ArgumentParser:
@@ -74,18 +74,15 @@ def _branch_parser() -> argparse.ArgumentParser:
 
 
 def _overrides(args) -> dict:
-    kw = {"tilt_ignored": bool(args.tilt_ignored)}
-    if args.clearance_mm is not None:
-        kw["clearance_m"] = args.clearance_mm * 1e-3
-    if args.misalignment_mm is not None:
-        kw["misalignment_m"] = args.misalignment_mm * 1e-3
-    return kw
+    """The scene overrides given (:func:`reports.cli._scene_options.scene_from_args`), ``tilt_ignored`` always."""
+    return {"tilt_ignored": False, **scene_from_args(args).overrides}
 
 
 def _scene(args) -> tuple:
-    """The scene's name, response channels and loose support; a bad scene is refused here, before any computing."""
+    """The scene's name, response channels and loose support (with ``--law``); a bad scene or law is refused here,
+    before any computing."""
     from rotor.studies.steady_state import _scene_model
-    sc, model = _scene_model(args.scene)
+    sc, model = _scene_model(args.scene, None, _overrides(args).get("law"))
     return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
 
 
@@ -118,7 +115,8 @@ def _emit(args, result: dict, table: str) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """``ringcontact orbit``."""
-    args = _orbit_parser().parse_args(argv)
+    p = _orbit_parser()
+    args = finish(p, p.parse_args(argv))
     try:
         return _orbit(args)
     except RingContactError as e:
@@ -128,7 +126,7 @@ def main(argv: list[str] | None = None) -> int:
 def branch_main(argv: list[str] | None = None) -> int:
     """``ringcontact branch``."""
     p = _branch_parser()
-    args = p.parse_args(argv)
+    args = finish(p, p.parse_args(argv))
     if args.rpm_end == args.rpm_start:
         p.error(f"argument --rpm-end: = {args.rpm_end:g} rpm: must differ from --rpm-start = {args.rpm_start:g} rpm")
     try:
@@ -174,22 +172,61 @@ def _support_line(d: dict) -> str:
             f"faces stuck {_share(d['stick_share_right_face'])} (right) / {_share(d['stick_share_left_face'])} (left)")
 
 
+def _watched(label: str, args, compute):
+    """``(compute(), Events)``: the step loop compiled first and the shooting's events shown on a terminal
+    (:mod:`sweep.progress`); the events keep the Newton attempts for a failure message."""
+    from rotor.dynamics.period_map import warm_up
+    from sweep.progress import Events, reporting
+
+    warm_up_shown(label, args, warm_up)
+    events = Events(label, parameter_unit=("rpm", 30.0 / math.pi), enabled=args.progress)
+    with reporting(events), events:
+        return compute(), events
+
+
+def _tried(attempts: list[dict]) -> str:
+    """The Newton attempts in words: how many, after how much transient, their periods and residuals."""
+    if not attempts:
+        return "no Newton attempt"
+    res = ", ".join(f"{a['residual']:.2g}" for a in attempts)
+    periods = sorted({a["period_revs"] for a in attempts})
+    return (f"{len(attempts)} Newton attempt{'s' * (len(attempts) > 1)} after {attempts[0]['transient_revs']} to "
+            f"{attempts[-1]['transient_revs']} transient revolutions, period {', '.join(map(str, periods))} rev, "
+            f"residuals {res}")
+
+
+def no_orbit_text(args, speed_rpm: float, steps_per_rev: int, attempts: list[dict], max_revs: int | None) -> str:
+    """What was tried and what to change, for an orbit that did not converge (one short paragraph)."""
+    scene = f"--scene {args.scene}{override_words(args)}"
+    period = getattr(args, "period_revs", None)
+    return (f"no periodic orbit at {speed_rpm:g} rpm: {_tried(attempts)} (at most {max_revs or '?'} transient "
+            f"revolutions). What to try: --period-revs K if the response repeats every K revolutions"
+            f"{f' (now {period})' if period else ''}; --steps-per-rev {2 * steps_per_rev} (now {steps_per_rev}) if "
+            f"contact events are short; a transient start: ringcontact simulate {scene} --speed-rpm {speed_rpm:g} "
+            "--steady --revolutions 64 "
+            "shows whether the response settles at all (steady_converged false: quasi-periodic or chaotic, no "
+            "periodic orbit to find).")
+
+
 def _orbit(args) -> int:
     from rotor.studies.orbit import orbit
 
     name, _, loose = _scene(args)
-    res = orbit(args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, period_revs=args.period_revs,
-                **_overrides(args))
+    res, events = _watched("ringcontact orbit", args, lambda: orbit(
+        args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, period_revs=args.period_revs,
+        **_overrides(args)))
     d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m,
-                                              res.contact.get("max_tilt_in_contact_arcmin"))}
-    _emit(args, d, _orbit_table(d))
-    if not res.converged:
-        print(f"ringcontact orbit: error: no periodic orbit of {res.period_revs} revolution(s) at "
-              f"{args.speed_rpm:g} rpm: Newton stopped at residual {res.residual:.3g} after {res.newton_iterations} "
-              "iterations (the multipliers are those of the last iterate; try --period-revs or another speed)",
-              file=sys.stderr)
-        return 1
-    return 0
+                                              res.contact.get("max_tilt_in_contact_arcmin")),
+         "attempts": events.attempts}
+    if res.converged:
+        _emit(args, d, _orbit_table(d))
+        return 0
+    why = no_orbit_text(args, args.speed_rpm, res.steps_per_rev, events.attempts, events.max_revs)
+    d["advice"] = why
+    _emit(args, d, f"orbit {name}: {why}")      # not the amplitudes of an iterate that is no orbit
+    print(f"ringcontact orbit: error: no periodic orbit at {args.speed_rpm:g} rpm ({_tried(events.attempts)}); "
+          f"{'see above' if not args.json else 'the JSON says what to try'}", file=sys.stderr)
+    return 1
 
 
 def _branch_table(d: dict) -> str:
@@ -215,8 +252,9 @@ def _branch(args) -> int:
         raise InputError(f"--station = {station}: not a response channel of {name} "
                          f"(have {', '.join(channels)})")
     t0 = time.perf_counter()
-    res = branch(args.scene, args.rpm_start, args.rpm_end, steps_per_rev=args.steps_per_rev,
-                 options=ContinuationOptions(max_points=int(args.max_points)), **_overrides(args))
+    res, events = _watched("ringcontact branch", args, lambda: branch(
+        args.scene, args.rpm_start, args.rpm_end, steps_per_rev=args.steps_per_rev,
+        options=ContinuationOptions(max_points=int(args.max_points)), **_overrides(args)))
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3)}
@@ -229,6 +267,10 @@ def _branch(args) -> int:
         from reports.bifurcation import bifurcation_figure
         for f in bifurcation_figure(d, station, args.plot):
             print(f"  wrote {f}", file=sys.stderr if args.json else sys.stdout)
+    if not res.start.converged:
+        why = no_orbit_text(args, args.rpm_start, res.start.steps_per_rev, events.attempts, events.max_revs)
+        print(f"ringcontact branch: error: no orbit at the start (--rpm-start): {why}", file=sys.stderr)
+        return 1
     if d["stop"] != "end reached":
         print(f"ringcontact branch: error: the branch stopped at "
               f"{d['points'][-1]['speed_rpm'] if d['points'] else args.rpm_start:.1f} rpm before --rpm-end = "

@@ -27,14 +27,17 @@ import numpy as np
 
 from contact.errors import InputError, RingContactError
 from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
+from reports.cli._scene_options import add_scene_options, finish, linear_scene
 
 RPM = 30 / math.pi
 
 
-def _load(args):
+def _load(args, misalignment: bool = False):
+    """Scene (with ``--misalignment-mm`` where ``misalignment``; the other loose-support overrides refused:
+    :func:`reports.cli._scene_options.linear_scene`) and its assembled model."""
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
-    scene = load_scene(args.scene)
+    scene = linear_scene(args, load_scene(args.scene), misalignment=misalignment)
     return scene, assemble(scene, elements_per_segment=args.elements)
 
 
@@ -60,6 +63,24 @@ def raise_input(msg):
     raise InputError(msg)
 
 
+def _f(args, f_hz: float) -> float:
+    """A frequency (Hz) in the table's unit (``--units``: Hz, or rad/s)."""
+    return f_hz * 2 * math.pi if args.units == "rad/s" else f_hz
+
+
+def _s(args, w_rad_s: float) -> float:
+    """A speed (rad/s) in the table's unit (``--units``: rpm, or rad/s)."""
+    return w_rad_s if args.units == "rad/s" else w_rad_s * RPM
+
+
+def _fu(args) -> str:
+    return "rad/s" if args.units == "rad/s" else "Hz"
+
+
+def _su(args) -> str:
+    return "rad/s" if args.units == "rad/s" else "rpm"
+
+
 def _emit(args, data: dict, table: str) -> None:
     print(json.dumps(data, indent=2, ensure_ascii=False) if args.json else table)
 
@@ -83,13 +104,14 @@ def cmd_modes(args) -> int:
     res = modes(model, args.speed_rpm / RPM, n_modes=args.modes or scene.analysis.modes,
                 lock_loose_support=not args.open_support,
                 damped=args.damped)
-    rows = [{"mode": j + 1, "frequency_hz": float(f), "frequency_rpm": float(f * 60), "whirl": w,
+    rows = [{"mode": j + 1, "frequency_hz": float(f), "frequency_rpm": float(f * 60),
+             "frequency_rad_s": float(f * 2 * math.pi), "whirl": w,
              "forward_fraction": float(r), "damping_ratio": float(z) if args.damped else 0.0}
             for j, (f, w, r, z) in enumerate(zip(res.frequency_hz, res.whirl, res.forward_fraction, res.damping_ratio))]
     lines = [f"{scene.title}", f"modes at {args.speed_rpm:g} rpm ({'damped' if args.damped else 'undamped'}, "
              f"loose support {'open' if args.open_support else 'locked'}, {model.n_dofs} DOFs)",
-             f"{'mode':>4} {'freq (Hz)':>11} {'freq (rpm)':>11} {'whirl':>9} {'fwd frac':>8} {'zeta':>7}"]
-    lines += [f"{r['mode']:>4} {r['frequency_hz']:>11.3f} {r['frequency_rpm']:>11.1f} {r['whirl']:>9} "
+             f"{'mode':>4} {'freq (' + _fu(args) + ')':>13} {'freq (rpm)':>11} {'whirl':>9} {'fwd frac':>8} {'zeta':>7}"]
+    lines += [f"{r['mode']:>4} {_f(args, r['frequency_hz']):>13.3f} {r['frequency_rpm']:>11.1f} {r['whirl']:>9} "
               f"{r['forward_fraction']:>8.3f} {r['damping_ratio']:>7.4f}" for r in rows]
     if args.plot:
         _plot_mode_shapes(args, scene, model, res)
@@ -118,20 +140,24 @@ def cmd_campbell(args) -> int:
     camp = campbell(model, speeds, n_modes=n_modes, lock_loose_support=not args.open_support, damped=args.damped)
     if args.plot:
         from reports.rotor_plots import campbell_figure, save
-        crit = critical_speeds(model, wmax, n_modes=n_modes + 4, lock_loose_support=not args.open_support)
-        for p in save(campbell_figure(camp, f"Campbell diagram: {scene.title}", crit), f"{args.plot}-campbell"):
+        crit = critical_speeds(model, wmax, orders=tuple(args.orders), families=_families(args), n_modes=n_modes + 4,
+                               lock_loose_support=not args.open_support)
+        for p in save(campbell_figure(camp, f"Campbell diagram: {scene.title}", crit, orders=tuple(args.orders)),
+                      f"{args.plot}-campbell"):
             print(f"wrote {p}", file=sys.stderr)
-    data = {"scene": scene.name, "speed_rpm": (speeds * RPM).tolist(),
+    data = {"scene": scene.name, "speed_rpm": (speeds * RPM).tolist(), "speed_rad_s": speeds.tolist(),
             "frequency_hz": [[None if not np.isfinite(v) else float(v) for v in row] for row in camp.frequency_hz],
+            "frequency_rad_s": _finite_rows(camp.frequency_hz * 2 * math.pi),
             "whirl": [list(w) for w in camp.whirl], "damped": bool(args.damped),
             "damping_ratio": _finite_rows(camp.damping_ratio), "log_decrement": _finite_rows(camp.log_decrement)}
-    head = f"{'speed (rpm)':>11} " + " ".join(f"{'mode ' + str(j + 1) + ' (Hz, zeta)':>23}" for j in range(n_modes))
+    head = f"{'speed (' + _su(args) + ')':>13} " + " ".join(f"{f'mode {j + 1} ({_fu(args)}, zeta)':>23}"
+                                                          for j in range(n_modes))
     lines = [scene.title + (" (damped: frequencies and zeta with C)" if args.damped else " (undamped: zeta = 0)"),
              head]
     for i, w in enumerate(speeds):
-        cells = [f"{camp.frequency_hz[i, j]:>10.3f} {camp.whirl[i][j][:3]:>5} {camp.damping_ratio[i, j]:>6.4f}"
+        cells = [f"{_f(args, camp.frequency_hz[i, j]):>10.3f} {camp.whirl[i][j][:3]:>5} {camp.damping_ratio[i, j]:>6.4f}"
                  for j in range(n_modes)]
-        lines.append(f"{w * RPM:>11.1f} " + " ".join(cells))
+        lines.append(f"{_s(args, w):>13.1f} " + " ".join(cells))
     _emit(args, data, "\n".join(lines))
     return 0
 
@@ -146,21 +172,24 @@ def cmd_critical(args) -> int:
     scene, model = _load(args)
     _warn_free(model, args)
     wmax = _max_speed(args, scene)
-    crit = critical_speeds(model, wmax, orders=tuple(args.orders), n_modes=(args.modes or scene.analysis.modes) + 4,
-                           lock_loose_support=not args.open_support)
-    rows = [{"order": c.order, "speed_rpm": c.speed_rpm, "frequency_hz": c.frequency_hz, "whirl": c.whirl,
-             "branch": c.branch + 1} for c in crit]
-    lines = [scene.title, f"critical speeds up to {wmax * RPM:.0f} rpm (undamped whirl frequency = order x speed)",
-             f"{'order':>5} {'speed (rpm)':>12} {'freq (Hz)':>10} {'whirl':>9} {'branch':>6}"]
-    lines += [f"{r['order']:>4}X {r['speed_rpm']:>12.1f} {r['frequency_hz']:>10.3f} {r['whirl']:>9} {r['branch']:>6}"
-              for r in rows]
-    _emit(args, {"scene": scene.name, "max_speed_rpm": wmax * RPM, "critical_speeds": rows}, "\n".join(lines))
+    crit = critical_speeds(model, wmax, orders=tuple(args.orders), families=_families(args),
+                           n_modes=(args.modes or scene.analysis.modes) + 4, lock_loose_support=not args.open_support)
+    rows = [{"order": c.order, "speed_rpm": c.speed_rpm, "speed_rad_s": c.speed_rad_s, "frequency_hz": c.frequency_hz,
+             "frequency_rad_s": c.frequency_hz * 2 * math.pi, "whirl": c.whirl, "branch": c.branch + 1} for c in crit]
+    shown = f"{', '.join(f'{o}X' for o in args.orders)}, {' and '.join(_families(args))} whirl"
+    lines = [scene.title, f"critical speeds up to {wmax * RPM:.0f} rpm ({shown}; undamped whirl frequency = order x "
+             "speed)", f"{'order':>5} {'speed (' + _su(args) + ')':>14} {'freq (' + _fu(args) + ')':>13} "
+             f"{'whirl':>9} {'branch':>6}"]
+    lines += [f"{r['order']:>4}X {_s(args, r['speed_rad_s']):>14.1f} {_f(args, r['frequency_hz']):>13.3f} "
+              f"{r['whirl']:>9} {r['branch']:>6}" for r in rows]
+    _emit(args, {"scene": scene.name, "max_speed_rpm": wmax * RPM, "orders": list(args.orders),
+                 "whirl": list(_families(args)), "critical_speeds": rows}, "\n".join(lines))
     return 0
 
 
 def cmd_unbalance(args) -> int:
     from rotor.linear.unbalance import forced_response
-    scene, model = _load(args)
+    scene, model = _load(args, misalignment=args.order == 2)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(wmax / (args.points or scene.analysis.speed_points), wmax,
                          args.points or scene.analysis.speed_points)
@@ -176,12 +205,34 @@ def cmd_unbalance(args) -> int:
             print(f"wrote {p}", file=sys.stderr)
     table = {n: resp.orbit(model, n)[0] * 1e6 for n in nodes}
     data = {"scene": scene.name, "order": args.order, "speed_rpm": (speeds * RPM).tolist(),
-            "semi_major_um": {n: v.tolist() for n, v in table.items()}}
-    lines = [scene.title, f"{args.order}X orbit semi-major axis (µm)",
-             f"{'speed (rpm)':>11} " + " ".join(f"{n:>12}" for n in nodes)]
-    lines += [f"{w * RPM:>11.1f} " + " ".join(f"{table[n][i]:>12.4g}" for n in nodes) for i, w in enumerate(speeds)]
+            "speed_rad_s": speeds.tolist(), "semi_major_um": {n: v.tolist() for n, v in table.items()},
+            "phase_reference": PHASE_REFERENCE, **_amplitudes_and_phases(model, resp, nodes)}
+    lines = [scene.title, f"{args.order}X orbit semi-major axis (µm) and phase of y (deg; 0: in step with the load "
+             "at +y, negative: lagging)",
+             f"{'speed (' + _su(args) + ')':>13} " + " ".join(f"{n + ' um':>12} {'deg':>7}" for n in nodes)]
+    ph = data["y_phase_deg"]
+    lines += [f"{_s(args, w):>13.1f} " + " ".join(f"{table[n][i]:>12.4g} {ph[n][i]:>7.1f}" for n in nodes)
+              for i, w in enumerate(speeds)]
     _emit(args, data, "\n".join(lines))
     return 0
+
+
+#: what the unbalance phases are measured from
+PHASE_REFERENCE = ("x(t) = amplitude cos(order Ω t + phase): phase 0 is in step with the load's cos(order Ω t) term "
+                   "(a disk unbalance of phase 0 at +y, the misalignment's F_y: rotor.model.assembly.harmonic_loads), "
+                   "negative phases lag it")
+
+
+def _amplitudes_and_phases(model, resp, nodes) -> dict:
+    """``y_amplitude_um``, ``y_phase_deg``, ``z_amplitude_um``, ``z_phase_deg`` per node from the complex amplitudes
+    (:class:`rotor.linear.unbalance.ForcedResponse`: ``x(t) = Re(x̂ e^{i order Ω t})``), phases in (−180, 180]."""
+    out = {}
+    for c in ("y", "z"):
+        amp = {n: resp.amplitudes[:, model.dof_index(f"{n}.{c}")] for n in nodes}
+        out[f"{c}_amplitude_um"] = {n: (np.abs(a) * 1e6).tolist() for n, a in amp.items()}
+        out[f"{c}_phase_deg"] = {n: [float(v if v > -180.0 else v + 360.0) for v in np.degrees(np.angle(a))]
+                                 for n, a in amp.items()}
+    return out
 
 
 def cmd_response(args) -> int:
@@ -195,7 +246,9 @@ def cmd_response(args) -> int:
         if not all(stations):
             raise InputError(f"--stations = {args.stations!r}: an empty name in the list; give comma-separated "
                              "station, disk, bearing or support names (or leave --stations out for the default)")
-    summary = run_response(args.scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
+    from rotor.model.scene import load_scene
+    scene = linear_scene(args, load_scene(args.scene), misalignment=True)
+    summary = run_response(scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
                            stations=stations, steps_per_rev=args.steps_per_rev, record_per_rev=args.record_per_rev,
                            elements=args.elements)
     _emit(args, summary, summary_table(summary) + f"\nwrote {args.out}/response.csv, response-summary.json")
@@ -233,18 +286,35 @@ def cmd_report(args) -> int:
     return 0
 
 
+def _crossings(sp, what: str) -> None:
+    """``--orders`` and ``--backward``: which crossings of the whirl frequencies are critical speeds."""
+    sp.add_argument("--orders", type=count(1, 20), nargs="+", default=[1],
+                    help=f"excitation orders 1-20 of the critical speeds {what} (default 1: unbalance; 2 for the "
+                         "misalignment's 2X)")
+    sp.add_argument("--backward", action="store_true",
+                    help=f"also the backward-whirl crossings {what} (default: forward whirl only, the ones an "
+                         "unbalance excites)")
+
+
+def _families(args) -> tuple:
+    return ("forward", "backward") if args.backward else ("forward",)
+
+
 def _parser() -> argparse.ArgumentParser:
     p = Parser(prog="ringcontact rotor", description="Linear analyses of a rotor scene "
                                 "(natural frequencies, Campbell diagram, critical speeds, unbalance response).")
     sub = p.add_subparsers(dest="cmd", required=True)
 
     def common(sp, speed_range=True):
-        sp.add_argument("scene", help="scene file (.toml) or bundled scene name (see 'ringcontact rotor scenes')")
+        add_scene_options(sp)
         sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override, 1-64)")
         sp.add_argument("--open-support", action="store_true",
                         help="leave the loose-support bearing and support unconnected (default: locked together)")
         sp.add_argument("--modes", type=count(1, 200), default=None, help="number of modes (1-200)")
-        sp.add_argument("--json", action="store_true", help="print JSON instead of a table")
+        sp.add_argument("--json", action="store_true", help="print JSON instead of a table (frequencies and speeds in "
+                        "both units: frequency_hz and frequency_rad_s, speed_rpm and speed_rad_s)")
+        sp.add_argument("--units", choices=("hz", "rad/s"), default="hz",
+                        help="the table's frequencies in Hz and speeds in rpm (hz, default) or both in rad/s")
         if speed_range:
             sp.add_argument("--max-rpm", type=quantity("rpm_max"), default=None, help="top speed (rpm); default from the scene")
 
@@ -263,10 +333,11 @@ def _parser() -> argparse.ArgumentParser:
     sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX-campbell.png and .svg")
     sp.add_argument("--damped", action="store_true", help="include viscous damping: damped frequencies and each "
                     "mode's damping ratio zeta and log decrement (default undamped, zeta = 0)")
+    _crossings(sp, "of the --plot")
     sp.set_defaults(func=cmd_campbell)
     sp = sub.add_parser("critical-speeds", help="intersections of whirl frequencies with 1X, 2X ...")
     common(sp)
-    sp.add_argument("--orders", type=count(1, 20), nargs="+", default=[1, 2], help="excitation orders 1-20 (default 1 2)")
+    _crossings(sp, "listed")
     sp.set_defaults(func=cmd_critical)
     sp = sub.add_parser("unbalance", help="linear steady-state unbalance (1X) or misalignment (2X) response")
     common(sp)
@@ -277,12 +348,12 @@ def _parser() -> argparse.ArgumentParser:
                     help="write PREFIX-unbalance.png and .svg (--order 2: PREFIX-misalignment.png and .svg)")
     sp.set_defaults(func=cmd_unbalance)
     sp = sub.add_parser("static", help="static deflection and bearing reactions under gravity and static loads")
-    sp.add_argument("scene", help="scene file (.toml) or bundled scene name (see 'ringcontact rotor scenes')")
+    add_scene_options(sp)
     sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override, 1-64)")
     sp.add_argument("--json", action="store_true", help="print JSON instead of a table")
     sp.set_defaults(func=cmd_static)
     sp = sub.add_parser("response", help="linear time response of the stations (loose support locked), CSV")
-    sp.add_argument("scene", help="scene file (.toml) or bundled scene name")
+    add_scene_options(sp)
     sp.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
     sp.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
     sp.add_argument("--method", choices=("harmonic", "newmark"), default="harmonic",
@@ -302,7 +373,9 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
+    p = _parser()
+    args = p.parse_args(argv)
+    args = finish(p, args, sub=args.cmd)
     for name in ("modes", "points", "elements", "steps_per_rev", "record_per_rev"):
         v = getattr(args, name, None)
         if v is not None and v < 1:

@@ -50,13 +50,15 @@ from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
 from reports.cli._edge import Parser, count, fail, out_dir, quantity
+from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, max_revs, scene_from_args,
+                                        warm_up_shown)
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
 
 
 def _parser() -> argparse.ArgumentParser:
     p = Parser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
-    p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
+    add_scene_options(p, transient=True)
     p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
     p.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=None,
@@ -72,31 +74,16 @@ def _parser() -> argparse.ArgumentParser:
                    help="comma-separated station names (the scene's disk, bearing, support or node names); default: "
                         "the CSV gets the scene's disks, loose-support bearing station and supports (Table 4: disk1, "
                         "disk2, 5, s), --steady analyses every disk, bearing and support station")
-    p.add_argument("--law", default=None, metavar="LAW",
-                   help="radial contact law instead of the scene's [loose_support] law (default: the scene's, "
-                        "conformal when it names none): conformal (the paper's law as published), pereira, "
-                        "calibrated:<name> (contact/calibrated/<name>.json) or the path of a calibrated-law file "
-                        "(.json); a calibrated law's clearance, ring width and materials must be the scene's")
-    p.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (paper Fig. 16)")
-    p.add_argument("--mu", type=quantity("mu"), default=None, help="end-face friction coefficient (default: scene)")
-    p.add_argument("--preload-N", "--preload-n", dest="preload_n", type=quantity("preload_N"), default=None,
-                   help="nut preload per face (N, default: scene)")
-    p.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance (mm, default: scene)")
-    p.add_argument("--misalignment-mm", type=quantity("misalignment_mm"), default=None,
-                   help="misalignment δ (mm, default: scene)")
     p.add_argument("--steady", action="store_true",
                    help="run to steady state first (rotor.studies.steady_state.steady_state: displacement Poincaré samples "
                         "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
                         "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
                         "amplitudes of --dofs in the summary")
-    p.add_argument("--max-revs", type=count(24, 100000), default=None,
-                   help="--steady: transient cap in revolutions (default 8000: at the paper's point A the end faces "
-                        "creep for about 2 000 revolutions before the ring settles; at least 24, the detector's "
-                        "shortest transient)")
     p.add_argument("--accept-long", action="store_true",
                    help=f"run even when the estimate exceeds the budget ({WORK_BUDGET_S / 60:g} min of stepping or "
                         f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB of records)")
     p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
+    add_progress_option(p)
     return p
 
 
@@ -131,7 +118,8 @@ def check_budget(args, n_steps: int, n_records: int, n_dofs: int) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
+    p = _parser()
+    args = finish(p, p.parse_args(argv))
     try:
         return _run(args)
     except RingContactError as e:
@@ -162,7 +150,8 @@ def _run(args) -> int:
     rec = max(1, args.steps_per_rev // args.record_per_rev)
     check_budget(args, n_steps, n_steps // rec + 1, model.n_dofs)
     run = simulate_production if args.scheme == "production" else simulate_reference
-    compiled = warm_up()  # compile or load the step loop now (the --steady detector uses it too)
+    # compile or load the step loop now (the --steady detector uses it too), the seconds shown on a terminal
+    compiled = warm_up_shown("ringcontact simulate", args, warm_up)
     t0 = time.perf_counter()
     extra = {}
     if args.steady:
@@ -232,9 +221,12 @@ def _dof_names(args, model, primary_only: bool) -> list[str]:
 
 def _system(args):
     """``(scene, model, system, law info)`` from the checked arguments; law info: ``note`` (summary fields
-    naming a calibrated law's file and checksum) and ``validity_max_m`` (m, None for an analytic law)."""
+    naming a calibrated law's file and checksum), ``validity_max_m`` (m) and ``validity_tilt_rad`` (rad) of a
+    calibrated law (None for an analytic law). The overrides are those of every rotor job
+    (:mod:`reports.cli._scene_options`)."""
     from rotor.dynamics.build import system_from_model
     from rotor.model.assembly import assemble
+    from rotor.model.loose_support_scene import with_law
     from rotor.model.scene import load_scene
 
     check_positive("speed_rpm", args.speed_rpm, "rpm", upper=1e5)
@@ -242,27 +234,24 @@ def _system(args):
     if args.steps_per_rev is not None:
         check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e6)
         check_positive("record_per_rev", args.record_per_rev, "samples", upper=args.steps_per_rev)
-    scene = load_scene(args.scene)
+    choice = scene_from_args(args)
+    kw = dict(choice.overrides)
+    scene = load_scene(choice.scene)
+    if "law" in kw:
+        scene = with_law(scene, kw.pop("law"))
     model = assemble(scene)
     omega = args.speed_rpm * 2 * math.pi / 60
-    kw = {}
-    if args.clearance_mm is not None:
-        check_positive("clearance_mm", args.clearance_mm, "mm", upper=10.0)
-        kw["clearance_m"] = args.clearance_mm * 1e-3
-    if args.misalignment_mm is not None:
-        check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True, upper=50.0)
-        kw["misalignment_m"] = args.misalignment_mm * 1e-3
-    clearance_m = kw.pop("clearance_m", None)
-    law, info = _law(args, scene, clearance_m)
-    if law is not None:
-        system = system_from_model(model, scene, omega, law=law, mu=args.mu, preload_N=args.preload_n, **kw)
-    else:
-        system = system_from_model(model, scene, omega, law_name=args.law, tilt_ignored=args.tilt_ignored, mu=args.mu,
-                                   preload_N=args.preload_n, clearance_m=clearance_m, **kw)
+    system = system_from_model(model, scene, omega, tilt_ignored=kw.pop("tilt_ignored", False), mu=kw.pop("mu", None),
+                               preload_N=kw.pop("preload_n", None), **kw)
     args.steps_chosen = args.steps_per_rev is None
     if args.steps_chosen:     # as orbit and the studies: the contact step limit with a margin, whole record samples
         from rotor.studies.steady_state import SteadyStateOptions, step_per_rev
         args.steps_per_rev = step_per_rev(system, SteadyStateOptions(samples_per_rev=args.record_per_rev))
+    ls = scene.loose_support
+    cal = ls.calibrated if ls is not None else None
+    info = {"note": ls.law_note() if ls is not None else {},
+            "validity_max_m": ls.validity_max_penetration_m if ls is not None else None,
+            "validity_tilt_rad": float(cal.validity_tilt_max_rad) if cal is not None else None}
     return scene, model, system, info
 
 
@@ -274,15 +263,17 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     from rotor.dynamics.production import simulate_production
     from rotor.dynamics.initial import linear_initial_state
     from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
+    from sweep.progress import Events, reporting
 
     keep = int(round(args.revolutions))   # the options were checked by _run before any work
     # detection by rotor.studies.steady_state (displacement Poincaré samples with the projected tail of the
     # decay, subharmonic periods); its own record is one period only: the kept revolutions are
     # integrated below from its end state so that every field of the trajectory is written
     opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
-                              spectrum_revs=1, max_revs=int(args.max_revs or 8000))
+                              spectrum_revs=1, max_revs=max_revs(args))
     q_start, v_start = linear_initial_state(system, 0.0)
-    ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
+    with reporting(Events("ringcontact simulate --steady", enabled=args.progress)) as events, events:  # on a terminal
+        ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
     conv = ss.convergence
     period = conv.period if conv.converged else 1
     keep = int(math.ceil(keep / period) * period)  # whole periods: exact DFT bins
@@ -320,39 +311,6 @@ def _trajectory_files(tr, system, names: list[str], idx: list[int], r1, r2, d0: 
     np.savez_compressed(b, t=tr.t, q=tr.q, v=tr.v, u=tr.u, w=tr.w, f_contact=tr.f_contact, face_force=tr.face_force,
                         modes=tr.modes, dof_names=np.array(system.dof_names), **forces)
     return {"simulate.csv": buf.getvalue().encode("utf-8"), "simulate.npz": b.getvalue()}
-
-
-def _law(args, scene, clearance_m):
-    """``(SupportLaw or None, law info)`` for ``--law`` (see :func:`_system` for the info).
-
-    None: the scene's law, or ``--law conformal|pereira``, built by ``system_from_model``. A calibrated
-    ``--law`` (``calibrated:<name>`` or a law file, :func:`rotor.model.loose_support_scene.law_record`) must
-    hold for the scene's geometry and takes the scene's collision factor.
-    """
-    from rotor.dynamics.build import calibrated_support_law
-    from rotor.model.loose_support_scene import geometry_mismatch, law_label, law_record
-
-    ls = scene.loose_support
-    if args.law is None:
-        cal = ls.calibrated if ls is not None else None
-        return None, {"note": ls.law_note() if ls is not None else {},
-                      "validity_max_m": ls.validity_max_penetration_m if ls is not None else None,
-                      "validity_tilt_rad": float(cal.validity_tilt_max_rad) if cal is not None else None}
-    rec = law_record(args.law, None, "--law")
-    if ls is None:
-        raise InputError(f"--law = {args.law}: scene {scene.name!r} has no [loose_support] to apply it to")
-    if rec is None:
-        return None, {"note": {}, "validity_max_m": None}
-    bad = geometry_mismatch(vars(ls), rec.law)
-    if bad is not None:
-        key, mine, theirs, unit = bad
-        raise InputError(f"--law = {args.law}: {law_label(args.law)} holds for {key} = {theirs:.6g} {unit} but scene "
-                         f"{scene.path} has {key} = {mine:.6g} {unit} in [loose_support]: leave out --law to use the "
-                         f"scene's law, or name a law calibrated for {mine:.6g} {unit}".replace("  ", " "))
-    law = calibrated_support_law(rec.law, args.law, ls.collision_factor_s_m, args.tilt_ignored, clearance_m)
-    return law, {"note": {"law_file": rec.path, "law_sha256": rec.sha256},
-                 "validity_max_m": float(rec.law.validity_penetration_m[1]),
-                 "validity_tilt_rad": float(rec.law.validity_tilt_max_rad)}
 
 
 STEP_LIMIT_OMEGA_DT = 2.0     # ω_c Δt above which a contact event is crossed in fewer than ~3 steps (rotor/dynamics/system.py)

@@ -37,17 +37,18 @@ from contact.errors import FailedPointsError, InputError, RingContactError
 from contact.package_data import shipped
 from contact.units import check_positive
 from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, out_file, quantity
+from reports.cli._scene_options import (DEFAULT_SCENE, add_scene_options, finish, max_revs, refuse_overrides,
+                                        scene_from_args, warm_up_shown)
 
 
-def _common(p: argparse.ArgumentParser, out: str):
-    p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
+def _common(p: argparse.ArgumentParser, out: str, scene: str = DEFAULT_SCENE):
+    add_scene_options(p, default=scene, transient=True)
     p.add_argument("--out", type=out_dir, default=out, help=f"result directory (default {out})")
     p.add_argument("--figures", type=out_dir, default=None, help="figure directory (default <out>/figures)")
     p.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")
     _scheduler(p)
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=256,
-                   help="minimum time steps per revolution (default 256)")
-    p.add_argument("--max-revs", type=count(1, 100000), default=1500, help="transient cap in revolutions (default 1500)")
+                   help="minimum time steps per revolution (default 256, more where the contact step limit needs it)")
     p.add_argument("--elements", type=count(1, 64), default=None,
                    help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
@@ -89,10 +90,6 @@ def _parser() -> argparse.ArgumentParser:
     c.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0, help="highest speed (rpm, default 18000)")
     c.add_argument("--rpm-min", type=quantity("speed_rpm"), default=0.0, help="lowest speed (rpm, default 0)")
     c.add_argument("--points", type=count(1, 2000), default=61, help="number of speeds (default 61)")
-    c.add_argument("--tilt-ignored", action="store_true", help="line contact, no tilt moments (Fig. 16)")
-    c.add_argument("--clearance-mm", type=quantity("clearance_mm"), default=None, help="radial clearance (mm, default: scene)")
-    c.add_argument("--misalignment-mm", type=quantity("misalignment_mm"), default=None,
-                   help="misalignment δ (mm, default: scene)")
     _method(c)
     pt = sub.add_parser("point", help="orbits, deflection, time histories, spectra, r1/r2 at one speed (Figs. 13-15)")
     _common(pt, "runs/point")
@@ -105,8 +102,7 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--misalignments-mm", default="0.5,2", help="comma list besides the scene's (mm)")
     _method(pr)
     tr = sub.add_parser("testrig", help="Table 5 test rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/3 mm")
-    _common(tr, "runs/testrig")
-    tr.set_defaults(scene="paper-table5-testrig")
+    _common(tr, "runs/testrig", scene="paper-table5-testrig")
     ru = sub.add_parser("runup", help="run-up/run-down with time-varying speed and a time-frequency cascade")
     _common(ru, "runs/runup")
     ru.add_argument("--rpm-start", type=quantity("run_speed_rpm"), default=600.0)
@@ -153,7 +149,9 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
+    p = _parser()
+    args = p.parse_args(argv)
+    args = finish(p, args, sub=args.study)
     try:
         return _run(args)
     except RingContactError as e:
@@ -178,8 +176,13 @@ def _floats(text: str, name: str, unit: str) -> list[float]:
 
 def _options(args) -> dict:
     check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e5)
-    check_positive("max_revs", args.max_revs, "rev", upper=1e6)
-    return {"steps_per_rev": int(args.steps_per_rev), "max_revs": int(args.max_revs)}
+    check_positive("max_revs", max_revs(args), "rev", upper=1e6)
+    return {"steps_per_rev": int(args.steps_per_rev), "max_revs": max_revs(args)}
+
+
+def _ov(args) -> dict:
+    """The scene overrides given (:func:`reports.cli._scene_options.scene_from_args`, SI keywords)."""
+    return dict(scene_from_args(args).overrides)
 
 
 def _mesh(args) -> dict:
@@ -195,7 +198,7 @@ def _sweep(tasks, out: Path, args, description: dict):
     from sweep.cluster import connect
     from rotor.studies.steady_state import _scene_model
 
-    sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
+    sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"), _ov(args).get("law"))
     _same_law(out, sc)
     import dataclasses
     scene_doc = dataclasses.asdict(sc)
@@ -205,6 +208,7 @@ def _sweep(tasks, out: Path, args, description: dict):
             print(f"study {args.study}: law {sc.loose_support.law_file} (sha256 {sc.loose_support.law_sha256})")
     manifest = {"study": args.study, "description": description, "scene_name": sc.name, "scene": scene_doc,
                 **_mesh(args)}
+    _compile_first(args)
     t0 = time.perf_counter()
     with connect(args.scheduler) as client:
         s = run_sweep(tasks, out, executor=client, max_workers=args.workers, manifest=manifest,
@@ -218,7 +222,35 @@ def _sweep(tasks, out: Path, args, description: dict):
     if s.failed:
         raise FailedPointsError(f"{len(s.failed)} of {n_points} points failed (FAILED lines above); no figures "
                                 f"written; the finished points stay in {out}, a rerun computes only the rest")
+    _say_unsettled(out, point_tasks(tasks), args)
     return s, wall
+
+
+def _compile_first(args) -> None:
+    """Compile the step loop here (or load it from the disk cache), its seconds shown on a terminal, so that the
+    local workers load it from the disk cache instead of each compiling it unseen (not for a cluster: its
+    workers have their own cache)."""
+    if args.scheduler is not None:
+        return
+    if getattr(args, "method", "transient") == "shooting":
+        from rotor.dynamics.period_map import warm_up
+    else:
+        from rotor.dynamics.production import warm_up
+    warm_up_shown(f"study {args.study}", argparse.Namespace(progress=False if args.no_progress else None), warm_up)
+
+
+def _say_unsettled(out: Path, tasks, args) -> None:
+    """Count the points whose transient reached no steady state within the cap (``converged`` False) and say so."""
+    from sweep.store import ResultStore
+
+    store = ResultStore(out)
+    keys = [t.key for t in tasks if not store.info(t.key).get("converged", True)]
+    if keys:
+        speeds = ", ".join(f"{store.info(k).get('speed_rpm', float('nan')):g}" for k in keys[:8])
+        print(f"study {args.study}: {len(keys)} of {len(tasks)} points not converged within --max-revs = "
+              f"{max_revs(args)} revolutions (at {speeds}{' …' if len(keys) > 8 else ''} rpm): their amplitudes are "
+              "those of the last revolutions, not of a steady state (converged = 0 in the CSV, marked in the "
+              "figures); a higher --max-revs, or --method shooting for the periodic orbit")
 
 
 def _run(args) -> int:
@@ -233,8 +265,8 @@ def _run(args) -> int:
         return _export(args)
     if args.study == "sensitivity":
         return _sensitivity(args)
-    from rotor.model.scene import load_scene
-    scene = load_scene(args.scene)  # a bad scene is refused here, not by every point of the sweep
+    from rotor.studies.steady_state import _scene_model
+    scene, _ = _scene_model(args.scene, None, _ov(args).get("law"))  # a bad scene or law: refused here, not per point
     _law_clearances(args, scene)
     out = Path(args.out)
     figs = Path(args.figures) if args.figures else out / "figures"
@@ -349,12 +381,7 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     if args.rpm_min > args.rpm_max:
         raise InputError(f"--rpm-min = {args.rpm_min:g} rpm: must be <= --rpm-max = {args.rpm_max:g} rpm")
     speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
-    kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts, **_mesh(args)}
-    if args.clearance_mm is not None:
-        kw["clearance_m"] = check_positive("clearance_mm", args.clearance_mm, "mm", upper=10) * 1e-3
-    if args.misalignment_mm is not None:
-        kw["misalignment_m"] = check_positive("misalignment_mm", args.misalignment_mm, "mm", allow_zero=True,
-                                              upper=50) * 1e-3
+    kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts, **_mesh(args), **_ov(args)}
     tasks = _tasks(args)(args.scene, speeds, **kw)
     s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **_method_note(args), **kw})
     _timing(out, s, wall, args)
@@ -372,7 +399,7 @@ def _point(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from rotor.studies.steady_state import sweep_tasks
 
     speeds = args.speed_rpm or [4500.0, 10500.0]
-    tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8, **_mesh(args))
+    tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8, **_mesh(args), **_ov(args))
     _sweep(tasks, out, args, {"speeds_rpm": speeds})
     return point_figures(out, figs, tasks=tasks)
 
@@ -385,13 +412,15 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     sweep_tasks = _tasks(args)
     speeds = np.linspace(0.0, args.rpm_max, int(args.points))
     # the scene's own clearance/misalignment is one shared 'base' curve of both figures
-    mesh = _mesh(args)
+    # (--clearance-mm / --misalignment-mm: the base values, held by the curves that vary the other one)
+    mesh = {**_mesh(args), **_ov(args)}
     tasks = sweep_tasks(args.scene, speeds, prefix="base-rpm", options=opts, **mesh)
     for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
-        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts, **mesh)
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", options=opts,
+                             **{**mesh, "clearance_m": c * 1e-3})
     for d in _floats(args.misalignments_mm, "misalignments_mm", "mm"):
-        tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", misalignment_m=d * 1e-3, options=opts,
-                             **mesh)
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", options=opts,
+                             **{**mesh, "misalignment_m": d * 1e-3})
     _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
                               "misalignments_mm": args.misalignments_mm, **_method_note(args)})
     return params_figures(out, figs, tasks=point_tasks(tasks))
@@ -402,13 +431,15 @@ def _testrig(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from reports.studies.testrig import testrig_figures
     from rotor.studies.steady_state import sweep_tasks
 
-    tasks = []
+    refuse_overrides(args, ("--clearance-mm", "--misalignment-mm"), "study testrig runs the rig's own clearances "
+                     "(0.01, 0.05 mm) and misalignments (1, 3 mm); the other scene overrides apply")
+    ov, tasks = _ov(args), []
     for rpm in (3600.0, 5500.0):
         for c in (0.01, 0.05):
             tasks += sweep_tasks(args.scene, [rpm], prefix=f"c{c:g}mm-d1mm-rpm", clearance_m=c * 1e-3,
-                                 misalignment_m=1e-3, options=opts, history_revs=8)
+                                 misalignment_m=1e-3, options=opts, history_revs=8, **ov)
         tasks += sweep_tasks(args.scene, [rpm], prefix="c0.05mm-d3mm-rpm", clearance_m=0.05e-3,
-                             misalignment_m=3e-3, options=opts, history_revs=8)
+                             misalignment_m=3e-3, options=opts, history_revs=8, **ov)
     _sweep(tasks, out, args, {"speeds_rpm": [3600, 5500], "clearances_mm": [0.01, 0.05],
                               "misalignments_mm": [1, 3]})
     return testrig_figures(out, figs, tasks=tasks)
@@ -419,10 +450,12 @@ def _map(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from reports.studies.regime_map import map_figures
     from rotor.studies.steady_state import sweep_tasks
 
+    refuse_overrides(args, ("--clearance-mm",), "study map sweeps the clearance itself (--clearances-mm)")
     speeds = np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points))
     tasks = []
     for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
-        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)
+        tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts,
+                             **_ov(args))
     _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm})
     return map_figures(out, figs, tasks=tasks)
 
@@ -438,9 +471,10 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     if args.down and a < b:
         a, b = b, a
     spec = RunupSpec(scene=args.scene, rpm_start=a, rpm_end=b, duration_s=args.duration_s,
-                     steps_per_rev=int(args.steps_per_rev))
+                     steps_per_rev=int(args.steps_per_rev), **_ov(args))
     from sweep.cluster import connect
 
+    _compile_first(args)
     with connect(args.scheduler) as client:
         info = run_runup(spec, out, executor=client)
     print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")

@@ -155,3 +155,32 @@ def complete_loose_support(kw: dict, origin: str, base_dir) -> dict:
         out[attr] = float(getattr(law.geometry, gattr))
     out.update(law_file=rec.path, law_sha256=rec.sha256, calibrated=law)
     return out
+
+
+def with_law(scene, text: str, where: str = "--law"):
+    """``scene`` with its ``[loose_support]`` law replaced by ``text`` (as a scene's ``law`` key: an analytic
+    law, ``calibrated:<name>`` or a law file, a relative path from the working directory).
+
+    A calibrated law must hold for the scene's clearance, ring width and materials (:func:`geometry_mismatch`);
+    ``where`` names the option in the messages (``--law``). A scene without ``[loose_support]`` is refused.
+    """
+    from dataclasses import replace
+
+    ls = scene.loose_support
+    rec = law_record(text, None, where)
+    if ls is None:
+        raise InputError(f"{where} = {text}: scene {scene.name!r} has no [loose_support] to apply it to")
+    if rec is None:
+        return replace(scene, loose_support=replace(ls, law=text, law_file="", law_sha256="", calibrated=None))
+    try:
+        rec.law.kernel_law()        # a family the compiled loose-support kernel has
+    except InputError as exc:
+        raise InputError(f"{where} = {text}: {exc}") from None
+    bad = geometry_mismatch(vars(ls), rec.law)
+    if bad is not None:
+        key, mine, theirs, unit = bad
+        raise InputError(f"{where} = {text}: {law_label(text)} holds for {key} = {_shown(theirs, unit)} but scene "
+                         f"{scene.path or scene.name} has {key} = {_shown(mine, unit)} in [loose_support]: leave out "
+                         f"{where} to use the scene's law, or name a law calibrated for {_shown(mine, unit)}")
+    return replace(scene, loose_support=replace(ls, law=text, law_file=rec.path, law_sha256=rec.sha256,
+                                                calibrated=rec.law))

@@ -53,6 +53,7 @@ from typing import Callable
 import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
+from sweep.progress import report
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.initial import linear_initial_state
 from rotor.studies.floquet import FloquetResult, crossing, floquet
@@ -523,6 +524,8 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
         bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
         points.append(pt)
+        report("branch_point", points=len(points), max_points=opts.max_points, parameter=pt.parameter, start=lam0,
+               end=lam_end)
         tau = tau_new
         if opts.follow_scales:
             y, tau, J = _rescale(ev, y, tau, M, J, floor)

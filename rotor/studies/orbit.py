@@ -174,7 +174,7 @@ def period_response(flow: Flow, model, res_state, t0_s: float, modes, period_rev
 
 
 def _overrides(kw: dict) -> dict:
-    keys = ("clearance_m", "misalignment_m", "tilt_ignored", "mu", "preload_n", "elements_per_segment")
+    keys = ("clearance_m", "misalignment_m", "tilt_ignored", "mu", "preload_n", "elements_per_segment", "law")
     return {k: kw[k] for k in keys if k in kw and kw[k] is not None}
 
 
@@ -184,7 +184,7 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     """The periodic orbit of ``scene`` at ``speed_rpm`` (rpm), its stability and 1X-5X velocity amplitudes.
 
     ``overrides``: ``clearance_m``, ``misalignment_m``, ``tilt_ignored``, ``mu``, ``preload_n``,
-    ``elements_per_segment`` (as :func:`rotor.studies.steady_state.point_system`). ``steps_per_rev`` None:
+    ``elements_per_segment``, ``law`` (as :func:`rotor.studies.steady_state.point_system`). ``steps_per_rev`` None:
     :func:`rotor.studies.steady_state.step_per_rev`. ``period_revs`` None: found (1..8). ``start``: full
     ``(q0, v0)`` at t = 0 instead of the linear periodic solution (e.g. a neighbouring speed's orbit).
     ``period_hint``: a period (revolutions) to try in every transient round besides those the Poincaré

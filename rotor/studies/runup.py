@@ -44,7 +44,7 @@ class RunupSpec:
     duration_s : ramp duration (s); segment_s : piecewise-constant speed segment (s);
     sample_rate_hz : recorded samples per second; steps_per_rev : minimum steps per revolution
     at the highest speed; clearance_m, misalignment_m, tilt_ignored, mu (end-face friction
-    coefficient), preload_n (N) : overrides (None = scene).
+    coefficient), preload_n (N), law (as a scene's ``law`` key) : overrides (None = scene).
     """
 
     scene: str = "paper-table4"
@@ -59,6 +59,7 @@ class RunupSpec:
     tilt_ignored: bool = False
     mu: float | None = None
     preload_n: float | None = None
+    law: str | None = None
 
     def __post_init__(self):
         check_positive("rpm_start", self.rpm_start, "rpm", upper=1e5)
@@ -85,7 +86,7 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
     w1 = spec.rpm_end * math.pi / 30
     wdot = (w1 - w0) / spec.duration_s
     kw = dict(clearance_m=spec.clearance_m, misalignment_m=spec.misalignment_m, tilt_ignored=spec.tilt_ignored,
-              mu=spec.mu, preload_n=spec.preload_n)
+              mu=spec.mu, preload_n=spec.preload_n, law=spec.law)
     sc, model, sys_hi = point_system(spec.scene, max(spec.rpm_start, spec.rpm_end), **kw)
     dt_max, _ = largest_stable_step(sys_hi)
     dt = min(2 * math.pi / max(w0, w1) / spec.steps_per_rev, 0.5 * dt_max)
@@ -161,7 +162,7 @@ def run_runup(spec: RunupSpec, out, executor=None) -> dict:
     ``executor``: where to run it (e.g. a dask client; default a thread here)."""
     from sweep import ResultStore, Task, run_sweep
 
-    params = dataclasses.asdict(spec)
+    params = {k: v for k, v in dataclasses.asdict(spec).items() if not (k == "law" and v is None)}  # as stored before
     task = Task("runup", _runup_task, params)
     import concurrent.futures as cf
 

@@ -33,6 +33,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from contact.errors import ConvergenceError, OutsideDomainError
+from sweep.progress import report
 from rotor.dynamics import constraints as cons
 from rotor.studies.floquet import FloquetResult, floquet
 from rotor.studies.period_flow import Flow, advance, block_scales, record, to_reduced
@@ -232,6 +233,7 @@ def newton_periodic(flow: Flow, state0, t0_s: float, n_steps: int, modes0, scale
         stalled = stalled + 1 if lam < 1.0 and merit_try > 0.5 * merit else 0
         x, r, merit = x_try, r_try, merit_try
         res = float(np.max(np.abs(r.state - x) / scales))
+        report("newton", iteration=it, residual=res)
         if stalled >= 2 * options.stall_iterations and res >= options.tol:
             break             # not contracting on either path: give the round up
     return x, r, res < options.tol, it, res, singular, levels
@@ -374,8 +376,11 @@ def shoot_from_transient(flow: Flow, q0, v0, *, steps_per_rev: int, period_revs:
     chunk, res = int(opts.transient_revs), None
     while True:
         run.extend(chunk, opts)
+        report("transient", revs=run.done, max_revs=opts.max_transient_revs)
         for k in _round_periods(np.array(run.P), period_revs, period_hint, opts):
             res = run.shoot(k, opts)
+            report("attempt", period_revs=int(k), transient_revs=run.done, iterations=int(res.newton_iterations),
+                   residual=float(res.residual), converged=bool(res.converged))
             if res.converged:
                 res = _shortest_period(flow, res, opts)
                 break

@@ -69,7 +69,8 @@ def run_shooting_block(scene: str, block_rpm: list, prefix: str = "rpm", stored:
                        clearance_m: float | None = None, misalignment_m: float | None = None,
                        tilt_ignored: bool = False, mu: float | None = None, preload_n: float | None = None,
                        options: dict | None = None, max_order: float = 6.0, history_revs: int = 4,
-                       elements_per_segment: int | None = None, method: str = "shooting") -> dict:
+                       elements_per_segment: int | None = None, method: str = "shooting",
+                       law: str | None = None) -> dict:
     """The speeds of ``block_rpm`` (rpm, ascending) not in ``stored`` (key -> info of the block's points
     already stored), each from its lower neighbour (module docstring): ``{key: (arrays, info)}`` for
     :func:`sweep.run_sweep`."""
@@ -77,7 +78,7 @@ def run_shooting_block(scene: str, block_rpm: list, prefix: str = "rpm", stored:
         raise ValueError(f"method = {method!r}: run_shooting_block computes 'shooting' points")
     stored = stored or {}
     kw = {"clearance_m": clearance_m, "misalignment_m": misalignment_m, "tilt_ignored": tilt_ignored, "mu": mu,
-          "preload_n": preload_n, "elements_per_segment": elements_per_segment}
+          "preload_n": preload_n, "elements_per_segment": elements_per_segment, "law": law}
     point = {"options": options, "max_order": max_order, "history_revs": history_revs}
     out, prev = {}, None
     for s in block_rpm:

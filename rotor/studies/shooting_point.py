@@ -91,7 +91,7 @@ def run_shooting_point(scene: str, speed_rpm: float, clearance_m: float | None =
                        misalignment_m: float | None = None, tilt_ignored: bool = False, mu: float | None = None,
                        preload_n: float | None = None, options: dict | None = None, max_order: float = 6.0,
                        history_revs: int = 4, elements_per_segment: int | None = None, method: str = "shooting",
-                       fallback: bool = True):
+                       fallback: bool = True, law: str | None = None):
     """Steady state of one operating point by shooting, as ``(arrays, info)`` for :func:`sweep.run_sweep`
     (the arrays of :func:`rotor.studies.steady_state.run_point`; the info adds the Floquet fields and the
     classification of the module docstring). ``method`` is stored in the task's parameters so that a study
@@ -102,7 +102,7 @@ def run_shooting_point(scene: str, speed_rpm: float, clearance_m: float | None =
         raise ValueError(f"method = {method!r}: run_shooting_point computes 'shooting' points")
     t_start = time.perf_counter()
     kw = {"clearance_m": clearance_m, "misalignment_m": misalignment_m, "tilt_ignored": tilt_ignored, "mu": mu,
-          "preload_n": preload_n, "elements_per_segment": elements_per_segment}
+          "preload_n": preload_n, "elements_per_segment": elements_per_segment, "law": law}
     point = {"options": options, "max_order": max_order, "history_revs": history_revs}
     if float(speed_rpm) == 0.0:
         arrays, info = run_point(scene, speed_rpm, **kw, **point)

@@ -36,6 +36,7 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
+from sweep.progress import report
 
 # Stations come from the scene (rotor.model.assembly.RotorModel.response_stations): every disk, bearing
 # and support station is recorded, the primary ones (disks, the loose support's bearing station,
@@ -410,6 +411,7 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
         modes = tuple(int(m) for m in tr.modes[-1])
         P.extend(tr.q[TRANSIENT_SAMPLES_PER_REV::TRANSIENT_SAMPLES_PER_REV, pidx])
         revs += n_rev
+        report("transient", revs=revs, max_revs=opts.max_revs)
         if revs < opts.min_revs:
             continue
         seg = tr.q[:, pidx]
@@ -438,31 +440,36 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
 _MODEL_CACHE: dict = {}
 
 
-def _scene_model(scene: str, elements_per_segment: int | None = None):
+def _scene_model(scene: str, elements_per_segment: int | None = None, law: str | None = None):
     """Scene and assembled model, cached per process (workers reuse them across points).
-    ``elements_per_segment`` refines every shaft segment (None: the scene's own mesh)."""
-    key = (scene, elements_per_segment)
+    ``elements_per_segment`` refines every shaft segment (None: the scene's own mesh); ``law`` replaces the
+    scene's ``[loose_support]`` law (:func:`rotor.model.loose_support_scene.with_law`; None: the scene's)."""
+    key = (scene, elements_per_segment, law)
     if key not in _MODEL_CACHE:
         from rotor.model.assembly import assemble
+        from rotor.model.loose_support_scene import with_law
         from rotor.model.scene import load_scene
 
         if elements_per_segment is not None:
             check_positive("elements_per_segment", elements_per_segment, "elements", upper=64)
         sc = load_scene(scene)
+        if law is not None:
+            sc = with_law(sc, law)
         _MODEL_CACHE[key] = (sc, assemble(sc, elements_per_segment=elements_per_segment))
     return _MODEL_CACHE[key]
 
 
 def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = None,
                  misalignment_m: float | None = None, tilt_ignored: bool = False, mu: float | None = None,
-                 preload_n: float | None = None, elements_per_segment: int | None = None):
+                 preload_n: float | None = None, elements_per_segment: int | None = None, law: str | None = None):
     """``(scene, model, system)`` of one operating point; overrides as in
-    :func:`rotor.dynamics.build.system_from_model` (None keeps the scene's value), and the mesh
-    (``elements_per_segment``, None: the scene's)."""
+    :func:`rotor.dynamics.build.system_from_model` (None keeps the scene's value), the mesh
+    (``elements_per_segment``, None: the scene's) and the contact law (``law``, as a scene's ``law`` key;
+    None: the scene's)."""
     from rotor.dynamics.build import system_from_model
 
     check_positive("speed_rpm", speed_rpm, "rpm", allow_zero=True, upper=1e5)
-    sc, model = _scene_model(scene, elements_per_segment)
+    sc, model = _scene_model(scene, elements_per_segment, law)
     omega = float(speed_rpm) * math.pi / 30.0
     system = system_from_model(model, sc, omega, tilt_ignored=bool(tilt_ignored), mu=mu, preload_N=preload_n,
                                clearance_m=clearance_m, misalignment_m=misalignment_m)
@@ -472,7 +479,7 @@ def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = No
 def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, misalignment_m: float | None = None,
               tilt_ignored: bool = False, mu: float | None = None, preload_n: float | None = None,
               options: dict | None = None, max_order: float = 6.0, history_revs: int = 4,
-              elements_per_segment: int | None = None):
+              elements_per_segment: int | None = None, law: str | None = None):
     """Steady state of one operating point, as ``(arrays, info)`` for :func:`sweep.run_sweep`.
 
     Arrays (SI): ``channels`` names; ``harm_q`` (5, c) complex displacement amplitudes of 1X–5X (m),
@@ -488,7 +495,7 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
     opts = SteadyStateOptions(**(options or {}))
     sc, model, system = point_system(scene, speed_rpm, clearance_m=clearance_m, misalignment_m=misalignment_m,
                                      tilt_ignored=tilt_ignored, mu=mu, preload_n=preload_n,
-                                     elements_per_segment=elements_per_segment)
+                                     elements_per_segment=elements_per_segment, law=law)
     res = steady_state(system, model, options=opts)
     return point_record(res, sc, model, system, opts, speed_rpm=speed_rpm, misalignment_m=misalignment_m,
                         tilt_ignored=tilt_ignored, max_order=max_order, history_revs=history_revs,

@@ -255,7 +255,6 @@ def _orbit_cases() -> list:
     c += _num_cases("orbit", ["orbit", "paper-table4"], "--speed-rpm", NUMBERS_BAD + ["-1", "0", "10500rpm"], "rpm")
     c += _num_cases("orbit", b, "--period-revs", ["0", "9", "-1", "1.5", "abc"], "revolutions")
     c += [("orbit no speed", ["orbit", "paper-table4"], None),
-          ("orbit no scene", ["orbit", "--speed-rpm", "10500"], None),
           ("orbit --speed-hz (wrong unit)", ["orbit", "paper-table4", "--speed-hz", "175"], None)]
     br = ["branch", "paper-table4", "--rpm-start", "10000", "--rpm-end", "11000"]
     for flag in ("--rpm-start", "--rpm-end"):
@@ -309,8 +308,45 @@ def _bearing_cases() -> list:
     return c
 
 
+def _scene_option_cases() -> list:
+    """The scene argument and loose-support overrides every rotor command shares (reports/cli/_scene_options.py):
+    the same ranges everywhere, two different scenes refused, and what a command cannot apply refused."""
+    c = []
+    commands = {"rotor modes": [], "rotor campbell": [], "rotor critical-speeds": [], "rotor unbalance": [],
+                "rotor response": ["--speed-rpm", "3000", "--out", "{tmp}/o"], "orbit": ["--speed-rpm", "3000"],
+                "branch": ["--rpm-start", "3000", "--rpm-end", "3100"]}
+    commands.update({f"study {s}": ["--out", "{tmp}/o", "--no-progress"]
+                     for s in ("cascade", "point", "params", "testrig", "map", "runup")})
+    for cmd, rest in commands.items():
+        b = [*cmd.split(), "paper-table4", *rest]
+        c += _num_cases(f"shared {cmd}", b, "--mu", ["5"], "")         # the full NaN/inf/sign sets: simulate's
+        c += _num_cases(f"shared {cmd}", b, "--preload-N", ["-1"], "N")
+        c += _num_cases(f"shared {cmd}", b, "--clearance-mm", ["0"], "mm")
+        c += _num_cases(f"shared {cmd}", b, "--misalignment-mm", ["500"], "mm")
+        c += [(f"shared {cmd} --law nosuch", [*b, "--law", "nosuch"], "nosuch"),
+              (f"shared {cmd} two scenes", [*b, "--scene", "verify-jeffcott"], "verify-jeffcott"),
+              (f"shared {cmd} --scene EMPTY", [*cmd.split(), *rest, "--scene", ""], None)]
+    for cmd in ("rotor modes", "rotor campbell", "rotor critical-speeds"):      # a locked support: no contact
+        c += [(f"shared {cmd} --mu on a locked support", [*cmd.split(), "paper-table4", "--mu", "0.2"], "0.2"),
+              (f"shared {cmd} --misalignment-mm (no effect on frequencies)",
+               [*cmd.split(), "paper-table4", "--misalignment-mm", "2"], "2 mm")]
+    c += [("shared study testrig --clearance-mm (the rig's own)", ["study", "testrig", "--out", "{tmp}/o", "--clearance-mm",
+                                                           "0.08"], "0.08 mm"),
+          ("shared study map --clearance-mm (swept)", ["study", "map", "--out", "{tmp}/o", "--clearance-mm", "0.08"], "0.08 mm"),
+          ("shared simulate --mu on a scene without loose support",
+           ["simulate", "verify-jeffcott", "--speed-rpm", "3000", "--out", "{tmp}/o", "--mu", "0.2"], None)]
+    for sub in ("modes", "campbell", "critical-speeds", "unbalance"):          # the table's units
+        c += [(f"rotor {sub} --units {v}", ["rotor", sub, "verify-jeffcott", "--units", v], v) for v in ("khz", "rpm")]
+    c += _num_cases("rotor campbell", ["rotor", "campbell", "verify-jeffcott"], "--orders", ["0", "21", "abc"], "")
+    c += [("orbit --out /dev/null (a device: an atomic write would replace it)",
+           ["orbit", "paper-table4", "--speed-rpm", "3000", "--out", "/dev/null"], "/dev/null")]
+    c += [("rotor critical-speeds --backward=yes", ["rotor", "critical-speeds", "verify-jeffcott", "--backward=yes"],
+           None)]
+    return c
+
+
 CASES = _law_cases() + _fem_cases() + _fem3d_cases() + _calibrate_cases() + _rotor_cases() + _simulate_cases() \
-    + _study_cases() + _orbit_cases() + _other_cases() + _bearing_cases()
+    + _study_cases() + _orbit_cases() + _other_cases() + _bearing_cases() + _scene_option_cases()
 
 
 def _ring_inputs(root: Path, p: dict) -> None:
