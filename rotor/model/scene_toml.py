@@ -1,0 +1,119 @@
+"""A rotor scene back to the TOML file it can be read from (the inverse of :func:`rotor.model.scene.parse_scene`).
+
+:func:`scene_to_toml` writes every table of a :class:`~rotor.model.scene.Scene` with the keys, engineer units
+and order of the parser's field tables (``rotor.model.scene._MATERIAL`` …, the one description of the file
+format), so a scene built in Python becomes a file an engineer can read and edit, and reading that file gives
+the same scene: each number is written as the shortest decimal whose conversion to SI gives back the SI value
+bit for bit (``load(to_toml(s)) == s``, apart from ``path``, the file it was read from). A calibrated law named
+by a file is written with the file's resolved path, so the TOML can be read from any folder.
+"""
+from __future__ import annotations
+
+import json
+import math
+
+from rotor.model import scene as sc
+from rotor.model.loose_support_scene import ANALYTIC_LAWS, CALIBRATED_PREFIX
+
+# [[array]] or [table] key -> (Scene attribute, field specs, one table (True) or an array of tables)
+_TABLES = (
+    ("materials", "materials", sc._MATERIAL, False),
+    ("stations", "stations", sc._STATION, False),
+    ("shafts", "shafts", sc._SHAFT, False),
+    ("disks", "disks", sc._DISK, False),
+    ("point_masses", "point_masses", sc._POINT_MASS, False),
+    ("bearings", "bearings", sc._BEARING, False),
+    ("supports", "supports", sc._SUPPORT, False),
+    ("couplings", "couplings", sc._COUPLING, False),
+    ("boundaries", "boundaries", sc._BOUNDARY, False),
+    ("loose_support", "loose_support", sc._LOOSE, True),
+    ("misalignment", "misalignment", sc._MISALIGN, True),
+    ("analysis", "analysis", sc._ANALYSIS, True),
+)
+_DOF_OUTPUT = {"y": "y", "z": "z", "θy": "theta_y", "θz": "theta_z"}
+
+
+def typed_number(si: float, to_si) -> float:
+    """The number to type so that ``to_si(number) == si`` exactly: the shortest decimal of ``si`` divided by the
+    unit's scale that converts back, else that quotient moved by the few ulps the division may have lost (the
+    closest value when none converts back exactly)."""
+    si = float(si)
+    x = si / to_si(1.0)
+    if not math.isfinite(x):
+        return x
+    for digits in range(1, 18):         # the shortest decimal first: 2000, not 2000.0000000000002
+        y = float(f"{x:.{digits}g}")
+        if to_si(y) == si:
+            return y
+    best = x
+    for direction in (math.inf, -math.inf):
+        y = x
+        for _ in range(4):
+            y = math.nextafter(y, direction)
+            if to_si(y) == si:
+                return y
+            if abs(to_si(y) - si) < abs(to_si(best) - si):
+                best = y
+    return best
+
+
+def _value(text_key: str, value, conv) -> str:
+    """One TOML value: strings as JSON strings (a TOML basic string), booleans, integers, floats by repr."""
+    if conv is sc._dofs:
+        return json.dumps([_DOF_OUTPUT[d] for d in value], ensure_ascii=False)
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, int) and conv is sc._int:
+        return str(value)
+    number = typed_number(value, conv)
+    if not math.isfinite(number):
+        raise ValueError(f"{text_key} = {number}: a TOML scene holds finite numbers only")
+    return repr(float(number))
+
+
+def _law_text(loose) -> str:
+    """The ``law`` key: an analytic or shipped law as typed, a law file by its resolved path."""
+    if loose.law in ANALYTIC_LAWS or loose.law.startswith(CALIBRATED_PREFIX) or not loose.law_file:
+        return loose.law
+    return str(loose.law_file)
+
+
+def _entry_lines(entry, specs) -> list[str]:
+    lines = []
+    for key, attr, _unit, conv, _check, _default in specs:
+        value = getattr(entry, attr)
+        if key == "material":
+            value = value.name
+        elif key == "law":
+            value = _law_text(entry)
+        lines.append(f"{key} = {_value(key, value, conv)}")
+    return lines
+
+
+def scene_to_toml(scene: sc.Scene) -> str:
+    """The TOML text of ``scene`` (schema ``ringcontact.rotor-scene/1``), readable by :func:`rotor.model.scene.load_scene`.
+
+    Parameters
+    ----------
+    scene : rotor.model.scene.Scene
+        Any scene, read from a file or built in Python (SI units).
+
+    Returns
+    -------
+    str
+        Every field written in the file's engineer units (``x_mm``, ``stiffness_n_per_m``, ``unbalance_g_mm``);
+        ``notes`` of the original file are not kept.
+    """
+    out = [f"schema = {json.dumps(sc.SCHEMA)}", f"name = {json.dumps(scene.name, ensure_ascii=False)}",
+           f"title = {json.dumps(scene.title, ensure_ascii=False)}"]
+    if scene.source:
+        out.append(f"source = {json.dumps(scene.source, ensure_ascii=False)}")
+    for key, attr, specs, single in _TABLES:
+        value = getattr(scene, attr)
+        if value is None:
+            continue
+        for entry in ((value,) if single else value):
+            out += ["", f"[{key}]" if single else f"[[{key}]]", *_entry_lines(entry, specs)]
+    return "\n".join(out) + "\n"
