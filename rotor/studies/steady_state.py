@@ -438,17 +438,19 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
 _MODEL_CACHE: dict = {}
 
 
-def _scene_model(scene: str, elements_per_segment: int | None = None):
+def _scene_model(scene, elements_per_segment: int | None = None):
     """Scene and assembled model, cached per process (workers reuse them across points).
-    ``elements_per_segment`` refines every shaft segment (None: the scene's own mesh)."""
+    ``scene``: a scene file's path, a bundled scene's name or a :class:`rotor.model.scene.Scene` (a
+    scene built in Python, the public API's). ``elements_per_segment`` refines every shaft segment
+    (None: the scene's own mesh)."""
     key = (scene, elements_per_segment)
     if key not in _MODEL_CACHE:
         from rotor.model.assembly import assemble
-        from rotor.model.scene import load_scene
+        from rotor.model.scene import Scene, load_scene
 
         if elements_per_segment is not None:
             check_positive("elements_per_segment", elements_per_segment, "elements", upper=64)
-        sc = load_scene(scene)
+        sc = scene if isinstance(scene, Scene) else load_scene(scene)
         _MODEL_CACHE[key] = (sc, assemble(sc, elements_per_segment=elements_per_segment))
     return _MODEL_CACHE[key]
 
