@@ -87,7 +87,8 @@ def modes(scene, speed_rpm: float = 0.0, *, n_modes: int | None = None, damped: 
 
     Parameters
     ----------
-    scene : ringcontact.Scene, path or bundled scene name
+    scene : ringcontact.Scene or str
+        The scene, a scene file's path or a bundled scene's name.
     speed_rpm : float
         Spin speed (rpm, >= 0).
     n_modes : int or None

@@ -112,7 +112,7 @@ class SteadyStateOptions:
 class Convergence:
     """Outcome of the Poincaré test on a sequence of once-per-revolution samples.
 
-    converged : bool; period : int (revolutions, 0 if not converged);
+    converged : bool; period : int, in revolutions (0 if not converged);
     change : float, largest relative difference ``|P_k − P_{k−m}|/A`` over the window (–);
     remaining : float, geometric estimate of the transient still to decay (relative, –);
     ratio : float, fitted decay ratio of the differences per revolution (–).
