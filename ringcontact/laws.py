@@ -70,7 +70,7 @@ def law(name: str = "conformal", penetration_m=1e-5, tilt_rad=0.0, *, clearance_
     name : str
         An analytic law (``conformal`` … as ``ringcontact law --law``), ``calibrated:<name>`` or a law file's path.
     penetration_m, tilt_rad : float or array
-        Penetration Δr = |r| − δ0 (m) at the ring's centre plane (``penetration_at="edge"``: at the leading
+        Penetration ``Δr = |r| − δ0`` (m) at the ring's centre plane (``penetration_at="edge"``: at the leading
         edge) and relative tilt (rad).
     clearance_m, width_m, bearing_modulus_pa, bearing_poisson, support_modulus_pa, support_poisson : float
         Geometry and materials of an analytic law (None: Dai et al. 2025, Table 1); a calibrated law has its

@@ -39,7 +39,7 @@ def _contact(summary: dict, key: str):
 class SimulationResult(ResultMethods):
     """A time history of the rotor from rest (the misalignment offset), as ``ringcontact simulate``.
 
-    ``t_s`` (N,) sample times (s); ``displacement_m`` (N, c) the channels ``channels`` (``<station>.y|z``, m);
+    ``duration_revs`` the revolutions integrated; ``t_s`` (N,) sample times (s); ``displacement_m`` (N, c) the channels ``channels`` (``<station>.y|z``, m);
     ``r1_m``, ``r2_m`` the ring edges' offsets from the support's centre (m); ``contact_force_N`` (N,) the radial
     force magnitude on the bearing ring (N), ``contact_force_y_N``, ``contact_force_z_N``, ``contact_moment_Nm``;
     ``face_right_stuck``, ``face_left_stuck`` (1 stuck); the summary fields over the record (peak, shares).
@@ -47,7 +47,7 @@ class SimulationResult(ResultMethods):
 
     scene: str
     speed_rpm: float
-    revolutions: float
+    duration_revs: float
     steps_per_rev: int
     dt_s: float
     channels: tuple
