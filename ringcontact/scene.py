@@ -97,6 +97,21 @@ class Scene(rotor_scene.Scene):
             loose_support=loose_support(b.station, support_name, **loose)).checked()
 
 
+    def with_law(self, law: str) -> "Scene":
+        """This scene with its loose support's contact law replaced by ``law`` (as :func:`loose_support` takes
+        it), the clearance, ring width and materials kept (a calibrated law must hold for them)."""
+        from contact.errors import InputError
+        ls = self.loose_support
+        if ls is None:
+            raise InputError(f"law = {law!r}: scene {self.name!r} has no loose support to apply it to")
+        new = loose_support(ls.bearing_station, ls.support, clearance_m=ls.clearance_m, ring_width_m=ls.ring_width_m,
+                            bearing_modulus_pa=ls.bearing_modulus_pa, bearing_poisson=ls.bearing_poisson,
+                            support_modulus_pa=ls.support_modulus_pa, support_poisson=ls.support_poisson,
+                            collision_factor_s_m=ls.collision_factor_s_m,
+                            friction_coefficient=ls.friction_coefficient, preload_n=ls.preload_n, law=law)
+        return dataclasses.replace(self, loose_support=new).checked()
+
+
 def load_scene(name_or_path: str | os.PathLike) -> Scene:
     """A scene file (``.toml``) or a bundled scene by name (:func:`list_scenes`), in SI units.
 

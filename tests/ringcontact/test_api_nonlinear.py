@@ -85,6 +85,21 @@ def test_a_stuck_rings_orbit_is_the_linear_unbalance_response(stuck):
     assert o.to_dict()["contact"]["contact_share"] == 0.0
 
 
+OPTIONS = {"clearance_m", "misalignment_m", "mu", "preload_n", "tilt_ignored", "elements"}
+
+
+def test_every_analysis_of_the_loose_rotor_takes_the_same_options(slipping):
+    """The same loose-support overrides for simulate, orbit, branch and cascade, and they reach the rotor: with the
+    scene's 20 N preload the ring slips and hits (above), with 10 kN and μ 0.3 given to simulate it stays stuck."""
+    import inspect
+    for f in (rc.simulate, rc.orbit, rc.branch, rc.cascade):
+        assert OPTIONS <= set(inspect.signature(f).parameters), f.__name__
+    r = rc.simulate(slipping, 1500.0, revolutions=4, preload_n=1e4, mu=0.3)
+    assert (r.contact_share, r.stick_share_right_face, r.stick_share_left_face) == (0.0, 1.0, 1.0)
+    pereira = slipping.with_law("pereira")
+    assert pereira.loose_support.law == "pereira" and pereira.loose_support.clearance_m == 20e-6
+
+
 @pytest.mark.slow
 def test_branch_and_cascade_of_a_stuck_ring(stuck, tmp_path):
     """A stuck ring stays linear along the branch and in the cascade: no contact, both faces stuck; the cascade
