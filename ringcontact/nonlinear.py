@@ -297,6 +297,22 @@ class CascadeResult(ResultMethods):
             rows.append(row)
         return rows
 
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dimensions ``speed_rpm``, ``order`` (1-5) and ``channel``: the amplitudes
+        (``velocity_amplitude_m_s``, ``displacement_amplitude_m``) and, along speed, convergence and contact."""
+        from sweep.export import attr, xarray
+        xr = xarray()
+        dims = ("speed_rpm", "order", "channel")
+        data = {"velocity_amplitude_m_s": (dims, self.velocity_amplitude_m_s, {"units": "m/s"}),
+                "displacement_amplitude_m": (dims, self.displacement_amplitude_m, {"units": "m"})}
+        for name in ("converged", "period_revs", "transient_revs", "peak_contact_force_N", "contact_share",
+                     "stick_share_right_face", "stick_share_left_face"):
+            data[name] = (("speed_rpm",), np.asarray(getattr(self, name)))
+        data["regime"] = (("speed_rpm",), np.array(self.regime, dtype=str))
+        coords = {"speed_rpm": self.speeds_rpm, "order": np.arange(1, self.velocity_amplitude_m_s.shape[1] + 1),
+                  "channel": list(self.channels)}
+        return xr.Dataset(data, coords=coords, attrs={"result": type(self).__name__, "scene": attr(self.scene)})
+
     def _draw(self, ax) -> None:
         ch = self.channels[0]
         for k in range(self.velocity_amplitude_m_s.shape[1]):

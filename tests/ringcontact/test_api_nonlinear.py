@@ -115,5 +115,8 @@ def test_branch_and_cascade_of_a_stuck_ring(stuck, tmp_path):
     assert [ln.get_label() for ln in ax.get_lines()][-1] == "not converged"
     assert rc.load_result(c.save(tmp_path / "cascade.json"))["converged"] == [False]
     assert c.rows()[0]["converged"] is False
+    ds = c.to_xarray()
+    assert dict(ds.sizes) == {"speed_rpm": 1, "order": 5, "channel": len(c.channels)}
+    assert np.array_equal(ds["velocity_amplitude_m_s"].values, c.velocity_amplitude_m_s)
     import matplotlib.pyplot as plt
     plt.close("all")
