@@ -29,14 +29,37 @@ def _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, element
             "tilt_ignored": bool(tilt_ignored), "elements_per_segment": elements}
 
 
-def _contact(summary: dict, key: str):
-    v = summary.get(key)
-    return None if v is None else float(v)
+class ContactSummary:
+    """The contact-force summary of a result's ``contact`` dict as attributes (None without a loose support):
+    ``peak_contact_force_N`` (N), ``contact_share`` (fraction of the time the ring touches its support),
+    ``stick_share_right_face``, ``stick_share_left_face`` (fractions of the time each end face sticks)."""
+
+    _summary = ("peak_contact_force_N", "contact_share", "stick_share_right_face", "stick_share_left_face")
+
+    def _summary_value(self, key: str):
+        v = self.contact.get(key)
+        return None if v is None else float(v)
+
+    @property
+    def peak_contact_force_N(self) -> float | None:
+        return self._summary_value("peak_contact_force_N")
+
+    @property
+    def contact_share(self) -> float | None:
+        return self._summary_value("contact_share")
+
+    @property
+    def stick_share_right_face(self) -> float | None:
+        return self._summary_value("stick_share_right_face")
+
+    @property
+    def stick_share_left_face(self) -> float | None:
+        return self._summary_value("stick_share_left_face")
 
 
 # ------------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
-class SimulationResult(ResultMethods):
+class SimulationResult(ContactSummary, ResultMethods):
     """A time history of the rotor from rest (the misalignment offset), as ``ringcontact simulate``.
 
     ``duration_revs`` the revolutions integrated; ``t_s`` (N,) sample times (s); ``displacement_m`` (N, c) the channels ``channels`` (``<station>.y|z``, m);
@@ -62,10 +85,6 @@ class SimulationResult(ResultMethods):
     face_right_stuck: np.ndarray
     face_left_stuck: np.ndarray
     clearance_m: float | None
-    peak_contact_force_N: float | None
-    contact_share: float | None
-    stick_share_right_face: float | None
-    stick_share_left_face: float | None
     contact: dict
     trajectory: object = internal()
     _dim = "time"
@@ -122,13 +141,12 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
         sc.name, float(speed_rpm), float(revolutions), n, dt, tuple(names), tr.t, tr.q[:, idx], r1, r2,
         cols["contact_force_N"], cols["contact_force_y_N"], cols["contact_force_z_N"], cols["contact_moment_Nm"],
         cols["face_right_stuck"], cols["face_left_stuck"], sup.law.clearance_m if sup is not None else None,
-        _contact(summary, "peak_contact_force_N"), _contact(summary, "contact_share"),
-        _contact(summary, "stick_share_right_face"), _contact(summary, "stick_share_left_face"), summary, tr)
+        summary, tr)
 
 
 # ------------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
-class OrbitResult(ResultMethods):
+class OrbitResult(ContactSummary, ResultMethods):
     """The periodic orbit at one speed, as ``ringcontact orbit``: period, convergence, Floquet multipliers and
     stability, 1X-5X velocity amplitudes ``velocity_amplitude_m_s[c, k]`` of channel ``channels[c]`` at order
     k + 1 (m/s), and the loose support over one period (``contact``: the keys of ``simulate``'s summary)."""
@@ -148,10 +166,6 @@ class OrbitResult(ResultMethods):
     channels: tuple
     velocity_amplitude_m_s: np.ndarray
     max_edge_penetration_m: float
-    peak_contact_force_N: float | None
-    contact_share: float | None
-    stick_share_right_face: float | None
-    stick_share_left_face: float | None
     contact: dict
     orbit: object = internal()
     _dim = "channel"
@@ -173,14 +187,11 @@ class OrbitResult(ResultMethods):
 
 def _orbit_result(name: str, res) -> OrbitResult:
     amps = res.velocity_amplitudes_mm_s_1X_to_5X
-    c = res.contact
     return OrbitResult(name, res.speed_rpm, res.period_revs, res.period_s, res.steps_per_rev, bool(res.converged),
                        float(res.residual), int(res.newton_iterations), bool(res.stable),
                        float(res.floquet.spectral_radius), res.floquet.kind, np.asarray(res.floquet.multipliers),
                        tuple(amps), np.array([[a * 1e-3 for a in v] for v in amps.values()]),
-                       float(res.max_edge_penetration_m), _contact(c, "peak_contact_force_N"),
-                       _contact(c, "contact_share"), _contact(c, "stick_share_right_face"),
-                       _contact(c, "stick_share_left_face"), dict(c), res)
+                       float(res.max_edge_penetration_m), dict(res.contact), res)
 
 
 def orbit(scene, speed_rpm: float, *, period_revs: int | None = None, steps_per_rev: int | None = None,

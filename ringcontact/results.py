@@ -60,6 +60,8 @@ class ResultMethods:
         for f in dataclasses.fields(self):
             if not f.metadata.get("internal"):
                 out[f.name] = plain(getattr(self, f.name))
+        for name in getattr(self, "_summary", ()):       # summary attributes computed from the fields
+            out[name] = plain(getattr(self, name))
         return out
 
     def _rows(self) -> list[dict]:

@@ -15,21 +15,11 @@ import math
 from rotor.model import scene as sc
 from rotor.model.loose_support_scene import ANALYTIC_LAWS, CALIBRATED_PREFIX
 
-# [[array]] or [table] key -> (Scene attribute, field specs, one table (True) or an array of tables)
-_TABLES = (
-    ("materials", "materials", sc._MATERIAL, False),
-    ("stations", "stations", sc._STATION, False),
-    ("shafts", "shafts", sc._SHAFT, False),
-    ("disks", "disks", sc._DISK, False),
-    ("point_masses", "point_masses", sc._POINT_MASS, False),
-    ("bearings", "bearings", sc._BEARING, False),
-    ("supports", "supports", sc._SUPPORT, False),
-    ("couplings", "couplings", sc._COUPLING, False),
-    ("boundaries", "boundaries", sc._BOUNDARY, False),
-    ("loose_support", "loose_support", sc._LOOSE, True),
-    ("misalignment", "misalignment", sc._MISALIGN, True),
-    ("analysis", "analysis", sc._ANALYSIS, True),
-)
+# the Scene attributes written as [[arrays]] and as [tables] (each named as its TOML key), with their field specs
+_ARRAYS = {"materials": sc._MATERIAL, "stations": sc._STATION, "shafts": sc._SHAFT, "disks": sc._DISK,
+           "point_masses": sc._POINT_MASS, "bearings": sc._BEARING, "supports": sc._SUPPORT,
+           "couplings": sc._COUPLING, "boundaries": sc._BOUNDARY}
+_TABLES = {"loose_support": sc._LOOSE, "misalignment": sc._MISALIGN, "analysis": sc._ANALYSIS}
 _DOF_OUTPUT = {"y": "y", "z": "z", "θy": "theta_y", "θz": "theta_z"}
 
 
@@ -110,10 +100,10 @@ def scene_to_toml(scene: sc.Scene) -> str:
            f"title = {json.dumps(scene.title, ensure_ascii=False)}"]
     if scene.source:
         out.append(f"source = {json.dumps(scene.source, ensure_ascii=False)}")
-    for key, attr, specs, single in _TABLES:
-        value = getattr(scene, attr)
-        if value is None:
-            continue
-        for entry in ((value,) if single else value):
-            out += ["", f"[{key}]" if single else f"[[{key}]]", *_entry_lines(entry, specs)]
+    for key, specs in _ARRAYS.items():
+        for entry in getattr(scene, key):
+            out += ["", f"[[{key}]]", *_entry_lines(entry, specs)]
+    for key, specs in _TABLES.items():
+        if getattr(scene, key) is not None:
+            out += ["", f"[{key}]", *_entry_lines(getattr(scene, key), specs)]
     return "\n".join(out) + "\n"
