@@ -34,9 +34,15 @@ def save(fig, prefix: str | Path) -> list[Path]:
     return out
 
 
-def campbell_figure(camp: Campbell, title: str, crit: list[CriticalSpeed] = (), orders=(1, 2)):
-    """Campbell diagram: forward whirl solid/red, backward dashed/blue, 1X/2X lines, critical speeds."""
-    fig, ax = _figure()
+def _on(ax):
+    """``(figure, axes)``: a new figure, or the figure of the given matplotlib Axes ``ax``."""
+    return _figure() if ax is None else (ax.figure, ax)
+
+
+def campbell_figure(camp: Campbell, title: str, crit: list[CriticalSpeed] = (), orders=(1, 2), ax=None):
+    """Campbell diagram: forward whirl solid/red, backward dashed/blue, 1X/2X lines, critical speeds
+    (on ``ax`` when given, else a new figure)."""
+    fig, ax = _on(ax)
     rpm = camp.speeds_rad_s * RPM
     for fam, style, color in (("forward", "-", "tab:red"), ("backward", "--", "tab:blue")):
         # k-th lowest mode of the family as one line
@@ -63,9 +69,9 @@ def campbell_figure(camp: Campbell, title: str, crit: list[CriticalSpeed] = (), 
     return fig
 
 
-def response_figure(model: RotorModel, resp: ForcedResponse, nodes: list[str], title: str):
-    """Semi-major axis of the orbit (µm) against speed (rpm), log scale."""
-    fig, ax = _figure()
+def response_figure(model: RotorModel, resp: ForcedResponse, nodes: list[str], title: str, ax=None):
+    """Semi-major axis of the orbit (µm) against speed (rpm), log scale (on ``ax`` when given)."""
+    fig, ax = _on(ax)
     rpm = resp.speeds_rad_s * RPM
     for node in nodes:
         major, _ = resp.orbit(model, node)
@@ -78,10 +84,11 @@ def response_figure(model: RotorModel, resp: ForcedResponse, nodes: list[str], t
     return fig
 
 
-def mode_shape_figure(model: RotorModel, shapes: list[tuple[str, Modes, int]], title: str):
+def mode_shape_figure(model: RotorModel, shapes: list[tuple[str, Modes, int]], title: str, ax=None):
     """Orbit semi-major axis ``(|ŷ + iẑ| + |ŷ − iẑ|)/2`` along the rotor for selected modes (normalised
-    to 1), so forward and backward whirl show alike; a DOF fixed by a boundary condition shows as 0."""
-    fig, ax = _figure()
+    to 1), so forward and backward whirl show alike; a DOF fixed by a boundary condition shows as 0
+    (on ``ax`` when given)."""
+    fig, ax = _on(ax)
     stations = list(model.node_names)
     xs = np.array([model.node_x_m[model.node_names.index(n)] for n in stations])
     support = model.loose_pair.support_node if model.loose_pair else None

@@ -42,7 +42,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-OUR_PACKAGES = {"contact", "fem_reference", "rotor", "reports", "sweep", "build_backend"}
+OUR_PACKAGES = {"contact", "fem_reference", "rotor", "reports", "sweep", "ringcontact", "build_backend"}
 
 # Imported through a .pth file of the test venv: appends the absolute path of every file the process
 # opens to $RINGCONTACT_OPEN_LOG (os.write raises no audit event, so the hook does not recurse).
@@ -135,7 +135,8 @@ def _close(a, b) -> bool:
     return a == b
 
 
-def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
+def _installed(tmp_path: Path) -> tuple[Path, Path, dict, Path, Path]:
+    """The wheel built and installed into a fresh venv: ``(venv, python, environment, site-packages, work folder)``."""
     wheel = _build_wheel(tmp_path)
     venv = tmp_path / "venv"
     _run([sys.executable, "-m", "venv", "--without-pip", venv])
@@ -155,8 +156,15 @@ def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
     install = _run([py, "-m", "pip", "install", "--no-index", "--no-input", "--disable-pip-version-check", wheel],
                    cwd=work, env=env)
     assert "Successfully installed ringcontact-" in install.stdout
-    where = _run([py, "-c", "import contact, reports, rotor; print(contact.__file__)"], cwd=work, env=env).stdout
-    assert Path(where.strip()).is_relative_to(site_packages), f"contact imported from {where.strip()}, not the venv"
+    where = _run([py, "-c", "import contact, reports, rotor, ringcontact; print(contact.__file__); "
+                  "print(ringcontact.__file__)"], cwd=work, env=env).stdout.split()
+    for w in where:
+        assert Path(w).is_relative_to(site_packages), f"{w} imported, not the venv's"
+    return venv, py, env, site_packages, work
+
+
+def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
+    venv, py, env, site_packages, work = _installed(tmp_path)
     before = _listing(venv)
 
     def job(name: str, *argv: str) -> tuple[str, set[Path]]:
@@ -227,3 +235,42 @@ def test_wheel_in_a_fresh_venv_runs_the_documented_jobs(tmp_path, capsys):
     assert notes == (ROOT / "reports" / "notes" / "study-sensitivity-reading.md").read_text(encoding="utf-8")
     licence = next(site_packages.glob("ringcontact-*.dist-info")) / "licenses" / "LICENSE"
     assert licence.read_text(encoding="utf-8") == (ROOT / "LICENSE").read_text(encoding="utf-8")
+
+
+# Friswell, Penny, Garvey & Lees (2010), Example 5.9.1 (bored disks): whirl frequencies (rad/s) at rest and 4 000 rpm
+FRISWELL_591 = {"rest": [86.66, 86.66, 274.31, 274.31, 716.78, 716.78], "4000": [85.39, 87.80, 251.78, 294.71, 600.18]}
+WALKTHROUGH_DRIVER = """\
+import importlib.util, json, sys
+import ringcontact
+spec = importlib.util.spec_from_file_location("ex07", "ex07_your_rotor.py")
+ex = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(ex)
+f = ex.frequencies()
+res = ex.main(full=True)
+keys = ("peak_contact_force_N", "contact_share", "stick_share_right_face")
+print(json.dumps({"file": ringcontact.__file__, "rest": list(f[0.0].frequency_rad_s),
+                  "4000": list(f[4000.0].frequency_rad_s), "scene": ex.loose_rotor(ex.book_rotor()).to_toml(),
+                  "contact": {k: {c: res[k].to_dict().get(c) for c in keys} for k in res if k != "unbalance"}}),
+      file=sys.stderr)
+"""
+
+
+@pytest.mark.slow
+def test_wheel_runs_the_your_rotor_walkthrough(tmp_path):
+    """A fresh venv with the wheel only: docs/examples/ex07_your_rotor.py (the rotor written from scratch, modes,
+    unbalance, simulate, orbit, branch, a small cascade) run end to end from a folder outside the repository,
+    with the book's frequencies and the contact force in every nonlinear output (about 2 min on 2 shared cores:
+    the build, and numba compiling into an empty cache)."""
+    _, py, env, site_packages, work = _installed(tmp_path)
+    shutil.copy2(ROOT / "docs" / "examples" / "ex07_your_rotor.py", work / "ex07_your_rotor.py")
+    (work / "driver.py").write_text(WALKTHROUGH_DRIVER, encoding="utf-8")
+    proc = _run([py, "driver.py"], cwd=work, env=env)
+    d = json.loads(proc.stderr.strip().splitlines()[-1])
+    assert Path(d["file"]).is_relative_to(site_packages)
+    assert d["rest"] == pytest.approx(FRISWELL_591["rest"], abs=0.01)
+    assert d["4000"][:5] == pytest.approx(FRISWELL_591["4000"], abs=0.01)
+    assert "[loose_support]" in d["scene"] and 'law = "conformal"' in d["scene"]
+    assert set(d["contact"]) == {"simulate", "orbit", "branch", "cascade"}
+    for name, fields in d["contact"].items():
+        assert fields["peak_contact_force_N"] is not None and fields["contact_share"] is not None, name
+    assert d["contact"]["simulate"]["peak_contact_force_N"] > 0 and "peak contact force" in proc.stdout

@@ -1,7 +1,8 @@
 """Run the gallery's worked examples for the documentation build: their printed output and figure.
 
 Each ``docs/examples/exNN_*.py`` is run in its own Python process (matplotlib's Agg backend, the
-repository on the path): its ``main()`` prints the walk-through and returns a matplotlib figure,
+repository on the path): its ``main()`` (or ``gallery()``, where ``main()`` runs longer than a build should
+wait) prints the walk-through and returns a matplotlib figure,
 saved as ``docs/_generated/gallery/<stem>.png`` beside ``<stem>.txt`` (the printed output). A run is
 kept while nothing it depends on changed: the key is the SHA-256 of the example and of every
 ``.py`` and ``.json`` file of the packages (``<stem>.key``), so a second build costs nothing and a
@@ -25,7 +26,7 @@ import sys, runpy
 import matplotlib
 matplotlib.use("Agg")
 mod = runpy.run_path(sys.argv[1], run_name="gallery")
-fig = mod["main"]()
+fig = mod["gallery"]() if "gallery" in mod else mod["main"]()
 if fig is not None:
     fig.savefig(sys.argv[2], dpi=100)
 """

@@ -113,7 +113,7 @@ class SteadyStateOptions:
 class Convergence:
     """Outcome of the Poincaré test on a sequence of once-per-revolution samples.
 
-    converged : bool; period : int (revolutions, 0 if not converged);
+    converged : bool; period : int, in revolutions (0 if not converged);
     change : float, largest relative difference ``|P_k − P_{k−m}|/A`` over the window (–);
     remaining : float, geometric estimate of the transient still to decay (relative, –);
     ratio : float, fitted decay ratio of the differences per revolution (–).
@@ -440,19 +440,21 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
 _MODEL_CACHE: dict = {}
 
 
-def _scene_model(scene: str, elements_per_segment: int | None = None, law: str | None = None):
+def _scene_model(scene, elements_per_segment: int | None = None, law: str | None = None):
     """Scene and assembled model, cached per process (workers reuse them across points).
-    ``elements_per_segment`` refines every shaft segment (None: the scene's own mesh); ``law`` replaces the
-    scene's ``[loose_support]`` law (:func:`rotor.model.loose_support_scene.with_law`; None: the scene's)."""
+    ``scene``: a scene file's path, a bundled scene's name or a :class:`rotor.model.scene.Scene` (a
+    scene built in Python, the public API's). ``elements_per_segment`` refines every shaft segment
+    (None: the scene's own mesh); ``law`` replaces the scene's ``[loose_support]`` law
+    (:func:`rotor.model.loose_support_scene.with_law`; None: the scene's)."""
     key = (scene, elements_per_segment, law)
     if key not in _MODEL_CACHE:
         from rotor.model.assembly import assemble
         from rotor.model.loose_support_scene import with_law
-        from rotor.model.scene import load_scene
+        from rotor.model.scene import Scene, load_scene
 
         if elements_per_segment is not None:
             check_positive("elements_per_segment", elements_per_segment, "elements", upper=64)
-        sc = load_scene(scene)
+        sc = scene if isinstance(scene, Scene) else load_scene(scene)
         if law is not None:
             sc = with_law(sc, law)
         _MODEL_CACHE[key] = (sc, assemble(sc, elements_per_segment=elements_per_segment))

@@ -90,7 +90,7 @@ def test_api_and_gallery_pages(site):
     sys.path.insert(0, str(DOCS / "_ext"))
     from ringcontact_docs import example_files, public_modules
 
-    for package in ("contact", "sweep", "fem_reference", "rotor", "reports"):
+    for package in ("ringcontact", "contact", "sweep", "fem_reference", "rotor", "reports"):
         text = _text(site, f"api/{package}.html")
         for module in public_modules(package):
             assert module in text, module

@@ -37,7 +37,8 @@ def _check_figure(fig) -> None:
     plt.close(fig)
 
 
-TESTED = {"conformal_law", "calibrated_law", "fem_point", "rotor_campbell", "rotor_transient", "your_bearing"}
+TESTED = {"conformal_law", "calibrated_law", "fem_point", "rotor_campbell", "rotor_transient", "your_bearing",
+          "your_rotor"}
 
 
 def test_every_example_is_tested():
@@ -164,3 +165,49 @@ def test_your_bearing(tmp_path, capsys):
     assert max(r1.max(), r2.max()) > system.support.law.clearance_m
     _check_figure(ex.main())
     assert "in contact" in capsys.readouterr().out
+
+
+# Friswell, Penny, Garvey & Lees (2010), Dynamics of Rotating Machines, Example 5.9.1 (bored disks): the book's
+# whirl frequencies (rad/s) at rest and at 4 000 rpm
+FRISWELL_591_AT_REST = [86.66, 86.66, 274.31, 274.31, 716.78, 716.78]
+FRISWELL_591_AT_4000_RPM = [85.39, 87.80, 251.78, 294.71, 600.18]
+
+
+def _contact_fields_in(result) -> dict:
+    """The contact summary of a result, and its dict and saved forms say the same."""
+    d = result.to_dict()
+    return {k: d[k] for k in ("peak_contact_force_N", "contact_share", "stick_share_right_face") if k in d}
+
+
+def test_your_rotor(capsys):
+    """The book rotor built from scratch has the book's frequencies to 0.01 rad/s; the loose rotor's time history
+    reports its contact force (the full walk-through, orbit, branch and cascade included, is the slow test)."""
+    ex = _load("your_rotor")
+    f = ex.frequencies()
+    assert f[0.0].frequency_rad_s == pytest.approx(FRISWELL_591_AT_REST, abs=0.01)
+    assert f[4000.0].frequency_rad_s[:5] == pytest.approx(FRISWELL_591_AT_4000_RPM, abs=0.01)
+    scene = ex.loose_rotor(ex.book_rotor())
+    assert scene.loose_support.bearing_station == "N6" and [b.name for b in scene.bearings] == ["left"]
+    res = ex.main(full=False)
+    s = res["simulate"]
+    assert s.peak_contact_force_N > 0 and 0 < s.contact_share <= 1         # the loose ring hits its support
+    assert _contact_fields_in(s)["peak_contact_force_N"] == s.peak_contact_force_N
+    assert "peak contact force" in capsys.readouterr().out
+    _check_figure(ex.gallery())          # what the documentation page shows
+
+
+@pytest.mark.slow
+def test_your_rotor_end_to_end(capsys):
+    """Every analysis of the walk-through reports the contact force (about 70 s on 2 shared cores)."""
+    ex = _load("your_rotor")
+    res = ex.main(full=True)
+    out = capsys.readouterr().out
+    for key in ("simulate", "orbit", "cascade"):
+        fields = _contact_fields_in(res[key])
+        assert set(fields) == {"peak_contact_force_N", "contact_share", "stick_share_right_face"}, key
+    assert res["orbit"].converged and res["orbit"].peak_contact_force_N > 0
+    assert len(res["branch"].speeds_rpm) >= 2 and np.all(res["branch"].peak_contact_force_N > 0)
+    c = res["cascade"]       # at 2 500 rpm the ring stays in contact; at 4 000 rpm it settles clear of the bore
+    assert c.speeds_rpm.tolist() == [2500.0, 4000.0] and c.peak_contact_force_N[0] > 0 and c.contact_share[0] > 0.5
+    assert c.contact_share[1] == 0.0 and c.peak_contact_force_N[1] == 0.0
+    assert out.count("peak contact force") == 3 and out.count("peak ") >= 5

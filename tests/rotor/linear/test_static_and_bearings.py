@@ -260,3 +260,16 @@ def test_bad_speed_tables_one_line(keys, message):
     text = _rigid_rotor(f'[[bearings]]\nname = "b0"\nstation = "s0"\n{keys}' + _bearing("b2", "s2", stiffness_n_per_m=1e6))
     with pytest.raises(InputError, match=message):
         loads_scene(text)
+
+
+@pytest.mark.parametrize("text", [FRISWELL_591, _table_rotor(), _pinned_beam(
+    "[gravity]\nacceleration_y_m_per_s2 = -9.81\n[[static_loads]]\nname = \"L\"\nstation = \"s1\"\nforce_z_n = 12.5\n"
+    "moment_y_n_m = -3\n")])
+def test_new_keys_survive_the_scene_toml(text):
+    """A scene with disks from geometry, speed tables, gravity and static loads written back to TOML
+    (rotor.model.scene_toml) reads as the same scene."""
+    import dataclasses
+    from rotor.model.scene_toml import scene_to_toml
+    s = loads_scene(text)
+    back = loads_scene(scene_to_toml(s))
+    assert dataclasses.replace(back, path="") == dataclasses.replace(s, path="")

@@ -1,0 +1,361 @@
+"""Analyses of the loose-support rotor: time history, periodic orbit, branch of orbits, steady-state cascade.
+
+Each function takes a :class:`ringcontact.Scene`, a scene file's path or a bundled scene's name, and the same
+loose-support overrides (``clearance_m``, ``misalignment_m``, ``mu``, ``preload_n``, ``tilt_ignored``; None keeps
+the scene's value; :func:`rotor.studies.steady_state.point_system`). They call the functions the jobs call
+(``simulate``: :func:`rotor.dynamics.production.simulate_production`; ``orbit`` and ``branch``:
+:mod:`rotor.studies.orbit`; ``study cascade``: :func:`rotor.studies.steady_state.run_point`). Every result
+carries the contact-force summary of :func:`rotor.dynamics.support_record.contact_summary`: the peak radial
+force of the support's bore on the bearing ring (N), the share of the time in contact, and the share each end
+face sticks (empty or None for a scene without a loose support).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from contact.units import check_positive
+from ringcontact.results import ResultMethods, internal
+from ringcontact.scene import as_scene
+
+CONTACT_KEYS = ("peak_contact_force_N", "mean_contact_force_N", "peak_contact_moment_Nm", "contact_share",
+                "separation_share", "stick_share_right_face", "stick_share_left_face", "peak_face_force_N")
+
+
+def _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements) -> dict:
+    return {"clearance_m": clearance_m, "misalignment_m": misalignment_m, "mu": mu, "preload_n": preload_n,
+            "tilt_ignored": bool(tilt_ignored), "elements_per_segment": elements}
+
+
+class ContactSummary:
+    """The contact-force summary of a result's ``contact`` dict as attributes (None without a loose support):
+    ``peak_contact_force_N`` (N), ``contact_share`` (fraction of the time the ring touches its support),
+    ``stick_share_right_face``, ``stick_share_left_face`` (fractions of the time each end face sticks)."""
+
+    _summary = ("peak_contact_force_N", "contact_share", "stick_share_right_face", "stick_share_left_face")
+
+    def _summary_value(self, key: str):
+        v = self.contact.get(key)
+        return None if v is None else float(v)
+
+    @property
+    def peak_contact_force_N(self) -> float | None:
+        return self._summary_value("peak_contact_force_N")
+
+    @property
+    def contact_share(self) -> float | None:
+        return self._summary_value("contact_share")
+
+    @property
+    def stick_share_right_face(self) -> float | None:
+        return self._summary_value("stick_share_right_face")
+
+    @property
+    def stick_share_left_face(self) -> float | None:
+        return self._summary_value("stick_share_left_face")
+
+
+# ------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class SimulationResult(ContactSummary, ResultMethods):
+    """A time history of the rotor from rest (the misalignment offset), as ``ringcontact simulate``.
+
+    ``duration_revs`` the revolutions integrated; ``t_s`` (N,) sample times (s); ``displacement_m`` (N, c) the channels ``channels`` (``<station>.y|z``, m);
+    ``r1_m``, ``r2_m`` the ring edges' offsets from the support's centre (m); ``contact_force_N`` (N,) the radial
+    force magnitude on the bearing ring (N), ``contact_force_y_N``, ``contact_force_z_N``, ``contact_moment_Nm``;
+    ``face_right_stuck``, ``face_left_stuck`` (1 stuck); the summary fields over the record (peak, shares).
+    """
+
+    scene: str
+    speed_rpm: float
+    duration_revs: float
+    steps_per_rev: int
+    dt_s: float
+    channels: tuple
+    t_s: np.ndarray
+    displacement_m: np.ndarray
+    r1_m: np.ndarray
+    r2_m: np.ndarray
+    contact_force_N: np.ndarray
+    contact_force_y_N: np.ndarray
+    contact_force_z_N: np.ndarray
+    contact_moment_Nm: np.ndarray
+    face_right_stuck: np.ndarray
+    face_left_stuck: np.ndarray
+    clearance_m: float | None
+    contact: dict
+    trajectory: object = internal()
+    _dim = "time"
+
+    def _rows(self) -> list[dict]:
+        rows = []
+        for i, t in enumerate(self.t_s):
+            row = {"t_s": t, **{f"{c}_m": self.displacement_m[i, k] for k, c in enumerate(self.channels)}}
+            row.update(r1_m=self.r1_m[i], r2_m=self.r2_m[i], contact_force_N=self.contact_force_N[i],
+                       contact_moment_Nm=self.contact_moment_Nm[i], face_right_stuck=self.face_right_stuck[i],
+                       face_left_stuck=self.face_left_stuck[i])
+            rows.append(row)
+        return rows
+
+    def _draw(self, ax) -> None:
+        ax.plot(self.t_s, self.contact_force_N, lw=1.0)
+        ax.set_xlabel("time t (s)")
+        ax.set_ylabel("radial contact force on the bearing ring (N)")
+        ax.set_title(f"{self.scene} at {self.speed_rpm:g} rpm: peak {self.peak_contact_force_N or 0:.4g} N, "
+                     f"contact {100 * (self.contact_share or 0):.0f} % of the time", fontsize=10)
+
+
+def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_rev: int | None = None,
+             record_per_rev: int = 64, stations=None, clearance_m: float | None = None,
+             misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
+             tilt_ignored: bool = False, elements: int | None = None) -> SimulationResult:
+    """Integrate ``revolutions`` revolutions at ``speed_rpm`` (rpm) from rest, as ``ringcontact simulate``.
+
+    ``steps_per_rev`` None: chosen as ``simulate`` and ``orbit`` choose it (256 or more where the contact step
+    limit needs it, a multiple of ``record_per_rev``; :func:`rotor.studies.steady_state.step_per_rev`).
+    ``stations``: recorded stations (default the scene's disks, loose-support bearing and supports).
+    """
+    from rotor.dynamics.constraints import edge_offsets
+    from rotor.dynamics.production import simulate_production
+    from rotor.dynamics.support_record import contact_columns, contact_summary
+    from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
+
+    check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)
+    check_positive("revolutions", revolutions, "rev", upper=1e6)
+    sc, model, system = point_system(as_scene(scene), speed_rpm, **_overrides(
+        clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
+    n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions(samples_per_rev=record_per_rev)))
+    check_positive("record_per_rev", record_per_rev, "samples", upper=n)
+    names = [f"{s}.{c}" for s in (stations or model.response_stations(primary_only=True)) for c in ("y", "z")]
+    idx = [model.dof_index(x) for x in names]
+    dt = 2 * math.pi / (system.omega_rad_s * n)
+    tr = simulate_production(system, dt, max(1, int(round(revolutions * n))), q0=system.offset,
+                             record_every=max(1, n // int(record_per_rev)))
+    sup = system.support
+    r1, r2 = edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
+    cols = contact_columns(tr.f_contact, tr.face_force, tr.modes)
+    summary = contact_summary(tr.t, tr.f_contact, tr.modes, tr.face_force, sup.faces()[2]) if sup is not None else {}
+    return SimulationResult(
+        sc.name, float(speed_rpm), float(revolutions), n, dt, tuple(names), tr.t, tr.q[:, idx], r1, r2,
+        cols["contact_force_N"], cols["contact_force_y_N"], cols["contact_force_z_N"], cols["contact_moment_Nm"],
+        cols["face_right_stuck"], cols["face_left_stuck"], sup.law.clearance_m if sup is not None else None,
+        summary, tr)
+
+
+# ------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class OrbitResult(ContactSummary, ResultMethods):
+    """The periodic orbit at one speed, as ``ringcontact orbit``: period, convergence, Floquet multipliers and
+    stability, 1X-5X velocity amplitudes ``velocity_amplitude_m_s[c, k]`` of channel ``channels[c]`` at order
+    k + 1 (m/s), and the loose support over one period (``contact``: the keys of ``simulate``'s summary)."""
+
+    scene: str
+    speed_rpm: float
+    period_revs: int
+    period_s: float
+    steps_per_rev: int
+    converged: bool
+    residual: float
+    newton_iterations: int
+    stable: bool
+    spectral_radius: float
+    critical_kind: str
+    multipliers: np.ndarray
+    channels: tuple
+    velocity_amplitude_m_s: np.ndarray
+    max_edge_penetration_m: float
+    contact: dict
+    orbit: object = internal()
+    _dim = "channel"
+
+    def _rows(self) -> list[dict]:
+        return [{"channel": c, **{f"velocity_{k + 1}X_m_s": self.velocity_amplitude_m_s[i, k] for k in range(5)}}
+                for i, c in enumerate(self.channels)]
+
+    def _draw(self, ax) -> None:
+        phi = np.linspace(0, 2 * math.pi, 361)
+        ax.plot(np.cos(phi), np.sin(phi), color="0.5", lw=0.8)
+        ax.plot(self.multipliers.real, self.multipliers.imag, "x", color="tab:red")
+        ax.set_aspect("equal")
+        ax.set_xlabel("Re μ (–)")
+        ax.set_ylabel("Im μ (–)")
+        ax.set_title(f"Floquet multipliers at {self.speed_rpm:g} rpm: {'stable' if self.stable else 'unstable'}, "
+                     f"peak contact force {self.peak_contact_force_N or 0:.4g} N", fontsize=10)
+
+
+def _orbit_result(name: str, res) -> OrbitResult:
+    amps = res.velocity_amplitudes_mm_s_1X_to_5X
+    return OrbitResult(name, res.speed_rpm, res.period_revs, res.period_s, res.steps_per_rev, bool(res.converged),
+                       float(res.residual), int(res.newton_iterations), bool(res.stable),
+                       float(res.floquet.spectral_radius), res.floquet.kind, np.asarray(res.floquet.multipliers),
+                       tuple(amps), np.array([[a * 1e-3 for a in v] for v in amps.values()]),
+                       float(res.max_edge_penetration_m), dict(res.contact), res)
+
+
+def orbit(scene, speed_rpm: float, *, period_revs: int | None = None, steps_per_rev: int | None = None,
+          clearance_m: float | None = None, misalignment_m: float | None = None, mu: float | None = None,
+          preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None) -> OrbitResult:
+    """The periodic orbit at ``speed_rpm`` (rpm) by shooting, its stability and harmonics
+    (:func:`rotor.studies.orbit.orbit`); ``converged`` False when no orbit of 1 to 8 revolutions was found."""
+    from rotor.studies.orbit import orbit as shoot
+    sc = as_scene(scene)
+    res = shoot(sc, speed_rpm, steps_per_rev=steps_per_rev, period_revs=period_revs,
+                **_overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
+    return _orbit_result(sc.name, res)
+
+
+# ------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BranchResult(ResultMethods):
+    """Orbits followed over speed (pseudo-arclength continuation), as ``ringcontact branch``: per point the speed,
+    stability, spectral radius and the contact summary; ``bifurcations`` (kind, speed_rpm); ``stop`` why it
+    ended (``end reached`` when it got to ``rpm_end``)."""
+
+    scene: str
+    rpm_start: float
+    rpm_end: float
+    speeds_rpm: np.ndarray
+    stable: np.ndarray
+    spectral_radius: np.ndarray
+    peak_contact_force_N: np.ndarray
+    contact_share: np.ndarray
+    stick_share_right_face: np.ndarray
+    stick_share_left_face: np.ndarray
+    bifurcations: tuple
+    stop: str
+    reached_end: bool
+    start: OrbitResult = internal()
+    branch: object = internal()
+    _dim = "point"
+
+    def _rows(self) -> list[dict]:
+        return [{"speed_rpm": s, "stable": bool(self.stable[i]), "spectral_radius": self.spectral_radius[i],
+                 "peak_contact_force_N": self.peak_contact_force_N[i], "contact_share": self.contact_share[i],
+                 "stick_share_right_face": self.stick_share_right_face[i],
+                 "stick_share_left_face": self.stick_share_left_face[i]} for i, s in enumerate(self.speeds_rpm)]
+
+    def _draw(self, ax) -> None:
+        stable = self.stable.astype(bool)
+        ax.plot(self.speeds_rpm, self.peak_contact_force_N, color="0.6", lw=0.8)
+        ax.plot(self.speeds_rpm[stable], self.peak_contact_force_N[stable], "o", ms=3, label="stable")
+        ax.plot(self.speeds_rpm[~stable], self.peak_contact_force_N[~stable], "o", ms=3, mfc="none", label="unstable")
+        for b in self.bifurcations:
+            ax.axvline(b["speed_rpm"], color="tab:red", lw=0.8, ls=":")
+        ax.set_xlabel("rotor speed (rpm)")
+        ax.set_ylabel("peak radial contact force (N)")
+        ax.set_title(f"Branch of {self.scene}: {self.stop}", fontsize=10)
+        ax.legend(fontsize=8)
+
+
+def _column(points, key: str) -> np.ndarray:
+    return np.array([np.nan if p.get(key) is None else float(p[key]) for p in points])
+
+
+def branch(scene, rpm_start: float, rpm_end: float, *, max_points: int = 400, steps_per_rev: int | None = None,
+           clearance_m: float | None = None, misalignment_m: float | None = None, mu: float | None = None,
+           preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None) -> BranchResult:
+    """Follow the orbit found at ``rpm_start`` to ``rpm_end`` (rpm) (:func:`rotor.studies.orbit.branch`), at most
+    ``max_points`` orbits."""
+    from rotor.studies.continuation import ContinuationOptions
+    from rotor.studies.orbit import branch as follow
+    sc = as_scene(scene)
+    res = follow(sc, rpm_start, rpm_end, steps_per_rev=steps_per_rev, options=ContinuationOptions(
+        max_points=int(max_points)), **_overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
+    pts = res.points
+    return BranchResult(sc.name, float(rpm_start), float(rpm_end), _column(pts, "speed_rpm"),
+                        np.array([bool(p["stable"]) for p in pts], dtype=bool), _column(pts, "spectral_radius"),
+                        _column(pts, "peak_contact_force_N"), _column(pts, "contact_share"),
+                        _column(pts, "stick_share_right_face"), _column(pts, "stick_share_left_face"),
+                        tuple(res.bifurcations), res.stop, res.stop == "end reached",
+                        _orbit_result(sc.name, res.start), res)
+
+
+# ------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class CascadeResult(ResultMethods):
+    """Steady state at each speed, as ``ringcontact study cascade`` (one point each, in order, one process):
+    ``velocity_amplitude_m_s[i, k, c]`` order k + 1 of channel ``channels[c]`` at ``speeds_rpm[i]`` (m/s),
+    ``converged[i]`` whether the Poincaré test found a periodic steady state within ``max_revs``, and the
+    contact summary per speed."""
+
+    scene: str
+    speeds_rpm: np.ndarray
+    channels: tuple
+    velocity_amplitude_m_s: np.ndarray
+    displacement_amplitude_m: np.ndarray
+    converged: np.ndarray
+    period_revs: np.ndarray
+    transient_revs: np.ndarray
+    regime: tuple
+    peak_contact_force_N: np.ndarray
+    contact_share: np.ndarray
+    stick_share_right_face: np.ndarray
+    stick_share_left_face: np.ndarray
+    points: tuple = internal()
+    _dim = "speed"
+
+    def _rows(self) -> list[dict]:
+        rows = []
+        for i, s in enumerate(self.speeds_rpm):
+            row = {"speed_rpm": s, "converged": bool(self.converged[i]), "period_revs": int(self.period_revs[i]),
+                   "regime": self.regime[i], "peak_contact_force_N": self.peak_contact_force_N[i],
+                   "contact_share": self.contact_share[i], "stick_share_right_face": self.stick_share_right_face[i],
+                   "stick_share_left_face": self.stick_share_left_face[i]}
+            for c, ch in enumerate(self.channels):
+                row[f"{ch}_velocity_1X_to_5X_m_s"] = list(self.velocity_amplitude_m_s[i, :, c])
+            rows.append(row)
+        return rows
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dimensions ``speed_rpm``, ``order`` (1-5) and ``channel``: the amplitudes
+        (``velocity_amplitude_m_s``, ``displacement_amplitude_m``) and, along speed, convergence and contact."""
+        from sweep.export import attr, xarray
+        xr = xarray()
+        dims = ("speed_rpm", "order", "channel")
+        data = {"velocity_amplitude_m_s": (dims, self.velocity_amplitude_m_s, {"units": "m/s"}),
+                "displacement_amplitude_m": (dims, self.displacement_amplitude_m, {"units": "m"})}
+        for name in ("converged", "period_revs", "transient_revs", "peak_contact_force_N", "contact_share",
+                     "stick_share_right_face", "stick_share_left_face"):
+            data[name] = (("speed_rpm",), np.asarray(getattr(self, name)))
+        data["regime"] = (("speed_rpm",), np.array(self.regime, dtype=str))
+        coords = {"speed_rpm": self.speeds_rpm, "order": np.arange(1, self.velocity_amplitude_m_s.shape[1] + 1),
+                  "channel": list(self.channels)}
+        return xr.Dataset(data, coords=coords, attrs={"result": type(self).__name__, "scene": attr(self.scene)})
+
+    def _draw(self, ax) -> None:
+        ch = self.channels[0]
+        for k in range(self.velocity_amplitude_m_s.shape[1]):
+            ax.semilogy(self.speeds_rpm, self.velocity_amplitude_m_s[:, k, 0] * 1e3, "-o", ms=3, label=f"{k + 1}X")
+        bad = ~self.converged.astype(bool)
+        if bad.any():
+            ax.plot(self.speeds_rpm[bad], self.velocity_amplitude_m_s[bad, 0, 0] * 1e3, "x", color="k", ms=8,
+                    label="not converged")
+        ax.set_xlabel("rotor speed (rpm)")
+        ax.set_ylabel(f"velocity amplitude of {ch} (mm/s)")
+        ax.set_title(f"Steady-state cascade: {self.scene}", fontsize=10)
+        ax.legend(fontsize=8)
+
+
+def cascade(scene, rpms, *, max_revs: int = 1500, steps_per_rev: int = 256, clearance_m: float | None = None,
+            misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
+            tilt_ignored: bool = False, elements: int | None = None) -> CascadeResult:
+    """The steady state at each speed of ``rpms`` (rpm, > 0) by integration (transient detected and discarded,
+    :func:`rotor.studies.steady_state.run_point`, at most ``max_revs`` revolutions of transient a speed)."""
+    from rotor.studies.steady_state import run_point
+    sc = as_scene(scene)
+    speeds = np.atleast_1d(np.asarray(rpms, dtype=float))
+    for s in speeds:
+        check_positive("rpms", float(s), "rpm", upper=1e5)
+    pts = [run_point(sc, float(s), options={"max_revs": int(max_revs), "steps_per_rev": int(steps_per_rev)},
+                     **_overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
+           for s in speeds]
+    infos = [p[1] for p in pts]
+    return CascadeResult(sc.name, speeds, tuple(str(c) for c in pts[0][0]["channels"]),
+                         np.array([np.abs(a["harm_v"]) for a, _ in pts]), np.array([np.abs(a["harm_q"]) for a, _ in pts]),
+                         np.array([i["converged"] for i in infos], dtype=bool),
+                         np.array([i["period_revs"] for i in infos]), np.array([i["transient_revs"] for i in infos]),
+                         tuple(i["label"] for i in infos), _column(infos, "peak_contact_force_N"),
+                         _column(infos, "contact_share"), _column(infos, "stick_share_right_face"),
+                         _column(infos, "stick_share_left_face"), tuple(pts))
