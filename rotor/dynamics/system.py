@@ -335,12 +335,28 @@ def support_forces(system: RotorSystem, q, v, modes, lam_faces, opts: NewmarkOpt
 
 
 def relative_compliance(system: RotorSystem) -> np.ndarray:
-    """``B M⁻¹ Bᵀ`` (4, 4): inverse effective mass of the relative motion (1/kg)."""
+    """``B M⁻¹ Bᵀ`` (4, 4): inverse effective mass of the relative motion (1/kg).
+
+    With massless DOFs (``M`` singular on the constraint null space) they follow the massive ones
+    statically, as the integrators take them (``rotor.dynamics.condense``): with ``N`` the massless
+    directions and ``R`` the rest, ``x = R a + N b``, ``b = −(Nᵀ K N)⁻¹ Nᵀ K R a``, and the compliance is
+    that of ``a`` through the condensed map."""
     B = system.support.relative_map(system.n)
     T = cons.null_space_map(system.lock)
     Mr = T.T @ system.M @ T
     Bt = B @ T
-    return Bt @ np.linalg.solve(Mr, Bt.T)
+    w, V = np.linalg.eigh(0.5 * (Mr + Mr.T))
+    light = w <= 1e-12 * max(float(w.max()), 1e-300)
+    if not light.any():
+        return Bt @ np.linalg.solve(Mr, Bt.T)
+    N, R = V[:, light], V[:, ~light]
+    Kr = T.T @ system.K @ T
+    try:
+        slave = -np.linalg.solve(N.T @ Kr @ N, N.T @ Kr @ R)
+    except np.linalg.LinAlgError:
+        raise InputError("massless DOFs held by no stiffness: give them a mass or inertia, or a spring") from None
+    Bc = Bt @ (R + N @ slave)
+    return Bc @ np.linalg.solve(R.T @ Mr @ R, Bc.T)
 
 
 def contact_stiffness(law: SupportLaw, probe_penetration_m: float | None = None) -> float:

@@ -119,3 +119,20 @@ def test_ring_carries_the_weight_by_statics():
     q1, v1 = linear_initial_state(free)
     tr0 = simulate_production(free, 2 * math.pi / w / spr, 2 * spr, q1, v1, record_every=spr)
     assert np.all(tr0.f_contact == 0.0)
+
+
+def test_step_limit_of_a_rotor_with_massless_dofs():
+    """The contact step limit 2/ω_c of a rotor with massless DOFs (station A here: no hub mass, no damping)
+    is the one of its statically condensed system, which the integrators run (rotor.dynamics.condense);
+    it used to stop on a singular mass matrix."""
+    from rotor.dynamics.condense import condense
+    from rotor.dynamics.system import largest_stable_step
+    text = TXT.replace('[[point_masses]]\nname = "hub"\nstation = "A"\nmass_kg = 0.5\ndiametral_inertia_kg_m2 = 1e-4\n', "")
+    text = text.replace("damping_n_s_per_m = 200\n", "")
+    assert text.count("[[point_masses]]") == 1
+    scene = loads_scene(text)
+    system = system_from_model(assemble(scene), scene, 300.0)
+    condensed = condense(system)
+    assert condensed is not None and condensed.system.n < system.n
+    dt, wc = largest_stable_step(system)
+    assert math.isfinite(dt) and wc == pytest.approx(largest_stable_step(condensed.system)[1], rel=1e-9)
