@@ -84,34 +84,64 @@ def response_figure(model: RotorModel, resp: ForcedResponse, nodes: list[str], t
     return fig
 
 
+def _signed_shape(model: RotorModel, shapes, j: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(x, w, slope, direction)`` of mode ``j``: each node's deflection (x m, w normalised to a largest
+    |w| of +1) and slope along the major axis of the largest orbit, at the instant that orbit is at its
+    major axis; a fixed DOF counts as 0. The sign shows the nodal points a magnitude plot hides."""
+    names = list(model.node_names)
+
+    def dof(n, d):
+        key = f"{n}.{d}"
+        return shapes[model.dof_index(key), j] if key in model.dof_names else 0.0
+
+    Y, Z, TY, TZ = (np.array([dof(n, d) for n in names]) for d in ("y", "z", "θy", "θz"))
+    k = int(np.argmax(np.abs(Y) ** 2 + np.abs(Z) ** 2))
+    # phase that puts node k at the major axis of its ellipse: maximise |Re(e^{iφ}(Y_k, Z_k))|
+    phi = -0.5 * np.angle(Y[k] ** 2 + Z[k] ** 2)
+    u = np.array([np.real(np.exp(1j * phi) * Y[k]), np.real(np.exp(1j * phi) * Z[k])])
+    u = u / (np.linalg.norm(u) or 1.0)
+    rot = np.exp(1j * phi)
+    w = np.real(rot * (u[0] * Y + u[1] * Z))
+    slope = np.real(rot * (u[0] * TZ - u[1] * TY))          # θz = dy/dx, θy = −dz/dx
+    scale = w[int(np.argmax(np.abs(w)))] or 1.0
+    return model.node_x_m, w / scale, slope / scale, u
+
+
+def _hermite(x0, x1, w0, w1, s0, s1, n: int = 12):
+    """Cubic through ``(x0, w0, slope s0)`` and ``(x1, w1, s1)``: the beam element's own interpolation."""
+    t = np.linspace(0.0, 1.0, n)
+    h = x1 - x0
+    return x0 + h * t, ((2 * t ** 3 - 3 * t ** 2 + 1) * w0 + (t ** 3 - 2 * t ** 2 + t) * h * s0
+                        + (-2 * t ** 3 + 3 * t ** 2) * w1 + (t ** 3 - t ** 2) * h * s1)
+
+
 def mode_shape_figure(model: RotorModel, shapes: list[tuple[str, Modes, int]], title: str, ax=None):
-    """Orbit semi-major axis ``(|ŷ + iẑ| + |ŷ − iẑ|)/2`` along the rotor for selected modes (normalised
-    to 1), so forward and backward whirl show alike; a DOF fixed by a boundary condition shows as 0
-    (on ``ax`` when given)."""
+    """Mode shapes with their sign: each mode's deflection along the major axis of its largest orbit, at the
+    instant that orbit is at its major axis, normalised to +1 at the largest (``_signed_shape``), drawn
+    through each shaft with the beam element's cubic interpolation between the nodes (nodes marked); a
+    DOF fixed by a boundary condition is drawn at 0 (on ``ax`` when given)."""
     fig, ax = _on(ax)
-    stations = list(model.node_names)
-    xs = np.array([model.node_x_m[model.node_names.index(n)] for n in stations])
-    support = model.loose_pair.support_node if model.loose_pair else None
-    free = set(model.dof_names)
-
-    def lateral(m, j, n, d):
-        return m.shapes[model.dof_index(f"{n}.{d}"), j] if f"{n}.{d}" in free else 0.0
-
-    for label, m, j in shapes:
-        Y = np.array([lateral(m, j, n, "y") for n in stations])
-        Z = np.array([lateral(m, j, n, "z") for n in stations])
-        rotor = [i for i, n in enumerate(stations) if n != support]
-        order = sorted(rotor, key=lambda i: xs[i])
-        amp = (np.abs(Y + 1j * Z) + np.abs(Y - 1j * Z)) / 2
-        amp = amp / amp.max()
-        ax.plot(xs[order] * 1e3, amp[order], "-o", ms=3, label=label)
+    index = {n: i for i, n in enumerate(model.node_names)}
+    for c, (label, m, j) in enumerate(shapes):
+        x, w, slope, _ = _signed_shape(model, m.shapes, j)
+        for s_i, chain in enumerate(model.shaft_nodes):
+            ids = [index[n] for n in chain]
+            xs, ws = [], []
+            for a, b in zip(ids[:-1], ids[1:]):
+                xx, ww = _hermite(x[a], x[b], w[a], w[b], slope[a], slope[b])
+                xs.append(xx if not xs else xx[1:])
+                ws.append(ww if not ws else ww[1:])
+            ax.plot(np.concatenate(xs) * 1e3, np.concatenate(ws), "-", color=f"C{c % 10}",
+                    label=label if s_i == 0 else None)
+            ax.plot(x[ids] * 1e3, w[ids], "o", ms=3, color=f"C{c % 10}")
     for d in model.scene.disks:
         ax.axvline(model.scene.station(d.station).x_m * 1e3, color="0.6", lw=0.8)
-        ax.annotate(d.name, (model.scene.station(d.station).x_m * 1e3, 1.02), fontsize=8, ha="center")
+        ax.annotate(d.name, (model.scene.station(d.station).x_m * 1e3, 1.04), fontsize=8, ha="center")
+    ax.axhline(0.0, color="k", lw=0.6)
     ax.set_xlabel("axial position x (mm)")
-    ax.set_ylabel("orbit semi-major axis (normalised)")
+    ax.set_ylabel("deflection along the major axis (normalised)")
     ax.set_title(title, fontsize=10)
-    ax.set_ylim(0, 1.1)
+    ax.set_ylim(-1.15, 1.15)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     return fig

@@ -84,11 +84,16 @@ def test_mode_shape_plot_is_the_pinned_beam_sine_and_has_its_own_file_names(tmp_
     from rotor.model.scene import loads_scene
     model = assemble(loads_scene(PINNED_BEAM), shear=False, rotary_inertia=False)
     res = modes(model, 0.0, n_modes=4)
-    fig = mode_shape_figure(model, [("mode 1", res, 0), ("mode 2", res, 1)], "t")
-    for line in fig.axes[0].lines[:2]:                 # forward and backward of the first pair: one shape
+    fig = mode_shape_figure(model, [("mode 1", res, 0), ("mode 2", res, 1), ("mode 3", res, 2)], "t")
+    lines = [ln for ln in fig.axes[0].lines if ln.get_linestyle() == "-" and len(ln.get_xdata()) > 2]
+    for line in lines[:2]:                 # forward and backward of the first pair: one shape, sin(πx/L)
         x_mm, amp = line.get_data()
-        assert x_mm[0] == 0 and amp[0] == 0 and amp[-1] == 0          # the pinned ends are drawn at 0
+        assert x_mm[0] == 0 and amp[0] == 0 and amp[-1] == pytest.approx(0, abs=1e-12)   # the pinned ends at 0
+        assert len(x_mm) > 30                                      # drawn between the nodes, not only at them
         assert amp == pytest.approx(np.sin(math.pi * x_mm / 1000.0), abs=1e-3)
+    x_mm, amp = lines[2].get_data()         # the second bending mode: sin(2πx/L), its sign change at midspan shows
+    assert amp == pytest.approx(np.sign(amp[np.argmax(abs(amp))]) * np.sin(2 * math.pi * x_mm / 1000.0), abs=2e-3)
+    assert amp.min() == pytest.approx(-1, abs=2e-3) and amp.max() == pytest.approx(1, abs=2e-3)
     scene = tmp_path / "beam.toml"
     scene.write_text(PINNED_BEAM)
     prefix = tmp_path / "beam"
