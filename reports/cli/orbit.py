@@ -206,7 +206,7 @@ def _branch_table(d: dict) -> str:
 
 
 def _branch(args) -> int:
-    from rotor.studies.continuation import ContinuationOptions
+    from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
     name, channels, loose = _scene(args)

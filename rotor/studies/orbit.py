@@ -1,12 +1,12 @@
 """Periodic orbits and branches of a scene's rotor, as the command line asks for them.
 
-:func:`orbit` is one operating point: the periodic orbit by shooting (:mod:`rotor.studies.shooting`) from a
+:func:`orbit` is one operating point: the periodic orbit by shooting (:mod:`rotor.periodic.shooting`) from a
 short transient that starts at the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`,
-as ``simulate --steady``), its Floquet multipliers and stability (:mod:`rotor.studies.floquet`) and the
+as ``simulate --steady``), its Floquet multipliers and stability (:mod:`rotor.periodic.floquet`) and the
 1X-5X velocity amplitudes at every response station, the same quantity and key as ``simulate --steady``
 (``velocity_amplitudes_mm_s_1X_to_5X``, mm/s, exact DFT bins over the whole period,
 :func:`rotor.studies.steady_state.harmonic_amplitudes`). :func:`branch` follows the orbit over a speed range
-by pseudo-arclength continuation (:mod:`rotor.studies.continuation`) and lists the bifurcations met.
+by pseudo-arclength continuation (:mod:`rotor.periodic.continuation`) and lists the bifurcations met.
 
 Steps per revolution: :func:`rotor.studies.steady_state.step_per_rev` (256 by default, more where the contact
 step limit needs it), fixed along a branch at the value its lowest speed needs, so that every orbit of the
@@ -25,15 +25,15 @@ from contact.units import ARCMIN, check_positive
 from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.dynamics.support_record import contact_summary
-from rotor.studies.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
+from rotor.periodic.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
                                         speed_problem)
-from rotor.studies.floquet import FloquetResult
-from rotor.studies.period_flow import Flow, make_flow, record, to_full
-from rotor.studies.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
+from rotor.periodic.floquet import FloquetResult
+from rotor.periodic.period_flow import Flow, make_flow, record, to_full
+from rotor.periodic.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
 
 ORDERS = (1, 2, 3, 4, 5)
-#: how a branch point past a stick/slip switch was reached (:mod:`rotor.studies.continuation`); None: by the corrector
+#: how a branch point past a stick/slip switch was reached (:mod:`rotor.periodic.continuation`); None: by the corrector
 RESTART_KINDS = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold"}
 
 
@@ -55,7 +55,7 @@ class OrbitResult:
         Newton met its tolerance.
     stable : bool
         Every non-neutral Floquet multiplier inside the unit circle.
-    floquet : rotor.studies.floquet.FloquetResult
+    floquet : rotor.periodic.floquet.FloquetResult
         Multipliers and their classification.
     velocity_amplitudes_mm_s_1X_to_5X : dict
         ``<station>.<y|z>`` -> five amplitudes (mm/s).
@@ -68,12 +68,12 @@ class OrbitResult:
     settled (JSON key, from ``shooting.settled``) : bool
         On a continuum of orbits (a face stuck through the period), the transient's conserved levels had
         stopped drifting when the orbit was shot, so the orbit is the member the transient settles on
-        (:func:`rotor.studies.shooting.shoot_from_transient`); always True without a continuum.
+        (:func:`rotor.periodic.shooting.shoot_from_transient`); always True without a continuum.
     events : int
         End-face mode changes over the period.
     singular_directions : int
         Directions of M − I dropped by the Newton step (the continuum's conserved levels,
-        :func:`rotor.studies.shooting.level_step`).
+        :func:`rotor.periodic.shooting.level_step`).
     wall_s : float
         Wall time (s).
     switch_free : bool
@@ -83,7 +83,7 @@ class OrbitResult:
         :mod:`rotor.dynamics.period_map`), which the multipliers do not see.
     backend : str
         Monodromy backend used (exact or finite differences).
-    shooting : rotor.studies.shooting.ShootingResult
+    shooting : rotor.periodic.shooting.ShootingResult
         The reduced state, its monodromy and scales.
     q_m, v_m_s : numpy.ndarray
         (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring speed.
@@ -215,7 +215,7 @@ class BranchResult:
     and the contact fields of :attr:`OrbitResult.contact`),
     ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
-    (the :class:`rotor.studies.continuation.Branch`)."""
+    (the :class:`rotor.periodic.continuation.Branch`)."""
 
     points: tuple
     bifurcations: tuple

@@ -125,7 +125,7 @@ def test_table4_orbit_equals_simulate_steady_at_10500_rpm(tmp_path, capsys):
     """Issue 18 must-show: Table 4 at 10 500 rpm, the shooting orbit's 1X-5X equal the transient steady
     state's (``simulate --steady``) within 1e-4 relative (to each channel's 1X). The left end face sticks
     through the orbit (a continuum of orbits): the orbit job shoots once the transient's conserved levels
-    stop drifting (rotor/studies/shooting.py), so it lands on the transient's member."""
+    stop drifting (rotor/periodic/shooting.py), so it lands on the transient's member."""
     rc, text, err = _run(["orbit", "paper-table4", "--speed-rpm", 10500, "--json"], capsys)
     assert rc == 0, err
     d = json.loads(text)

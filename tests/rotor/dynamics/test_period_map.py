@@ -242,11 +242,11 @@ def test_bad_inputs_are_refused(linear_map):
 
 @pytest.mark.parametrize("speed_rad_s, guess_m", [(500.0, 3e-5), (680.0, 2e-4)])
 def test_jeffcott_circular_orbit_is_a_fixed_point_and_its_monodromy_equals_finite_differences(speed_rad_s, guess_m):
-    """The frictionless clearance Jeffcott rotor (rotor.studies.jeffcott) whirls on an exact circle of the
+    """The frictionless clearance Jeffcott rotor (rotor.periodic.jeffcott) whirls on an exact circle of the
     scheme: radius from the closed form with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N),
     complex amplitude X = m e Ω² / (k − m Ω'² + f(r)/r + i c Ω'). The period map returns it, and its monodromy
     (contact law's Jacobian through every step) equals central differences."""
-    from rotor.studies.jeffcott import JeffcottParams, closed_form_radius, contact_force_N, jeffcott_system
+    from rotor.periodic.jeffcott import JeffcottParams, closed_form_radius, contact_force_N, jeffcott_system
 
     p, n = JeffcottParams(), 256
     r = closed_form_radius(p, speed_rad_s, guess_m, steps_per_rev=n)
