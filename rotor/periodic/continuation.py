@@ -172,7 +172,10 @@ class ContinuationOptions:
     parameter steps growing ×4 from the last one).
     ``follow_scales``: the state scales follow the orbit's own peak-to-peak range (never below the given
     ``scales``) once it differs from them by more than ``RESCALE_RATIO``. Both False: the plain corrector with
-    the start's scales."""
+    the start's scales.
+    ``watch``: None, or ``watch(evaluator, y) -> float`` (a contact measure, :mod:`rotor.periodic.grazing`); the
+    branch stops (``stop`` "grazing", the crossing point not taken) before a predictor or a corrected point on
+    the other side of its zero than the last point."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -187,6 +190,7 @@ class ContinuationOptions:
     restart_after: int = 3
     restart_tries: int = 6
     follow_scales: bool = True
+    watch: Callable | None = None
 
 
 class _Evaluator:
@@ -499,7 +503,12 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     ds, stop = opts.ds, "max_points"
     while len(points) < opts.max_points:
         y_prev = y
-        got = _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        side = None if opts.watch is None else opts.watch(ev, y) > 0.0
+        ahead = side is not None and (opts.watch(ev, y + ds * tau) > 0.0) != side
+        got = None if ahead else _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        if ahead or (side is not None and got is not None and (opts.watch(ev, got[0]) > 0.0) != side):
+            stop = "grazing"
+            break
         guide = tau
         if got is None:
             fails += 1
