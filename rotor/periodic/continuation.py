@@ -442,6 +442,14 @@ def _shot(ev, y_pred, opts, how: int, y_last):
         if res < opts.tol else None
 
 
+def _land(ev, a, b, lam_end: float, opts, phase):
+    """The orbit at exactly ``lam_end``, between the scaled points ``a`` and ``b`` on either side of it: the
+    corrector on the hyperplane ``λ = lam_end`` from their linear interpolation; None if it fails."""
+    e = np.zeros(len(b))
+    e[-1] = 1.0
+    return _correct(ev, a + (lam_end / ev.ls - a[-1]) / (b[-1] - a[-1]) * (b - a), e, opts, phase, a)
+
+
 def _rescale(ev, y, tau, M, J, floor):
     """Renew the state scales to the orbit's own peak-to-peak range over one period at ``y`` (never below
     ``floor``) when they differ by more than :data:`RESCALE_RATIO`: returns ``(y, tau, J)`` in the new
@@ -531,6 +539,9 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         tau_new = _tangent(J, guide, opts.rcond, phase_new)
         pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
         bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
+        if (pt.parameter - lam_end) * direction > 0 and (landed := _land(ev, y_prev, y, lam_end, opts, phase)):
+            y, J, M, it, res = landed        # the last orbit at lam_end itself, not beyond it
+            pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
         points.append(pt)
         tau = tau_new
         if opts.follow_scales:

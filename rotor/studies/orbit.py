@@ -28,6 +28,7 @@ from rotor.dynamics.support_record import contact_summary
 from rotor.periodic.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
                                         speed_problem)
 from rotor.periodic.floquet import FloquetResult
+from rotor.periodic.grazing import continue_through_grazing
 from rotor.periodic.period_flow import Flow, make_flow, record, to_full
 from rotor.periodic.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
@@ -137,7 +138,8 @@ class OrbitResult:
                 "face_mode_changes": self.events,
                 "singular_directions": self.singular_directions, "switch_free": self.switch_free,
                 "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3, **self.contact,
-                "wall_s": self.wall_s, "backend": self.backend}
+                "wall_s": self.wall_s, "backend": self.backend,
+                "phase0_state": {"q_m_rad": [float(x) for x in self.q_m], "v_m_s_rad_s": [float(x) for x in self.v_m_s]}}
 
 
 def velocity_amplitudes(flow: Flow, model, res_state, t0_s: float, modes, period_revs: int, steps_per_rev: int,
@@ -232,11 +234,17 @@ class BranchResult:
 
 
 def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
-           options: ContinuationOptions | None = None, amplitudes: bool = True, **overrides) -> BranchResult:
+           options: ContinuationOptions | None = None, amplitudes: bool = True, through_grazing: bool = False,
+           start=None, period_revs: int | None = None, **overrides) -> BranchResult:
     """Continue the orbit found at ``rpm_start`` (:func:`orbit`) in speed until ``rpm_end`` (rpm).
 
     The arclength is measured with the start orbit's scales and a speed scale of a tenth of the range.
     ``amplitudes``: record each point's 1X-5X velocity amplitudes (one extra period per point).
+    ``through_grazing``: follow the branch through orbits that graze the ring
+    (:func:`rotor.periodic.grazing.continue_through_grazing`: grazing folds reported, no restart there).
+    ``start``: the full ``(q0, v0)`` of a chosen orbit at ``rpm_start`` (phase 0, e.g. ``phase0_state`` of an
+    ``orbit --out`` file, with its ``period_revs``): the branch starts on that orbit (one revolution of
+    transient, then Newton), an unstable one included, instead of the one a transient from rest reaches.
     """
     t_start = time.perf_counter()
     check_positive("rpm_start", rpm_start, "rpm", upper=1e5)
@@ -246,7 +254,9 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     ov = _overrides(overrides)
     _, model, sys_lo = point_system(scene, min(rpm_start, rpm_end), **ov)
     n = int(steps_per_rev or step_per_rev(sys_lo, SteadyStateOptions()))
-    first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, **ov)
+    chosen = {} if start is None else {"start": start, "period_revs": period_revs,
+                                       "options": ShootingOptions(transient_revs=1, round_growth=2.0)}
+    first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, **chosen, **ov)
     if not first.converged:
         return BranchResult((), (), first, "no orbit at the start", time.perf_counter() - t_start,
                             Branch((), (), first.period_revs, "no orbit at the start", 0.0))
@@ -259,7 +269,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     # the orbit's start time is a whole number of revolutions: phase 0, where the continuation's maps start
     pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes)
     w0, w1 = rpm_start / to_rpm, rpm_end / to_rpm
-    br = continue_branch(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
+    follow = continue_through_grazing if through_grazing and pb.system_at(w0).support is not None else continue_branch
+    br = follow(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
     pts = []
     for p in br.points:
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
