@@ -303,12 +303,3 @@ def test_table4_monodromy_through_stick_slip_switches_equals_finite_differences(
         assert np.array_equal(a.trajectory.modes, modes) and np.array_equal(b.trajectory.modes, modes)
         Mfd[:, j] = (a.state - b.state) / (2 * e[j])
     assert _scaled_error(res.monodromy, Mfd, s) < 1e-5
-
-
-def test_setup_refuses_located_friction_events():
-    """The derivative pass follows the plain step: with locate_events a split step would be integrated but
-    not differentiated, so the setup refuses it instead of returning a wrong monodromy."""
-    system = _linear(_system())
-    opts = dataclasses.replace(NewmarkOptions(), locate_events=True)
-    with pytest.raises(InputError, match="locate_events"):
-        period_map_setup(system, 1e-4, opts)
