@@ -69,21 +69,30 @@ def main(argv=None) -> int:
     _run("plain", 64)                  # compile (or load) the kernels outside the timings
     load0 = os.getloadavg()
     lines = ["# Orbits against continuous time: plain branch vs Richardson extrapolation in the step", "",
-             "", "| way | steps per rev | stop | points | largest rel. distance | median | wall s (median) |",
+             "", "", "| way | steps per rev | stop | points | largest rel. distance | median | wall s (median) |",
              "|---|---|---|---|---|---|---|"]
+    medians = {}
     for way, n in ROWS:
         walls = []
         for _ in range(args.repeat):
             stop, pts, err, wall = _run(way, n)
             walls.append(wall)
         label = f"{n}" if way == "plain" else f"{n} then {2 * n}"
+        medians[(way, n)] = statistics.median(walls)
         lines.append(f"| {way} | {label} | {stop} | {pts} | {err.max():.2e} | {np.median(err):.2e} | "
-                     f"{statistics.median(walls):.2f} |")
+                     f"{medians[(way, n)]:.2f} |")
     load1 = os.getloadavg()
     lines[2] = (f"Made by `benchmarks/bench_richardson.py` (median of {args.repeat} runs per row, one process, numba "
                 f"compiled beforehand); load average {load0[0]:.2f} at start, {load1[0]:.2f} at the end (shared 2-core "
                 "machine). Jeffcott rotor (`JeffcottParams()`), 150 → 900 rad/s from rest; distance: relative speed "
                 "error at each orbit's radius against the continuous-time closed form (no warping).")
+    lines += ["", "Reading: Richardson with N then 2N steps per revolution is an O(h⁴) estimate of the continuous-time "
+              "orbit (the trapezoidal rule's error is even in h); with 128 then 256 steps it is within 1e-6 everywhere "
+              "on the curve, folds included, where the plain 256-step branch is 2e-4 off (the frequency warping). Cost: "
+              f"the 128-then-256 extrapolation took {medians[('richardson', 128)] / medians[('plain', 256)]:.2f} "
+              "times the plain 256-step branch in this run, the 64-then-128 one "
+              f"{medians[('richardson', 64)] / medians[('plain', 256)]:.2f} times (its largest distance, at the "
+              "upper fold, is above 1e-6); side by side in one process, at the load stated above.", ""]
     text = "\n".join(lines) + "\n"
     atomic_write_text(OUT / "perf-richardson.md", text)
     print(text)

@@ -7,6 +7,7 @@ The rotor: JeffcottParams defaults (m = 1 kg, k = 1e5 N/m, ζ = 0.05, δ0 = 10 �
 the conformal law and e = 3 µm = 0.3 δ0, N = 64 steps per revolution. Closed form (warped, N = 64): grazing at
 279.5707 rad/s (the speed passes on), grazing fold at 374.3008 rad/s (the speed turns at the corner: the
 unstable middle branch starts there), smooth jump-down fold at 445.873 rad/s (r = 4.18 δ0)."""
+import dataclasses
 import math
 
 import numpy as np
@@ -119,3 +120,13 @@ def test_same_branch_up_and_down(sweeps):
     assert abs(down["grazing_fold"] / up["grazing_fold"] - 1) < 1e-9
     assert abs(down["grazing"] / up["grazing"] - 1) < 1e-9
     assert abs(down["fold"] / up["fold"] - 1) < 1e-5
+
+
+def test_branch_follows_grazing_by_default_only_on_a_frictionless_ring():
+    from rotor.studies.orbit import follows_grazing
+    ring = jeffcott_system(P, 300.0).support
+    assert ring.mu * ring.preload_N == 0.0
+    assert follows_grazing(ring, None) and not follows_grazing(ring, False)
+    rubbing = dataclasses.replace(ring, mu=0.3, preload_N=100.0)
+    assert not follows_grazing(rubbing, None) and follows_grazing(rubbing, True)
+    assert not follows_grazing(None, True)
