@@ -5,8 +5,9 @@ its periodic orbits expands in even powers of the step: ``y_N = y* + C h² + O(h
 (on the Jeffcott rotor the whole error is the frequency warping ``Ω' = Ω tan(π/N)/(π/N) = Ω (1 + π²/(3N²) +
 …)``, :mod:`rotor.periodic.jeffcott`). Each point ``y_N = (x, λ)`` of a branch computed with ``N`` steps per
 revolution is corrected once more with ``2N`` steps on the hyperplane that fixes the unknown the branch moves
-fastest in there (the largest component of its unit tangent, scaled; the parameter away from folds, a state
-component at them, so folds are no harder than other points), and the two are combined,
+fastest in there (the largest component of the secant through its neighbours, scaled: the parameter away
+from folds, a state component at them, so folds are no harder than other points), by a chord Newton (the ``2N`` Jacobian of the first
+iterate kept: the ``N`` orbit is within the step's O(h²) of the ``2N`` one), and the two are combined,
 ``y* ≈ (4 y_2N − y_N)/3``, an O(h⁴) estimate of the continuous-time orbit (Richardson 1911; Hairer, Nørsett &
 Wanner 1993, *Solving Ordinary Differential Equations I*, §II.9 on extrapolation of symmetric methods).
 """
@@ -16,7 +17,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from rotor.periodic.continuation import Branch, ContinuationOptions, Problem, _correct, _Evaluator
+from contact.errors import ConvergenceError, InputError, OutsideDomainError
+from rotor.periodic.continuation import Branch, ContinuationOptions, Problem, _Evaluator
+from rotor.periodic.shooting import min_norm_step
+
+#: most chord iterations of a 2N orbit
+CHORD_MAX_ITER = 15
 
 
 @dataclass(frozen=True)
@@ -39,23 +45,45 @@ def extrapolate_branch(problem: Problem, branch: Branch, *, scales, lam_scale: f
     opts = options or ContinuationOptions()
     fine = replace(problem, steps_per_rev=2 * problem.steps_per_rev)
     s = np.asarray(scales, float)
-    ev_n, ev_2n = _Evaluator(problem, s, lam_scale), _Evaluator(fine, s, lam_scale)
-    n = len(branch.points)
+    ev_2n = _Evaluator(fine, s, lam_scale)
+    pts = branch.points
+    n = len(pts)
+    ys = [np.concatenate([p.state / s, [p.parameter / lam_scale]]) for p in pts]
     lam, lam2 = np.full(n, np.nan), np.full(n, np.nan)
     x, x2 = np.full((n, len(s)), np.nan), np.full((n, len(s)), np.nan)
     ok = np.zeros(n, bool)
-    for i, p in enumerate(branch.points):
-        y = np.concatenate([p.state / s, [p.parameter / lam_scale]])
-        _, J, _ = ev_n(p.state, p.parameter)
-        tau = np.linalg.svd(J)[2][-1]          # the branch's direction: the null vector of [M − I, ∂R/∂λ]
+    for i in range(n):
+        y = ys[i]
         e = np.zeros(len(y))
-        e[int(np.argmax(np.abs(tau)))] = 1.0
-        got = _correct(ev_2n, y, e, opts)
-        if got is None:
+        if n == 1:
+            e[-1] = 1.0
+        else:                                   # the unknown the branch moves fastest in: its neighbours' secant
+            e[int(np.argmax(np.abs(ys[min(i + 1, n - 1)] - ys[max(i - 1, 0)])))] = 1.0
+        y2 = _chord(ev_2n, y, e, opts)
+        if y2 is None:
             continue
-        y2 = got[0]
         ok[i] = True
         yr = (4.0 * y2 - y) / 3.0
         lam[i], x[i] = yr[-1] * lam_scale, yr[:-1] * s
         lam2[i], x2[i] = y2[-1] * lam_scale, y2[:-1] * s
     return ExtrapolatedBranch(lam, x, lam2, x2, ok)
+
+
+def _chord(ev: _Evaluator, y0, e, opts: ContinuationOptions):
+    """The orbit of ``ev``'s problem on the hyperplane ``e·(y − y0) = 0`` near the scaled ``y0``: Newton with the
+    Jacobian of the first iterate kept (chord). Returns the scaled ``y`` or None."""
+    y, J = np.asarray(y0, float).copy(), None
+    for _ in range(CHORD_MAX_ITER):
+        try:
+            R, Jn, _ = ev(y[:-1] * ev.s, y[-1] * ev.ls, jacobian=J is None)
+        except (OutsideDomainError, ConvergenceError, InputError):
+            return None
+        J = Jn if J is None else J
+        res = float(np.max(np.abs(R)))
+        if not np.isfinite(res):
+            return None
+        dy, _ = min_norm_step(np.vstack([J, e[None, :]]), -np.concatenate([R, [e @ (y - y0)]]), opts.rcond)
+        if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
+            return y
+        y = y + dy
+    return None
