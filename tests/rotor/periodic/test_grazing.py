@@ -15,6 +15,7 @@ import pytest
 
 from rotor.periodic.continuation import ContinuationOptions, continue_branch, speed_problem
 from rotor.periodic.grazing import continue_through_grazing
+from rotor.periodic.period_flow import record
 from rotor.periodic.jeffcott import (JeffcottParams, closed_form_folds, closed_form_grazing, closed_form_speeds,
                                     jeffcott_system, warped_frequency)
 
@@ -130,3 +131,40 @@ def test_branch_follows_grazing_by_default_only_on_a_frictionless_ring():
     rubbing = dataclasses.replace(ring, mu=0.3, preload_N=100.0)
     assert not follows_grazing(rubbing, None) and follows_grazing(rubbing, True)
     assert not follows_grazing(None, True)
+
+
+def test_one_point_grazing_of_an_off_centre_orbit_at_the_schemes_closed_form():
+    """A static side load F = 0.3 N along y moves the free orbit off centre by F/k = 0.3 δ0, so it touches the
+    ring at one phase only, and past the grazing the ring is loaded over part of the period. Free, the scheme's
+    orbit is exactly q_n = F/k + X e^{iΩ t_n} with X = m e Ω² / (k − mΩ'² + i cΩ') (the trapezoidal rule's
+    warped Ω', as rotor/periodic/jeffcott.py), so the grazing speed of its sampled orbit solves
+    max_n |F/k + X e^{2πi n/N}| = δ0: 415.26750464 rad/s."""
+    from scipy.optimize import brentq
+
+    from rotor.dynamics.system import HarmonicForce
+    from rotor.periodic.grazing import largest_penetration
+
+    side = 0.3
+
+    def system(w):
+        s = jeffcott_system(P, w)
+        f = s.force
+        return dataclasses.replace(s, force=HarmonicForce(np.array([side, 0.0, 0.0, 0.0]), f.orders, f.cos, f.sin,
+                                                          f.omega_rad_s))
+
+    def gap(w):
+        wp = float(warped_frequency(w, N))
+        x = P.mass_kg * P.eccentricity_m * w ** 2 / (P.stiffness_N_m - P.mass_kg * wp ** 2 + 1j * P.damping_N_s_m * wp)
+        return np.abs(side / P.stiffness_N_m + x * np.exp(2j * np.pi * np.arange(N) / N)).max() - P.clearance_m
+
+    expected = brentq(gap, 400.0, 430.0, xtol=1e-13)
+    pb = speed_problem(system, N, modes0=(0, 0))
+    br = continue_through_grazing(pb, np.zeros(8), 500.0, 390.0, scales=SCALES, lam_scale=30.0, options=OPTIONS)
+    assert br.stop == "end reached" and br.restarts == 0
+    (b,) = br.bifurcations
+    assert b.kind == "grazing" and abs(b.parameter / expected - 1) < 1e-9
+    past = br.points[-1]
+    g, _ = largest_penetration(pb.flow(past.parameter), past.state, N, (0, 0))
+    tr = record(pb.flow(past.parameter), past.state, 0.0, N, (0, 0), 1)
+    share = float(np.mean(np.hypot(tr.u[:-1, 0], tr.u[:-1, 1]) > P.clearance_m))
+    assert g > 0.1 and 0.1 < share < 0.9                       # in contact over part of the period only
