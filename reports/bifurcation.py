@@ -15,7 +15,8 @@ from reports.studies.common import pyplot, save
 
 #: marker and colour of each bifurcation kind
 KINDS = {"fold": ("o", "tab:red", "fold"), "period_doubling": ("s", "tab:purple", "period doubling"),
-         "neimark_sacker": ("D", "tab:orange", "Neimark–Sacker")}
+         "neimark_sacker": ("D", "tab:orange", "Neimark–Sacker"),
+         "grazing_fold": ("v", "tab:green", "grazing fold"), "grazing": ("^", "tab:green", "grazing")}
 
 
 def stability_runs(stable) -> list[tuple[int, int, bool]]:
