@@ -196,7 +196,8 @@ def _orbit(args) -> int:
 
 def _branch_table(d: dict, station: str) -> str:
     """The branch as a table: one row per orbit with the 1X velocity amplitude at ``station`` and, in the last
-    column, how a point past a switch was reached (``restart: secant`` …); a row ``-- <kind> at … rpm --``
+    column, how a point past a switch was reached and the speeds it skipped (``restart: secant, skipped …``); a
+    row ``-- <kind> at … rpm --``
     between the two orbits a bifurcation lies between."""
     lines = [f"branch {d['scene']} {d['rpm_start']:g} -> {d['rpm_end']:g} rpm: {len(d['points'])} orbits, "
              f"period {d['period_revs']} rev, stopped: {d['stop']}, {d['wall_s']:.1f} s",
@@ -211,7 +212,8 @@ def _branch_table(d: dict, station: str) -> str:
         lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} {amp:10.4g} "
                      f"{p['leading_multiplier']:>13} {_share(p.get('contact_share')):>8} "
                      f"{p.get('peak_contact_force_N', float('nan')):10.4g}"
-                     + (f"  restart: {p['restarted']}" if p.get("restarted") else ""))
+                     + (f"  restart: {p['restarted']}, skipped {p['skipped_rpm'][0]:.1f}-{p['skipped_rpm'][1]:.1f} rpm"
+                        if p.get("skipped_rpm") else ""))
     lines.append("  bifurcations: " + ("; ".join(f"{b['kind']} at {b['speed_rpm']:.1f} rpm" for b in d["bifurcations"])
                                        or "none"))
     return "\n".join(lines)

@@ -213,7 +213,8 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
 class BranchResult:
     """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
     ``critical_kind``, ``leading_multiplier``, ``restarted`` (None, or how a point past a stick/slip switch was
-    shot: ``secant``, ``transient``, ``cold``), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``
+    shot: ``secant``, ``transient``, ``cold``; a restarted point also has ``skipped_rpm``, the speeds of the orbit
+    before it and its own: the range the restart jumped over), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``
     and the contact fields of :attr:`OrbitResult.contact`),
     ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
@@ -279,6 +280,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
              "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted))}
+        if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it
+            d["skipped_rpm"] = [pts[-1]["speed_rpm"], d["speed_rpm"]]
         if amplitudes:
             flow = pb.flow(p.parameter)
             amps, pen, contact = period_response(flow, model, p.state, 0.0, res.modes, pb.period_revs, n)

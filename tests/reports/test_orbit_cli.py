@@ -139,6 +139,21 @@ def test_branch_starts_on_the_orbit_of_an_orbit_out_file_and_its_table_has_ampli
     assert rc == 2 and len(lines) == 1 and "--rpm-start = 1600 rpm" in lines[0] and "1500" in lines[0]
 
 
+def test_branch_table_marks_restarts_with_the_speeds_skipped_and_bifurcations_between_rows():
+    from reports.cli.orbit import _branch_table
+    point = {"stable": True, "spectral_radius": 0.9, "leading_multiplier": "complex_pair",
+             "velocity_amplitudes_mm_s_1X_to_5X": {"d.y": [1.5, 0, 0, 0, 0]}}
+    d = {"scene": "s", "rpm_start": 2000.0, "rpm_end": 3000.0, "period_revs": 1, "stop": "end reached", "wall_s": 1.0,
+         "points": [{**point, "speed_rpm": 2000.0, "restarted": None},
+                    {**point, "speed_rpm": 2964.0, "restarted": None},
+                    {**point, "speed_rpm": 2468.0, "restarted": "transient", "skipped_rpm": [2964.0, 2468.0]}],
+         "bifurcations": [{"kind": "fold", "speed_rpm": 2500.0, "after_point": 1}]}
+    rows = _branch_table(d, "d.y").splitlines()
+    assert rows[2].split()[0] == "2000.0" and rows[3].strip() == "-- fold at 2500.0 rpm --"
+    assert rows[5].endswith("restart: transient, skipped 2964.0-2468.0 rpm") and "restart" not in rows[4]
+    assert rows[2].split()[3] == "1.5"                                    # the 1X column at the station
+
+
 def test_branch_that_stops_early_exits_1_with_one_line(damped_jeffcott, capsys):
     rc, text, err = _run(["branch", damped_jeffcott, "--rpm-start", 1500, "--rpm-end", 3000, "--max-points", 2], capsys)
     assert rc == 1
