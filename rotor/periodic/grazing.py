@@ -171,8 +171,9 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
     Arguments as ``continue_branch``; ``max_grazings`` bounds the segments. The returned branch holds every
     segment's points, each grazing orbit as a point of its own with a :class:`Bifurcation` of kind
     ``"grazing_fold"`` or ``"grazing"`` (its ``multiplier`` the critical one of the first orbit past it), and
-    the segments' own bifurcations; ``stop`` is the last segment's, or "grazing not passed" when the grazing
-    orbit or the first orbit past it was not found."""
+    the segments' own bifurcations; ``stop`` is the last segment's. Where the grazing orbit or the first orbit
+    past it is not found, the branch goes on by the plain continuation from the last orbit before it (with its
+    restarts, if the options allow them: the restarted points then say what was skipped) and ``stop`` is its."""
     opts = options or ContinuationOptions()
     ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
     floor = np.asarray(scales, float)
@@ -191,8 +192,15 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
         if br.stop != "grazing" or not br.points or k == max_grazings:
             break
         crossed = _cross(problem, br.points[-1], floor, ls, opts)
-        if crossed is None:
-            stop = "grazing not passed"
+        if crossed is None:             # the plain continuation (its restarts, if allowed) from the last orbit on
+            last = br.points[-1]
+            rest = continue_branch(problem, last.state, last.parameter, lam_end, scales=floor, lam_scale=ls,
+                                   options=replace(seg_opts, watch=None))
+            offset = len(points) - 1
+            points += rest.points[1:]
+            bifs += [replace(b, index=b.index + offset) for b in rest.bifurcations if b.index > 0]
+            wall, restarts = wall + rest.wall_s, restarts + rest.restarts
+            stop = rest.stop
             break
         graze, kind, past, x, lam, tangent = crossed
         points.append(graze)
