@@ -87,8 +87,11 @@ def report(rows: dict, loads: list, closed: dict, repeat: int) -> str:
               "down sweep jumps from the corner onto the stable contact branch, never reaching the middle branch nor "
               "reporting the corner, and the up sweep, restarted at the corner, turns back beyond its start with a "
               "branch point that is not one (the issue's observations); the grazing segments follow the whole curve, "
-              "corner and middle branch included, with no restart, at two to three times the plain corrector's wall "
-              "time (twice the points, and the penetration watch records each predictor's period).", ""]
+              "corner and middle branch included, with no restart, at "
+              + " and ".join(f"{rows[(d, 'grazing')]['wall_s'] / rows[(d, 'plain')]['wall_s']:.1f} times the plain "
+                             f"corrector's wall time {d}" for d in ("down", "up"))
+              + " (the plain corrector stops at the corner; the grazing segments go on over the whole curve, and the "
+              "penetration watch records each predictor's period).", ""]
     return "\n".join(lines)
 
 
