@@ -6,16 +6,16 @@ Writes ``reports/published/perf-branch-switches.md`` (+ ``.json``). The Table 4 
 --rpm-start 600 --rpm-end 18000``), twice, in two processes side by side:
 
 * *before*: ``ContinuationOptions(pass_switches=False, follow_scales=False)``, the corrector alone with the
-  start orbit's scales (what the branch did before :mod:`rotor.studies.continuation` passed switches);
+  start orbit's scales (what the branch did before :mod:`rotor.periodic.continuation` passed switches);
 * *after*: the defaults (a corrector that stops contracting is given up, restarts past the switch by
   shooting, scales following the orbit).
 
 Each run: points, highest speed reached, why it stopped, restarts (by kind), wall time. The *after* branch is
 then verified on a sample of ``--verify`` points: at each point's speed a fresh flow
-(:func:`rotor.studies.period_flow.make_flow`) maps the point's own state over its period
-(:func:`rotor.studies.period_flow.advance`, no derivative): the residual ``max |Φ(x) − x|/s`` relative to the
-orbit's own peak-to-peak scale ``s`` (:func:`rotor.studies.shooting.orbit_scales`, never below the start's)
-and an independent :func:`rotor.studies.shooting.shoot` from that state (converged, Newton iterations,
+(:func:`rotor.periodic.period_flow.make_flow`) maps the point's own state over its period
+(:func:`rotor.periodic.period_flow.advance`, no derivative): the residual ``max |Φ(x) − x|/s`` relative to the
+orbit's own peak-to-peak scale ``s`` (:func:`rotor.periodic.shooting.orbit_scales`, never below the start's)
+and an independent :func:`rotor.periodic.shooting.shoot` from that state (converged, Newton iterations,
 distance of its orbit from the point).
 
 Load average at start and end (shared 2-core machine). Run:
@@ -47,7 +47,7 @@ TO_RPM = 30.0 / math.pi
 def run_branch(mode: str, max_points: int, n_verify: int) -> dict:
     """One branch from 600 rpm (``mode`` "before" or "after") with its summary and, for "after", the sample."""
     from rotor.dynamics.period_map import warm_up
-    from rotor.studies.continuation import ContinuationOptions
+    from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
     warm_up()
@@ -70,8 +70,8 @@ def run_branch(mode: str, max_points: int, n_verify: int) -> dict:
 
 def verify(res, n_verify: int) -> list[dict]:
     """Independent check of ``n_verify`` points spread over the branch (see the module docstring)."""
-    from rotor.studies.period_flow import advance, make_flow
-    from rotor.studies.shooting import ShootingOptions, orbit_scales, record_reduced, shoot
+    from rotor.periodic.period_flow import advance, make_flow
+    from rotor.periodic.shooting import ShootingOptions, orbit_scales, record_reduced, shoot
     from rotor.studies.steady_state import point_system
 
     pts = res.branch.points

@@ -15,7 +15,7 @@ scheme, 256 steps per revolution):
      continuation does from its previous speed, :func:`rotor.studies.orbit.cascade`);
    - *shooting from the transient's end*: the same, started from the transient's steady end state. A face
      stuck through the whole orbit makes the orbits a continuum (one neutral multiplier per stuck offset,
-     :mod:`rotor.studies.floquet`); this start puts shooting on the continuum member the transient reached.
+     :mod:`rotor.periodic.floquet`); this start puts shooting on the continuum member the transient reached.
 
    1X–5X agreement: the largest difference over every station, direction and harmonic, relative to that
    channel's 1X amplitude.
@@ -54,7 +54,7 @@ sys.path.insert(0, str(ROOT))
 from contact.files import atomic_write_text  # noqa: E402
 from rotor.dynamics.initial import linear_initial_state  # noqa: E402
 from rotor.studies.orbit import orbit  # noqa: E402
-from rotor.studies.shooting import ShootingOptions  # noqa: E402
+from rotor.periodic.shooting import ShootingOptions  # noqa: E402
 from rotor.studies.steady_state import point_system  # noqa: E402
 
 OUT = ROOT / "reports" / "published"
@@ -183,7 +183,7 @@ def report(p1: dict, rows: list[dict], wall: float, load: list, repeats: int, wo
              f"{o.floquet.spectral_radius:.4f} (leading multiplier {o.floquet.leading}), {o.floquet.n_neutral} "
              "neutral multipliers (a face stuck through the orbit: a continuum of orbits; the Newton step keeps the "
              "transient's conserved levels and the orbit is shot once they stop drifting, settled "
-             f"{o.shooting.settled}: rotor/studies/shooting.py). The transient detector stops at a relative "
+             f"{o.shooting.settled}: rotor/periodic/shooting.py). The transient detector stops at a relative "
              f"Poincaré change of 1e-4 with an estimated {p1['poincare_remaining']:.1e} still to decay.", "",
              f"**Must show ≤ 0.5 s per shooting point: cold start {'holds' if t['shooting'] <= 0.5 else 'does NOT hold'} "
              f"({t['shooting']:.2f} s); warm start {'holds' if t['shooting_warm'] <= 0.5 else 'does NOT hold'} "

@@ -26,7 +26,7 @@ SCENE, RPM_START, RPM_END, GAP_RPM = "paper-table4", 600.0, 18000.0, 300.0
 
 def segment(rpm_start: float, max_points: int) -> dict:
     """One segment as the ``ringcontact branch --json`` output (with ``restarts``, points by each restart kind)."""
-    from rotor.studies.continuation import ContinuationOptions
+    from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
     t0 = time.perf_counter()

@@ -15,7 +15,8 @@ from reports.studies.common import pyplot, save
 
 #: marker and colour of each bifurcation kind
 KINDS = {"fold": ("o", "tab:red", "fold"), "period_doubling": ("s", "tab:purple", "period doubling"),
-         "neimark_sacker": ("D", "tab:orange", "Neimark–Sacker")}
+         "neimark_sacker": ("D", "tab:orange", "Neimark–Sacker"),
+         "grazing_fold": ("v", "tab:green", "grazing fold"), "grazing": ("^", "tab:green", "grazing")}
 
 
 def stability_runs(stable) -> list[tuple[int, int, bool]]:
@@ -96,7 +97,7 @@ def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
 def segments_table(segments) -> str:
     """Markdown table of branch segments (the JSON of ``ringcontact branch`` each): range covered, orbits,
     stable share, largest spectral radius, bifurcations, the points reached by restarts past a switch (by
-    kind, :mod:`rotor.studies.continuation`; a column only when the segments carry ``restarts``) and why each
+    kind, :mod:`rotor.periodic.continuation`; a column only when the segments carry ``restarts``) and why each
     stopped."""
     restarts = any("restarts" in s for s in segments)
     extra = (" restarts past switches (secant/transient/cold) |", "---|") if restarts else ("", "")
@@ -143,7 +144,7 @@ def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading
     scene = next((s.get("scene") for s in segments if s.get("scene")), "")
     lines = [f"# Bifurcation diagram, {scene}: periodic orbits continued in speed", "",
              "Made by `ringcontact branch` (pseudo-arclength continuation of the shooting orbit, "
-             "`rotor/studies/continuation.py`, Floquet multipliers of each orbit) over the Fig. 12 speed range, in "
+             "`rotor/periodic/continuation.py`, Floquet multipliers of each orbit) over the Fig. 12 speed range, in "
              "segments started at speeds where the orbit exists:", "", "```sh", *commands, "```", "",
              f"Figure: `study-bifurcation.png/.svg`, 1X velocity amplitude at {channel} (stable solid, unstable "
              "dashed, bifurcations marked with their kind) and the largest non-neutral |multiplier| against speed. "

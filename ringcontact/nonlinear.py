@@ -258,7 +258,7 @@ def branch(scene, rpm_start: float, rpm_end: float, *, max_points: int = 400, st
            preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None) -> BranchResult:
     """Follow the orbit found at ``rpm_start`` to ``rpm_end`` (rpm) (:func:`rotor.studies.orbit.branch`), at most
     ``max_points`` orbits."""
-    from rotor.studies.continuation import ContinuationOptions
+    from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch as follow
     sc = as_scene(scene)
     res = follow(sc, rpm_start, rpm_end, steps_per_rev=steps_per_rev, options=ContinuationOptions(

@@ -7,7 +7,7 @@ import graph (imports inside functions included) and checks the rules of the lay
 - no source module over 600 lines, no plain-Python function over 80 (numba-compiled ones exempt);
 - a layer imports only layers below it: contact < sweep < fem_reference, rotor < reports < ringcontact (the
   public Python API, which nothing imports);
-  inside rotor: model < linear, dynamics < studies;
+  inside rotor: model < linear, dynamics < periodic < studies;
 - ``rotor/`` is split into stage sub-packages and holds no loose modules;
 - one sweep module: the resumable-store and progress machinery is defined only in ``sweep/``;
 - package data is located through importlib.resources: no module names its own ``__file__`` except
@@ -31,9 +31,9 @@ RANKS = {
     "contact": 0,
     "sweep": 1,
     "fem_reference": 2,
-    "rotor": 2, "rotor.model": 2, "rotor.linear": 3, "rotor.dynamics": 3, "rotor.studies": 4,
-    "reports": 5,
-    "ringcontact": 6,
+    "rotor": 2, "rotor.model": 2, "rotor.linear": 3, "rotor.dynamics": 3, "rotor.periodic": 4, "rotor.studies": 5,
+    "reports": 6,
+    "ringcontact": 7,
 }
 
 
@@ -164,7 +164,7 @@ def test_layers_import_downwards():
 def test_rotor_is_split_by_stage():
     loose = sorted(p.name for p in (ROOT / "rotor").glob("*.py") if p.name != "__init__.py")
     assert loose == []
-    for stage in ("model", "linear", "dynamics", "studies"):
+    for stage in ("model", "linear", "dynamics", "periodic", "studies"):
         assert (ROOT / "rotor" / stage / "__init__.py").is_file()
 
 

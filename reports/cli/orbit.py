@@ -33,7 +33,7 @@ import time
 from pathlib import Path
 
 from contact.errors import InputError, RingContactError
-from reports.cli._edge import Parser, count, fail, out_file, out_prefix, quantity
+from reports.cli._edge import Parser, count, fail, in_file, out_file, out_prefix, quantity
 from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, override_words,
                                         scene_from_args, warm_up_shown)
 
@@ -70,6 +70,8 @@ def _branch_parser() -> argparse.ArgumentParser:
                    help="bifurcation diagram PREFIX.png/.svg (1X amplitude at --station against speed)")
     p.add_argument("--station", default=None,
                    help="channel of the diagram, <station>.y or <station>.z (default: the scene's first response station, .y)")
+    p.add_argument("--from-orbit", type=in_file, default=None, metavar="FILE",
+                   help="start on the orbit of an `orbit --out` FILE (same scene, --rpm-start its speed), stable or not")
     return p
 
 
@@ -229,21 +231,54 @@ def _orbit(args) -> int:
     return 1
 
 
-def _branch_table(d: dict) -> str:
+def _branch_table(d: dict, station: str) -> str:
+    """The branch as a table: one row per orbit with the 1X velocity amplitude at ``station`` and, in the last
+    column, how a point past a switch was reached and the speeds it skipped (``restart: secant, skipped …``); a
+    row ``-- <kind> at … rpm --``
+    between the two orbits a bifurcation lies between."""
     lines = [f"branch {d['scene']} {d['rpm_start']:g} -> {d['rpm_end']:g} rpm: {len(d['points'])} orbits, "
              f"period {d['period_revs']} rev, stopped: {d['stop']}, {d['wall_s']:.1f} s",
-             f"  {'speed rpm':>10} {'stable':>7} {'radius':>9} {'leading':>13} {'contact':>8} {'peak N':>10}"]
-    for p in d["points"]:
-        lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} "
+             f"  {'speed rpm':>10} {'stable':>7} {'radius':>9} {'1X mm/s':>10} {'leading':>13} {'contact':>8} "
+             f"{'peak N':>10}  {station}"]
+    between = {}
+    for b in d["bifurcations"]:
+        between.setdefault(b["after_point"], []).append(f"  -- {b['kind']} at {b['speed_rpm']:.1f} rpm --")
+    for i, p in enumerate(d["points"]):
+        lines += between.get(i, [])
+        amp = p.get("velocity_amplitudes_mm_s_1X_to_5X", {}).get(station, [float("nan")])[0]
+        lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} {amp:10.4g} "
                      f"{p['leading_multiplier']:>13} {_share(p.get('contact_share')):>8} "
-                     f"{p.get('peak_contact_force_N', float('nan')):10.4g}")
+                     f"{p.get('peak_contact_force_N', float('nan')):10.4g}"
+                     + (f"  restart: {p['restarted']}, skipped {p['skipped_rpm'][0]:.1f}-{p['skipped_rpm'][1]:.1f} rpm"
+                        if p.get("skipped_rpm") else ""))
     lines.append("  bifurcations: " + ("; ".join(f"{b['kind']} at {b['speed_rpm']:.1f} rpm" for b in d["bifurcations"])
                                        or "none"))
     return "\n".join(lines)
 
 
+def _chosen_orbit(args, name: str) -> dict:
+    """``start``, ``period_revs`` and ``steps_per_rev`` of the ``orbit --out`` file ``--from-orbit`` (empty without
+    it); the file's scene and speed must be the branch's."""
+    if args.from_orbit is None:
+        return {}
+    import numpy as np
+    try:
+        o = json.loads(Path(args.from_orbit).read_text(encoding="utf-8"))
+        state, rpm, scene = o["phase0_state"], float(o["speed_rpm"]), o["scene"]
+    except (ValueError, KeyError, TypeError) as e:
+        raise InputError(f"--from-orbit = {args.from_orbit}: not an `orbit --out` file with phase0_state "
+                         f"({type(e).__name__}: {e})") from None
+    if scene != name:
+        raise InputError(f"--from-orbit = {args.from_orbit}: an orbit of scene {scene}, not of {name}")
+    if abs(rpm - args.rpm_start) > 1e-9 * rpm:
+        raise InputError(f"--rpm-start = {args.rpm_start:g} rpm: the orbit of --from-orbit is at {rpm!r} rpm; "
+                         "start the branch there")
+    return {"start": (np.array(state["q_m_rad"], float), np.array(state["v_m_s_rad_s"], float)),
+            "period_revs": int(o["period_revs"]), "steps_per_rev": args.steps_per_rev or int(o["steps_per_rev"])}
+
+
 def _branch(args) -> int:
-    from rotor.studies.continuation import ContinuationOptions
+    from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
     name, channels, loose = _scene(args)
@@ -252,9 +287,10 @@ def _branch(args) -> int:
         raise InputError(f"--station = {station}: not a response channel of {name} "
                          f"(have {', '.join(channels)})")
     t0 = time.perf_counter()
+    chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}
     res, events = _watched("ringcontact branch", args, lambda: branch(
-        args.scene, args.rpm_start, args.rpm_end, steps_per_rev=args.steps_per_rev,
-        options=ContinuationOptions(max_points=int(args.max_points)), **_overrides(args)))
+        args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(max_points=int(args.max_points)),
+        **chosen, **_overrides(args)))
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3)}
@@ -262,7 +298,7 @@ def _branch(args) -> int:
     tilt = max([p.get("max_tilt_in_contact_arcmin", 0.0) for p in d["points"]], default=0.0)
     d.update(law_fields(loose, max(deepest_mm * 1e-3, res.start.max_edge_penetration_m),    # deepest of the branch
                         max(tilt, res.start.contact.get("max_tilt_in_contact_arcmin", 0.0))))
-    _emit(args, d, _branch_table(d))
+    _emit(args, d, _branch_table(d, station))
     if args.plot is not None and d["points"]:
         from reports.bifurcation import bifurcation_figure
         for f in bifurcation_figure(d, station, args.plot):

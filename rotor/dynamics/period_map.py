@@ -21,7 +21,9 @@ and returns the end state and ``∂ state_N / ∂ state_0``.
   revolutions with switches). There is **no saltation matrix**: a perturbation that moves a switch by a
   step makes the map jump instead (the discrete trace of the continuous system's saltation), which the
   derivative does not see; ``PeriodMapResult.events`` counts the switches so a caller knows when
-  that can happen.
+  that can happen. With ``options.locate_events`` the friction events are located inside the step, the map
+  is continuous through them, and its event steps are differentiated as located
+  (:mod:`rotor.dynamics.period_map_events`: the event time's derivative included).
 * **Initial acceleration**: as production, ``a₀`` is the consistent acceleration at ``(p₀, v₀, t₀)``
   (equilibrium with the stuck faces' relative acceleration zero, :func:`rotor.dynamics.initial.initial_state`);
   its derivative enters the monodromy, so the map is a function of ``(p₀, v₀)`` alone.
@@ -49,6 +51,7 @@ from contact.errors import InputError
 from contact.loose_support import N_PARAMS
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.condense import Condensed, condense, expand
+from rotor.dynamics.period_map_events import located_monodromy
 from rotor.dynamics.period_map_kernels import sensitivity_pass
 from rotor.dynamics.production import Prepared, prepare, simulate_production
 from rotor.dynamics.production import warm_up as production_warm_up
@@ -110,6 +113,9 @@ class PeriodMapResult:
         derivative of such a step is only approximate.
     t : float
         End time (s).
+    replay_mismatch : float
+        With ``locate_events``: the largest relative difference between an event step replayed for its
+        derivative and the recorded step (:mod:`rotor.dynamics.period_map_events`); 0 otherwise.
     """
 
     state: np.ndarray
@@ -120,6 +126,7 @@ class PeriodMapResult:
     events: int
     unconverged_steps: int
     t: float
+    replay_mismatch: float = 0.0
 
 
 def period_map_setup(system: RotorSystem, dt: float, options: NewmarkOptions | None = None, *,
@@ -130,11 +137,6 @@ def period_map_setup(system: RotorSystem, dt: float, options: NewmarkOptions | N
     opts = options or NewmarkOptions()
     if not (np.isfinite(dt) and dt > 0):
         raise InputError(f"dt_s: {dt!r} s; must be a finite positive step")
-    if opts.locate_events:
-        # the derivative pass differentiates the plain step; a step split at a located friction event
-        # (rotor.dynamics.friction_events) would be integrated but not differentiated: refused, not wrong
-        raise InputError("options.locate_events: True; the period map's monodromy follows the plain Newmark step "
-                         "(locate_events = False)")
     c = condense(system)
     red = c.system if c is not None else system
     if red.support is not None and check_step:
@@ -213,14 +215,19 @@ def period_map(pm: PeriodMap, state0, t0: float, n_steps: int, *, modes0=None, j
     if pm.n_faces:
         events = int(sum(modes_req[k] != modes_rec[0, k] for k in range(pm.n_faces)))
         events += int(np.count_nonzero(np.diff(modes_rec[:, :pm.n_faces].astype(np.int64), axis=0)))
-    mono = _monodromy(pm, tr, rec_p, rec_v) if jacobian else None
+    mismatch = 0.0
+    if jacobian and pm.options.locate_events:      # event steps differentiated as located (period_map_events)
+        mono, mismatch = located_monodromy(pm, tr, rec_p, rec_v)
+    else:
+        mono = _monodromy(pm, tr, rec_p, rec_v) if jacobian else None
     out_tr = None
     if record_every > 0:
         out_tr = tr if record_every == 1 else _subsample(tr, record_every)
         if pm.condensed is not None:
             out_tr = expand(pm.condensed, out_tr)
     return PeriodMapResult(np.concatenate([rec_p[-1], rec_v[-1]]), mono, modes_rec[-1].astype(np.int64),
-                           tr.face_force[-1].copy(), out_tr, events, int(tr.unconverged_steps), float(tr.t[-1]))
+                           tr.face_force[-1].copy(), out_tr, events, int(tr.unconverged_steps), float(tr.t[-1]),
+                           mismatch)
 
 
 def _monodromy(pm: PeriodMap, tr: Trajectory, rec_p, rec_v) -> np.ndarray:

@@ -154,13 +154,8 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, B
     step in which a face stuck is followed, as in ``step_loop``, by the consistent-acceleration
     restart, differentiated too. Returns the ``(2nr × 2nr)`` monodromy ``∂(p_N, v_N)/∂(p₀, v₀)``."""
     nr = rec_p.shape[1]
-    n_steps = rec_p.shape[0] - 1
     ncol = 2 * nr
-    bdt2 = beta * dt * dt
-    gdt = gamma * dt
-    c1 = dt * dt * (0.5 - beta)
-    c2 = dt * (1.0 - gamma)
-    # Spv = ∂(p, v)/∂x0 (rows: p then v), Sa = ∂a/∂x0; Pre = the predictor's sensitivity
+    # Spv = ∂(p, v)/∂x0 (rows: p then v), Sa = ∂a/∂x0
     Spv = np.zeros((ncol, ncol))
     for i in range(ncol):
         Spv[i, i] = 1.0
@@ -174,9 +169,29 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, B
         Sa = np.empty((nr, ncol))
         Sa[:, :nr] = -MK
         Sa[:, nr:] = -MD
-    Pre = np.empty((ncol, ncol))
+    carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N, a1,
+          has_support, params, w_reg, onset_projection)
+    return Spv
+
+
+@njit(cache=True)
+def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N, a1,
+          has_support, params, w_reg, onset_projection):
+    """Carry the sensitivities ``Spv = ∂(p, v)/∂x0`` (2nr × ncol) and ``Sa = ∂a/∂x0`` (nr × ncol), given at the
+    record's first sample, along its plain steps (in place; arguments as :func:`sensitivity_pass`). The
+    located period map (:mod:`rotor.dynamics.period_map_events`) runs it between its event steps."""
+    nr = rec_p.shape[1]
+    n_steps = rec_p.shape[0] - 1
+    ncol = Spv.shape[1]
+    bdt2 = beta * dt * dt
+    gdt = gamma * dt
+    c1 = dt * dt * (0.5 - beta)
+    c2 = dt * (1.0 - gamma)
+    modes = np.zeros(2, dtype=np.int64)
+    # Pre = the predictor's sensitivity
+    Pre = np.empty((2 * nr, ncol))
     Sal = np.empty((nr, ncol))
-    AKD = np.empty((nr, ncol))
+    AKD = np.empty((nr, 2 * nr))
     AKD[:, :nr] = AK
     AKD[:, nr:] = AD
     Y = np.empty((3 * NC, ncol))      # ∂y: α_lin = Bt a_lin, u_pre = Bt p_pre, w_pre = Bt v_pre
@@ -222,4 +237,3 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, B
                 Ra = consistent_acceleration_jacobian(rec_p[n + 1], rec_v[n + 1], Bt, MK, MD, WM, SM, P, modes, mu_N,
                                                       a1, params, w_reg)
                 np.dot(Ra, Spv, Sa)
-    return Spv

@@ -1,12 +1,12 @@
 """Periodic orbits and branches of a scene's rotor, as the command line asks for them.
 
-:func:`orbit` is one operating point: the periodic orbit by shooting (:mod:`rotor.studies.shooting`) from a
+:func:`orbit` is one operating point: the periodic orbit by shooting (:mod:`rotor.periodic.shooting`) from a
 short transient that starts at the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`,
-as ``simulate --steady``), its Floquet multipliers and stability (:mod:`rotor.studies.floquet`) and the
+as ``simulate --steady``), its Floquet multipliers and stability (:mod:`rotor.periodic.floquet`) and the
 1X-5X velocity amplitudes at every response station, the same quantity and key as ``simulate --steady``
 (``velocity_amplitudes_mm_s_1X_to_5X``, mm/s, exact DFT bins over the whole period,
 :func:`rotor.studies.steady_state.harmonic_amplitudes`). :func:`branch` follows the orbit over a speed range
-by pseudo-arclength continuation (:mod:`rotor.studies.continuation`) and lists the bifurcations met.
+by pseudo-arclength continuation (:mod:`rotor.periodic.continuation`) and lists the bifurcations met.
 
 Steps per revolution: :func:`rotor.studies.steady_state.step_per_rev` (256 by default, more where the contact
 step limit needs it), fixed along a branch at the value its lowest speed needs, so that every orbit of the
@@ -25,15 +25,16 @@ from contact.units import ARCMIN, check_positive
 from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.dynamics.support_record import contact_summary
-from rotor.studies.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
+from rotor.periodic.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
                                         speed_problem)
-from rotor.studies.floquet import FloquetResult
-from rotor.studies.period_flow import Flow, make_flow, record, to_full
-from rotor.studies.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
+from rotor.periodic.floquet import FloquetResult
+from rotor.periodic.grazing import continue_through_grazing
+from rotor.periodic.period_flow import Flow, make_flow, record, to_full
+from rotor.periodic.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
 
 ORDERS = (1, 2, 3, 4, 5)
-#: how a branch point past a stick/slip switch was reached (:mod:`rotor.studies.continuation`); None: by the corrector
+#: how a branch point past a stick/slip switch was reached (:mod:`rotor.periodic.continuation`); None: by the corrector
 RESTART_KINDS = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold"}
 
 
@@ -55,7 +56,7 @@ class OrbitResult:
         Newton met its tolerance.
     stable : bool
         Every non-neutral Floquet multiplier inside the unit circle.
-    floquet : rotor.studies.floquet.FloquetResult
+    floquet : rotor.periodic.floquet.FloquetResult
         Multipliers and their classification.
     velocity_amplitudes_mm_s_1X_to_5X : dict
         ``<station>.<y|z>`` -> five amplitudes (mm/s).
@@ -68,12 +69,12 @@ class OrbitResult:
     settled (JSON key, from ``shooting.settled``) : bool
         On a continuum of orbits (a face stuck through the period), the transient's conserved levels had
         stopped drifting when the orbit was shot, so the orbit is the member the transient settles on
-        (:func:`rotor.studies.shooting.shoot_from_transient`); always True without a continuum.
+        (:func:`rotor.periodic.shooting.shoot_from_transient`); always True without a continuum.
     events : int
         End-face mode changes over the period.
     singular_directions : int
         Directions of M − I dropped by the Newton step (the continuum's conserved levels,
-        :func:`rotor.studies.shooting.level_step`).
+        :func:`rotor.periodic.shooting.level_step`).
     wall_s : float
         Wall time (s).
     switch_free : bool
@@ -83,7 +84,7 @@ class OrbitResult:
         :mod:`rotor.dynamics.period_map`), which the multipliers do not see.
     backend : str
         Monodromy backend used (exact or finite differences).
-    shooting : rotor.studies.shooting.ShootingResult
+    shooting : rotor.periodic.shooting.ShootingResult
         The reduced state, its monodromy and scales.
     q_m, v_m_s : numpy.ndarray
         (n,) the orbit's full state at phase 0 (m, rad; m/s, rad/s): a ``start`` for a neighbouring speed.
@@ -137,7 +138,8 @@ class OrbitResult:
                 "face_mode_changes": self.events,
                 "singular_directions": self.singular_directions, "switch_free": self.switch_free,
                 "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3, **self.contact,
-                "wall_s": self.wall_s, "backend": self.backend}
+                "wall_s": self.wall_s, "backend": self.backend,
+                "phase0_state": {"q_m_rad": [float(x) for x in self.q_m], "v_m_s_rad_s": [float(x) for x in self.v_m_s]}}
 
 
 def velocity_amplitudes(flow: Flow, model, res_state, t0_s: float, modes, period_revs: int, steps_per_rev: int,
@@ -211,11 +213,12 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
 class BranchResult:
     """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
     ``critical_kind``, ``leading_multiplier``, ``restarted`` (None, or how a point past a stick/slip switch was
-    shot: ``secant``, ``transient``, ``cold``), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``
+    shot: ``secant``, ``transient``, ``cold``; a restarted point also has ``skipped_rpm``, the speeds of the orbit
+    before it and its own: the range the restart jumped over), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``
     and the contact fields of :attr:`OrbitResult.contact`),
     ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
-    (the :class:`rotor.studies.continuation.Branch`)."""
+    (the :class:`rotor.periodic.continuation.Branch`)."""
 
     points: tuple
     bifurcations: tuple
@@ -232,11 +235,20 @@ class BranchResult:
 
 
 def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
-           options: ContinuationOptions | None = None, amplitudes: bool = True, **overrides) -> BranchResult:
+           options: ContinuationOptions | None = None, amplitudes: bool = True, through_grazing: bool | None = None,
+           start=None, period_revs: int | None = None, **overrides) -> BranchResult:
     """Continue the orbit found at ``rpm_start`` (:func:`orbit`) in speed until ``rpm_end`` (rpm).
 
     The arclength is measured with the start orbit's scales and a speed scale of a tenth of the range.
     ``amplitudes``: record each point's 1X-5X velocity amplitudes (one extra period per point).
+    ``through_grazing``: follow the branch through orbits that graze the ring
+    (:func:`rotor.periodic.grazing.continue_through_grazing`: grazing folds reported, no restart there); None:
+    on for a frictionless ring (``μ N = 0``: no stick/slip switch, a grazing is the map's only corner), off with
+    end-face friction, where it is not yet measured against the published Table 4 branches (a first run, 80
+    points from 600 rpm, met no grazing and reached 2 171 rpm in 338 s at a load average of 10).
+    ``start``: the full ``(q0, v0)`` of a chosen orbit at ``rpm_start`` (phase 0, e.g. ``phase0_state`` of an
+    ``orbit --out`` file, with its ``period_revs``): the branch starts on that orbit (one revolution of
+    transient, then Newton), an unstable one included, instead of the one a transient from rest reaches.
     """
     t_start = time.perf_counter()
     check_positive("rpm_start", rpm_start, "rpm", upper=1e5)
@@ -246,7 +258,9 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     ov = _overrides(overrides)
     _, model, sys_lo = point_system(scene, min(rpm_start, rpm_end), **ov)
     n = int(steps_per_rev or step_per_rev(sys_lo, SteadyStateOptions()))
-    first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, **ov)
+    chosen = {} if start is None else {"start": start, "period_revs": period_revs,
+                                       "options": ShootingOptions(transient_revs=1, round_growth=2.0)}
+    first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, **chosen, **ov)
     if not first.converged:
         return BranchResult((), (), first, "no orbit at the start", time.perf_counter() - t_start,
                             Branch((), (), first.period_revs, "no orbit at the start", 0.0))
@@ -259,12 +273,15 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     # the orbit's start time is a whole number of revolutions: phase 0, where the continuation's maps start
     pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes)
     w0, w1 = rpm_start / to_rpm, rpm_end / to_rpm
-    br = continue_branch(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
+    follow = continue_through_grazing if follows_grazing(sys_lo.support, through_grazing) else continue_branch
+    br = follow(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
     pts = []
     for p in br.points:
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
              "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted))}
+        if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it
+            d["skipped_rpm"] = [pts[-1]["speed_rpm"], d["speed_rpm"]]
         if amplitudes:
             flow = pb.flow(p.parameter)
             amps, pen, contact = period_response(flow, model, p.state, 0.0, res.modes, pb.period_revs, n)
@@ -273,6 +290,14 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
         pts.append(d)
     bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index} for b in br.bifurcations)
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
+
+
+def follows_grazing(support, through_grazing: bool | None) -> bool:
+    """Whether :func:`branch` follows grazing orbits (:func:`rotor.periodic.grazing.continue_through_grazing`):
+    as asked, and by default (None) on a frictionless ring (``μ N = 0``); never without a loose support."""
+    if support is None:
+        return False
+    return support.mu * support.preload_N == 0.0 if through_grazing is None else bool(through_grazing)
 
 
 def warm_options(options: ShootingOptions | None = None) -> ShootingOptions:

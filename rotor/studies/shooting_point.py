@@ -7,7 +7,7 @@ recorded at every time step and repeated to the same whole number of revolutions
 (``spectrum_revs`` rounded up to whole periods; a periodic orbit repeats exactly, to the Newton residual),
 and the same arrays and info fields are built from it (:func:`rotor.studies.steady_state.point_record`), so
 every figure and export of a study reads either method. Added to the info: the Floquet multipliers, the
-stability and the kind of the critical multiplier (:mod:`rotor.studies.floquet`), and a classification.
+stability and the kind of the critical multiplier (:mod:`rotor.periodic.floquet`), and a classification.
 
 Classification (``info["classification"]``, and ``info["classified_by"]`` says how it was reached):
 
@@ -33,7 +33,7 @@ import numpy as np
 
 from rotor.dynamics import constraints as cons
 from rotor.studies.orbit import orbit
-from rotor.studies.period_flow import make_flow, record
+from rotor.periodic.period_flow import make_flow, record
 from rotor.studies.steady_state import (Convergence, SteadyResult, SteadyStateOptions, point_record, point_system,
                                         run_point, step_per_rev)
 

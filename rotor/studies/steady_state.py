@@ -37,12 +37,11 @@ from rotor.dynamics.system import RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
 from sweep.progress import report
+from rotor.periodic.shooting import TRANSIENT_SAMPLES_PER_REV
 
 # Stations come from the scene (rotor.model.assembly.RotorModel.response_stations): every disk, bearing
 # and support station is recorded, the primary ones (disks, the loose support's bearing station,
 # supports; for Table 4 the paper's disk1, disk2, 5, s) form the Poincaré section.
-#: samples per revolution kept of the transient (Poincaré points and the amplitude scale)
-TRANSIENT_SAMPLES_PER_REV = 64
 
 
 @dataclass(frozen=True)

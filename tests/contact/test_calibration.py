@@ -297,7 +297,7 @@ def test_kernel_slice_jacobian_against_central_differences(y_off, thy, thz):
 
 
 def test_kernel_slice_load_that_underflows_is_no_division_by_zero():
-    # A Newton trial state of the shooting (rotor.studies.shooting) reached |θ| ~ 1e155 rad (measured on
+    # A Newton trial state of the shooting (rotor.periodic.shooting) reached |θ| ~ 1e155 rad (measured on
     # paper-table4 at 10 500 rpm with this law): the tilt magnitude overflows to inf, the partial patch's length
     # pen/t and its load P are 0, and the moment arm S/P stopped the whole orbit with ZeroDivisionError. Such
     # a state is rejected by the line search; the kernel only has to return finite numbers for it.

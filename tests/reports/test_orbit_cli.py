@@ -87,7 +87,7 @@ def test_branch_points_are_orbits_and_the_plot_is_written(damped_jeffcott, tmp_p
     d = json.loads(text)
     assert d["stop"] == "end reached" and len(d["points"]) >= 5
     rpm = np.array([p["speed_rpm"] for p in d["points"]])
-    assert rpm[0] == pytest.approx(1500.0) and rpm[-1] >= 3000.0 and np.all(np.diff(rpm) > 0)
+    assert rpm[0] == pytest.approx(1500.0) and rpm[-1] == pytest.approx(3000.0, rel=1e-12) and np.all(np.diff(rpm) > 0)
     assert all(p["stable"] for p in d["points"]) and d["bifurcations"] == []   # linear, damped: no bifurcation
     assert (tmp_path / "bif.png").stat().st_size > 1000 and (tmp_path / "bif.svg").exists()
     # a continued point is the orbit the orbit job finds at that speed (both fixed points of the same map)
@@ -106,11 +106,52 @@ def test_branch_downwards_is_a_run_down_to_rpm_end(damped_jeffcott, capsys):
     assert rc == 0, err
     d = json.loads(text)
     rpm = np.array([p["speed_rpm"] for p in d["points"]])
-    assert d["stop"] == "end reached" and rpm[0] == pytest.approx(3000.0) and rpm[-1] <= 1500.0
+    assert d["stop"] == "end reached" and rpm[0] == pytest.approx(3000.0) and rpm[-1] == pytest.approx(1500.0, rel=1e-12)
     assert np.all(np.diff(rpm) < 0)
     # a frictionless ring: a smooth map, every point reached by the corrector, none by a restart past a switch
     assert d["restarts"] == {"secant": 0, "transient": 0, "cold": 0}
     assert all(p["restarted"] is None for p in d["points"])
+
+
+def test_branch_starts_on_the_orbit_of_an_orbit_out_file_and_its_table_has_amplitudes(damped_jeffcott, tmp_path,
+                                                                                       capsys):
+    out = tmp_path / "orbit.json"
+    rc, _, err = _run(["orbit", damped_jeffcott, "--speed-rpm", 1500, "--steps-per-rev", 64, "--out", out], capsys)
+    assert rc == 0, err
+    o = json.loads(out.read_text())
+    rc, text, err = _run(["branch", damped_jeffcott, "--rpm-start", 1500, "--rpm-end", 1800, "--from-orbit", out,
+                          "--json"], capsys)
+    assert rc == 0, err
+    d = json.loads(text)
+    assert d["steps_per_rev"] == 64 and d["start"]["transient_revs"] == 1      # the file's orbit, one revolution on
+    assert np.allclose(d["start"]["phase0_state"]["q_m_rad"], o["phase0_state"]["q_m_rad"], rtol=1e-8, atol=1e-15)
+    rc, text, err = _run(["branch", damped_jeffcott, "--rpm-start", 1500, "--rpm-end", 1800, "--from-orbit", out],
+                         capsys)
+    assert rc == 0, err
+    rows = text.splitlines()
+    assert "1X mm/s" in rows[1] and rows[1].rstrip().endswith("d.y")
+    first = rows[2].split()
+    assert float(first[0]) == pytest.approx(1500.0, abs=0.05)
+    assert float(first[3]) == pytest.approx(o["velocity_amplitudes_mm_s_1X_to_5X"]["d.y"][0], rel=1e-3)
+    # a file of another speed is refused before any computing: exit 2, one line naming the option and both speeds
+    rc, _, err = _run(["branch", damped_jeffcott, "--rpm-start", 1600, "--rpm-end", 1800, "--from-orbit", out], capsys)
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert rc == 2 and len(lines) == 1 and "--rpm-start = 1600 rpm" in lines[0] and "1500" in lines[0]
+
+
+def test_branch_table_marks_restarts_with_the_speeds_skipped_and_bifurcations_between_rows():
+    from reports.cli.orbit import _branch_table
+    point = {"stable": True, "spectral_radius": 0.9, "leading_multiplier": "complex_pair",
+             "velocity_amplitudes_mm_s_1X_to_5X": {"d.y": [1.5, 0, 0, 0, 0]}}
+    d = {"scene": "s", "rpm_start": 2000.0, "rpm_end": 3000.0, "period_revs": 1, "stop": "end reached", "wall_s": 1.0,
+         "points": [{**point, "speed_rpm": 2000.0, "restarted": None},
+                    {**point, "speed_rpm": 2964.0, "restarted": None},
+                    {**point, "speed_rpm": 2468.0, "restarted": "transient", "skipped_rpm": [2964.0, 2468.0]}],
+         "bifurcations": [{"kind": "fold", "speed_rpm": 2500.0, "after_point": 1}]}
+    rows = _branch_table(d, "d.y").splitlines()
+    assert rows[2].split()[0] == "2000.0" and rows[3].strip() == "-- fold at 2500.0 rpm --"
+    assert rows[5].endswith("restart: transient, skipped 2964.0-2468.0 rpm") and "restart" not in rows[4]
+    assert rows[2].split()[3] == "1.5"                                    # the 1X column at the station
 
 
 def test_branch_that_stops_early_exits_1_with_one_line(damped_jeffcott, capsys):
@@ -125,7 +166,7 @@ def test_table4_orbit_equals_simulate_steady_at_10500_rpm(tmp_path, capsys):
     """Issue 18 must-show: Table 4 at 10 500 rpm, the shooting orbit's 1X-5X equal the transient steady
     state's (``simulate --steady``) within 1e-4 relative (to each channel's 1X). The left end face sticks
     through the orbit (a continuum of orbits): the orbit job shoots once the transient's conserved levels
-    stop drifting (rotor/studies/shooting.py), so it lands on the transient's member."""
+    stop drifting (rotor/periodic/shooting.py), so it lands on the transient's member."""
     rc, text, err = _run(["orbit", "paper-table4", "--speed-rpm", 10500, "--json"], capsys)
     assert rc == 0, err
     d = json.loads(text)

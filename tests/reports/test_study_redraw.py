@@ -141,6 +141,7 @@ PAPER_QUOTES = re.compile(r"harmonic frequenc(y|ies) [1-5]f(, [1-5]f)*")   # quo
 
 
 @pytest.mark.parametrize("folder,pattern", [("reports", "**/*.py"), ("rotor/studies", "*.py"), ("tests/rotor/studies", "*.py"),
+                                            ("rotor/periodic", "*.py"), ("tests/rotor/periodic", "*.py"),
                                             ("reports/published", "study-*.md"), ("reports/published", "study-*.csv"),
                                             ("reports/notes", "*.md")])
 def test_one_naming_of_harmonic_orders(folder, pattern):

@@ -242,11 +242,11 @@ def test_bad_inputs_are_refused(linear_map):
 
 @pytest.mark.parametrize("speed_rad_s, guess_m", [(500.0, 3e-5), (680.0, 2e-4)])
 def test_jeffcott_circular_orbit_is_a_fixed_point_and_its_monodromy_equals_finite_differences(speed_rad_s, guess_m):
-    """The frictionless clearance Jeffcott rotor (rotor.studies.jeffcott) whirls on an exact circle of the
+    """The frictionless clearance Jeffcott rotor (rotor.periodic.jeffcott) whirls on an exact circle of the
     scheme: radius from the closed form with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N),
     complex amplitude X = m e Ω² / (k − m Ω'² + f(r)/r + i c Ω'). The period map returns it, and its monodromy
     (contact law's Jacobian through every step) equals central differences."""
-    from rotor.studies.jeffcott import JeffcottParams, closed_form_radius, contact_force_N, jeffcott_system
+    from rotor.periodic.jeffcott import JeffcottParams, closed_form_radius, contact_force_N, jeffcott_system
 
     p, n = JeffcottParams(), 256
     r = closed_form_radius(p, speed_rad_s, guess_m, steps_per_rev=n)
@@ -303,12 +303,3 @@ def test_table4_monodromy_through_stick_slip_switches_equals_finite_differences(
         assert np.array_equal(a.trajectory.modes, modes) and np.array_equal(b.trajectory.modes, modes)
         Mfd[:, j] = (a.state - b.state) / (2 * e[j])
     assert _scaled_error(res.monodromy, Mfd, s) < 1e-5
-
-
-def test_setup_refuses_located_friction_events():
-    """The derivative pass follows the plain step: with locate_events a split step would be integrated but
-    not differentiated, so the setup refuses it instead of returning a wrong monodromy."""
-    system = _linear(_system())
-    opts = dataclasses.replace(NewmarkOptions(), locate_events=True)
-    with pytest.raises(InputError, match="locate_events"):
-        period_map_setup(system, 1e-4, opts)

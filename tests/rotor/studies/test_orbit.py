@@ -58,7 +58,7 @@ def test_a_minimum_norm_newton_before_the_levels_settle_lands_on_another_member(
     """The same point with the old rule (Newton after 195 transient revolutions, accepted as soon as it
     converges, its steps minimum-norm across the continuum): an exact orbit of another member, whose
     harmonics differ from the transient's by more than 1e-4 (measured 3.3e-4), its 1X by less than 1e-3."""
-    from rotor.studies import shooting as sh
+    from rotor.periodic import shooting as sh
 
     level_step, settle = sh.level_step, sh._settle
     try:

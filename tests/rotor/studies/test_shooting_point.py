@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from rotor.studies import shooting_point as sp
-from rotor.studies.floquet import floquet
+from rotor.periodic.floquet import floquet
 from rotor.studies.steady_state import run_point
 
 OPTIONS = {"steps_per_rev": 256, "max_revs": 1500}

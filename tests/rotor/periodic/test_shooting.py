@@ -1,13 +1,13 @@
-"""Shooting (rotor.studies.shooting) on the Jeffcott verification rotor, whose orbits are known in closed form
-(rotor.studies.jeffcott), and its minimum-norm Newton step."""
+"""Shooting (rotor.periodic.shooting) on the Jeffcott verification rotor, whose orbits are known in closed form
+(rotor.periodic.jeffcott), and its minimum-norm Newton step."""
 import math
 
 import numpy as np
 import pytest
 
-from rotor.studies.jeffcott import JeffcottParams, closed_form_radius, jeffcott_system, warped_frequency
-from rotor.studies.period_flow import advance, make_flow, monodromy_fd
-from rotor.studies.shooting import ShootingOptions, level_step, min_norm_step, shoot, shoot_from_transient
+from rotor.periodic.jeffcott import JeffcottParams, closed_form_radius, jeffcott_system, warped_frequency
+from rotor.periodic.period_flow import advance, make_flow, monodromy_fd
+from rotor.periodic.shooting import ShootingOptions, level_step, min_norm_step, shoot, shoot_from_transient
 
 P = JeffcottParams()
 N = 64
@@ -37,7 +37,7 @@ def test_stability_of_the_found_orbits():
     assert stable.floquet.stable
     ns = shoot_from_transient(_flow(700.0), np.zeros(4), np.zeros(4), steps_per_rev=N, period_revs=1, modes0=(0, 0))
     assert not ns.floquet.stable and ns.floquet.kind == "neimark_sacker" and ns.floquet.n_out_complex == 2
-    from rotor.studies.period_flow import record
+    from rotor.periodic.period_flow import record
     tr = record(_flow(700.0), ns.state * (1 + 1e-6), 0.0, 400 * N, (0, 0), N)
     r = np.hypot(tr.q[:, 0], tr.q[:, 1])
     r0 = math.hypot(ns.state[0], ns.state[1])
@@ -105,7 +105,7 @@ def test_fd_monodromy_against_the_period_map():
 
 
 def test_levenberg_marquardt_step_has_the_asked_norm_and_turns_towards_the_gradient():
-    from rotor.studies.shooting import lm_step
+    from rotor.periodic.shooting import lm_step
     rng = np.random.default_rng(3)
     J = rng.normal(size=(6, 6)) @ np.diag([10.0, 5.0, 1.0, 0.1, 1e-3, 1e-4])
     rhs = rng.normal(size=6)
@@ -121,7 +121,7 @@ def test_levenberg_marquardt_step_has_the_asked_norm_and_turns_towards_the_gradi
 
 
 def test_poincare_returns_support_a_period_only_where_it_repeats_better_than_its_divisors():
-    from rotor.studies.shooting import _supported
+    from rotor.periodic.shooting import _supported
     j = np.arange(40)[:, None]
     # a period-3 sequence approaching its orbit: returns after 3 and 6 revolutions small, others O(1);
     # 6 repeats no better than its divisor 3, so 3 alone

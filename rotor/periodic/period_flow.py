@@ -1,5 +1,5 @@
 """The production scheme's flow over a whole number of steps, with its monodromy matrix: what shooting,
-Floquet analysis and continuation integrate (:mod:`rotor.studies.shooting`).
+Floquet analysis and continuation integrate (:mod:`rotor.periodic.shooting`).
 
 Two back-ends give the same map ``x(t0) ↦ x(t0 + n Δt)`` of the reduced state ``x = [p, v]`` (the
 coordinates ``q = T p`` of :mod:`rotor.dynamics.production`: massless DOFs condensed, the 3a/3b lock

@@ -1,11 +1,11 @@
-"""The Jeffcott verification rotor (rotor.studies.jeffcott): the scheme's discrete circular orbit is the
+"""The Jeffcott verification rotor (rotor.periodic.jeffcott): the scheme's discrete circular orbit is the
 closed form with the trapezoidal rule's warped frequency Ω' = Ω tan(π/N)/(π/N) (module docstring)."""
 import math
 
 import numpy as np
 
 from rotor.dynamics.production import simulate_production
-from rotor.studies.jeffcott import (JeffcottParams, closed_form_folds, closed_form_radius, closed_form_residual,
+from rotor.periodic.jeffcott import (JeffcottParams, closed_form_folds, closed_form_radius, closed_form_residual,
                                     closed_form_speeds, contact_force_N, jeffcott_system, warped_frequency)
 
 P = JeffcottParams()

@@ -14,7 +14,7 @@ a periodic orbit with a face stuck throughout belongs to a continuum of orbits (
 offset): the monodromy has a multiplier exactly 1 in that direction. Multipliers within ``tol`` of +1 are
 counted as ``n_neutral`` and left out of the stability verdict and the bifurcation labels (they neither
 grow nor decay); the shooting step keeps the levels the continuum conserves
-(:func:`rotor.studies.shooting.level_step`).
+(:func:`rotor.periodic.shooting.level_step`).
 
 Discrete multipliers. The orbit is one of the Newmark map (average acceleration, the trapezoidal rule on
 the first-order system), so for a linear system the multipliers are exactly ``c(λΔt)^N`` with the Cayley
@@ -125,7 +125,7 @@ def crossing(before: FloquetResult, after: FloquetResult) -> str | None:
     """The bifurcation between two neighbouring orbits of a branch, from the multipliers that left or
     re-entered the unit circle: "period_doubling" (a real multiplier through −1), "neimark_sacker" (a
     complex pair), "fold" (a real multiplier through +1), or None. Folds are also found from the
-    branch's tangent (:mod:`rotor.studies.continuation`), which sees them when the multiplier count
+    branch's tangent (:mod:`rotor.periodic.continuation`), which sees them when the multiplier count
     alone cannot (a multiplier touching +1 and returning)."""
     if before.n_out_real_negative != after.n_out_real_negative:
         return "period_doubling"

@@ -4,7 +4,7 @@ The excitation (unbalance 1X, misalignment 2X) has the period of one revolution,
 of period ``k`` revolutions (``k = 1 … 8``) is a fixed point of the map ``Φ`` over ``k N`` steps of
 ``Δt = T_1/N`` (a whole number ``N`` of steps per revolution, so that the discrete orbit repeats exactly),
 started at phase 0: Newton's method on the periodicity residual ``R(x) = Φ(x) − x`` with the Jacobian
-``M − I``, ``M`` the monodromy matrix (:mod:`rotor.studies.period_flow`). The start is the end of a short
+``M − I``, ``M`` the monodromy matrix (:mod:`rotor.periodic.period_flow`). The start is the end of a short
 transient (:mod:`rotor.studies.steady_state` machinery: the same step choice and Poincaré section).
 
 Scaling and tolerance. Displacements and velocities are measured against the orbit's own scale, the
@@ -12,7 +12,7 @@ peak-to-peak range of the reduced displacements and velocities over the last tra
 (:func:`orbit_scales`); the orbit has converged when ``max_j |R_j|/s_j < tol``.
 
 Singular directions. A face stuck through the whole orbit leaves its sticking offset free: the orbits form
-a continuum, ``M`` has a multiplier exactly 1 and ``M − I`` is singular (:mod:`rotor.studies.floquet`). The
+a continuum, ``M`` has a multiplier exactly 1 and ``M − I`` is singular (:mod:`rotor.periodic.floquet`). The
 scheme holds a stuck face's offset exactly, so the continuum's levels (the left null vectors of ``M − I``,
 conserved quantities of the map) are what the transient keeps while the face sticks. The Newton step
 (:func:`level_step`) is therefore the least-squares solution of the scaled system (singular values below
@@ -35,11 +35,13 @@ import numpy as np
 from contact.errors import ConvergenceError, OutsideDomainError
 from sweep.progress import report
 from rotor.dynamics import constraints as cons
-from rotor.studies.floquet import FloquetResult, floquet
-from rotor.studies.period_flow import Flow, advance, block_scales, record, to_reduced
-from rotor.studies.steady_state import TRANSIENT_SAMPLES_PER_REV
+from rotor.periodic.floquet import FloquetResult, floquet
+from rotor.periodic.period_flow import Flow, advance, block_scales, record, to_reduced
 
 MAX_PERIOD_REVS = 8
+#: samples per revolution kept of a transient (Poincaré points and the amplitude scale); the steady-state
+#: detector (rotor/studies/steady_state.py) samples its transients at the same rate
+TRANSIENT_SAMPLES_PER_REV = 64
 
 
 @dataclass(frozen=True)
@@ -83,7 +85,7 @@ class ShootingResult:
     converged : bool; newton_iterations : int; residual : float, ``max |R_j|/s_j`` (–)
     singular_directions : int, directions of ``M − I`` dropped by the Newton step at the last iteration (:func:`level_step`)
     events : int, end-face mode changes over the converged period (with switches the map is only piecewise
-        smooth: the multipliers hold while no switch moves by a step, :mod:`rotor.studies.period_flow`)
+        smooth: the multipliers hold while no switch moves by a step, :mod:`rotor.periodic.period_flow`)
     scales : (2 n_r,) the orbit scales s_j (m, rad; m/s, rad/s); wall_s : float (s); backend : str
     transient_revs : int, revolutions integrated before the converged Newton (:func:`shoot_from_transient`)
     levels : (2 n_r, k) the scaled conserved directions ``U0`` of the last Newton step (:func:`level_step`;
@@ -118,7 +120,7 @@ class ShootingResult:
 def orbit_scales(flow: Flow, p, v) -> np.ndarray:
     """Scales (2 n_r,) from reduced displacement and velocity samples ``p``, ``v`` (rows = samples): the
     largest peak-to-peak range of any displacement component, and of any velocity component, falling
-    back to :func:`rotor.studies.period_flow.block_scales` of the last sample for a motionless record."""
+    back to :func:`rotor.periodic.period_flow.block_scales` of the last sample for a motionless record."""
     nr = flow.T.shape[1]
     base = block_scales(flow, np.concatenate([p[-1], v[-1]]))
     sp = float(np.ptp(p, axis=0).max()) or base[0]

@@ -1,4 +1,4 @@
-"""Floquet multipliers (rotor.studies.floquet) through the production scheme's monodromy.
+"""Floquet multipliers (rotor.periodic.floquet) through the production scheme's monodromy.
 
 A linear rotor's period map is linear, so its multipliers are known in closed form: the average-acceleration
 Newmark scheme is the trapezoidal rule on the first-order system, whose one-step map has the eigenvalues
@@ -10,8 +10,8 @@ import math
 import numpy as np
 import pytest
 
-from rotor.studies.floquet import crossing, floquet, trapezoidal_multipliers
-from rotor.studies.period_flow import make_flow, monodromy_fd
+from rotor.periodic.floquet import crossing, floquet, trapezoidal_multipliers
+from rotor.periodic.period_flow import make_flow, monodromy_fd
 from rotor.studies.steady_state import point_system
 
 
@@ -78,7 +78,7 @@ def test_step_converged_multipliers_equal_exp_lambda_T():
     matched to its eigenvalue, Richardson-extrapolated twice in Δt (orders 2 and 4 of the trapezoidal rule's
     error expansion), equal exp(λT) of the rotor's eigenvalues to 1e-8 (measured 4.5e-9; one level alone is
     1e-2..6e-4 off: the scheme's own warping, test above)."""
-    from rotor.studies.period_flow import advance
+    from rotor.periodic.period_flow import advance
 
     system, _, lam, T = _linear_rotor(512)
     exact = np.exp(lam * T)

@@ -28,6 +28,17 @@ in the load. With ``N`` steps per revolution ``Ω Δt / 2 = π/N`` and ``Ω' = �
 (:func:`warped_frequency`). :func:`closed_form_speeds` solves the equation for Ω at a given radius
 (a quadratic in Ω²), :func:`closed_form_radius` for r at a given speed, :func:`closed_form_folds`
 gives the turning points of the response curve (the jump speeds).
+
+Grazing
+-------
+With a law of finite stiffness at zero penetration (``law = "conformal"``, Dai et al. 2025 Eq. 5:
+``f ≈ (π/2) E* l Δr`` for small ``Δr``) the curve has corners where the free orbit's radius is the clearance,
+``m e Ω² = δ0 √((k − mΩ'²)² + (cΩ')²)``: the roots of :func:`closed_form_speeds` at ``r = δ0`` (``f = 0``
+there), :func:`closed_form_grazing`. Each is a *grazing fold* when the speed turns there (dΩ/dr of the free
+and of the contact side have opposite signs, the corner is then a turning point of the curve that no smooth
+fold locates), else a plain grazing. With ``e = 0.3 δ0`` and the other defaults the curve rises free to the
+grazing at 279.6 rad/s, goes on in contact to the smooth jump-down fold near 446 rad/s (r ≈ 4.2 δ0), comes
+back along the unstable middle branch to the grazing fold near 374.3 rad/s and leaves free towards high speed.
 """
 from __future__ import annotations
 
@@ -191,4 +202,19 @@ def closed_form_folds(params: JeffcottParams, steps_per_rev: int | None = None, 
             res = minimize_scalar(lambda r: sign * upper(r), bounds=(rs[i - 1], rs[i + 1]), method="bounded",
                                   options={"xatol": 1e-14})
             out.append((float(upper(res.x)), float(res.x)))
+    return out
+
+
+def closed_form_grazing(params: JeffcottParams, steps_per_rev: int | None = None, clearance_m: float | None = None,
+                        rel_step: float = 1e-7) -> list[tuple[float, str]]:
+    """Speeds (rad/s, ascending) where the orbit grazes the ring (radius ``δ0``) and their kind: "grazing_fold"
+    where the speed turns at the corner, "grazing" where it passes on. The kind compares the speed of the root
+    nearest each grazing speed at the radii ``δ0 (1 ∓ rel_step)`` (free side, contact side)."""
+    d0 = params.clearance_m if clearance_m is None else clearance_m
+    out = []
+    for w in closed_form_speeds(params, d0, steps_per_rev, clearance_m):
+        near = [s[np.argmin(np.abs(s - w))] - w
+                for s in (closed_form_speeds(params, d0 * (1.0 + k * rel_step), steps_per_rev, clearance_m)
+                          for k in (-1.0, 1.0))]
+        out.append((float(w), "grazing_fold" if near[0] * near[1] > 0 else "grazing"))
     return out

@@ -1,11 +1,11 @@
 """Branches of periodic orbits by pseudo-arclength continuation in speed or any scalar scene parameter.
 
-Unknowns ``y = (x, λ)``: the reduced state at phase 0 (:mod:`rotor.studies.shooting`) and the parameter.
+Unknowns ``y = (x, λ)``: the reduced state at phase 0 (:mod:`rotor.periodic.shooting`) and the parameter.
 Equations ``R(x, λ) = Φ_λ(x) − x = 0`` plus the arclength condition ``τ·(y − y_pred) = 0`` (Keller 1977),
 all in scaled variables (``x_j/s_j``, ``λ/λ_s``). The predictor steps ``ds`` along the unit tangent ``τ``;
 the corrector is Newton on the bordered system ``[[D(M − I)D⁻¹, D ∂R/∂λ λ_s], [τᵀ]]`` solved in the
 minimum-norm sense. A face stuck through the whole period makes the orbits a continuum (multipliers exactly
-1, :mod:`rotor.studies.floquet`): a branch is then a family, not a curve, and its null directions (singular
+1, :mod:`rotor.periodic.floquet`): a branch is then a family, not a curve, and its null directions (singular
 values of the scaled ``M − I`` below :data:`NEUTRAL_TOL`) enter as phase conditions ``v·(y − y_prev) = 0``,
 so that each point stays at the previous point's place in the continuum and the tangent has no component
 along it. Step control:
@@ -38,7 +38,7 @@ orbit's own range (the amplitude grows with the speed squared: with the start's 
 Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign and
 the secants into and out of the pair confirm the turn (:func:`_confirmed_folds`);
 period doubling, Neimark–Sacker, and branch points (a real multiplier through +1 with no turn: a pitchfork)
-where the count of multipliers outside the unit circle changes (:func:`rotor.studies.floquet.crossing`). Each is located by regula falsi on
+where the count of multipliers outside the unit circle changes (:func:`rotor.periodic.floquet.crossing`). Each is located by regula falsi on
 the arclength between the two points, on its test quantity (``dλ/ds``, or ``|μ| − 1`` of the largest multiplier
 of the crossing kind), every trial a corrected orbit. :func:`switch_period_doubling` starts the doubled-period branch at a period doubling from the
 eigenvector of the multiplier −1.
@@ -56,9 +56,9 @@ from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from sweep.progress import report
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.initial import linear_initial_state
-from rotor.studies.floquet import FloquetResult, crossing, floquet
-from rotor.studies.period_flow import Flow, advance, make_flow, to_full
-from rotor.studies.shooting import (ShootingOptions, min_norm_step, orbit_scales, record_reduced, shoot,
+from rotor.periodic.floquet import FloquetResult, crossing, floquet
+from rotor.periodic.period_flow import Flow, advance, make_flow, to_full
+from rotor.periodic.shooting import (ShootingOptions, min_norm_step, orbit_scales, record_reduced, shoot,
                                     shoot_from_transient)
 
 #: relative step of the parameter finite difference
@@ -173,7 +173,10 @@ class ContinuationOptions:
     parameter steps growing ×4 from the last one).
     ``follow_scales``: the state scales follow the orbit's own peak-to-peak range (never below the given
     ``scales``) once it differs from them by more than ``RESCALE_RATIO``. Both False: the plain corrector with
-    the start's scales."""
+    the start's scales.
+    ``watch``: None, or ``watch(evaluator, y) -> float`` (a contact measure, :mod:`rotor.periodic.grazing`); the
+    branch stops (``stop`` "grazing", the crossing point not taken) before a predictor or a corrected point on
+    the other side of its zero than the last point."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -188,6 +191,7 @@ class ContinuationOptions:
     restart_after: int = 3
     restart_tries: int = 6
     follow_scales: bool = True
+    watch: Callable | None = None
 
 
 class _Evaluator:
@@ -371,7 +375,7 @@ def _confirmed_folds(points, bifs) -> list:
 
 
 def _restart(ev, points, y, tau, opts, continuum: bool):
-    """A point past a switch where the corrector cannot go: shooting (:func:`rotor.studies.shooting.shoot`,
+    """A point past a switch where the corrector cannot go: shooting (:func:`rotor.periodic.shooting.shoot`,
     Newton with halving and Levenberg–Marquardt retrials, no arclength or phase row) at the fixed parameter
     ``λ_k + 2h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
     the last step's parameter advance (at least :data:`RESTART_STEP`), four times as long after each failure,
@@ -407,8 +411,8 @@ def _restart(ev, points, y, tau, opts, continuum: bool):
 
 
 def _shot(ev, y_pred, opts, how: int, y_last):
-    """The orbit at the parameter of ``y_pred``: ``how`` 1 (:data:`SECANT`) :func:`rotor.studies.shooting.shoot`
-    from its state; 2 (:data:`TRANSIENT`) :func:`rotor.studies.shooting.shoot_from_transient` from the last
+    """The orbit at the parameter of ``y_pred``: ``how`` 1 (:data:`SECANT`) :func:`rotor.periodic.shooting.shoot`
+    from its state; 2 (:data:`TRANSIENT`) :func:`rotor.periodic.shooting.shoot_from_transient` from the last
     orbit ``y_last`` (rounds of 2, 4, … revolutions, at most :data:`RESTART_TRANSIENT_REVS`); 3 (:data:`COLD`)
     the same from the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`; 24, 36, …
     revolutions, at most 4 :data:`RESTART_TRANSIENT_REVS`: the start of a new segment). ``(y, J, M, iterations, residual, how)`` if the orbit's residual
@@ -437,6 +441,14 @@ def _shot(ev, y_pred, opts, how: int, y_last):
     res = float(np.max(np.abs(R)))
     return (np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, res, how) \
         if res < opts.tol else None
+
+
+def _land(ev, a, b, lam_end: float, opts, phase):
+    """The orbit at exactly ``lam_end``, between the scaled points ``a`` and ``b`` on either side of it: the
+    corrector on the hyperplane ``λ = lam_end`` from their linear interpolation; None if it fails."""
+    e = np.zeros(len(b))
+    e[-1] = 1.0
+    return _correct(ev, a + (lam_end / ev.ls - a[-1]) / (b[-1] - a[-1]) * (b - a), e, opts, phase, a)
 
 
 def _rescale(ev, y, tau, M, J, floor):
@@ -481,7 +493,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
 
     ``scales`` (2 n_r,): state scales (m, rad; m/s, rad/s); ``lam_scale``: parameter scale (default
     ``|lam_end − lam0|/10``). ``tangent0`` (scaled, 2 n_r + 1): start direction instead of the branch's own
-    (branch switching). The first point is corrected at fixed ``lam0`` by :func:`rotor.studies.shooting.shoot`.
+    (branch switching). The first point is corrected at fixed ``lam0`` by :func:`rotor.periodic.shooting.shoot`.
     With ``options.pass_switches`` a corrector that fails ``restart_after`` times in a row (the map jumps at a
     stick/slip switch, or the phase conditions hold the orbit at a place of a stuck face's continuum where the
     face starts to slip) is followed by a shooting restart past it (:func:`_restart`).
@@ -500,7 +512,12 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     ds, stop = opts.ds, "max_points"
     while len(points) < opts.max_points:
         y_prev = y
-        got = _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        side = None if opts.watch is None else opts.watch(ev, y) > 0.0
+        ahead = side is not None and (opts.watch(ev, y + ds * tau) > 0.0) != side
+        got = None if ahead else _correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        if ahead or (side is not None and got is not None and (opts.watch(ev, got[0]) > 0.0) != side):
+            stop = "grazing"
+            break
         guide = tau
         if got is None:
             fails += 1
@@ -523,6 +540,9 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         tau_new = _tangent(J, guide, opts.rcond, phase_new)
         pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
         bifs += _events(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
+        if (pt.parameter - lam_end) * direction > 0 and (landed := _land(ev, y_prev, y, lam_end, opts, phase)):
+            y, J, M, it, res = landed        # the last orbit at lam_end itself, not beyond it
+            pt = _point(ev, y, J, M, it, res, tau_new, opts, restarted)
         points.append(pt)
         report("branch_point", points=len(points), max_points=opts.max_points, parameter=pt.parameter, start=lam0,
                end=lam_end)

@@ -1,0 +1,208 @@
+"""Branches through grazing: continuation across the orbit that just touches the ring.
+
+Where an orbit's largest edge penetration crosses zero the period map changes its smooth piece: on one
+side the ring carries no load, on the other the contact law acts. With a law of finite stiffness at zero
+penetration (the conformal law, Dai et al. 2025 Eq. 5) the map is continuous there but its derivative
+jumps, so the branch has a corner. When the parameter turns at the corner (a *grazing fold*, a
+discontinuous fold in the sense of Leine & van Campen 2002: a real multiplier jumps across +1 instead of
+passing it) the pseudo-arclength corrector of :mod:`rotor.periodic.continuation` cannot follow: its
+hyperplane, orthogonal to the tangent of the side it came from, does not meet the other side's branch, and
+the step shrinks to nothing (measured on the Jeffcott rotor of :mod:`rotor.periodic.jeffcott` with the
+conformal law, 64 steps per revolution: both sweeps stop within 3e-6 δ0 of the corner at 374.30 rad/s).
+
+:func:`continue_through_grazing` follows the branch in segments. Each segment is
+:func:`rotor.periodic.continuation.continue_branch` with a ``watch`` (:func:`contact_watch`, the largest edge
+penetration over the period over δ0) that stops it before a predictor or a corrected point on the other
+side. The grazing orbit is then solved for (Newton on the periodicity residual plus ``g_n(y) = level``,
+``g_n`` the penetration at the step ``n`` of the largest penetration of the last orbit, its gradient by
+central differences; the level stepped to zero through fractions of the last orbit's penetration,
+:data:`LEVEL_FRACTIONS`), the first orbit on the other side at the penetration
+``±GRAZING_STEP δ0`` the same way, and the next segment starts there along that side's own tangent (the null
+vector of its ``[M − I, ∂R/∂λ]``, oriented away from the grazing orbit). No restart by shooting is needed.
+The grazing is reported as a :class:`rotor.periodic.continuation.Bifurcation` of kind ``"grazing_fold"``
+when the parameter turns there, ``"grazing"`` when it passes on; the multipliers on either side are those
+of the two smooth pieces (the monodromy at the grazing orbit itself is set-valued; the point carries the one
+the contact kernel evaluates at the located orbit, whose penetration is zero to :data:`GRAZING_TOL` of either
+sign, so either side's).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from contact.errors import ConvergenceError, InputError, OutsideDomainError
+from rotor.dynamics.constraints import edge_offsets
+from rotor.periodic.continuation import (Bifurcation, Branch, ContinuationOptions, Problem, _Evaluator, _neutral,
+                                         _point, _tangent, continue_branch)
+from rotor.periodic.period_flow import Flow, record
+from rotor.periodic.shooting import min_norm_step
+
+#: penetration (fraction of the clearance δ0) of the first orbit solved for past a grazing orbit
+GRAZING_STEP = 1e-3
+#: the grazing orbit's largest penetration is solved to this fraction of δ0
+GRAZING_TOL = 1e-12
+#: central-difference step of the penetration's gradient (scaled unknowns)
+GRADIENT_STEP = 1e-7
+#: most Newton iterations of a grazing or first-past-grazing orbit
+LEVEL_MAX_ITER = 30
+#: a level orbit whose Newton stalls (iterates on both pieces of the corner) counts below this scaled residual,
+#: as shooting's ``accept_tol`` (measured: a rotor scene with a 1 GPa ring stalls at 4e-8 to 9e-8)
+ACCEPT_TOL = 1e-7
+#: the grazing orbit is approached through the orbits at these fractions of the last orbit's penetration: a
+#: Newton step from afar can land deep on the other side, where a stiff contact makes the map another one
+#: (measured: a rotor scene with a 1 GPa ring stopped 0.11 δ0 short of grazing, and one Newton step from there
+#: went to 4 % of δ0 in contact and diverged)
+LEVEL_FRACTIONS = (0.5, 0.2, 0.05, 0.01, 0.0)
+
+
+def penetrations(flow: Flow, u) -> np.ndarray:
+    """Largest edge penetration (m) of each sample of the support's relative displacement ``u`` (N, 4): the
+    ring's centre offset minus δ0 with the tilt ignored, else the larger edge offset
+    (:func:`rotor.dynamics.constraints.edge_offsets`) minus δ0; negative: a gap."""
+    sup = flow.system.support
+    u = np.asarray(u, float)
+    if sup.tilt_ignored:
+        r = np.hypot(u[:, 0], u[:, 1])
+    else:
+        r = np.maximum(*edge_offsets(u, sup.width_m))
+    return r - sup.law.clearance_m
+
+
+def largest_penetration(flow: Flow, state, n_steps: int, modes0) -> tuple[float, int]:
+    """``(g, n)``: the largest edge penetration over ``n_steps`` steps from ``state`` at phase 0, over δ0 (–),
+    and the step where it occurs (the first of equals)."""
+    tr = record(flow, state, 0.0, n_steps, modes0, 1)
+    pen = penetrations(flow, tr.u)[:-1]
+    n = int(np.argmax(pen))
+    return float(pen[n] / flow.system.support.law.clearance_m), n
+
+
+def contact_watch(ev: _Evaluator, y) -> float:
+    """The ``watch`` of :class:`rotor.periodic.continuation.ContinuationOptions`: the largest penetration over
+    δ0 (–) of the period from the scaled ``y = (x/s, λ/λ_s)``; positive in contact."""
+    lam = float(y[-1] * ev.ls)
+    try:
+        return largest_penetration(ev.flow(lam), y[:-1] * ev.s, ev.pb.n_steps, ev.pb.modes0)[0]
+    except (OutsideDomainError, ConvergenceError, InputError):
+        return math.inf     # a predictor the scheme cannot step is deep in contact
+
+
+def _penetration_at(ev: _Evaluator, y, n: int) -> float:
+    """Edge penetration over δ0 (–) at step ``n`` of the period from the scaled ``y``."""
+    flow = ev.flow(float(y[-1] * ev.ls))
+    tr = record(flow, y[:-1] * ev.s, 0.0, max(n, 1), ev.pb.modes0, 1)
+    return float(penetrations(flow, tr.u[n:n + 1])[0] / flow.system.support.law.clearance_m)
+
+
+def _gradient(ev: _Evaluator, y, n: int) -> np.ndarray:
+    """``∂g_n/∂y`` (scaled unknowns) by central differences of :func:`_penetration_at`."""
+    grad = np.empty(len(y))
+    for j in range(len(y)):
+        yp, ym = y.copy(), y.copy()
+        yp[j] += GRADIENT_STEP
+        ym[j] -= GRADIENT_STEP
+        grad[j] = (_penetration_at(ev, yp, n) - _penetration_at(ev, ym, n)) / (2.0 * GRADIENT_STEP)
+    return grad
+
+
+def solve_on_level(ev: _Evaluator, y0, level: float, n: int, opts: ContinuationOptions):
+    """The periodic orbit whose penetration at step ``n`` is ``level`` δ0, near the scaled ``y0``: Newton on
+    ``[R(y); g_n(y) − level; P (y − y0)]`` (``P`` the phase rows of a stuck face's continuum), solved in the
+    minimum-norm sense. Returns ``(y, J, M, residual)`` or None (no convergence in :data:`LEVEL_MAX_ITER`, and
+    no iterate on the level below :data:`ACCEPT_TOL`)."""
+    y = np.asarray(y0, float).copy()
+    best = None
+    for _ in range(LEVEL_MAX_ITER):
+        try:
+            R, J, M = ev(y[:-1] * ev.s, y[-1] * ev.ls)
+            g = _penetration_at(ev, y, n) - level
+            grad = _gradient(ev, y, n)
+        except (OutsideDomainError, ConvergenceError, InputError):
+            break
+        res = float(np.max(np.abs(R)))
+        if not math.isfinite(res):
+            break
+        if abs(g) < GRAZING_TOL and (best is None or res < best[3]):
+            best = (y, J, M, res)
+        phase = _neutral(J)
+        A = np.vstack([J, grad[None, :]] + ([phase] if len(phase) else []))
+        rhs = -np.concatenate([R, [g]] + ([phase @ (y - y0)] if len(phase) else []))
+        dy, _ = min_norm_step(A, rhs, opts.rcond)
+        if res < opts.tol and abs(g) < GRAZING_TOL and np.max(np.abs(dy)) < 1e3 * opts.tol:
+            return y, J, M, res
+        y = y + dy
+    # Newton stalls on the corner's two pieces: the best iterate on the level counts if below ACCEPT_TOL
+    return best if best is not None and best[3] < ACCEPT_TOL else None
+
+
+def _cross(problem: Problem, last, floor, ls: float, opts: ContinuationOptions):
+    """From ``last`` (the segment's last orbit, on one side of grazing): the grazing orbit and the first orbit
+    past it. Returns ``(grazing point, kind, critical multiplier past it, first state, first parameter, first
+    tangent)`` or None."""
+    ev = _Evaluator(problem, floor.copy(), ls)
+    y = np.concatenate([last.state / floor, [last.parameter / ls]])
+    g_last, n = largest_penetration(ev.flow(last.parameter), last.state, problem.n_steps, problem.modes0)
+    got = None
+    for frac in LEVEL_FRACTIONS:        # towards the grazing orbit through orbits of the side the branch is on
+        got = solve_on_level(ev, y, frac * g_last, n, opts)
+        if got is None:
+            return None
+        y = got[0]
+    y_g, J_g, M_g, res_g = got
+    got = solve_on_level(ev, y_g, -GRAZING_STEP if g_last > 0 else GRAZING_STEP, n, opts)
+    if got is None:
+        return None
+    y1, J1, M1, res1 = got
+    guide = (y1 - y_g) / np.linalg.norm(y1 - y_g)
+    tau1 = _tangent(J1, guide, opts.rcond, _neutral(J1))
+    kind = "grazing_fold" if last.dlam_ds * tau1[-1] < 0 else "grazing"
+    graze = _point(ev, y_g, J_g, M_g, 0, res_g, tau1, opts)
+    past = _point(ev, y1, J1, M1, 0, res1, tau1, opts).floquet.critical
+    return graze, kind, past, y1[:-1] * floor, float(y1[-1] * ls), tau1
+
+
+def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: float, *, scales,
+                             lam_scale: float | None = None, options: ContinuationOptions | None = None,
+                             max_grazings: int = 8) -> Branch:
+    """:func:`rotor.periodic.continuation.continue_branch` that passes grazing orbits (see the module docstring).
+
+    Arguments as ``continue_branch``; ``max_grazings`` bounds the segments. The returned branch holds every
+    segment's points, each grazing orbit as a point of its own with a :class:`Bifurcation` of kind
+    ``"grazing_fold"`` or ``"grazing"`` (its ``multiplier`` the critical one of the first orbit past it), and
+    the segments' own bifurcations; ``stop`` is the last segment's. Where the grazing orbit or the first orbit
+    past it is not found, the branch goes on by the plain continuation from the last orbit before it (with its
+    restarts, if the options allow them: the restarted points then say what was skipped) and ``stop`` is its."""
+    opts = options or ContinuationOptions()
+    ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
+    floor = np.asarray(scales, float)
+    points, bifs, wall, restarts = [], [], 0.0, 0
+    x, lam, tangent, stop = np.asarray(state0, float), float(lam0), None, "max_points"
+    for k in range(max_grazings + 1):
+        # the back margin stays the whole range's: a segment after a grazing fold starts turned back
+        back = opts.back_margin * abs(lam_end - lam0) / max(abs(lam_end - lam), 1e-12 * ls)
+        seg_opts = replace(opts, watch=contact_watch, back_margin=back,
+                           max_points=max(2, opts.max_points - len(points)))
+        br = continue_branch(problem, x, lam, lam_end, scales=floor, lam_scale=ls, options=seg_opts, tangent0=tangent)
+        offset = len(points)
+        points += br.points
+        bifs += [replace(b, index=b.index + offset) for b in br.bifurcations]
+        wall, restarts, stop = wall + br.wall_s, restarts + br.restarts, br.stop
+        if br.stop != "grazing" or not br.points or k == max_grazings:
+            break
+        crossed = _cross(problem, br.points[-1], floor, ls, opts)
+        if crossed is None:             # the plain continuation (its restarts, if allowed) from the last orbit on
+            last = br.points[-1]
+            rest = continue_branch(problem, last.state, last.parameter, lam_end, scales=floor, lam_scale=ls,
+                                   options=replace(seg_opts, watch=None))
+            offset = len(points) - 1
+            points += rest.points[1:]
+            bifs += [replace(b, index=b.index + offset) for b in rest.bifurcations if b.index > 0]
+            wall, restarts = wall + rest.wall_s, restarts + rest.restarts
+            stop = rest.stop
+            break
+        graze, kind, past, x, lam, tangent = crossed
+        points.append(graze)
+        bifs.append(Bifurcation(kind, len(points) - 1, graze.parameter, past))
+    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, wall, restarts)
