@@ -119,8 +119,8 @@ class Bearing:
     The lateral force on the rotor is ``f = −K [y, z] − C [ẏ, ż]`` with ``K = [[k_yy, k_yz], [k_zy, k_zz]]``
     (N/m) and ``C`` alike (N·s/m). The direct terms default to the isotropic ``stiffness_n_m`` /
     ``damping_n_s_m``, the cross terms to 0 (Friswell et al. 2010, §5.9: Examples 5.9.2 anisotropic,
-    5.9.4 cross-coupled). ``stiffness_n_m`` may be None only when both direct stiffnesses are given.
-    With a ``speed_table_rad_s`` (ascending, rad/s) each of the eight lateral coefficients may be a tuple
+    5.9.4 cross-coupled). ``stiffness_n_m`` may be None only when both direct stiffnesses are given; a
+    direct term left None follows the isotropic value (read through :meth:`lateral_at`). With a ``speed_table_rad_s`` (ascending, rad/s) each of the eight lateral coefficients may be a tuple
     of the same length (a fluid-film bearing's table): :meth:`lateral_at` interpolates linearly in the
     speed and holds the end values outside the table.
     """
@@ -141,14 +141,9 @@ class Bearing:
     speed_table_rad_s: tuple[float, ...] = ()
 
     def __post_init__(self):
-        for d in ("yy", "zz"):
-            if getattr(self, f"stiffness_{d}_n_m") is None:
-                if self.stiffness_n_m is None:
-                    raise InputError(f"bearing {self.name!r}: stiffness_n_m or both stiffness_yy_n_m and "
-                                     f"stiffness_zz_n_m must be given (N/m)")
-                object.__setattr__(self, f"stiffness_{d}_n_m", self.stiffness_n_m)
-            if getattr(self, f"damping_{d}_n_s_m") is None:
-                object.__setattr__(self, f"damping_{d}_n_s_m", self.damping_n_s_m)
+        if self.stiffness_n_m is None and (self.stiffness_yy_n_m is None or self.stiffness_zz_n_m is None):
+            raise InputError(f"bearing {self.name!r}: stiffness_n_m or both stiffness_yy_n_m and "
+                             f"stiffness_zz_n_m must be given (N/m)")
 
     @property
     def speed_dependent(self) -> bool:
@@ -157,11 +152,15 @@ class Bearing:
                    for q, u in (("stiffness", "n_m"), ("damping", "n_s_m")) for d in ("yy", "yz", "zy", "zz"))
 
     def lateral_at(self, speed_rad_s: float = 0.0) -> tuple:
-        """``(K, C)``: the 2×2 lateral stiffness (N/m) and damping (N·s/m) at ``speed_rad_s`` (rad/s)."""
-        def at(v):
+        """``(K, C)``: the 2×2 lateral stiffness (N/m) and damping (N·s/m) at ``speed_rad_s`` (rad/s); a direct
+        term left None is the isotropic value (so ``dataclasses.replace(b, damping_n_s_m=…)`` changes it)."""
+        iso = {"stiffness": self.stiffness_n_m, "damping": self.damping_n_s_m}
+
+        def at(q, d, u):
+            v = getattr(self, f"{q}_{d}_{u}")
+            v = iso[q] if v is None else v
             return float(np.interp(speed_rad_s, self.speed_table_rad_s, v)) if isinstance(v, tuple) else float(v)
-        return tuple(np.array([[at(getattr(self, f"{q}_{a}_{u}")), at(getattr(self, f"{q}_{b}_{u}"))]
-                               for a, b in (("yy", "yz"), ("zy", "zz"))])
+        return tuple(np.array([[at(q, a, u), at(q, b, u)] for a, b in (("yy", "yz"), ("zy", "zz"))])
                      for q, u in (("stiffness", "n_m"), ("damping", "n_s_m")))
 
 

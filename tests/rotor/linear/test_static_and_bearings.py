@@ -273,3 +273,16 @@ def test_new_keys_survive_the_scene_toml(text):
     s = loads_scene(text)
     back = loads_scene(scene_to_toml(s))
     assert dataclasses.replace(back, path="") == dataclasses.replace(s, path="")
+
+
+def test_replacing_the_isotropic_value_reaches_the_direct_terms():
+    """``dataclasses.replace(bearing, damping_n_s_m=…)`` (as scripts and the Python API edit a scene) changes the
+    direct terms that were left to the isotropic value, and leaves those given explicitly."""
+    import dataclasses
+    from rotor.model.scene import Bearing
+    b = Bearing("b", "s", 1e6)
+    k, c = dataclasses.replace(b, stiffness_n_m=2e6, damping_n_s_m=500.0).lateral_at(0.0)
+    assert k.tolist() == [[2e6, 0.0], [0.0, 2e6]] and c.tolist() == [[500.0, 0.0], [0.0, 500.0]]
+    a = Bearing("b", "s", 1e6, stiffness_zz_n_m=8e5)
+    k, _ = dataclasses.replace(a, stiffness_n_m=3e6).lateral_at(0.0)
+    assert k.tolist() == [[3e6, 0.0], [0.0, 8e5]]
