@@ -11,12 +11,13 @@ on a loaded scene (nothing edits a scene file); :func:`run_reading_point` comput
 point of it as :func:`rotor.studies.steady_state.run_point` does, so the same figure and table code
 reads it.
 
-Sleeves: the default's sleeve is the scene's (steel D140/d100 mm, 150 mm long: ``m_sp`` = 9 kg,
-``L`` = 75 mm, rotor/scenes/paper-table4.toml). The long sleeve is the same section 420 mm long
-(``m_sp`` = 25.2 kg, ``L`` = 210 mm): ``m_sp L²`` is 21.95 times the short sleeve's, the moment pair
-at which the opposed reading's 2X becomes visible at point A (2X/1X at the support about 0.1,
-issue 25), and still a sleeve that fits between the 2# bearing and the turbine shaft's first
-segment (``l34`` = 1 400 mm, Table 4).
+Sleeves: the short sleeve is steel D140/d100 mm, 150 mm long (``m_sp`` = 9 kg, ``L`` = 75 mm, half
+its length; the scene's until the point-B comparison). The long sleeve is the same section 420 mm
+long (``m_sp`` = 25.2 kg, ``L`` = 210 mm): ``m_sp L²`` is 21.95 times the short sleeve's, the moment
+pair at which the opposed reading's 2X shows at point A (2X/1X about 0.1 at the support, issue 25),
+and a sleeve that still fits in the 1 400 mm between the 2# bearing and disk 2 (``l34``, Table 4).
+The scene's reading is the one that meets the most of the paper's statements at points B and A
+(reports/published/section5-readings.md); :func:`scene_reading` names it.
 """
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ from dataclasses import dataclass
 
 from contact.errors import InputError
 
-#: the scene's sleeve: 9 kg over 150 mm (rotor/scenes/paper-table4.toml), i.e. 60 kg per metre
+#: the short sleeve: 9 kg over 150 mm, i.e. 60 kg per metre
 _SLEEVE_KG_PER_M = 9.0 / 0.150
 
 
@@ -61,7 +62,7 @@ class Reading:
 
     @property
     def moment_factor(self) -> float:
-        """``m_sp L²`` over the scene sleeve's 9 kg × (75 mm)² (–)."""
+        """``m_sp L²`` over the short sleeve's 9 kg × (75 mm)² (–)."""
         return self.shaft_mass_kg * self.lever_m ** 2 / (9.0 * 0.075 ** 2)
 
 
@@ -72,12 +73,12 @@ _OPPOSED = ("\"a pair of additional excitations of equal magnitude but in the op
             "connected fan shaft and turbine shaft\" (text before Eq. 34), placed on nodes 3a and 3b as "
             "Eq. 47 places it: the lateral forces cancel on the locked joint (Eq. 31), the moment pair "
             "±M acts across the angular spring")
-_SHORT = "m_sp 9 kg, L 75 mm: steel sleeve D140/d100 mm, 150 mm long, L half its length (scene assumption)"
+_SHORT = "m_sp 9 kg, L 75 mm: steel sleeve D140/d100 mm, 150 mm long, L half its length (assumed; Table 4 gives neither)"
 _LONG = ("m_sp 25.2 kg, L 210 mm: the same sleeve 420 mm long, L half its length (\"L denotes the maximum "
          "axial distance between the transition shaft and the centering cylindrical surfaces\", Eq. 34); "
          "m_sp L² ×21.95")
 
-#: every reading compared at point B (reports/published/section5-readings.md); the first is the default
+#: every reading compared at points B and A (reports/published/section5-readings.md)
 READINGS: tuple[Reading, ...] = (
     Reading("inertial-at-joint", "inertial-at-joint", 9.0, 0.075, f"{_INERTIAL}; {_SHORT}"),
     Reading("opposed-at-joint-long-sleeve", "opposed-at-joint", sleeve_mass_kg(0.42), 0.210, f"{_OPPOSED}; {_LONG}"),
