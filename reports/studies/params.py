@@ -18,22 +18,28 @@ COLUMNS = [f"{c}_{o}X_um" for c in ("disk1", "disk2", "support") for o in ORDERS
 def amplitude_grid(groups: dict, label, title: str):
     """3 × 3 grid, harmonic order (rows) × location (columns), one curve per group value.
 
-    ``groups``: ``{value: (speeds_rpm (P,), amplitudes_um (P, 3 locations, 3 orders))}``. Amplitudes at
-    or below :data:`FLOOR_UM` break the curve and are marked ``v`` on the lower edge ("below floor"),
-    so a zero is never drawn as a dip.
+    ``groups``: ``{value: (speeds_rpm (P,), amplitudes_um (P, 3 locations, 3 orders)[, periodic (P,) bool])}``.
+    Amplitudes at or below :data:`FLOOR_UM` break the curve and are marked ``v`` on the lower edge ("below
+    floor"), so a zero is never drawn as a dip. Points without a periodic steady state (their amplitudes are
+    those of a record that does not repeat) are drawn as open circles, and their count is in the legend.
     """
     plt = pyplot()
     from matplotlib.transforms import blended_transform_factory
 
     fig, axes = plt.subplots(3, 3, figsize=(13, 9.5), constrained_layout=True, sharex=True)
-    for n, (val, (rpm, A)) in enumerate(sorted(groups.items(), key=lambda kv: kv[0])):
+    n_irregular = 0
+    for n, (val, (rpm, A, *rest)) in enumerate(sorted(groups.items(), key=lambda kv: kv[0])):
         colour = f"C{n}"
+        periodic = np.asarray(rest[0], bool) if rest else np.ones(len(rpm), bool)
+        n_irregular += int((~periodic).sum())
         for i in range(3):
             for j, (_, lab) in enumerate(LOCATIONS):
                 ax = axes[i, j]
                 a = np.asarray(A[:, j, i], dtype=float)
                 low = ~(a > FLOOR_UM)
                 ax.semilogy(rpm, np.where(low, np.nan, a), "-o", ms=2.5, lw=1, color=colour, label=label(val))
+                odd = ~periodic & ~low
+                ax.semilogy(rpm[odd], a[odd], "o", ms=6, mfc="none", mec=colour, mew=1.1)
                 edge = blended_transform_factory(ax.transData, ax.transAxes)
                 ax.plot(rpm[low], np.full(int(low.sum()), 0.015 + 0.03 * n), "v", ms=4, color=colour,
                         transform=edge, clip_on=False)
@@ -42,6 +48,7 @@ def amplitude_grid(groups: dict, label, title: str):
                 if i == 2:
                     ax.set_xlabel("rotor speed (rpm)")
     axes[0, 0].plot([], [], "v", color="0.3", ms=4, label=f"below floor ({FLOOR_UM:g} µm, e.g. zero)")
+    axes[0, 0].plot([], [], "o", ms=6, mfc="none", mec="0.3", label=f"not periodic ({n_irregular} points)")
     axes[0, 0].legend(fontsize=8)
     fig.suptitle(title, fontsize=10)
     return fig
@@ -67,7 +74,8 @@ def grids_from_rows(rows: list[dict]) -> tuple[dict, dict]:
         for v, rs in g.items():
             rs = sorted(rs, key=lambda r: float(r["speed_rpm"]))
             amps = np.array([[float(r[c]) for c in COLUMNS] for r in rs]).reshape(len(rs), 3, 3)
-            out[v] = (np.array([float(r["speed_rpm"]) for r in rs]), amps)
+            periodic = np.array([r.get("converged", "1") == "1" for r in rs])
+            out[v] = (np.array([float(r["speed_rpm"]) for r in rs]), amps, periodic)
         return out if len(out) > 1 else {}
     return group("clearance_mm", "misalignment_mm", ref_m), group("misalignment_mm", "clearance_mm", ref_c)
 

@@ -30,6 +30,8 @@ SHARE = 0.05
 
 POINT_B_RPM = 10500.0
 POINT_A_RPM = 4500.0
+#: the low-speed sweep of each reading: where the end faces first slip (§5.3.1 (1) says they do not below 9 000 rpm)
+LOW_RPM = tuple(float(s) for s in range(3000, 9000, 300))
 
 STATEMENTS = (
     ("B: contact and separation", "r1, r2 \"fluctuate ... near clearance δ0 ... periodic contact and separation\": "
@@ -208,7 +210,23 @@ def readings_csv(table: dict, path: Path) -> Path:
     return write_csv(path, head, rows)
 
 
-def publish_readings(out, published, *, scene, tasks=None, extra: str = "") -> list[Path]:
+def slip_lines(points) -> list[str]:
+    """Markdown rows: per reading and mesh, the lowest speed of the low sweep where the end faces slip."""
+    from rotor.studies.section5 import first_slip
+
+    by: dict = {}
+    for p in points:
+        by.setdefault((p.params["reading_name"], p.params.get("elements_per_segment")), []).append(p)
+    lines = ["| reading | mesh | faces first slip at (rpm) | contact there | speeds swept (rpm) |", "|---|---|---|---|---|"]
+    for (n, m), pts in sorted(by.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
+        rpm, share = first_slip(pts)
+        sp = sorted(p.params["speed_rpm"] for p in pts)
+        lines.append(f"| `{n}` | {_label(m)} | {'none' if rpm is None else f'{rpm:.0f}'} | "
+                     f"{100 * share:.0f} % | {sp[0]:.0f}–{sp[-1]:.0f} |")
+    return lines
+
+
+def publish_readings(out, published, *, scene, tasks=None, low_tasks=None, extra: str = "") -> list[Path]:
     """section5-readings.md and .csv in ``published`` from the finished ``study readings`` directory ``out``;
     ``extra``: the hand-written reading appended (reports/notes/section5-readings-reading.md)."""
     from contact.files import atomic_write_text
@@ -219,6 +237,12 @@ def publish_readings(out, published, *, scene, tasks=None, extra: str = "") -> l
     table = readings_table(load_points(out, tasks))
     current = scene_reading(load_scene(scene)) or "(none of the readings)"
     published = Path(published)
-    note = readings_note(table, current, POINT_B_RPM) + ("\n" + extra if extra else "")
+    note = readings_note(table, current, POINT_B_RPM)
+    if low_tasks:
+        note += ("\n## Relative displacement below 9 000 rpm, every reading\n\nDai et al. (2025) §5.3.1 (1): \"In the "
+                 "low speed range (0~9000 rpm) ... there is no relative displacement between the bearing and "
+                 "support\". Lowest speed of a 300 rpm sweep where the end faces slip (stuck < 100 % of the "
+                 "record):\n\n" + "\n".join(slip_lines(load_points(out, low_tasks))) + "\n")
+    note += "\n" + extra if extra else ""
     return [atomic_write_text(published / "section5-readings.md", note),
             readings_csv(table, published / "section5-readings.csv")]

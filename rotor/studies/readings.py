@@ -147,8 +147,8 @@ def run_reading_point(scene: str, reading_name: str, speed_rpm: float, elements_
 
 
 def reading_tasks(scene: str, names, speeds_rpm, meshes=(None, 2), *, options: dict | None = None,
-                  history_revs: int = 8) -> list:
-    """One :class:`sweep.Task` per (reading, mesh, speed); keys ``<reading>-e<mesh>-rpm<speed>``
+                  history_revs: int = 8, prefix: str = "") -> list:
+    """One :class:`sweep.Task` per (reading, mesh, speed); keys ``<prefix><reading>-e<mesh>-rpm<speed>``
     (mesh ``paper`` for the scene's own mesh)."""
     from sweep import Task
 
@@ -162,7 +162,7 @@ def reading_tasks(scene: str, names, speeds_rpm, meshes=(None, 2), *, options: d
                           "options": dict(options or {}), "history_revs": int(history_revs)}
                 if m is not None:
                     params["elements_per_segment"] = int(m)
-                out.append(Task(f"{name}-e{tag}-rpm{float(s):.0f}", run_reading_point, params))
+                out.append(Task(f"{prefix}{name}-e{tag}-rpm{float(s):.0f}", run_reading_point, params))
     return out
 
 
