@@ -331,7 +331,8 @@ def _publish(args) -> int:
         _require_finished(f"--{k.replace('_', '-')}", Path(d))
     if any(k.endswith("_converged") for k in runs):
         runs["elements"] = int(args.elements)
-    for f in publish(runs, Path(args.to)):
+    reading = shipped("reports", "notes", "study-findings-reading.md")
+    for f in publish(runs, Path(args.to), findings_extra=reading.read_text(encoding="utf-8") if reading.is_file() else ""):
         print(f"  wrote {f}")
     return 0
 
