@@ -85,6 +85,9 @@ READINGS: tuple[Reading, ...] = (
     Reading("opposed-at-joint", "opposed-at-joint", 9.0, 0.075, f"{_OPPOSED}; {_SHORT}"),
     Reading("inertial-at-joint-long-sleeve", "inertial-at-joint", sleeve_mass_kg(0.42), 0.210,
             f"{_INERTIAL}; {_LONG}"),
+    Reading("opposed-at-centring-surfaces", "opposed-at-centring-surfaces", 9.0, 0.075,
+            "the same sentence, the pair acting where the transition shaft bears on each shaft, the centring "
+            f"surfaces L before and L after the joint: the forces leave the couple 2FL; {_SHORT}"),
 )
 READING_NAMES = tuple(r.name for r in READINGS)
 
