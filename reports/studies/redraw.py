@@ -23,6 +23,11 @@ from reports.studies.cascade import cascade_redraw
 from reports.studies.common import read_csv_rows, require_columns
 from reports.studies.params import COLUMNS, grids_from_rows, params_grids
 
+#: the scene the committed study-sensitivity-points.csv was computed on (its factors are labelled with that
+#: scene's values): the former reading of Eq. 34, paper-table4 until section5-readings.md; a rerun of
+#: ``study sensitivity`` on paper-table4 moves it
+SENSITIVITY_SCENE = "paper-table4-inertial"
+
 #: committed CSV -> what is drawn from it
 SOURCES = {
     "study-sensitivity-points.csv": "study-sensitivity.png/.svg",
@@ -54,7 +59,7 @@ def redraw(src, dst) -> list[Path]:
     draws = []
     if "study-sensitivity-points.csv" in present:
         tabs, variants = tables_from_points_csv(src / "study-sensitivity-points.csv")
-        draws.append(lambda: sensitivity_figure(tabs, variants, dst / "study-sensitivity"))
+        draws.append(lambda: sensitivity_figure(tabs, variants, dst / "study-sensitivity", scene=SENSITIVITY_SCENE))
     if "study-params.csv" in present:
         rows = read_csv_rows(src / "study-params.csv")
         require_columns(src / "study-params.csv", rows, ["key", "clearance_mm", "misalignment_mm", "speed_rpm"] + COLUMNS)
