@@ -124,16 +124,22 @@ def readings_table(points) -> dict:
     by = {}
     for p in points:
         key = (p.params["reading_name"], p.params.get("elements_per_segment"))
-        by.setdefault(key, {})[round(p.params["speed_rpm"])] = point_measures(p)
+        by.setdefault(key, {})[round(p.params["speed_rpm"])] = None if "outside_law_domain" in p.info else \
+            point_measures(p)
     out = {}
     for key, m in by.items():
         if round(POINT_B_RPM) not in m:
             continue
-        rows = judge(m[round(POINT_B_RPM)])
-        if round(POINT_A_RPM) in m:
-            rows += judge_a(m[round(POINT_A_RPM)])
-        out[key] = (m[round(POINT_B_RPM)], rows)
+        mb, ma = m[round(POINT_B_RPM)], m.get(round(POINT_A_RPM), "none")
+        rows = judge(mb) if mb is not None else [(BEYOND, False)] * len(STATEMENTS)
+        if ma != "none":
+            rows += judge_a(ma) if ma is not None else [(BEYOND, False)] * len(STATEMENTS_A)
+        out[key] = (mb, rows)
     return out
+
+
+#: the cell of a point whose load drives the ring past the conformal law's neat-fit limit (no record)
+BEYOND = "beyond the contact law's domain (neat-fit limit)"
 
 
 def chosen_reading(table: dict, current: str) -> tuple[str, dict]:
@@ -172,7 +178,8 @@ def readings_note(table: dict, current: str, speed_rpm: float) -> str:
     for i, (title, rule) in enumerate((STATEMENTS + STATEMENTS_A)[:n_rows]):
         cells = [f"{'✔' if table[k][1][i][1] else '✘'} {table[k][1][i][0]}" for k in keys]
         lines.append(f"| {title}: {rule} | " + " | ".join(cells) + " |")
-    per = [f"{'✔' if table[k][0]['periodic'] else '✘'} period {table[k][0]['period_revs']} rev" for k in keys]
+    per = ["✘ no record" if table[k][0] is None else
+           f"{'✔' if table[k][0]['periodic'] else '✘'} period {table[k][0]['period_revs']} rev" for k in keys]
     lines.append("| (point B periodic) | " + " | ".join(per) + " |")
     lines.append("| rows met | " + " | ".join(f"{sum(ok for _, ok in table[k][1][:n_rows])} of {n_rows}"
                                         for k in keys) + " |")
@@ -203,6 +210,8 @@ def readings_csv(table: dict, path: Path) -> Path:
             "period_revs", "rows_met"]
     rows = []
     for (n, mesh), (m, judged) in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
+        if m is None:
+            continue
         rows.append([n, mesh or 1, m["contact_share"], m["stick_share"], m["r1_min_over_d0"], m["r1_max_over_d0"],
                      m["r2_min_over_d0"], m["r2_max_over_d0"], *m["orbit_ratio"], *m["disk2_radius_um"],
                      *m["v2_over_v1"], *m["v35_over_v1"], int(m["periodic"]), m["period_revs"],
@@ -217,12 +226,15 @@ def slip_lines(points) -> list[str]:
     by: dict = {}
     for p in points:
         by.setdefault((p.params["reading_name"], p.params.get("elements_per_segment")), []).append(p)
-    lines = ["| reading | mesh | faces first slip at (rpm) | contact there | speeds swept (rpm) |", "|---|---|---|---|---|"]
+    lines = ["| reading | mesh | faces first slip at (rpm) | contact there | beyond the law's domain at (rpm) | "
+             "speeds swept (rpm) |", "|---|---|---|---|---|---|"]
     for (n, m), pts in sorted(by.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
         rpm, share = first_slip(pts)
         sp = sorted(p.params["speed_rpm"] for p in pts)
+        out = [f"{p.params['speed_rpm']:.0f}" for p in sorted(pts, key=lambda p: p.params["speed_rpm"])
+               if "outside_law_domain" in p.info]
         lines.append(f"| `{n}` | {_label(m)} | {'none' if rpm is None else f'{rpm:.0f}'} | "
-                     f"{100 * share:.0f} % | {sp[0]:.0f}–{sp[-1]:.0f} |")
+                     f"{100 * share:.0f} % | {', '.join(out) or '—'} | {sp[0]:.0f}–{sp[-1]:.0f} |")
     return lines
 
 

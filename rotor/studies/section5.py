@@ -203,8 +203,9 @@ def law_secant_stiffness(scene, clearances_m, penetrations_m) -> np.ndarray:
 
 
 def first_slip(points) -> tuple[float | None, float]:
-    """Lowest speed (rpm) of ``points`` whose end faces slip (stuck < 100 % of the record), and its contact share."""
+    """Lowest speed (rpm) of ``points`` whose end faces slip (stuck < 100 % of the record), and its contact share;
+    points without a record (beyond the contact law's domain) are passed over."""
     for p in sorted(points, key=lambda p: p.params["speed_rpm"]):
-        if p.info["stick_fraction"] < 1.0:
+        if p.info.get("stick_fraction", 1.0) < 1.0:
             return float(p.params["speed_rpm"]), float(p.info["contact_fraction"])
     return None, 0.0

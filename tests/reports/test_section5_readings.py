@@ -68,3 +68,15 @@ def test_point_b_contact_and_separation_only_with_the_default_reading():
     new, old = (judge(point_measures(P(n))) for n in ("opposed-at-joint-long-sleeve", "inertial-at-joint"))
     assert new[0][1] and new[1][1], new[:2]                   # measured 56 % contact, r1/δ0 0.973-1.015
     assert not old[0][1] and not old[1][1], old[:2]           # measured 100 % contact, r2/δ0 0.984 throughout
+
+
+def test_a_point_beyond_the_law_domain_meets_no_row():
+    """A reading whose load drives the ring past the conformal law's neat-fit limit has no record: every
+    row is unmet, and the report says why (rotor.studies.readings.run_reading_point)."""
+    from reports.studies.readings import BEYOND, readings_table
+
+    class P:
+        params = {"reading_name": "inertial-at-joint-long-sleeve", "speed_rpm": 10500.0}
+        info = {"outside_law_domain": "loose support: penetration beyond the conformal law's neat-fit limit"}
+    (m, rows), = readings_table([P()]).values()
+    assert m is None and rows == [(BEYOND, False)] * len(STATEMENTS)
