@@ -194,6 +194,7 @@ def band_details(verdicts: dict, tag: str) -> list[str]:
     for name, bands in verdicts.items():
         for b, x in bands.items():
             pts = "; ".join(f"{s:.0f} {'✔' if ok else '✘'} {t}" for s, ok, t in zip(x.speeds_rpm, x.holds, x.texts))
-            skip = f" Not periodic (left out): {', '.join(f'{s:.0f}' for s in x.skipped_rpm)}." if x.skipped_rpm else ""
+            skip = (" Not periodic (not judged; the predicate there: " + "; ".join(
+                f"{s:.0f} {'✔' if ok else '✘'} {t}" for s, ok, t in x.loose) + ").") if x.loose else ""
             out.append(f"- **{finding(name).claim}**, {b}: {x.verdict}. {pts or 'no periodic speed'}.{skip}")
     return out + [""]

@@ -146,37 +146,44 @@ def in_band(speed_rpm: float, band: str) -> bool:
 
 @dataclass(frozen=True)
 class BandVerdict:
-    """One finding in one band: speeds judged (all cases periodic), where it holds, the numbers, the verdict."""
+    """One finding in one band: the periodic speeds judged (every compared case periodic), where it holds and the
+    numbers; and, apart, the same predicate at the band's non-periodic speeds (``loose``: (rpm, holds, text)),
+    whose amplitudes come from a record that does not repeat."""
     finding: str
     band: str
     speeds_rpm: tuple
     holds: tuple
     texts: tuple
     skipped_rpm: tuple     # speeds of the band left out: a case not periodic
+    loose: tuple = ()
 
     @property
     def verdict(self) -> str:
         n, k = len(self.holds), sum(self.holds)
         if n < 2:
-            return f"n/a ({n} periodic speed{'s' if n != 1 else ''})"
+            if not n and not self.skipped_rpm:
+                return "no data"
+            m, j = len(self.loose), sum(ok for _, ok, _ in self.loose)
+            return f"n/a ({n} periodic; {j} of {m} non-periodic meet it)"
         return "yes" if k == n else "no" if k == 0 else f"partly ({k} of {n})"
 
 
 def band_verdict(f: Finding, band: str, by_speed: dict) -> BandVerdict:
     """Judge ``f`` at every speed of ``band`` in ``by_speed`` (``{rpm: {case: (A, info)}}``)."""
-    speeds, holds, texts, skipped = [], [], [], []
+    speeds, holds, texts, skipped, loose = [], [], [], [], []
     for rpm in sorted(s for s in by_speed if in_band(s, band)):
         amps = by_speed[rpm]
         if any(c not in amps for c in f.cases):
             continue
+        ok, text = f.predicate(amps)
         if not all(amps[c][1]["converged"] for c in f.cases):
             skipped.append(rpm)
+            loose.append((rpm, ok, text))
             continue
-        ok, text = f.predicate(amps)
         speeds.append(rpm)
         holds.append(ok)
         texts.append(text)
-    return BandVerdict(f.name, band, tuple(speeds), tuple(holds), tuple(texts), tuple(skipped))
+    return BandVerdict(f.name, band, tuple(speeds), tuple(holds), tuple(texts), tuple(skipped), tuple(loose))
 
 
 # ---------------------------------------------------------------------------------------------
