@@ -31,14 +31,17 @@ def amplitude_grid(groups: dict, label, title: str):
     for n, (val, (rpm, A, *rest)) in enumerate(sorted(groups.items(), key=lambda kv: kv[0])):
         colour = f"C{n}"
         periodic = np.asarray(rest[0], bool) if rest else np.ones(len(rpm), bool)
-        n_irregular += int((~periodic).sum())
+        n_irregular += int((~periodic & ~np.isnan(np.asarray(A, float)).any(axis=(1, 2))).sum())
         for i in range(3):
             for j, (_, lab) in enumerate(LOCATIONS):
                 ax = axes[i, j]
                 a = np.asarray(A[:, j, i], dtype=float)
-                low = ~(a > FLOOR_UM)
+                low = a <= FLOOR_UM
+                beyond = np.isnan(a)            # no record: the ring past the contact law's neat-fit limit
+                ax.plot(rpm[beyond], np.full(int(beyond.sum()), 0.97 - 0.03 * n), "x", ms=5, color=colour,
+                        transform=blended_transform_factory(ax.transData, ax.transAxes), clip_on=False)
                 ax.semilogy(rpm, np.where(low, np.nan, a), "-o", ms=2.5, lw=1, color=colour, label=label(val))
-                odd = ~periodic & ~low
+                odd = ~periodic & ~low & ~beyond
                 ax.semilogy(rpm[odd], a[odd], "o", ms=6, mfc="none", mec=colour, mew=1.1)
                 edge = blended_transform_factory(ax.transData, ax.transAxes)
                 ax.plot(rpm[low], np.full(int(low.sum()), 0.015 + 0.03 * n), "v", ms=4, color=colour,
@@ -49,6 +52,7 @@ def amplitude_grid(groups: dict, label, title: str):
                     ax.set_xlabel("rotor speed (rpm)")
     axes[0, 0].plot([], [], "v", color="0.3", ms=4, label=f"below floor ({FLOOR_UM:g} µm, e.g. zero)")
     axes[0, 0].plot([], [], "o", ms=6, mfc="none", mec="0.3", label=f"not periodic ({n_irregular} points)")
+    axes[0, 0].plot([], [], "x", ms=5, color="0.3", label="beyond the contact law's domain (no record)")
     axes[0, 0].legend(fontsize=8)
     fig.suptitle(title, fontsize=10)
     return fig
@@ -116,6 +120,12 @@ def params_note(points) -> str:
     lines = ["# Harmonic amplitudes vs speed for several clearances and misalignments (paper Figs. 18–19)", "",
              "Displacement amplitudes (µm) of 1X, 2X, 3X at disk 1, disk 2 and the 3# bearing support, "
              "`ringcontact study params`. Trend checks below use the speeds ≥ 9 000 rpm (the paper's 'high speed').", ""]
+    beyond = [p for p in points if "outside_law_domain" in p.info]
+    if beyond:
+        lines += ["Points where the load drives the ring past the conformal law's neat-fit limit (no record; a gap "
+                  "and × in the figures): " + ", ".join(f"δ0 {p.info['clearance_m'] * 1e3:g} mm, δ "
+                                                      f"{p.info['misalignment_m'] * 1e3:g} mm at {p.params['speed_rpm']:.0f} rpm"
+                                                      for p in beyond) + ".", ""]
     base = [p for p in points if "clearance_m" not in p.params and "misalignment_m" not in p.params]
     for key, name, unit in (("clearance_m", "clearance δ0", "mm"), ("misalignment_m", "misalignment δ", "mm")):
         groups = {}
@@ -131,7 +141,7 @@ def params_note(points) -> str:
             pts = sorted(groups[v], key=lambda p: p.params["speed_rpm"])
             rpm, A = harmonic_table(pts, "q", orders=(1, 2, 3))
             hi = rpm >= 9000
-            m = np.median(A[hi], axis=0) * 1e6  # (loc, order)
+            m = np.nanmedian(A[hi], axis=0) * 1e6  # (loc, order); a point beyond the law's domain has none
             med[v] = m
             nconv = sum(p.info["converged"] for p, h in zip(pts, hi) if h)
             lines.append(f"| {v * 1e3:g} | {m[0, 0]:.3g} | {m[1, 1]:.3g} | {m[1, 2]:.3g} | {m[2, 1]:.3g} | {m[2, 2]:.3g} "
