@@ -87,3 +87,13 @@ def test_simulate_steady_at_point_a_shows_2X_highest_at_the_support(tmp_path):
     ratio = {k: v[k][1] / v[k][0] for k in ("disk1.y", "disk2.y", "s.y")}
     assert s["steady_converged"] and s["stick_fraction_right"] == s["stick_fraction_left"] == 1.0
     assert ratio["s.y"] >= 0.05 and ratio["s.y"] > ratio["disk1.y"], ratio   # measured 0.101 vs 0.005
+
+
+@pytest.mark.slow
+def test_a_point_past_the_law_domain_is_recorded_not_failed():
+    """Fig. 19's δ = 2 mm at 15 000 rpm on the paper's mesh: the load drives the ring past the conformal law's
+    neat-fit limit (D(b) <= 0, Dai et al. 2025 Eq. 5). The point is a measured outcome: no record, NaN
+    harmonics, not periodic, the law's message kept (rotor.studies.steady_state.beyond_law_record)."""
+    arrays, info = run_point("paper-table4", 15000.0, misalignment_m=2e-3, options=OPTIONS)
+    assert "neat-fit" in info["outside_law_domain"] and not info["converged"]
+    assert np.isnan(arrays["harm_q"]).all() and arrays["harm_q"].shape == (5, len(arrays["channels"]))
