@@ -29,9 +29,10 @@ LOC = ("disk1.y", "disk2.y", "s.y")
 _CACHE: dict = {}
 
 #: the mechanisms measured behind the failures (numbers in reports/published/study-findings.md)
-LAW = ("mechanism, where 2X/3X barely move with δ0: the conformal law's stiffness at the sub-micrometre "
-       "penetrations reached does not depend on δ0 (0.05 % apart at 0.1 µm, 0.5 % at 1 µm; "
-       "tests/rotor/studies/test_section5.py); a rise with δ0 is not explained by it")
+LAW = ("mechanism, where 2X/3X barely move with δ0: the conformal law's stiffness at the penetrations reached "
+       "(median 3.4 µm, deepest 9.0 µm at the high-speed points on the paper's mesh) differs between the three "
+       "clearances by 1.6 % and 3.9 % (0.5 % at 1 µm; tests/rotor/studies/test_section5.py); a change against "
+       "the paper's sense is not explained by it")
 SLIP = ("mechanism: the end faces slip from 5 400 rpm (both meshes), with contact: the relative displacement the "
         "paper rules out below 9 000 rpm (first slip per reading in reports/published/section5-readings.md)")
 
