@@ -38,14 +38,15 @@ def amplitude_grid(groups: dict, label, title: str):
                 a = np.asarray(A[:, j, i], dtype=float)
                 low = a <= FLOOR_UM
                 beyond = np.isnan(a)            # no record: the ring past the contact law's neat-fit limit
-                ax.plot(rpm[beyond], np.full(int(beyond.sum()), 0.97 - 0.03 * n), "x", ms=5, color=colour,
-                        transform=blended_transform_factory(ax.transData, ax.transAxes), clip_on=False)
                 ax.semilogy(rpm, np.where(low, np.nan, a), "-o", ms=2.5, lw=1, color=colour, label=label(val))
                 odd = ~periodic & ~low & ~beyond
                 ax.semilogy(rpm[odd], a[odd], "o", ms=6, mfc="none", mec=colour, mew=1.1)
                 edge = blended_transform_factory(ax.transData, ax.transAxes)
                 ax.plot(rpm[low], np.full(int(low.sum()), 0.015 + 0.03 * n), "v", ms=4, color=colour,
                         transform=edge, clip_on=False)
+                if beyond.any():
+                    ax.plot(rpm[beyond], np.full(int(beyond.sum()), 0.97 - 0.03 * n), "x", ms=5, color=colour,
+                            transform=edge, clip_on=False)
                 ax.set_title(f"{i + 1}X, {lab}", fontsize=9)
                 ax.set_ylabel(f"{i + 1}X displacement amplitude (µm)", fontsize=8)
                 if i == 2:
