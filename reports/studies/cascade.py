@@ -162,26 +162,44 @@ def cascade_redraw(csv_path, figs, prefix: str, title: str = ""):
                                  marks)
 
 
+#: the titles of the cascades of tilt on and off (``{mesh}``: "" or ", N elements per segment"), shared by
+#: ``study publish`` and ``study redraw`` so that both draw the same figure
+CASCADE_TITLE = "Steady-state spectrum cascades (y velocity), Table 4 rotor{mesh} (paper Fig. 12)"
+NOTILT_TITLE = "Spectrum cascades with the tilt ignored{mesh} (paper Fig. 16; colour scale shared with Fig. 12)"
+
+
 def _point_spectra(points):
-    """``(velocity, tilt)`` spectra of a study's points as :func:`cascade_plots` takes them (mm/s, mrad)."""
-    def spectra(get):
-        return [(p.params["speed_rpm"], p.arrays["spec_orders"], get(p) * 1e3, bool(p.info["converged"]))
-                for p in points]
-    velocity = {lab: spectra(lambda p, ch=ch: p.arrays["spec_v"][:, channel_column(p, ch)]) for ch, lab in LOCATIONS}
-    return velocity, {"θy": spectra(lambda p: p.arrays["spec_u"][:, 2]), "θz": spectra(lambda p: p.arrays["spec_u"][:, 3])}
+    """``(velocity, tilt)`` spectra of a study's points as the maps draw them: binned and rounded as the
+    spectrum CSV holds them (:mod:`reports.studies.spectrum_csv`)."""
+    from reports.studies.spectrum_csv import spectra_from_rows, spectrum_rows
+    return spectra_from_rows(spectrum_rows(points, ORDER_STEP, MAX_ORDER, DECADES))
+
+
+def spectrum_redraw(csv_path, figs, prefix: str, title: str, scale_csv=None):
+    """The cascades of :func:`cascade_plots` from a committed ``<prefix>-spectrum.csv`` (the full spectra, as
+    ``study publish`` drew them; ``scale_csv``: the compared cascade's, for the shared colour scale). The CSVs
+    are read and checked now; the returned function draws and returns the files written."""
+    from reports.studies.spectrum_csv import read_spectrum_csv
+    velocity, tilts = read_spectrum_csv(csv_path)
+    other = [read_spectrum_csv(scale_csv)] if scale_csv is not None else ()
+    return lambda: cascade_plots(velocity, tilts, figs, prefix, title, scale_with=other)
 
 
 def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "",
                     scale_with=None) -> list[Path]:
     """Velocity-y spectrum cascades at disk 1, disk 2, 3# bearing (Fig. 12 / 16), the relative-tilt
-    cascade (Fig. 17) from the full spectra of the study, and ``<prefix>.csv`` with 1X–5X per speed,
+    cascade (Fig. 17) from the full spectra of the study (also written, binned, to ``<prefix>-spectrum.csv``,
+    from which ``study redraw`` draws them again), and ``<prefix>.csv`` with 1X–5X per speed,
     convergence and regime, and (points that record it) the loose support's peak and mean contact force (N),
     peak contact moment (N m), contact share and each face's stick share (:data:`CONTACT_COLUMNS`).
     ``scale_with``: the points of a cascade compared with this one (the other of tilt on / off), whose
     spectra share the colour scale."""
+    from reports.studies.spectrum_csv import write_spectrum_csv
+
     figs = Path(figs)
     points = load_points(out, tasks)
     velocity, tilts = _point_spectra(points)
+    spectrum = write_spectrum_csv(points, figs / f"{prefix}-spectrum.csv", ORDER_STEP, MAX_ORDER, DECADES)
     marks = [(p.params["speed_rpm"], p.info["classification"]) for p in points if "classification" in p.info]
     files = cascade_plots(velocity, tilts, figs, prefix, title, marks=marks,
                           scale_with=[_point_spectra(scale_with)] if scale_with else ())
@@ -213,7 +231,7 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
                   p.info.get("law_validity_max_penetration_m", float("nan")) * 1e3,
                   int(p.info.get("beyond_law_validity", False))]
     files.append(write_csv(figs / f"{prefix}.csv", header, rows))
-    return files
+    return files + [spectrum]
 
 
 #: the point info's contact fields (rotor.dynamics.support_record.contact_summary) the cascade CSV carries

@@ -4,7 +4,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from contact.files import atomic_write_text
-from reports.studies.cascade import cascade_figures, cascade_note
+from reports.studies.cascade import CASCADE_TITLE, NOTILT_TITLE, cascade_figures, cascade_note
 from reports.studies.common import load_points
 from reports.studies.mesh import KINDS, findings_figure, findings_note
 from reports.studies.params import params_figures, params_note
@@ -58,12 +58,10 @@ def _family(runs: dict, suffix: str, tag: str, published: Path, elements: int) -
         cas = load_points(runs[f"cascade{suffix}"])
         notilt = load_points(runs[f"notilt{suffix}"]) if f"notilt{suffix}" in runs else None
         files += cascade_figures(runs[f"cascade{suffix}"], published, prefix=f"study-cascade{tag}",
-                                 title=f"Steady-state spectrum cascades (y velocity), Table 4 rotor{mesh} (paper Fig. 12)",
-                                 scale_with=notilt)
+                                 title=CASCADE_TITLE.format(mesh=mesh), scale_with=notilt)
         if notilt:
             files += cascade_figures(runs[f"notilt{suffix}"], published, prefix=f"study-cascade-notilt{tag}",
-                                     title=f"Spectrum cascades with the tilt ignored{mesh} (paper Fig. 16; colour scale "
-                                           "shared with Fig. 12)", scale_with=cas)
+                                     title=NOTILT_TITLE.format(mesh=mesh), scale_with=cas)
         if not suffix:
             files.append(atomic_write_text(published / "study-cascade.md",
                                            cascade_note(cas, notilt, read_timing(runs["cascade"]))))
