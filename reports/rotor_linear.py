@@ -235,7 +235,8 @@ def _table4_assumptions(scene: Scene):
         ["transition spring a0", f"{cp.a0_n_m_rad:.3g} N·m/rad", "a bit softer than 150 mm of the adjoining turbine shaft (EI/l = 7.2e6 N·m/rad)"],
         ["transition spring a1", f"{cp.a1_n_m_rad3:.3g} N·m/rad³", "k_c,θ doubles at 2 mrad (3× the misalignment tilt)"],
         ["transition-shaft mass m_sp, lever L", f"{cp.shaft_mass_kg:.3g} kg, {cp.lever_m * 1e3:.3g} mm",
-         "steel sleeve D140/d100 mm, 150 mm long; L = half its length"],
+         f"steel sleeve D140/d100 mm (60 kg/m), {cp.shaft_mass_kg / 60.0 * 1e3:.0f} mm long; L = half its length; "
+         "chosen with the reading of Eq. 34 at point B (section5-readings.md)"],
         ["disk skew τ, phase φ", f"{d1.skew_rad * 1e3:.3g} mrad, {math.degrees(d1.skew_phase_rad):.3g}°",
          "not given; 1X attributed to unbalance in the paper"],
         ["collision factor c_c", f"{scene.loose_support.collision_factor_s_m:.3g} s/m", "Table 4's 100 \"s/N\" read as s/m"],

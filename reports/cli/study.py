@@ -12,6 +12,7 @@ Sub-studies (each resumable: points already in ``--out`` are reused, corrupt one
     ringcontact study publish  --cascade runs/fig12 --notilt runs/fig16 …   # study-* into reports/published
     ringcontact study export   runs/fig12 --format netcdf|csv          # speed x station x harmonic dataset
     ringcontact study sensitivity --out runs/sensitivity             # §5 findings vs the unstated inputs (slow)
+    ringcontact study readings --out runs/readings                   # points A, B under every reading of Eq. 34
     ringcontact study redraw   [--from reports/published]            # study figures from the committed CSVs
 
 Engineer units at the edge (``_rpm``, ``_mm``); results in SI (see sweep.store for the file
@@ -94,6 +95,10 @@ def _parser() -> argparse.ArgumentParser:
     pt = sub.add_parser("point", help="orbits, deflection, time histories, spectra, r1/r2 at one speed (Figs. 13-15)")
     _common(pt, "runs/point")
     pt.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), action="append", help="speed (rpm), repeatable (default 4500 and 10500)")
+    rg = sub.add_parser("readings", help="points B and A under every reading of Eq. 34 (rotor.studies.readings) on the "
+                                         "scene's mesh and --elements (default 2): section5-readings.md/.csv")
+    _common(rg, "runs/readings")
+    rg.add_argument("--to", type=out_dir, default=PUBLISHED, help=f"where section5-readings.* go (default {PUBLISHED})")
     pr = sub.add_parser("params", help="1X/2X/3X vs speed for several clearances and misalignments (Figs. 18-19)")
     _common(pr, "runs/params")
     pr.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0)
@@ -358,7 +363,8 @@ def _publish(args) -> int:
         _require_finished(f"--{k.replace('_', '-')}", Path(d))
     if any(k.endswith("_converged") for k in runs):
         runs["elements"] = int(args.elements)
-    for f in publish(runs, Path(args.to)):
+    reading = shipped("reports", "notes", "study-findings-reading.md")
+    for f in publish(runs, Path(args.to), findings_extra=reading.read_text(encoding="utf-8") if reading.is_file() else ""):
         print(f"  wrote {f}")
     return 0
 
@@ -481,9 +487,25 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     return runup_figures(out, figs)
 
 
+def _readings(args, out: Path, figs: Path, opts: dict) -> list[Path]:
+    """``study readings``: points B and A under every reading of Eq. 34 on two meshes, judged by the paper's text."""
+    from reports.studies.readings import LOW_RPM, POINT_A_RPM, POINT_B_RPM, publish_readings
+    from rotor.studies.readings import READING_NAMES, reading_tasks
+
+    mesh = int(args.elements or 2)
+    args.elements = None                  # _sweep's manifest: the scene's mesh; each task names its own
+    tasks = reading_tasks(args.scene, READING_NAMES, [POINT_B_RPM, POINT_A_RPM], (None, mesh), options=opts)
+    low = reading_tasks(args.scene, READING_NAMES, LOW_RPM, (None, mesh), options=opts, history_revs=1, prefix="low-")
+    _sweep(tasks + low, out, args, {"speeds_rpm": [POINT_B_RPM, POINT_A_RPM], "low_speeds_rpm": list(LOW_RPM),
+                                    "readings": list(READING_NAMES), "elements_per_segment": [None, mesh]})
+    reading = shipped("reports", "notes", "section5-readings-reading.md")
+    return publish_readings(out, Path(args.to), scene=args.scene, tasks=tasks, low_tasks=low,
+                            extra=reading.read_text(encoding="utf-8") if reading.is_file() else "")
+
+
 # sub-study -> function(args, out, figs, options) -> files written (publish and sensitivity have their own)
 _STUDIES = {"cascade": _cascade, "point": _point, "params": _params, "testrig": _testrig, "map": _map,
-            "runup": _runup}
+            "runup": _runup, "readings": _readings}
 
 
 def _sensitivity(args) -> int:

@@ -9,48 +9,70 @@ from reports.studies.common import (LOCATIONS, channel_column, harmonic_table, l
                                     require_columns, save, write_csv)
 
 
-def _cascade_axes(ax, spectra, label, floor_rel=1e-4):
-    """One cascade: dots at (frequency, speed) coloured and sized by amplitude, order lines labelled 1X–5X.
+#: order resolution of the cascade maps (a 32-revolution record resolves 1/32 of the rotation frequency)
+ORDER_STEP = 1.0 / 32.0
+#: highest order drawn, and the dynamic range of the shared colour scale (decades below the largest amplitude)
+MAX_ORDER = 5.5
+DECADES = 4
 
-    ``spectra``: ``[(speed_rpm, orders (K,), amplitudes (K,), periodic)]`` in the unit of ``label``; orders are
-    multiples of the rotation frequency (fractional ones too, from a full spectrum). Speeds without a periodic
-    steady state are marked × on the right edge. The order labels sit on a top axis, outside the data.
-    """
-    plt = pyplot()
+
+def shared_norm(groups, decades: int = DECADES):
+    """One logarithmic colour scale for every panel compared (``groups``: lists of spectra as :func:`_cascade_axes`
+    takes them): from the largest amplitude of them all down ``decades`` decades."""
     from matplotlib.colors import LogNorm
 
-    spectra = [s for s in spectra if s[0] > 0]
+    top = max((float(np.max(a)) for spectra in groups for _, _, a, _ in spectra if len(a)), default=1.0)
+    top = top if top > 0 else 1.0
+    return LogNorm(vmin=top * 10.0 ** -decades, vmax=top)
+
+
+def _order_rows(spectra):
+    """Speeds (P,) and amplitudes (P, M) binned on the order grid 0 … :data:`MAX_ORDER` (largest per cell)."""
+    n = int(round(MAX_ORDER / ORDER_STEP))
+    grid = np.zeros((len(spectra), n))
+    for i, (_, o, a, _) in enumerate(spectra):
+        o, a = np.asarray(o, float), np.asarray(a, float)
+        keep = (o > 0.5 * ORDER_STEP) & (o < MAX_ORDER)
+        np.maximum.at(grid[i], np.clip(np.round(o[keep] / ORDER_STEP).astype(int), 0, n - 1), a[keep])
+    return np.array([s[0] for s in spectra], float), grid
+
+
+def _cascade_axes(ax, spectra, label, norm=None):
+    """One cascade as a spectrogram map: rotor speed (rows) against frequency in orders of the rotation
+    frequency (columns), colour the amplitude on the shared logarithmic scale ``norm`` (:func:`shared_norm`).
+
+    ``spectra``: ``[(speed_rpm, orders (K,), amplitudes (K,), periodic)]`` in the unit of ``label``; the full
+    spectrum of a study (fractional orders too: broadband content at a non-periodic speed shows as a
+    smeared row) or the harmonics alone (from a CSV). Speeds without a periodic steady state are marked
+    ◀ on the right edge. Returns the image (for a colour bar) or None.
+    """
+    spectra = sorted((s for s in spectra if s[0] > 0), key=lambda s: s[0])
     if not spectra:
         return None
-    x = np.concatenate([np.asarray(o, float) * rpm / 60.0 for rpm, o, _, _ in spectra])
-    y = np.concatenate([np.full(len(o), rpm, float) for rpm, o, _, _ in spectra])
-    c = np.concatenate([np.asarray(a, float) for _, _, a, _ in spectra])
-    top = c.max() if c.size and c.max() > 0 else 1.0
-    keep = c > top * floor_rel
-    order = np.argsort(c[keep])
-    sc = ax.scatter(x[keep][order], y[keep][order], c=c[keep][order], s=6 + 30 * (c[keep][order] / top) ** 0.5,
-                    norm=LogNorm(vmin=top * floor_rel, vmax=top), cmap="viridis", linewidths=0,
-                    rasterized=True)  # thousands of dots: raster inside the SVG, axes stay vector
-    rmax = max(s[0] for s in spectra)
-    ymax = rmax * 1.02
+    rpm, grid = _order_rows(spectra)
+    norm = norm or shared_norm([spectra])
+    mid = 0.5 * (rpm[1:] + rpm[:-1]) if len(rpm) > 1 else np.array([])
+    step = float(np.median(np.diff(rpm))) if len(rpm) > 1 else max(rpm[0] * 0.05, 1.0)
+    yedges = np.concatenate([[rpm[0] - step / 2], mid, [rpm[-1] + step / 2]])
+    xedges = (np.arange(grid.shape[1] + 1) - 0.5) * ORDER_STEP
+    shown = np.ma.masked_less_equal(grid, norm.vmin)
+    import matplotlib
+    cmap = matplotlib.colormaps["magma_r"].with_extremes(bad="white")
+    im = ax.pcolormesh(xedges, yedges, shown, norm=norm, cmap=cmap, shading="flat", rasterized=True)
     for k in range(1, 6):
-        ax.plot([0, k * ymax / 60], [0, ymax], ":", color="0.6", lw=0.7)
-    xmax = 5.5 * rmax / 60
-    ax.set_xlim(0, xmax)
-    ax.set_ylim(0, ymax)
-    top_axis = ax.secondary_xaxis("top")
-    top_axis.set_xticks([k * ymax / 60 for k in range(1, 6)], [f"{k}X" for k in range(1, 6)], fontsize=7)
-    top_axis.tick_params(length=2, pad=1, colors="0.35")
+        ax.axvline(k, color="0.75", lw=0.4, zorder=0)
+    ax.set_xlim(0, MAX_ORDER)
+    ax.set_ylim(yedges[0], yedges[-1])
+    ax.set_xticks(range(0, 6), [f"{k}X" if k else "0" for k in range(0, 6)])
     irregular = [s[0] for s in spectra if not s[3]]
-    ax.plot(np.full(len(irregular), xmax), irregular, "x", color="tab:red", ms=4, clip_on=False,
-            label="no periodic steady state" if irregular else None)
     if irregular:
-        ax.legend(fontsize=7, loc="lower right")
-    ax.set_xlabel("frequency (Hz)")
+        ax.plot(np.full(len(irregular), MAX_ORDER), irregular, "<", color="tab:blue", ms=4, clip_on=False,
+                label="no periodic steady state (full spectrum drawn)")
+        ax.legend(fontsize=7, loc="lower right", framealpha=0.85)
+    ax.set_xlabel("frequency / rotation frequency (order)")
     ax.set_ylabel("rotor speed (rpm)")
     ax.set_title(label, fontsize=9)
-    plt.colorbar(sc, ax=ax, pad=0.01)
-    return sc
+    return im
 
 
 #: how ``--method shooting`` marks a speed whose orbit is not a stable periodic one (rotor.studies.shooting_point)
@@ -77,24 +99,34 @@ def mark_stability(ax, marks) -> None:
 
 
 def cascade_plots(velocity: dict, tilt: dict, figs: Path, prefix: str, title: str, source: str = "",
-                  marks=()) -> list[Path]:
+                  marks=(), scale_with=()) -> list[Path]:
     """``<prefix>`` (y velocity at disk 1, disk 2, the support: Figs. 12/16) and ``<prefix>-tilt`` (Fig. 17).
 
     ``velocity``: ``{location label: spectra}`` in mm/s; ``tilt``: ``{"θy": spectra, "θz": spectra}`` in mrad;
     spectra as :func:`_cascade_axes` takes them. ``source`` is a note under the titles (what was drawn);
-    ``marks``: ``(speed_rpm, classification)`` of the speeds :func:`mark_stability` marks.
+    ``marks``: ``(speed_rpm, classification)`` of the speeds :func:`mark_stability` marks; ``scale_with``:
+    ``(velocity, tilt)`` dicts of a cascade drawn beside this one (Fig. 16 beside Fig. 12) whose spectra share
+    the colour scale.
     """
     plt = pyplot()
     sub = f"\n{source}" if source else ""
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.9), constrained_layout=True)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 5.2), constrained_layout=True, sharey=True)
+    norm = shared_norm(list(velocity.values()) + [v for vt in scale_with for v in vt[0].values()])
+    im = None
     for ax, (lab, spectra) in zip(axes, velocity.items()):
-        _cascade_axes(ax, spectra, f"{lab}: y-velocity amplitude (mm/s)")
+        im = _cascade_axes(ax, spectra, f"{lab}: y velocity", norm) or im
         mark_stability(ax, marks)
+    if im is not None:
+        fig.colorbar(im, ax=list(axes), pad=0.01, label="y-velocity amplitude (mm/s), one scale for the three panels")
     fig.suptitle((title or "Steady-state spectrum cascades (y velocity), Table 4 rotor") + sub, fontsize=10)
     files = save(fig, Path(figs) / prefix)
-    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.9), constrained_layout=True)
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 5.2), constrained_layout=True, sharey=True)
+    norm = shared_norm(list(tilt.values()) + [v for vt in scale_with for v in vt[1].values()])
+    im = None
     for ax, (axis, spectra) in zip(axes, tilt.items()):
-        _cascade_axes(ax, spectra, f"bearing − support: relative tilt {axis} (mrad)")
+        im = _cascade_axes(ax, spectra, f"bearing − support: relative tilt {axis}", norm) or im
+    if im is not None:
+        fig.colorbar(im, ax=list(axes), pad=0.01, label="relative tilt amplitude (mrad), one scale for both panels")
     fig.suptitle("Relative angular deflection between bearing and support (paper Fig. 17)" + sub, fontsize=10)
     return files + save(fig, Path(figs) / f"{prefix}-tilt")
 
@@ -129,21 +161,47 @@ def cascade_redraw(csv_path, figs, prefix: str, title: str = ""):
                                  marks)
 
 
-def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "") -> list[Path]:
+#: the titles of the cascades of tilt on and off (``{mesh}``: "" or ", N elements per segment"), shared by
+#: ``study publish`` and ``study redraw`` so that both draw the same figure
+CASCADE_TITLE = "Steady-state spectrum cascades (y velocity), Table 4 rotor{mesh} (paper Fig. 12)"
+NOTILT_TITLE = "Spectrum cascades with the tilt ignored{mesh} (paper Fig. 16; colour scale shared with Fig. 12)"
+
+
+def _point_spectra(points):
+    """``(velocity, tilt)`` spectra of a study's points as the maps draw them: binned and rounded as the
+    spectrum CSV holds them (:mod:`reports.studies.spectrum_csv`)."""
+    from reports.studies.spectrum_csv import spectra_from_rows, spectrum_rows
+    return spectra_from_rows(spectrum_rows(points, ORDER_STEP, MAX_ORDER, DECADES))
+
+
+def spectrum_redraw(csv_path, figs, prefix: str, title: str, scale_csv=None):
+    """The cascades of :func:`cascade_plots` from a committed ``<prefix>-spectrum.csv`` (the full spectra, as
+    ``study publish`` drew them; ``scale_csv``: the compared cascade's, for the shared colour scale). The CSVs
+    are read and checked now; the returned function draws and returns the files written."""
+    from reports.studies.spectrum_csv import read_spectrum_csv
+    velocity, tilts = read_spectrum_csv(csv_path)
+    other = [read_spectrum_csv(scale_csv)] if scale_csv is not None else ()
+    return lambda: cascade_plots(velocity, tilts, figs, prefix, title, scale_with=other)
+
+
+def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", title: str = "",
+                    scale_with=None) -> list[Path]:
     """Velocity-y spectrum cascades at disk 1, disk 2, 3# bearing (Fig. 12 / 16), the relative-tilt
-    cascade (Fig. 17) from the full spectra of the study, and ``<prefix>.csv`` with 1X–5X per speed,
+    cascade (Fig. 17) from the full spectra of the study (also written, binned, to ``<prefix>-spectrum.csv``,
+    from which ``study redraw`` draws them again), and ``<prefix>.csv`` with 1X–5X per speed,
     convergence and regime, and (points that record it) the loose support's peak and mean contact force (N),
-    peak contact moment (N m), contact share and each face's stick share (:data:`CONTACT_COLUMNS`)."""
+    peak contact moment (N m), contact share and each face's stick share (:data:`CONTACT_COLUMNS`).
+    ``scale_with``: the points of a cascade compared with this one (the other of tilt on / off), whose
+    spectra share the colour scale."""
+    from reports.studies.spectrum_csv import write_spectrum_csv
+
     figs = Path(figs)
     points = load_points(out, tasks)
-
-    def spectra(get):
-        return [(p.params["speed_rpm"], p.arrays["spec_orders"], get(p) * 1e3, bool(p.info["converged"]))
-                for p in points]
-    velocity = {lab: spectra(lambda p, ch=ch: p.arrays["spec_v"][:, channel_column(p, ch)]) for ch, lab in LOCATIONS}
-    tilts = {"θy": spectra(lambda p: p.arrays["spec_u"][:, 2]), "θz": spectra(lambda p: p.arrays["spec_u"][:, 3])}
+    velocity, tilts = _point_spectra(points)
+    spectrum = write_spectrum_csv(points, figs / f"{prefix}-spectrum.csv", ORDER_STEP, MAX_ORDER, DECADES)
     marks = [(p.params["speed_rpm"], p.info["classification"]) for p in points if "classification" in p.info]
-    files = cascade_plots(velocity, tilts, figs, prefix, title, marks=marks)
+    files = cascade_plots(velocity, tilts, figs, prefix, title, marks=marks,
+                          scale_with=[_point_spectra(scale_with)] if scale_with else ())
     rpm, V = harmonic_table(points, "v")
     _, U = harmonic_table(points, "u", channels=("θy", "θz"), orders=(1, 2, 3))
     header = ["speed_rpm", "converged", "period_revs", "regime", "contact_fraction", "stick_fraction",
@@ -172,7 +230,7 @@ def cascade_figures(out, figs, *, tasks=None, prefix: str = "study-cascade", tit
                   p.info.get("law_validity_max_penetration_m", float("nan")) * 1e3,
                   int(p.info.get("beyond_law_validity", False))]
     files.append(write_csv(figs / f"{prefix}.csv", header, rows))
-    return files
+    return files + [spectrum]
 
 
 #: the point info's contact fields (rotor.dynamics.support_record.contact_summary) the cascade CSV carries
@@ -199,7 +257,8 @@ def cascade_note(points, notilt=None, timing=None) -> str:
     lines = ["# Spectrum cascades, Table 4 rotor (paper Figs. 12, 16, 17)", "",
              "Regenerated by `ringcontact study cascade` (+ `--tilt-ignored`), steady state detected per speed "
              "(Poincaré section, `rotor.studies.steady_state`), spectra over whole revolutions (exact bins). Paper's conformal "
-             "law as published, scene `paper-table4` with its documented assumptions.", ""]
+             "law as published, scene `paper-table4` with its documented assumptions (its reading of Eq. 34: "
+             "section5-readings.md).", ""]
     if timing:
         t = timing[-1]
         lines += [f"**Timing:** {len(points)} speeds in {t['wall_s']:.0f} s wall with {t['workers']} worker "
@@ -246,11 +305,14 @@ def cascade_note(points, notilt=None, timing=None) -> str:
             lines.append(f"| Fig. 16: harmonics markedly reduced when tilt is ignored | sum 3X–5X tilt-ignored / "
                          f"with tilt, median over {common.size} speeds ≥ 9 000 rpm: disk 1 {_fmt(np.median(ratio[:, 0]))}, "
                          f"disk 2 {_fmt(np.median(ratio[:, 1]))}, support {_fmt(np.median(ratio[:, 2]))} | "
-                         f"{'yes' if np.median(ratio[:, 1:]) < 0.7 else 'no'} |")
+                         f"{'yes' if np.median(ratio[:, 1:]) < 0.7 else 'no'} (a median over regimes; per speed band "
+                         "and periodic speeds: study-findings.md) |")
     tmax = U[:, :, 0].max() * 1e3
     lines.append(f"| Fig. 17: relative tilt grows at high speed, with the harmonics | 1X relative tilt (max of θy, θz): "
                  f"{_fmt(U[lo][:, :, 0].max() * 1e3, 'mrad')} below 9 000 rpm, up to {_fmt(tmax, 'mrad')} above | "
                  f"{'yes' if tmax > 2 * U[lo][:, :, 0].max() * 1e3 else 'no'} (magnitude set by the assumed support tilt stiffness) |")
     lines += ["", "Files: `study-cascade.png/.svg` (Fig. 12), `study-cascade-tilt.png/.svg` (Fig. 17), "
-              "`study-cascade-notilt.png/.svg` (Fig. 16), CSV tables of 1X–5X per speed beside them.", ""]
+              "`study-cascade-notilt.png/.svg` (Fig. 16): spectrogram maps (speed against order, the full spectrum "
+              "on one logarithmic colour scale for tilt on and off); CSV tables of 1X–5X per speed beside them, and "
+              "the binned spectra the maps draw (`*-spectrum.csv`). The converged mesh's: `study-cascade-e2*`.", ""]
     return "\n".join(lines)

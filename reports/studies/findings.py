@@ -131,3 +131,70 @@ def findings_rows(cascade=None, notilt=None, params=None, point=None) -> list[tu
 def findings_table(rows) -> list[str]:
     return ["| finding (Dai et al. 2025) | ours | holds? |", "|---|---|---|"] + \
         [f"| {a} | {b} | {c} |" for a, b, c in rows]
+
+
+# ---------------------------------------------------------------------------------------------
+# per speed band (rotor.studies.section5): the verdicts of study-findings.md
+# ---------------------------------------------------------------------------------------------
+
+_PARAM_CASES = {"base-rpm": "base", "c0.03mm-rpm": "c0.03", "c0.08mm-rpm": "c0.08", "d0.5mm-rpm": "d0.5",
+                "d2mm-rpm": "d2"}
+
+
+def _amps(p, quantity: str):
+    from reports.studies.common import channel_column
+    h = np.abs(p.arrays[f"harm_{quantity}"])
+    return h[:, [channel_column(p, c) for c in ("disk1.y", "disk2.y", "s.y")]].T, p.info
+
+
+def by_speed(cascade=None, notilt=None, params=None) -> tuple[dict, dict]:
+    """``({rpm: {case: (A, info)}}`` of y velocities from the cascades, the same of y displacements from
+    the params study)``: the inputs of :func:`rotor.studies.section5.band_verdict`."""
+    v: dict = {}
+    for pts, case in ((cascade or [], "base"), (notilt or [], "notilt")):
+        for p in pts:
+            v.setdefault(round(p.params["speed_rpm"], 1), {})[case] = _amps(p, "v")
+    q: dict = {}
+    for p in params or []:
+        prefix = p.key.rsplit("rpm", 1)[0] + "rpm"
+        if prefix in _PARAM_CASES:
+            q.setdefault(round(p.params["speed_rpm"], 1), {})[_PARAM_CASES[prefix]] = _amps(p, "q")
+    return v, q
+
+
+def band_verdicts(cascade=None, notilt=None, params=None) -> dict:
+    """``{finding name: {band: BandVerdict}}`` of every finding of :data:`rotor.studies.section5.FINDINGS`."""
+    from rotor.studies.section5 import FINDINGS, band_verdict
+
+    v, q = by_speed(cascade, notilt, params)
+    return {f.name: {b: band_verdict(f, b, v if f.quantity == "v" else q) for b in f.bands} for f in FINDINGS}
+
+
+def band_table(paper: dict, converged: dict, elements: int) -> list[str]:
+    """Markdown rows: one per finding, one column per band and mesh, the verdict and where it holds."""
+    from rotor.studies.section5 import BANDS, FINDINGS
+
+    heads = [f"{b} {BANDS[b][0]:.0f}–{BANDS[b][1]:.0f}" for b in BANDS]
+    lines = ["| finding (Dai et al. 2025) | mesh | " + " | ".join(heads) + " |", "|---|---|" + "---|" * len(BANDS)]
+    for f in FINDINGS:
+        for tag, bv in (("paper", paper), (f"{elements}/segment", converged)):
+            cells = []
+            for b in BANDS:
+                x = bv.get(f.name, {}).get(b)
+                cells.append("—" if x is None else x.verdict)
+            lines.append(f"| {f.claim} | {tag} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def band_details(verdicts: dict, tag: str) -> list[str]:
+    """Per finding and band: the speeds judged, where it holds, the numbers at each, the speeds left out."""
+    from rotor.studies.section5 import finding
+
+    out = [f"### {tag}", ""]
+    for name, bands in verdicts.items():
+        for b, x in bands.items():
+            pts = "; ".join(f"{s:.0f} {'✔' if ok else '✘'} {t}" for s, ok, t in zip(x.speeds_rpm, x.holds, x.texts))
+            skip = (" Not periodic (not judged; the predicate there: " + "; ".join(
+                f"{s:.0f} {'✔' if ok else '✘'} {t}" for s, ok, t in x.loose) + ").") if x.loose else ""
+            out.append(f"- **{finding(name).claim}**, {b}: {x.verdict}. {pts or 'no periodic speed'}.{skip}")
+    return out + [""]

@@ -18,30 +18,42 @@ COLUMNS = [f"{c}_{o}X_um" for c in ("disk1", "disk2", "support") for o in ORDERS
 def amplitude_grid(groups: dict, label, title: str):
     """3 × 3 grid, harmonic order (rows) × location (columns), one curve per group value.
 
-    ``groups``: ``{value: (speeds_rpm (P,), amplitudes_um (P, 3 locations, 3 orders))}``. Amplitudes at
-    or below :data:`FLOOR_UM` break the curve and are marked ``v`` on the lower edge ("below floor"),
-    so a zero is never drawn as a dip.
+    ``groups``: ``{value: (speeds_rpm (P,), amplitudes_um (P, 3 locations, 3 orders)[, periodic (P,) bool])}``.
+    Amplitudes at or below :data:`FLOOR_UM` break the curve and are marked ``v`` on the lower edge ("below
+    floor"), so a zero is never drawn as a dip. Points without a periodic steady state (their amplitudes are
+    those of a record that does not repeat) are drawn as open circles, and their count is in the legend.
     """
     plt = pyplot()
     from matplotlib.transforms import blended_transform_factory
 
     fig, axes = plt.subplots(3, 3, figsize=(13, 9.5), constrained_layout=True, sharex=True)
-    for n, (val, (rpm, A)) in enumerate(sorted(groups.items(), key=lambda kv: kv[0])):
+    n_irregular = 0
+    for n, (val, (rpm, A, *rest)) in enumerate(sorted(groups.items(), key=lambda kv: kv[0])):
         colour = f"C{n}"
+        periodic = np.asarray(rest[0], bool) if rest else np.ones(len(rpm), bool)
+        n_irregular += int((~periodic & ~np.isnan(np.asarray(A, float)).any(axis=(1, 2))).sum())
         for i in range(3):
             for j, (_, lab) in enumerate(LOCATIONS):
                 ax = axes[i, j]
                 a = np.asarray(A[:, j, i], dtype=float)
-                low = ~(a > FLOOR_UM)
+                low = a <= FLOOR_UM
+                beyond = np.isnan(a)            # no record: the ring past the contact law's neat-fit limit
                 ax.semilogy(rpm, np.where(low, np.nan, a), "-o", ms=2.5, lw=1, color=colour, label=label(val))
+                odd = ~periodic & ~low & ~beyond
+                ax.semilogy(rpm[odd], a[odd], "o", ms=6, mfc="none", mec=colour, mew=1.1)
                 edge = blended_transform_factory(ax.transData, ax.transAxes)
                 ax.plot(rpm[low], np.full(int(low.sum()), 0.015 + 0.03 * n), "v", ms=4, color=colour,
                         transform=edge, clip_on=False)
+                if beyond.any():
+                    ax.plot(rpm[beyond], np.full(int(beyond.sum()), 0.97 - 0.03 * n), "x", ms=5, color=colour,
+                            transform=edge, clip_on=False)
                 ax.set_title(f"{i + 1}X, {lab}", fontsize=9)
                 ax.set_ylabel(f"{i + 1}X displacement amplitude (µm)", fontsize=8)
                 if i == 2:
                     ax.set_xlabel("rotor speed (rpm)")
     axes[0, 0].plot([], [], "v", color="0.3", ms=4, label=f"below floor ({FLOOR_UM:g} µm, e.g. zero)")
+    axes[0, 0].plot([], [], "o", ms=6, mfc="none", mec="0.3", label=f"not periodic ({n_irregular} points)")
+    axes[0, 0].plot([], [], "x", ms=5, color="0.3", label="beyond the contact law's domain (no record)")
     axes[0, 0].legend(fontsize=8)
     fig.suptitle(title, fontsize=10)
     return fig
@@ -67,7 +79,8 @@ def grids_from_rows(rows: list[dict]) -> tuple[dict, dict]:
         for v, rs in g.items():
             rs = sorted(rs, key=lambda r: float(r["speed_rpm"]))
             amps = np.array([[float(r[c]) for c in COLUMNS] for r in rs]).reshape(len(rs), 3, 3)
-            out[v] = (np.array([float(r["speed_rpm"]) for r in rs]), amps)
+            periodic = np.array([r.get("converged", "1") == "1" for r in rs])
+            out[v] = (np.array([float(r["speed_rpm"]) for r in rs]), amps, periodic)
         return out if len(out) > 1 else {}
     return group("clearance_mm", "misalignment_mm", ref_m), group("misalignment_mm", "clearance_mm", ref_c)
 
@@ -108,6 +121,12 @@ def params_note(points) -> str:
     lines = ["# Harmonic amplitudes vs speed for several clearances and misalignments (paper Figs. 18–19)", "",
              "Displacement amplitudes (µm) of 1X, 2X, 3X at disk 1, disk 2 and the 3# bearing support, "
              "`ringcontact study params`. Trend checks below use the speeds ≥ 9 000 rpm (the paper's 'high speed').", ""]
+    beyond = [p for p in points if "outside_law_domain" in p.info]
+    if beyond:
+        lines += ["Points where the load drives the ring past the conformal law's neat-fit limit (no record; a gap "
+                  "and × in the figures): " + ", ".join(f"δ0 {p.info['clearance_m'] * 1e3:g} mm, δ "
+                                                      f"{p.info['misalignment_m'] * 1e3:g} mm at {p.params['speed_rpm']:.0f} rpm"
+                                                      for p in beyond) + ".", ""]
     base = [p for p in points if "clearance_m" not in p.params and "misalignment_m" not in p.params]
     for key, name, unit in (("clearance_m", "clearance δ0", "mm"), ("misalignment_m", "misalignment δ", "mm")):
         groups = {}
@@ -123,7 +142,7 @@ def params_note(points) -> str:
             pts = sorted(groups[v], key=lambda p: p.params["speed_rpm"])
             rpm, A = harmonic_table(pts, "q", orders=(1, 2, 3))
             hi = rpm >= 9000
-            m = np.median(A[hi], axis=0) * 1e6  # (loc, order)
+            m = np.nanmedian(A[hi], axis=0) * 1e6  # (loc, order); a point beyond the law's domain has none
             med[v] = m
             nconv = sum(p.info["converged"] for p, h in zip(pts, hi) if h)
             lines.append(f"| {v * 1e3:g} | {m[0, 0]:.3g} | {m[1, 1]:.3g} | {m[1, 2]:.3g} | {m[2, 1]:.3g} | {m[2, 2]:.3g} "

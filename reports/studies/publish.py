@@ -4,7 +4,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from contact.files import atomic_write_text
-from reports.studies.cascade import cascade_figures, cascade_note
+from reports.studies.cascade import CASCADE_TITLE, NOTILT_TITLE, cascade_figures, cascade_note
 from reports.studies.common import load_points
 from reports.studies.mesh import KINDS, findings_figure, findings_note
 from reports.studies.params import params_figures, params_note
@@ -14,34 +14,21 @@ from reports.studies.runup import runup_figures, runup_note
 from reports.studies.testrig import testrig_figures, testrig_note
 
 
-def publish(runs: dict, published) -> list[Path]:
+def publish(runs: dict, published, *, findings_extra: str = "") -> list[Path]:
     """Figures + notes of finished study directories into ``published`` as ``study-*`` files.
 
     ``runs``: ``{"cascade": dir, "notilt": dir, "params": dir, "point": dir, "testrig": dir, "map": dir,
     "runup": dir}`` (any subset), and the same studies on a converged mesh as ``"<kind>_converged"``
-    with ``"elements"`` (elements per segment): then ``study-findings.md`` judges the five Section 5
-    findings on both meshes.
+    with ``"elements"`` (elements per segment): their figures and CSVs are written as ``study-*-e<N>``, and
+    ``study-findings.md`` judges the Section 5 findings per speed band on both meshes (``findings_extra``:
+    the hand-written reading appended, reports/notes/study-findings-reading.md).
     """
-    from sweep import read_timing
 
     published = Path(published)
     files = []
-    if "cascade" in runs:
-        files += cascade_figures(runs["cascade"], published, prefix="study-cascade")
-        notilt = None
-        if "notilt" in runs:
-            files += cascade_figures(runs["notilt"], published, prefix="study-cascade-notilt",
-                                     title="Spectrum cascades with the tilt ignored (paper Fig. 16)")
-            notilt = load_points(runs["notilt"])
-        timing = read_timing(runs["cascade"])
-        files.append(atomic_write_text(published / "study-cascade.md",
-                                       cascade_note(load_points(runs["cascade"]), notilt, timing)))
-    if "params" in runs:
-        files += params_figures(runs["params"], published)
-        files.append(atomic_write_text(published / "study-params.md", params_note(load_points(runs["params"]))))
-    if "point" in runs:
-        files += point_figures(runs["point"], published)
-        files.append(atomic_write_text(published / "study-point.md", point_note(load_points(runs["point"]))))
+    elements = int(runs.get("elements", 2))
+    for suffix, tag in (("", ""), ("_converged", f"-e{elements}")):
+        files += _family(runs, suffix, tag, published, elements)
     if "testrig" in runs:
         files += testrig_figures(runs["testrig"], published)
         files.append(atomic_write_text(published / "study-testrig.md", testrig_note(load_points(runs["testrig"]))))
@@ -54,7 +41,36 @@ def publish(runs: dict, published) -> list[Path]:
     if any(f"{k}_converged" in runs for k in KINDS):
         paper = {k: load_points(runs[k]) for k in KINDS if k in runs}
         conv = {k: load_points(runs[f"{k}_converged"]) for k in KINDS if f"{k}_converged" in runs}
-        elements = int(runs.get("elements", 2))
         files += findings_figure(paper, conv, elements, published / "study-findings")
-        files.append(atomic_write_text(published / "study-findings.md", findings_note(paper, conv, elements)))
+        files.append(atomic_write_text(published / "study-findings.md",
+                                       findings_note(paper, conv, elements, extra=findings_extra)))
+    return files
+
+
+def _family(runs: dict, suffix: str, tag: str, published: Path, elements: int) -> list[Path]:
+    """The cascade (tilt on and off, one colour scale), params and point figures + CSVs of one mesh: the
+    paper's (``suffix`` "", files ``study-*``) or the converged one (``_converged``, ``study-*-e<N>``)."""
+    from sweep import read_timing
+
+    files = []
+    mesh = "" if not suffix else f", {elements} elements per segment"
+    if f"cascade{suffix}" in runs:
+        cas = load_points(runs[f"cascade{suffix}"])
+        notilt = load_points(runs[f"notilt{suffix}"]) if f"notilt{suffix}" in runs else None
+        files += cascade_figures(runs[f"cascade{suffix}"], published, prefix=f"study-cascade{tag}",
+                                 title=CASCADE_TITLE.format(mesh=mesh), scale_with=notilt)
+        if notilt:
+            files += cascade_figures(runs[f"notilt{suffix}"], published, prefix=f"study-cascade-notilt{tag}",
+                                     title=NOTILT_TITLE.format(mesh=mesh), scale_with=cas)
+        if not suffix:
+            files.append(atomic_write_text(published / "study-cascade.md",
+                                           cascade_note(cas, notilt, read_timing(runs["cascade"]))))
+    if f"params{suffix}" in runs:
+        files += params_figures(runs[f"params{suffix}"], published, prefix=f"study-params{tag}")
+        if not suffix:
+            files.append(atomic_write_text(published / "study-params.md", params_note(load_points(runs["params"]))))
+    if f"point{suffix}" in runs:
+        files += point_figures(runs[f"point{suffix}"], published, prefix=f"study-point{tag}")
+        if not suffix:
+            files.append(atomic_write_text(published / "study-point.md", point_note(load_points(runs["point"]))))
     return files

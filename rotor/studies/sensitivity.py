@@ -175,24 +175,33 @@ def scaled_overrides(scene, factors: dict) -> dict:
 
 @dataclass(frozen=True)
 class Variant:
-    """A named set of factors on the unstated inputs (empty: the scene as it is)."""
+    """A named set of factors on the unstated inputs (empty: the scene as it is), under a reading of
+    Eq. 34 (``reading``: a name of :data:`rotor.studies.readings.READINGS`; None: the scene's)."""
 
     name: str
     factors: dict = field(default_factory=dict)
     why: str = ""
+    reading: str | None = None
 
 
 _MODELS: dict = {}
 
 
-def variant_model(scene_name: str, overrides: dict):
-    """``(scene, model)`` of a variant, cached per process (sweep workers reuse it)."""
-    key = (scene_name, json.dumps(check_overrides(overrides), sort_keys=True))
+def _reading_scene(scene_name: str, reading: str | None):
+    from rotor.model.scene import load_scene
+    from rotor.studies.readings import reading_scene
+
+    sc = load_scene(scene_name)
+    return sc if reading is None else reading_scene(sc, reading)
+
+
+def variant_model(scene_name: str, overrides: dict, reading: str | None = None):
+    """``(scene, model)`` of a variant (under ``reading``, None: the scene's), cached per process."""
+    key = (scene_name, json.dumps(check_overrides(overrides), sort_keys=True), reading)
     if key not in _MODELS:
         from rotor.model.assembly import assemble
-        from rotor.model.scene import load_scene
 
-        sc = apply_overrides(load_scene(scene_name), overrides)
+        sc = apply_overrides(_reading_scene(scene_name, reading), overrides)
         _MODELS[key] = (sc, assemble(sc))
     return _MODELS[key]
 
@@ -217,7 +226,7 @@ ORDERS = (1, 2, 3, 4, 5)
 
 
 def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = None, options: dict | None = None,
-                      cases: list | None = None):
+                      cases: list | None = None, reading: str | None = None):
     """Steady states of every case at one speed for one variant, as ``(arrays, info)``.
 
     The reference case ('base': δ0 = 0.05 mm, δ = 1 mm, tilt on) starts from the misalignment
@@ -235,7 +244,7 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
     names = list(cases) if cases is not None else list(CASE_NAMES)
     if not names or names[0] != "base" or any(c not in CASES for c in names):
         raise InputError(f"cases = {names}: must start with 'base' and be among {', '.join(CASE_NAMES)}")
-    sc, model = variant_model(scene, overrides or {})
+    sc, model = variant_model(scene, overrides or {}, reading)
     opts = SteadyStateOptions(**(options or {}))
     omega = float(speed_rpm) * math.pi / 30.0
     C = len(names)
@@ -244,7 +253,8 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
     hu = np.zeros((C, len(ORDERS), 4))
     periodic = np.zeros(C, bool)
     cfrac = np.zeros(C)
-    info = {"speed_rpm": float(speed_rpm), "overrides": check_overrides(overrides or {}), "cases": names}
+    info = {"speed_rpm": float(speed_rpm), "overrides": check_overrides(overrides or {}), "cases": names,
+            **({"reading": reading} if reading else {})}
     base = None
     for i, name in enumerate(names):
         kw = {**REFERENCE, **CASES[name]}
@@ -274,12 +284,12 @@ def variant_tasks(scene: str, variant: Variant, speeds_rpm, *, options: dict | N
 
     Keys ``<variant>-rpm<speed>``; params hold the absolute overrides (resolved from the factors
     against the scene), so a stored point says exactly what it was computed with."""
-    from rotor.model.scene import load_scene
     from sweep import Task
 
-    ov = scaled_overrides(load_scene(scene), variant.factors) if variant.factors else {}
+    ov = scaled_overrides(_reading_scene(scene, variant.reading), variant.factors) if variant.factors else {}
+    extra = {"reading": variant.reading} if variant.reading else {}
     return [Task(f"{variant.name}-rpm{float(s):.0f}", run_variant_point,
-                 {"scene": scene, "speed_rpm": float(s), "overrides": ov, "options": dict(options or {})})
+                 {"scene": scene, "speed_rpm": float(s), "overrides": ov, "options": dict(options or {}), **extra})
             for s in speeds_rpm]
 
 
@@ -541,6 +551,24 @@ def combinations() -> list:
             Variant("ks-x10+ks_theta-x0.01+muN-x0.2", {"ks": 10.0, "ks_theta": 0.01, "preload": 0.2}, why)]
 
 
+def reading_variants(scene: str = "paper-table4") -> list:
+    """Every other reading of Eq. 34 (rotor.studies.readings), as it is and with m_sp and L varied, so that
+    the study covers every reading, not only the scene's."""
+    from rotor.model.scene import load_scene
+    from rotor.studies.readings import READINGS, scene_reading
+
+    current = scene_reading(load_scene(scene))
+    out = []
+    for r in READINGS:
+        if r.name == current:
+            continue
+        why = f"reading {r.name} of Eq. 34 ({r.excitation}, m_sp {r.shaft_mass_kg:g} kg, L {r.lever_m * 1e3:g} mm)"
+        out.append(Variant(f"reading-{r.name}", {}, why, reading=r.name))
+        for g, f in (("msp", 0.3), ("msp", 3.0), ("lever", 0.5), ("lever", 2.0)):
+            out.append(Variant(f"reading-{r.name}+{g}-x{f:g}", {g: f}, f"{why}; {g} ×{f:g}", reading=r.name))
+    return out
+
+
 def study_variants() -> list:
-    """Every variant of the study: one-at-a-time, then combinations."""
-    return one_at_a_time() + combinations()
+    """Every variant of the study: one-at-a-time, combinations, then the other readings of Eq. 34."""
+    return one_at_a_time() + combinations() + reading_variants()

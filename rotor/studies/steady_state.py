@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact.errors import InputError
+from contact.errors import InputError, OutsideDomainError
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import RotorSystem, largest_stable_step
@@ -497,7 +497,11 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
     sc, model, system = point_system(scene, speed_rpm, clearance_m=clearance_m, misalignment_m=misalignment_m,
                                      tilt_ignored=tilt_ignored, mu=mu, preload_n=preload_n,
                                      elements_per_segment=elements_per_segment, law=law)
-    res = steady_state(system, model, options=opts)
+    try:
+        res = steady_state(system, model, options=opts)
+    except OutsideDomainError as exc:
+        return beyond_law_record(model, system, exc, speed_rpm=speed_rpm, misalignment_m=misalignment_m,
+                                 tilt_ignored=tilt_ignored, elements_per_segment=elements_per_segment)
     return point_record(res, sc, model, system, opts, speed_rpm=speed_rpm, misalignment_m=misalignment_m,
                         tilt_ignored=tilt_ignored, max_order=max_order, history_revs=history_revs,
                         elements_per_segment=elements_per_segment)
@@ -540,6 +544,27 @@ def point_record(res: SteadyResult, sc, model, system, opts: SteadyStateOptions,
             "options": dataclasses.asdict(opts), **res.regime(), **_law_info(sc, res),
             **(contact_summary(res.t, res.f_contact, res.modes, n_faces=res.n_faces)
                if system.support is not None else {})}
+    return arrays, info
+
+
+def beyond_law_record(model, system, exc, *, speed_rpm: float, misalignment_m, tilt_ignored: bool,
+                      elements_per_segment=None):
+    """``(arrays, info)`` of a point whose load drives the ring past the contact law's neat-fit limit
+    (:class:`contact.errors.OutsideDomainError`): a measured outcome of the operating point, not a failed run.
+    No record exists: the harmonic amplitudes are NaN (figures leave a gap, tables say why), the point is not
+    periodic, and ``info["outside_law_domain"]`` holds the law's message."""
+    stations = model.response_stations()
+    channels = np.array([f"{s}.{c}" for s in stations for c in ("y", "z")])
+    nan = np.full((5, len(channels)), np.nan + 0j)
+    arrays = {"channels": channels, "harm_q": nan, "harm_v": nan.copy(), "harm_u": np.full((5, 4), np.nan + 0j),
+              "spec_orders": np.zeros(0), "spec_q": np.zeros((0, len(channels))),
+              "spec_v": np.zeros((0, len(channels))), "spec_u": np.zeros((0, 4))}
+    info = {"speed_rpm": float(speed_rpm), "converged": False, "period_revs": 0, "outside_law_domain": str(exc),
+            "label": "beyond law", "clearance_m": float(system.support.law.clearance_m),
+            "misalignment_m": float(misalignment_m if misalignment_m is not None
+                                    else (model.scene.misalignment.offset_m if model.scene.misalignment else 0.0)),
+            "tilt_ignored": bool(tilt_ignored), "elements_per_segment": elements_per_segment,
+            "transient_revs": 0, "record_revs": 0}
     return arrays, info
 
 

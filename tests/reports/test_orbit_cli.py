@@ -166,12 +166,13 @@ def test_table4_orbit_equals_simulate_steady_at_10500_rpm(tmp_path, capsys):
     """Issue 18 must-show: Table 4 at 10 500 rpm, the shooting orbit's 1X-5X equal the transient steady
     state's (``simulate --steady``) within 1e-4 relative (to each channel's 1X). The left end face sticks
     through the orbit (a continuum of orbits): the orbit job shoots once the transient's conserved levels
-    stop drifting (rotor/periodic/shooting.py), so it lands on the transient's member."""
-    rc, text, err = _run(["orbit", "paper-table4", "--speed-rpm", 10500, "--json"], capsys)
+    stop drifting (rotor/periodic/shooting.py), so it lands on the transient's member. Scene: the former
+    reading of Eq. 34 (rotor/scenes/paper-table4-inertial.toml), where that continuum was measured."""
+    rc, text, err = _run(["orbit", "paper-table4-inertial", "--speed-rpm", 10500, "--json"], capsys)
     assert rc == 0, err
     d = json.loads(text)
-    rc, _, err = _run(["simulate", "--speed-rpm", 10500, "--steady", "--revolutions", 4, "--out", tmp_path / "s"],
-                      capsys)
+    rc, _, err = _run(["simulate", "--scene", "paper-table4-inertial", "--speed-rpm", 10500, "--steady",
+                       "--revolutions", 4, "--out", tmp_path / "s"], capsys)
     assert rc == 0, err
     sim = json.loads((tmp_path / "s" / "simulate-summary.json").read_text())
     assert _amplitudes_agree(d["velocity_amplitudes_mm_s_1X_to_5X"], sim["velocity_amplitudes_mm_s_1X_to_5X"],

@@ -6,7 +6,7 @@
 * the CSV adapters give back the numbers ``study publish`` plotted (round trip through the CSV);
 * the sensitivity figure names its rows in words with units and keeps its axis to ±2 decades, a ratio
   beyond drawn on the edge; the params figures never draw a zero at the floor as a point of a curve;
-  the cascade order labels sit above the plot area, named 1X–5X;
+  the cascade maps name the orders 1X–5X and share one amplitude scale per figure;
 * no "1f"-style harmonic names are left in the study code and reports (quotes of the paper aside).
 """
 from __future__ import annotations
@@ -117,23 +117,26 @@ def test_params_zeros_are_marked_below_the_floor_not_drawn_as_dips(monkeypatch):
     assert any("below floor" in t.get_text() for t in fig.axes[0].get_legend().get_texts())
 
 
-def test_cascade_order_labels_are_1x_to_5x_above_the_plot_area(tmp_path, monkeypatch):
+def test_cascade_maps_name_the_orders_and_share_one_amplitude_scale(tmp_path, monkeypatch):
+    """The cascades are maps of speed against order: ticks 0, 1X–5X on the order axis; every panel of a figure
+    (and the tilt-ignored cascade drawn beside it) on one logarithmic scale, four decades, with one colour bar
+    in the unit of the amplitude (issue 25: amplitudes readable and comparable across panels)."""
     figs = _capture(monkeypatch, cascade)
-    draw = cascade.cascade_redraw(PUBLISHED / "study-cascade.csv", tmp_path, "c")
+    draw = cascade.spectrum_redraw(PUBLISHED / "study-cascade-spectrum.csv", tmp_path, "c", "t",
+                                   PUBLISHED / "study-cascade-notilt-spectrum.csv")
     draw()
-    for fig in figs:
-        fig.canvas.draw()
-        renderer = fig.canvas.get_renderer()
-        data_axes = [ax for ax in fig.axes if ax.get_label() != "<colorbar>" and ax.get_xlabel() == "frequency (Hz)"]
-        assert data_axes
+    assert len(figs) == 2
+    for fig, unit in zip(figs, ("mm/s", "mrad")):
+        data_axes = [ax for ax in fig.axes if ax.get_xlabel().startswith("frequency / rotation frequency")]
+        assert len(data_axes) in (2, 3)
         for ax in data_axes:
-            top = next(c for c in ax.child_axes)
-            texts = [t for t in top.get_xticklabels() if t.get_text()]
-            assert [t.get_text() for t in texts] == ["1X", "2X", "3X", "4X", "5X"]
-            for t in texts:
-                box = t.get_window_extent(renderer)
-                assert box.y0 >= ax.bbox.y1 - 1 and box.y1 <= fig.bbox.y1      # outside the data, inside the figure
-                assert ax.bbox.x0 - 1 <= box.x0 and box.x1 <= ax.bbox.x1 + 1
+            assert [t.get_text() for t in ax.get_xticklabels()] == ["0", "1X", "2X", "3X", "4X", "5X"]
+        norms = {(m.norm.vmin, m.norm.vmax) for ax in data_axes for m in ax.collections}
+        assert len(norms) == 1
+        (lo, hi), = norms
+        assert hi / lo == pytest.approx(1e4)
+        bars = [ax for ax in fig.axes if unit in ax.get_ylabel()]
+        assert len(bars) == 1
 
 
 HARMONIC_F = re.compile(r"(?<![A-Za-z0-9_.:%{\\])[1-5]f(?=[\s_–\-,/)(\].+*|'\"`;:]|$)|\{h\}f[_\" ]|_[1-5]f(_|\b)")

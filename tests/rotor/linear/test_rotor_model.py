@@ -110,8 +110,8 @@ def test_misalignment_offset_is_eq33(table4):
 
 def test_misalignment_excitation_is_eq34(table4):
     """Eq. 34: F = 2 m_sp L tan(Δθ/2) Ω² (cos 2Ωt, sin 2Ωt), M = m_sp L² tan(Δθ/2) Ω² (…); the
-    scene's reading "inertial-at-joint": F in the same direction on 3a and 3b, M opposed (the other
-    readings: tests/rotor/model/test_misalignment_readings.py)."""
+    scene's reading "opposed-at-joint": F and M on 3a, −F and −M on 3b (the other readings:
+    tests/rotor/model/test_misalignment_readings.py)."""
     W, t = 1000.0, 0.0123
     cp = table4.scene.couplings[0]
     tt = math.tan(1e-3 / 1.5 / 2)
@@ -121,7 +121,7 @@ def test_misalignment_excitation_is_eq34(table4):
     i = table4.dof_index
     c, s = math.cos(2 * W * t), math.sin(2 * W * t)
     assert [f[i("3a.y")], f[i("3a.z")], f[i("3a.θy")], f[i("3a.θz")]] == pytest.approx([F * c, F * s, Mm * c, Mm * s])
-    assert [f[i("3b.y")], f[i("3b.z")], f[i("3b.θy")], f[i("3b.θz")]] == pytest.approx([F * c, F * s, -Mm * c, -Mm * s])
+    assert [f[i("3b.y")], f[i("3b.z")], f[i("3b.θy")], f[i("3b.θz")]] == pytest.approx([-F * c, -F * s, -Mm * c, -Mm * s])
     assert np.count_nonzero(f) == 8
     assert misalignment_force(table4, np.array([t, 2 * t]), W).shape == (2, 28)
 

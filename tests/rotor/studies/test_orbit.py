@@ -1,5 +1,9 @@
 """orbit() on the Table 4 rotor (Dai et al. 2025) at 10 500 rpm, against the transient steady state that
-``simulate --steady`` reports (rotor.studies.steady_state from the linear periodic solution)."""
+``simulate --steady`` reports (rotor.studies.steady_state from the linear periodic solution).
+
+Scene: the Table 4 rotor under the former reading of Eq. 34 (rotor/scenes/paper-table4-inertial.toml),
+where these operating points (a stuck face's continuum at 10 500 rpm, switch-free orbits at 11 400-12 000 rpm)
+were found and measured."""
 import numpy as np
 import pytest
 
@@ -9,12 +13,13 @@ from rotor.studies.orbit import orbit
 from rotor.studies.steady_state import steady_state, point_system
 
 SPEED = 10500.0
+SCENE = "paper-table4-inertial"
 
 
 @pytest.fixture(scope="module")
 def transient():
     warm_up()
-    _, model, system = point_system("paper-table4", SPEED)
+    _, model, system = point_system(SCENE, SPEED)
     q0, v0 = linear_initial_state(system, 0.0)
     return steady_state(system, model, q0=q0, v0=v0)
 
@@ -30,7 +35,7 @@ def test_shooting_from_the_transient_state_reproduces_its_harmonics(transient):
     revolution, and the 1X-5X velocity amplitudes at every station equal the transient's to 1e-4 (measured
     3.5e-5, the transient's own Poincaré tolerance being 1e-4)."""
     assert transient.convergence.converged and transient.convergence.period == 1
-    o = orbit("paper-table4", SPEED, start=(transient.q_end, transient.v_end))
+    o = orbit(SCENE, SPEED, start=(transient.q_end, transient.v_end))
     assert o.converged and o.residual < 1e-9 and o.period_revs == 1
     assert set(o.velocity_amplitudes_mm_s_1X_to_5X) == set(transient.channels)
     assert _worst(o, transient) < 1e-4
@@ -44,7 +49,7 @@ def test_a_stuck_face_makes_a_continuum_and_the_cold_orbit_is_the_transients_mem
     (revolution 246, measured); the cold shot watches the conserved levels and shoots once they stop
     drifting, so it lands on that member: 1X-5X equal ``simulate --steady``'s to 1e-4 (issue 18 must-show),
     and the transient it ran is at least the 246 revolutions."""
-    o = orbit("paper-table4", SPEED)
+    o = orbit(SCENE, SPEED)
     assert o.converged and o.residual < 1e-9 and o.period_revs == 1
     assert o.floquet.n_neutral == 2 and o.stable
     assert o.events > 0 and not o.switch_free              # the right face switches stick/slip in the period
@@ -64,7 +69,7 @@ def test_a_minimum_norm_newton_before_the_levels_settle_lands_on_another_member(
     try:
         sh.level_step = lambda J, rhs, rcond, back=None: (*sh.min_norm_step(J, rhs, rcond), np.zeros((len(rhs), 0)))
         sh._settle = lambda run, res, opts: res
-        o = orbit("paper-table4", SPEED)
+        o = orbit(SCENE, SPEED)
     finally:
         sh.level_step, sh._settle = level_step, settle
     assert o.converged and o.transient_revs < 246
@@ -79,7 +84,7 @@ def test_cascade_warm_starts_each_speed_from_the_previous_orbit():
     converges; after the first, each starts from its neighbour with 2 transient revolutions only."""
     from rotor.studies.orbit import cascade
 
-    res = cascade("paper-table4", [11400.0, 11700.0, 12000.0])
+    res = cascade(SCENE, [11400.0, 11700.0, 12000.0])
     assert all(r.converged and r.period_revs == 1 for r in res)
     assert res[0].transient_revs >= 16 and all(r.transient_revs == 2 for r in res[1:])
     assert all(r.switch_free and r.stable for r in res)
@@ -89,7 +94,7 @@ def test_a_small_orbit_on_a_large_offset_converges_at_the_noise_floor():
     """300 rpm: a 0.24 µm orbit on a 1 mm misalignment offset, 4 480 steps per revolution (contact step
     limit). Newton stalls near 2e-9 of the orbit scale, above tol (1e-9) and below accept_tol (1e-7): the
     orbit is accepted and its residual reported; both faces stick throughout (4 neutral multipliers)."""
-    o = orbit("paper-table4", 300.0, period_revs=1)
+    o = orbit(SCENE, 300.0, period_revs=1)
     assert o.converged and o.steps_per_rev > 256
     assert o.residual < 1e-7
     assert o.floquet.n_neutral == 4
@@ -100,10 +105,10 @@ def test_bad_requests_are_refused_in_one_line():
     from rotor.studies.orbit import branch
 
     with pytest.raises(InputError, match="speed_rpm"):
-        orbit("paper-table4", 0.0)
+        orbit(SCENE, 0.0)
     with pytest.raises(InputError, match="period_revs"):
-        orbit("paper-table4", 10500.0, period_revs=9)
+        orbit(SCENE, 10500.0, period_revs=9)
     with pytest.raises(InputError, match="rpm_end"):
-        branch("paper-table4", 10500.0, 10500.0)
+        branch(SCENE, 10500.0, 10500.0)
     with pytest.raises(InputError, match="rpm_start"):
-        branch("paper-table4", -1.0, 10500.0)
+        branch(SCENE, -1.0, 10500.0)

@@ -1,0 +1,260 @@
+"""Point B (10 500 rpm) under every reading of Eq. 34 on both meshes, judged by the paper's text of Figs. 14–15.
+
+Dai et al. (2025), §5.1, of point B: "The trajectories of different positions are non-circular";
+the spectra are "primarily dominated by the rotational frequency f and harmonic frequency 2 f
+caused by misalignment, but are also accompanied by noticeable harmonic frequency components such
+as 3 f, 4 f, 5 f", "the closer to the loose support, the more pronounced"; "there is a certain amount
+of relative movement between the support and rotor"; r1, r2 "fluctuate periodically within a
+certain range near clearance δ0, indicating that there is periodic contact and separation".
+Each statement is a row (:data:`STATEMENTS`) with a measured number and a stated threshold; the
+readings are :data:`rotor.studies.readings.READINGS`; the points come from ``ringcontact study
+readings`` (:func:`rotor.studies.readings.reading_tasks`). :func:`readings_table` judges them,
+:func:`chosen_reading` picks the reading that meets the most rows, :func:`readings_note` and
+:func:`readings_csv` write reports/published/section5-readings.md and .csv.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from reports.studies.common import LOCATIONS, channel_column, harmonic_table, write_csv
+
+#: an orbit is non-circular when its largest radius about the mean is ≥ this times its smallest
+#: (a 20 % departure shows on an orbit plot; a whirl at 1X alone with isotropic bearings gives 1.0)
+NONCIRCULAR_RATIO = 1.2
+#: a harmonic is "noticeable" on a linear spectrum when it is ≥ 5 % of 1X (as reports/studies/findings.py, point A)
+VISIBLE = 0.05
+#: "periodic contact and separation": each takes at least this share of the record
+SHARE = 0.05
+
+POINT_B_RPM = 10500.0
+POINT_A_RPM = 4500.0
+#: the low-speed sweep of each reading: where the end faces first slip (§5.3.1 (1) says they do not below 9 000 rpm)
+LOW_RPM = tuple(float(s) for s in range(3000, 9000, 300))
+
+STATEMENTS = (
+    ("B: contact and separation", "r1, r2 \"fluctuate ... near clearance δ0 ... periodic contact and separation\": "
+     f"contact and separation each ≥ {100 * SHARE:.0f} % of the record"),
+    ("B: r1 and r2 cross δ0", "r1 and r2 each range across δ0 (min < δ0 < max)"),
+    ("B: orbits non-circular", f"\"trajectories of different positions are non-circular\": largest/smallest orbit "
+     f"radius ≥ {NONCIRCULAR_RATIO} at disk 1, disk 2 and the support"),
+    ("B: relative movement", "\"a certain amount of relative movement between the support and rotor\": end faces "
+     "slip part of the record"),
+    ("B: 2X noticeable at the support", f"spectra \"dominated by ... f and ... 2 f\": 2X/1X ≥ {VISIBLE} at the support"),
+    ("B: 3X–5X noticeable, most near the support", f"(3X+4X+5X)/1X ≥ {VISIBLE} at the support and rising from "
+     "disk 1 to disk 2 to the support"),
+)
+#: the paper's text of Fig. 13 (point A), the cross-check: a reading must not lose point A to win point B
+STATEMENTS_A = (
+    ("A: orbits approximately circular", f"\"trajectories ... (at disk 1 and disk 2) are approximately circular\": "
+     f"largest/smallest radius < {NONCIRCULAR_RATIO} at both"),
+    ("A: no relative movement", "\"the support moves together with the rotor ... no relative movement\": end faces "
+     "stuck the whole record"),
+    ("A: 1X dominates", "\"primarily dominated by the rotational frequency f\": 1X the largest of 1X–5X at every station"),
+    ("A: 2X relatively highest at the 3# bearing", f"2X/1X ≥ {VISIBLE} at the support and larger there than at "
+     "disk 1 and disk 2"),
+)
+
+
+def orbit_radius_ratios(p) -> np.ndarray:
+    """Largest over smallest orbit radius about the mean (–) at disk 1, disk 2 and the support of a point's history."""
+    a = p.arrays
+    out = []
+    for ch, _ in LOCATIONS:
+        y = a["q"][:, channel_column(p, ch)]
+        z = a["q"][:, channel_column(p, ch.replace(".y", ".z"))]
+        r = np.hypot(y - y.mean(), z - z.mean())
+        out.append(float(r.max() / max(r.min(), 1e-30)))
+    return np.array(out)
+
+
+def point_measures(p) -> dict:
+    """The numbers each statement is judged on, for one point (SI and ratios)."""
+    _, V = harmonic_table([p], "v")
+    v = V[0]
+    d0 = p.info["clearance_m"]
+    r1, r2 = np.asarray(p.arrays["r1"]), np.asarray(p.arrays["r2"])
+    disk2 = [channel_column(p, "disk2.y"), channel_column(p, "disk2.z")]
+    q2 = p.arrays["q"][:, disk2]
+    rad2 = np.hypot(*(q2 - q2.mean(axis=0)).T)
+    return {"contact_share": float(p.info["contact_fraction"]), "stick_share": float(p.info["stick_fraction"]),
+            "r1_min_over_d0": float(r1.min() / d0), "r1_max_over_d0": float(r1.max() / d0),
+            "r2_min_over_d0": float(r2.min() / d0), "r2_max_over_d0": float(r2.max() / d0),
+            "orbit_ratio": orbit_radius_ratios(p), "disk2_radius_um": (float(rad2.min() * 1e6), float(rad2.max() * 1e6)),
+            "v2_over_v1": v[:, 1] / v[:, 0], "v35_over_v1": v[:, 2:].sum(axis=1) / v[:, 0],
+            "largest_order": np.argmax(v, axis=1) + 1,
+            "periodic": bool(p.info["converged"]), "period_revs": int(p.info["period_revs"])}
+
+
+def judge(m: dict) -> list[tuple[str, bool]]:
+    """``[(our numbers, holds)]`` per statement of :data:`STATEMENTS` (point B), in order."""
+    c = m["contact_share"]
+    cross1 = m["r1_min_over_d0"] < 1 < m["r1_max_over_d0"]
+    cross2 = m["r2_min_over_d0"] < 1 < m["r2_max_over_d0"]
+    o, v2, v35 = m["orbit_ratio"], m["v2_over_v1"], m["v35_over_v1"]
+    lo, hi = m["disk2_radius_um"]
+    return [(f"contact {100 * c:.0f} % / separation {100 * (1 - c):.0f} %", SHARE <= c <= 1 - SHARE),
+            (f"r1/δ0 {m['r1_min_over_d0']:.3f}–{m['r1_max_over_d0']:.3f}, r2/δ0 {m['r2_min_over_d0']:.3f}–"
+             f"{m['r2_max_over_d0']:.3f}", cross1 and cross2),
+            (f"max/min radius {o[0]:.2f} / {o[1]:.2f} / {o[2]:.2f} (disk 2 {lo:.2f}–{hi:.2f} µm)",
+             bool(np.all(o >= NONCIRCULAR_RATIO))),
+            (f"faces stuck {100 * m['stick_share']:.0f} % of the record", m["stick_share"] < 1.0),
+            (f"2X/1X {v2[0]:.3f} / {v2[1]:.3f} / {v2[2]:.3f}", bool(v2[2] >= VISIBLE)),
+            (f"(3X+4X+5X)/1X {v35[0]:.4f} / {v35[1]:.4f} / {v35[2]:.4f}",
+             bool(v35[2] >= VISIBLE and v35[0] < v35[1] < v35[2]))]
+
+
+def judge_a(m: dict) -> list[tuple[str, bool]]:
+    """``[(our numbers, holds)]`` per statement of :data:`STATEMENTS_A` (point A), in order."""
+    o, v2 = m["orbit_ratio"], m["v2_over_v1"]
+    return [(f"max/min radius {o[0]:.2f} / {o[1]:.2f}", bool(np.all(o[:2] < NONCIRCULAR_RATIO))),
+            (f"faces stuck {100 * m['stick_share']:.0f} % of the record", m["stick_share"] >= 1.0),
+            (f"largest order {' / '.join(f'{k}X' for k in m['largest_order'])}", bool(np.all(m["largest_order"] == 1))),
+            (f"2X/1X {v2[0]:.3f} / {v2[1]:.3f} / {v2[2]:.3f}", bool(v2[2] >= VISIBLE and v2[2] > v2[:2].max()))]
+
+
+def _label(mesh) -> str:
+    return "paper's mesh" if mesh is None else f"{mesh} elements/segment"
+
+
+def readings_table(points) -> dict:
+    """``{(reading, mesh): (measures at B, [(text, holds)] for B then A)}`` of finished points (mesh None = the
+    paper's); the point A rows are left out when no 4 500 rpm point is there."""
+    by = {}
+    for p in points:
+        key = (p.params["reading_name"], p.params.get("elements_per_segment"))
+        by.setdefault(key, {})[round(p.params["speed_rpm"])] = None if "outside_law_domain" in p.info else \
+            point_measures(p)
+    out = {}
+    for key, m in by.items():
+        if round(POINT_B_RPM) not in m:
+            continue
+        mb, ma = m[round(POINT_B_RPM)], m.get(round(POINT_A_RPM), "none")
+        rows = judge(mb) if mb is not None else [(BEYOND, False)] * len(STATEMENTS)
+        if ma != "none":
+            rows += judge_a(ma) if ma is not None else [(BEYOND, False)] * len(STATEMENTS_A)
+        out[key] = (mb, rows)
+    return out
+
+
+#: the cell of a point whose load drives the ring past the conformal law's neat-fit limit (no record)
+BEYOND = "beyond the contact law's domain (neat-fit limit)"
+
+
+def chosen_reading(table: dict, current: str) -> tuple[str, dict]:
+    """The reading meeting the most rows over both meshes, and every reading's count; a tie keeps ``current``."""
+    counts: dict = {}
+    for (name, _), (_, rows) in table.items():
+        counts[name] = counts.get(name, 0) + sum(ok for _, ok in rows)
+    best = max(counts.values())
+    top = [n for n, k in counts.items() if k == best]
+    return (current if current in top else top[0]), counts
+
+
+def readings_note(table: dict, current: str, speed_rpm: float) -> str:
+    """reports/published/section5-readings.md from :func:`readings_table`."""
+    from rotor.studies.readings import reading
+
+    keys = sorted(table, key=lambda k: (k[0] != current, k[0], k[1] is not None, k[1] or 0))
+    best, counts = chosen_reading(table, current)
+    head = "| statement of the paper (B: Figs. 14–15; A: Fig. 13) | " + " | ".join(f"`{n}`, {_label(m)}" for n, m in keys) + " |"
+    lines = [f"# Point B ({speed_rpm:.0f} rpm): which reading of Eq. 34", "",
+             "Generated by `ringcontact study readings` (rotor.studies.readings, reports.studies.readings). Scene "
+             "`paper-table4` (δ0 = 0.05 mm, δ = 1 mm, μ = 0.3, preload 5 000 N, tilt on) with each reading's "
+             "placement, m_sp and L; the paper's mesh (1 element per segment) and the converged mesh. Point B is the "
+             "paper's high-speed point (§5.1: \"point B (10,500 rpm)\"). Each row is a sentence of the paper's text of "
+             "Figs. 14–15 (B) or, as a cross-check, of Fig. 13 at point A (4 500 rpm), with the number it is judged on "
+             "and the threshold; ✔ holds, ✘ does not. Three numbers are disk 1 / disk 2 / support (y velocity for "
+             "spectra). The default is the reading that meets the most rows over both points and meshes.", "",
+             "| reading | placement | m_sp (kg) | L (mm) | m_sp L² vs the 150 mm sleeve | the sentences it rests on |",
+             "|---|---|---|---|---|---|"]
+    for n in dict.fromkeys(k[0] for k in keys):
+        r = reading(n)
+        lines.append(f"| `{n}` | {r.excitation} | {r.shaft_mass_kg:g} | {r.lever_m * 1e3:g} | ×{r.moment_factor:.2f} | "
+                     f"{r.rests_on} |")
+    lines += ["", head, "|---|" + "---|" * len(keys)]
+    n_rows = min(len(table[k][1]) for k in keys)
+    for i, (title, rule) in enumerate((STATEMENTS + STATEMENTS_A)[:n_rows]):
+        cells = [f"{'✔' if table[k][1][i][1] else '✘'} {table[k][1][i][0]}" for k in keys]
+        lines.append(f"| {title}: {rule} | " + " | ".join(cells) + " |")
+    per = ["✘ no record" if table[k][0] is None else
+           f"{'✔' if table[k][0]['periodic'] else '✘'} period {table[k][0]['period_revs']} rev" for k in keys]
+    lines.append("| (point B periodic) | " + " | ".join(per) + " |")
+    lines.append("| rows met | " + " | ".join(f"{sum(ok for _, ok in table[k][1][:n_rows])} of {n_rows}"
+                                        for k in keys) + " |")
+    lines += ["", "Rows met over both meshes: " + ", ".join(f"`{n}` {k}" for n, k in counts.items()) + ".", "",
+              _verdict(best, current, counts), ""]
+    return "\n".join(lines)
+
+
+def _verdict(best: str, current: str, counts: dict) -> str:
+    top = max(counts.values())
+    tied = [n for n, k in counts.items() if k == top]
+    if len(tied) > 1:
+        return (f"Readings {', '.join(f'`{n}`' for n in tied)} meet the same number of rows ({top}); the default stays "
+                f"`{current}` (the point-A evidence, reports/published/rotor-misalignment.md, decides the tie).")
+    if best == current:
+        return (f"`{current}` meets the most rows ({top}) and is the scene's reading (its `[misalignment] excitation` "
+                f"and `[[couplings]]` m_sp, L).")
+    return (f"`{best}` meets the most rows ({top}, against {counts.get(current, 0)} for the scene's `{current}`): "
+            f"the scene should carry it.")
+
+
+def readings_csv(table: dict, path: Path) -> Path:
+    """One row per (reading, mesh) with every measured number."""
+    head = ["reading", "elements_per_segment", "contact_share", "stick_share", "r1_min_over_d0", "r1_max_over_d0",
+            "r2_min_over_d0", "r2_max_over_d0", "orbit_ratio_disk1", "orbit_ratio_disk2", "orbit_ratio_support",
+            "disk2_radius_min_um", "disk2_radius_max_um", "v2_over_v1_disk1", "v2_over_v1_disk2",
+            "v2_over_v1_support", "v345_over_v1_disk1", "v345_over_v1_disk2", "v345_over_v1_support", "periodic",
+            "period_revs", "rows_met"]
+    rows = []
+    for (n, mesh), (m, judged) in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
+        if m is None:
+            continue
+        rows.append([n, mesh or 1, m["contact_share"], m["stick_share"], m["r1_min_over_d0"], m["r1_max_over_d0"],
+                     m["r2_min_over_d0"], m["r2_max_over_d0"], *m["orbit_ratio"], *m["disk2_radius_um"],
+                     *m["v2_over_v1"], *m["v35_over_v1"], int(m["periodic"]), m["period_revs"],
+                     sum(ok for _, ok in judged)])
+    return write_csv(path, head, rows)
+
+
+def slip_lines(points) -> list[str]:
+    """Markdown rows: per reading and mesh, the lowest speed of the low sweep where the end faces slip."""
+    from rotor.studies.section5 import first_slip
+
+    by: dict = {}
+    for p in points:
+        by.setdefault((p.params["reading_name"], p.params.get("elements_per_segment")), []).append(p)
+    lines = ["| reading | mesh | faces first slip at (rpm) | contact there | beyond the law's domain at (rpm) | "
+             "speeds swept (rpm) |", "|---|---|---|---|---|---|"]
+    for (n, m), pts in sorted(by.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
+        rpm, share = first_slip(pts)
+        sp = sorted(p.params["speed_rpm"] for p in pts)
+        out = [f"{p.params['speed_rpm']:.0f}" for p in sorted(pts, key=lambda p: p.params["speed_rpm"])
+               if "outside_law_domain" in p.info]
+        lines.append(f"| `{n}` | {_label(m)} | {'none' if rpm is None else f'{rpm:.0f}'} | "
+                     f"{100 * share:.0f} % | {', '.join(out) or '—'} | {sp[0]:.0f}–{sp[-1]:.0f} |")
+    return lines
+
+
+def publish_readings(out, published, *, scene, tasks=None, low_tasks=None, extra: str = "") -> list[Path]:
+    """section5-readings.md and .csv in ``published`` from the finished ``study readings`` directory ``out``;
+    ``extra``: the hand-written reading appended (reports/notes/section5-readings-reading.md)."""
+    from contact.files import atomic_write_text
+    from reports.studies.common import load_points
+    from rotor.model.scene import load_scene
+    from rotor.studies.readings import scene_reading
+
+    table = readings_table(load_points(out, tasks))
+    current = scene_reading(load_scene(scene)) or "(none of the readings)"
+    published = Path(published)
+    note = readings_note(table, current, POINT_B_RPM)
+    if low_tasks:
+        note += ("\n## Relative displacement below 9 000 rpm, every reading\n\nDai et al. (2025) §5.3.1 (1): \"In the "
+                 "low speed range (0~9000 rpm) ... there is no relative displacement between the bearing and "
+                 "support\". Lowest speed of a 300 rpm sweep where the end faces slip (stuck < 100 % of the "
+                 "record):\n\n" + "\n".join(slip_lines(load_points(out, low_tasks))) + "\n")
+    note += "\n" + extra if extra else ""
+    return [atomic_write_text(published / "section5-readings.md", note),
+            readings_csv(table, published / "section5-readings.csv")]

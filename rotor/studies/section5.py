@@ -1,0 +1,218 @@
+"""The paper's Section 5 findings judged per speed band, one speed at a time.
+
+Dai et al. (2025), §5.1–5.3, state their findings over speed ranges ("low speed range (0~9000 rpm)",
+"high (9000~18,000 rpm)"); a median over a range can hide a band where a finding fails. Here each
+finding is a *predicate on one speed* (:data:`FINDINGS`), applied at every speed of a band
+(:data:`BANDS`, edges stated) where every compared case reached a periodic steady state, and a band's
+verdict counts the speeds where it holds (:func:`band_verdict`). The report
+(reports/studies/findings.py, study-findings.md) and the tests (tests/rotor/studies/test_study_paper.py)
+call the same predicates, on the same points (:func:`rotor.studies.steady_state.run_point`).
+
+Inputs of a predicate (one speed): ``amps`` maps a case to ``(A, info)`` with ``A`` the (3, 5)
+amplitudes of 1X–5X at disk 1, disk 2 and the 3# bearing support (y velocity for the cascades,
+m/s; y displacement for Figs. 18–19, m) and ``info`` the point's info (``stick_fraction``,
+``contact_fraction``, ``converged``). Cases: ``base`` (δ0 = 0.05 mm, δ = 1 mm, tilt on), ``notilt``,
+``c0.03``/``c0.08`` (clearance, mm), ``d0.5``/``d2`` (misalignment, mm).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+#: speed bands (rpm, both edges included): the paper's low range split at point A, its high range in thirds
+BANDS = {"L1": (300.0, 4500.0), "L2": (4800.0, 8700.0), "H1": (9000.0, 12000.0), "H2": (12300.0, 15000.0),
+         "H3": (15300.0, 18000.0)}
+LOW, HIGH = ("L1", "L2"), ("H1", "H2", "H3")
+
+#: "markedly reduced" (§5.2) read as at least 30 % lower
+MARKED = 0.7
+#: "minimal impact" (§5.3.1 (1)) read as within 5 %
+MINIMAL = 0.05
+#: "essentially unchanged" (§5.3.2) read as within 10 % while 2X changes fourfold (δ 0.5 → 2 mm)
+UNCHANGED = 0.10
+
+
+def _ratio(x) -> float:
+    x = np.asarray(x, float)
+    return float(x.max() / max(x.min(), 1e-300) - 1.0)
+
+
+def near_support(amps) -> tuple[bool, str]:
+    """§5.1, Fig. 12: 3X–5X at high speed larger at disk 2 and the 3# bearing than at disk 1 (y velocity)."""
+    s = amps["base"][0][:, 2:5].sum(axis=1)
+    return bool(s[1] > s[0] and s[2] > s[0]), f"3X–5X {s[0] * 1e3:.3g} / {s[1] * 1e3:.3g} / {s[2] * 1e3:.3g} mm/s"
+
+
+def tilt_reduces(amps) -> tuple[bool, str]:
+    """§5.2, Fig. 16 vs 12: with the tilt ignored 3X–5X are markedly (≥ 30 %) lower at disk 2 and the support."""
+    on = amps["base"][0][:, 2:5].sum(axis=1)
+    off = amps["notilt"][0][:, 2:5].sum(axis=1)
+    r = off / np.maximum(on, 1e-300)
+    return bool(r[1] < MARKED and r[2] < MARKED), f"off/on {r[0]:.2f} / {r[1]:.2f} / {r[2]:.2f}"
+
+
+def stuck(amps) -> tuple[bool, str]:
+    """§5.3.1 (1): below 9 000 rpm "there is no relative displacement between the bearing and support":
+    both end faces stuck over the whole record (contact share given beside)."""
+    i = amps["base"][1]
+    return bool(i["stick_fraction"] >= 1.0), (f"stuck {100 * i['stick_fraction']:.0f} %, contact "
+                                              f"{100 * i['contact_fraction']:.0f} %")
+
+
+def clearance_minimal(amps) -> tuple[bool, str]:
+    """§5.3.1 (1): at low speed δ0 (0.03 / 0.05 / 0.08 mm) changes 1X and 2X by less than 5 % at every station."""
+    A = np.array([amps[c][0][:, :2] for c in ("c0.03", "base", "c0.08")])   # (3 δ0, 3 loc, 2 orders)
+    ch = A.max(axis=0) / np.maximum(A.min(axis=0), 1e-300) - 1
+    return bool(ch.max() < MINIMAL), f"largest change 1X {100 * ch[:, 0].max():.1f} %, 2X {100 * ch[:, 1].max():.1f} %"
+
+
+def _monotone(amps, cases, order, sign) -> tuple[bool, str]:
+    a = np.array([amps[c][0][:, order - 1] for c in cases])                 # (3 values, 3 loc)
+    d = np.diff(a[:, 1:], axis=0) * sign
+    text = "; ".join(f"{n} " + "/".join(f"{x * 1e6:.3g}" for x in a[:, j]) for j, n in ((1, "disk 2"), (2, "support")))
+    return bool(np.all(d > 0)), f"{order}X {text} µm"
+
+
+def clearance_2x(amps):
+    """§5.3.1 (2): at high speed 2X falls as δ0 grows (0.03 → 0.05 → 0.08 mm) at disk 2 and the support."""
+    return _monotone(amps, ("c0.03", "base", "c0.08"), 2, -1)
+
+
+def clearance_3x(amps):
+    """§5.3.1 (2): at high speed 3X falls as δ0 grows at disk 2 and the support."""
+    return _monotone(amps, ("c0.03", "base", "c0.08"), 3, -1)
+
+
+def misalignment_2x(amps):
+    """§5.3.2: 2X rises with δ (0.5 → 1 → 2 mm) at disk 2 and the support."""
+    return _monotone(amps, ("d0.5", "base", "d2"), 2, +1)
+
+
+def misalignment_3x(amps):
+    """§5.3.2: 3X rises with δ at disk 2 and the support."""
+    return _monotone(amps, ("d0.5", "base", "d2"), 3, +1)
+
+
+def misalignment_1x(amps) -> tuple[bool, str]:
+    """§5.3.2: 1X "remain[s] essentially unchanged" as δ grows (within 10 % at every station)."""
+    A = np.array([amps[c][0][:, 0] for c in ("d0.5", "base", "d2")])
+    ch = A.max(axis=0) / np.maximum(A.min(axis=0), 1e-300) - 1
+    return bool(ch.max() <= UNCHANGED), f"1X change {100 * ch[0]:.1f} / {100 * ch[1]:.1f} / {100 * ch[2]:.1f} %"
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A finding: its predicate, the cases and quantity it needs, the bands it speaks of, the paper's words."""
+    name: str
+    predicate: object
+    cases: tuple
+    quantity: str          # 'v' (cascade, y velocity) or 'q' (Figs. 18-19, y displacement)
+    bands: tuple
+    claim: str
+
+
+FINDINGS = (
+    Finding("near_support", near_support, ("base",), "v", HIGH,
+            "§5.1 (Fig. 12): at high speed 3X–5X at disk 2 and the 3# bearing, more than at disk 1"),
+    Finding("tilt", tilt_reduces, ("base", "notilt"), "v", HIGH,
+            "§5.2 (Fig. 16): ignoring the tilt markedly (≥ 30 %) reduces 3X–5X at disk 2 and the support"),
+    Finding("stuck_low", stuck, ("base",), "v", LOW,
+            "§5.3.1 (1): below 9 000 rpm no relative displacement between bearing and support (faces stuck)"),
+    Finding("clearance_low", clearance_minimal, ("base", "c0.03", "c0.08"), "q", LOW,
+            "§5.3.1 (1): below 9 000 rpm δ0 has minimal impact (1X, 2X within 5 %)"),
+    Finding("clearance_2x", clearance_2x, ("base", "c0.03", "c0.08"), "q", HIGH,
+            "§5.3.1 (2, Fig. 18): at high speed 2X falls as δ0 grows (disk 2, support)"),
+    Finding("clearance_3x", clearance_3x, ("base", "c0.03", "c0.08"), "q", HIGH,
+            "§5.3.1 (2, Fig. 18): at high speed 3X falls as δ0 grows (disk 2, support)"),
+    Finding("misalignment_2x", misalignment_2x, ("base", "d0.5", "d2"), "q", LOW + HIGH,
+            "§5.3.2 (Fig. 19): 2X rises with δ (disk 2, support)"),
+    Finding("misalignment_3x", misalignment_3x, ("base", "d0.5", "d2"), "q", HIGH,
+            "§5.3.2 (Fig. 19): 3X rises with δ (disk 2, support)"),
+    Finding("misalignment_1x", misalignment_1x, ("base", "d0.5", "d2"), "q", LOW + HIGH,
+            "§5.3.2 (Fig. 19): 1X essentially unchanged as δ grows (within 10 %)"),
+)
+FINDING_NAMES = tuple(f.name for f in FINDINGS)
+
+
+def finding(name: str) -> Finding:
+    return FINDINGS[FINDING_NAMES.index(name)]
+
+
+def in_band(speed_rpm: float, band: str) -> bool:
+    lo, hi = BANDS[band]
+    return lo - 1e-6 <= speed_rpm <= hi + 1e-6
+
+
+@dataclass(frozen=True)
+class BandVerdict:
+    """One finding in one band: the periodic speeds judged (every compared case periodic), where it holds and the
+    numbers; and, apart, the same predicate at the band's non-periodic speeds (``loose``: (rpm, holds, text)),
+    whose amplitudes come from a record that does not repeat."""
+    finding: str
+    band: str
+    speeds_rpm: tuple
+    holds: tuple
+    texts: tuple
+    skipped_rpm: tuple     # speeds of the band left out: a case not periodic
+    loose: tuple = ()
+
+    @property
+    def verdict(self) -> str:
+        n, k = len(self.holds), sum(self.holds)
+        if n < 2:
+            if not n and not self.skipped_rpm:
+                return "no data"
+            m, j = len(self.loose), sum(ok for _, ok, _ in self.loose)
+            return f"n/a ({n} periodic; {j} of {m} non-periodic meet it)"
+        return "yes" if k == n else "no" if k == 0 else f"partly ({k} of {n})"
+
+
+def band_verdict(f: Finding, band: str, by_speed: dict) -> BandVerdict:
+    """Judge ``f`` at every speed of ``band`` in ``by_speed`` (``{rpm: {case: (A, info)}}``)."""
+    speeds, holds, texts, skipped, loose = [], [], [], [], []
+    for rpm in sorted(s for s in by_speed if in_band(s, band)):
+        amps = by_speed[rpm]
+        if any(c not in amps for c in f.cases):
+            continue
+        ok, text = f.predicate(amps)
+        if not all(amps[c][1]["converged"] for c in f.cases):
+            skipped.append(rpm)
+            loose.append((rpm, ok, text))
+            continue
+        speeds.append(rpm)
+        holds.append(ok)
+        texts.append(text)
+    return BandVerdict(f.name, band, tuple(speeds), tuple(holds), tuple(texts), tuple(skipped), tuple(loose))
+
+
+# ---------------------------------------------------------------------------------------------
+# mechanisms behind the failures, measured
+# ---------------------------------------------------------------------------------------------
+
+def law_secant_stiffness(scene, clearances_m, penetrations_m) -> np.ndarray:
+    """Secant radial stiffness ``P(Δr)/Δr`` (N/m) of the scene's contact law, ``(len(clearances), len(penetrations))``.
+
+    The conformal law (Dai et al. 2025 Eq. 5; contact/laws.py) is ``P = 2π E* δ0 l b²(1+b²)/D(b)`` with
+    ``b² = Δr/(2δ0+Δr)``: for ``Δr ≪ δ0`` it tends to ``(π/2) E* l Δr``, in which δ0 has cancelled. At the
+    sub-micrometre penetrations of the high-speed contact the law is thus nearly the same spring for every
+    clearance; δ0 only moves where contact starts."""
+    from contact.laws import conformal_force
+
+    ls = scene.loose_support
+    out = np.zeros((len(clearances_m), len(penetrations_m)))
+    for i, d0 in enumerate(clearances_m):
+        P = conformal_force(np.asarray(penetrations_m, float), clearance_m=float(d0), width_m=ls.ring_width_m,
+                            bearing_E_Pa=ls.bearing_modulus_pa, bearing_nu=ls.bearing_poisson,
+                            support_E_Pa=ls.support_modulus_pa, support_nu=ls.support_poisson).force_N
+        out[i] = P / np.asarray(penetrations_m, float)
+    return out
+
+
+def first_slip(points) -> tuple[float | None, float]:
+    """Lowest speed (rpm) of ``points`` whose end faces slip (stuck < 100 % of the record), and its contact share;
+    points without a record (beyond the contact law's domain) are passed over."""
+    for p in sorted(points, key=lambda p: p.params["speed_rpm"]):
+        if p.info.get("stick_fraction", 1.0) < 1.0:
+            return float(p.params["speed_rpm"]), float(p.info["contact_fraction"])
+    return None, 0.0
