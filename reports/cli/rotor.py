@@ -26,6 +26,7 @@ import sys
 import numpy as np
 
 from contact.errors import InputError, RingContactError
+from reports.cli import _budget
 from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
 
 RPM = 30 / math.pi
@@ -111,10 +112,13 @@ def _plot_mode_shapes(args, scene, model, res) -> None:
 def cmd_campbell(args) -> int:
     from rotor.linear.modes import campbell, critical_speeds
     scene, model = _load(args)
-    _warn_free(model, args)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(0.0, wmax, args.points or scene.analysis.speed_points)
     n_modes = args.modes or scene.analysis.modes
+    _budget.check("ringcontact rotor campbell", _budget.campbell(model.n_dofs, len(speeds)), args.accept_long,
+                  f"--points = {len(speeds)} speeds of a {model.n_dofs}-DOF model"
+                  + (f" (--elements {args.elements})" if args.elements else ""), "fewer --points or --elements")
+    _warn_free(model, args)
     camp = campbell(model, speeds, n_modes=n_modes, lock_loose_support=not args.open_support, damped=args.damped)
     if args.plot:
         from reports.rotor_plots import campbell_figure, save
@@ -195,11 +199,24 @@ def cmd_response(args) -> int:
         if not all(stations):
             raise InputError(f"--stations = {args.stations!r}: an empty name in the list; give comma-separated "
                              "station, disk, bearing or support names (or leave --stations out for the default)")
+    _response_work(args)
     summary = run_response(args.scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
                            stations=stations, steps_per_rev=args.steps_per_rev, record_per_rev=args.record_per_rev,
                            elements=args.elements)
     _emit(args, summary, summary_table(summary) + f"\nwrote {args.out}/response.csv, response-summary.json")
     return 0
+
+
+def _response_work(args) -> None:
+    """The run's steps (Newmark) and records against the work budget (:func:`reports.cli._budget.stepping`)."""
+    from rotor.model.assembly import assemble
+    from rotor.model.scene import load_scene
+    n_dofs = assemble(load_scene(args.scene), elements_per_segment=args.elements).n_dofs
+    steps = args.revolutions * args.steps_per_rev if args.method == "newmark" else 0
+    est = _budget.stepping(steps, args.revolutions * args.record_per_rev, n_dofs)
+    _budget.check("ringcontact rotor response", est, args.accept_long,
+                  f"--revolutions = {args.revolutions:g} rev at --steps-per-rev {args.steps_per_rev} and "
+                  f"--record-per-rev {args.record_per_rev} ({args.method})", "fewer revolutions, steps or records")
 
 
 def cmd_report(args) -> int:
@@ -237,6 +254,7 @@ def _parser() -> argparse.ArgumentParser:
     common(sp)
     sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
     sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX-campbell.png and .svg")
+    _budget.add_accept_long(sp)
     sp.add_argument("--damped", action="store_true", help="include viscous damping: damped frequencies and each "
                     "mode's damping ratio zeta and log decrement (default undamped, zeta = 0)")
     sp.set_defaults(func=cmd_campbell)
@@ -265,6 +283,7 @@ def _parser() -> argparse.ArgumentParser:
     sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override)")
     sp.add_argument("--json", action="store_true", help="print the summary as JSON")
     sp.add_argument("--out", type=out_dir, default="response-out", help="output directory (default response-out)")
+    _budget.add_accept_long(sp)
     sp.set_defaults(func=cmd_response)
     sp = sub.add_parser("report", help="regenerate reports/published/rotor-* (figures and tables)")
     sp.add_argument("--out", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")

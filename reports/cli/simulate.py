@@ -49,6 +49,7 @@ import numpy as np
 from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
+from reports.cli import _budget
 from reports.cli._edge import Parser, count, fail, out_dir, quantity
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
@@ -93,41 +94,31 @@ def _parser() -> argparse.ArgumentParser:
                    help="--steady: transient cap in revolutions (default 8000: at the paper's point A the end faces "
                         "creep for about 2 000 revolutions before the ring settles; at least 24, the detector's "
                         "shortest transient)")
-    p.add_argument("--accept-long", action="store_true",
-                   help=f"run even when the estimate exceeds the budget ({WORK_BUDGET_S / 60:g} min of stepping or "
-                        f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB of records)")
+    _budget.add_accept_long(p)
     p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
     return p
 
 
-# what a run may cost without --accept-long, and the measured step cost it is estimated from:
-# reports/published/perf-period-map.md, one Table 4 revolution (28 DOFs) at 256 steps in 1.08 ms
-WORK_BUDGET_S = 1800.0
-MEMORY_BUDGET_BYTES = 2 * 2 ** 30
-STEP_COST_S = 1.08e-3 / 256
-STEP_COST_DOFS = 28
+# what a run may cost without --accept-long, and the measured step cost it is estimated from: one rule for every
+# job (reports/cli/_budget.py)
+WORK_BUDGET_S = _budget.WORK_BUDGET_S
+MEMORY_BUDGET_BYTES = _budget.MEMORY_BUDGET_BYTES
 
 
 def work_estimate(n_steps: int, n_records: int, n_dofs: int, scheme: str) -> tuple[float, float]:
-    """``(seconds, bytes)``: the stepping time from the measured step cost (dense matrix products: scaled with
-    the square of the DOFs; the paper's reference scheme about 200x slower, reports/published/perf-integrators.md)
-    and the memory of the records (time, q, v of every DOF, 4 relative displacements and rates, contact force
-    and moment, end-face forces, stick flags: 8 bytes each), plus the CSV text (about 16 bytes a number)."""
-    per_step = STEP_COST_S * max(1.0, (n_dofs / STEP_COST_DOFS) ** 2) * (200.0 if scheme == "reference" else 1.0)
-    per_record = (1 + 2 * n_dofs + 4 + 4 + 4 + 4 + 2) * 8 + (2 * n_dofs + 30) * 16
-    return n_steps * per_step, n_records * per_record
+    """``(seconds, bytes)`` of a run (:func:`reports.cli._budget.stepping`; the paper's reference scheme about
+    200x slower than the production one, reports/published/perf-integrators.md)."""
+    est = _budget.stepping(n_steps, n_records, n_dofs, 200.0 if scheme == "reference" else 1.0)
+    return est.seconds, est.nbytes
 
 
 def check_budget(args, n_steps: int, n_records: int, n_dofs: int) -> None:
-    """Refuse, before anything is computed, a run estimated beyond the budget unless ``--accept-long``."""
-    secs, nbytes = work_estimate(n_steps, n_records, n_dofs, args.scheme)
-    if args.accept_long or (secs <= WORK_BUDGET_S and nbytes <= MEMORY_BUDGET_BYTES):
-        return
-    raise InputError(f"--revolutions = {args.revolutions:g} rev at --steps-per-rev {args.steps_per_rev} and "
-                     f"--record-per-rev {args.record_per_rev}: estimated {secs / 60:.3g} min of stepping and "
-                     f"{nbytes / 2 ** 30:.3g} GiB of records ({n_steps:.3g} steps, {n_records:.3g} records of {n_dofs} "
-                     f"DOFs), beyond the budget of {WORK_BUDGET_S / 60:g} min and {MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB; "
-                     "fewer revolutions or records, or --accept-long to run it anyway")
+    """Refuse, before anything is computed, a run estimated beyond the budget unless ``--accept-long``;
+    announce a long one (:func:`reports.cli._budget.check`)."""
+    est = _budget.stepping(n_steps, n_records, n_dofs, 200.0 if args.scheme == "reference" else 1.0)
+    _budget.check("ringcontact simulate", est, args.accept_long,
+                  f"--revolutions = {args.revolutions:g} rev at --steps-per-rev {args.steps_per_rev} and "
+                  f"--record-per-rev {args.record_per_rev}", "fewer revolutions or records")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -160,7 +151,8 @@ def _run(args) -> int:
         raise InputError(f"--revolutions = {args.revolutions:g} rev: less than one time step at {args.steps_per_rev} "
                          f"steps a revolution; at least {1 / args.steps_per_rev:.3g} rev")
     rec = max(1, args.steps_per_rev // args.record_per_rev)
-    check_budget(args, n_steps, n_steps // rec + 1, model.n_dofs)
+    transient = int(args.max_revs or 8000) * args.steps_per_rev if args.steady else 0   # --steady: at most
+    check_budget(args, n_steps + transient, n_steps // rec + 1, model.n_dofs)
     run = simulate_production if args.scheme == "production" else simulate_reference
     compiled = warm_up()  # compile or load the step loop now (the --steady detector uses it too)
     t0 = time.perf_counter()

@@ -36,6 +36,7 @@ import numpy as np  # noqa: E402
 from contact.errors import FailedPointsError, InputError, RingContactError
 from contact.package_data import shipped
 from contact.units import check_positive
+from reports.cli import _budget
 from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, out_file, quantity
 
 
@@ -51,6 +52,7 @@ def _common(p: argparse.ArgumentParser, out: str):
     p.add_argument("--elements", type=count(1, 64), default=None,
                    help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
+    _budget.add_accept_long(p)
 
 
 def _scheduler(p: argparse.ArgumentParser) -> None:
@@ -82,6 +84,7 @@ def _method_note(args) -> dict:
 
 
 def _parser() -> argparse.ArgumentParser:
+    from rotor.studies.runup import SHORTEST_DURATION_S
     p = Parser(prog="ringcontact study", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="study", required=True)
     c = sub.add_parser("cascade", help="steady-state spectrum cascade over speed (Figs. 12, 16, 17)")
@@ -111,7 +114,8 @@ def _parser() -> argparse.ArgumentParser:
     _common(ru, "runs/runup")
     ru.add_argument("--rpm-start", type=quantity("run_speed_rpm"), default=600.0)
     ru.add_argument("--rpm-end", type=quantity("run_speed_rpm"), default=18000.0)
-    ru.add_argument("--duration-s", type=quantity("duration_s"), default=20.0)
+    ru.add_argument("--duration-s", type=quantity("duration_s", low=SHORTEST_DURATION_S,
+                                                  why="two windows of the time-frequency cascade"), default=20.0)
     ru.add_argument("--down", action="store_true", help="run down: from the higher of the two speeds to the lower")
     mp = sub.add_parser("map", help="where the support sticks, slips and impacts over (speed, clearance)")
     _common(mp, "runs/map")
@@ -203,6 +207,7 @@ def _sweep(tasks, out: Path, args, description: dict):
         scene_doc["loose_support"].pop("calibrated", None)     # named by law_file and law_sha256
         if sc.loose_support.calibrated is not None:
             print(f"study {args.study}: law {sc.loose_support.law_file} (sha256 {sc.loose_support.law_sha256})")
+    _check_work(tasks, args)
     manifest = {"study": args.study, "description": description, "scene_name": sc.name, "scene": scene_doc,
                 **_mesh(args)}
     t0 = time.perf_counter()
@@ -219,6 +224,16 @@ def _sweep(tasks, out: Path, args, description: dict):
         raise FailedPointsError(f"{len(s.failed)} of {n_points} points failed (FAILED lines above); no figures "
                                 f"written; the finished points stay in {out}, a rerun computes only the rest")
     return s, wall
+
+
+def _check_work(tasks, args) -> None:
+    """The sweep's steady-state points against the work budget, before any point starts
+    (:func:`reports.cli._budget.steady_points`: at most --max-revs revolutions a point, more steps per
+    revolution at low speed)."""
+    est = _budget.steady_points(tasks, 1 if args.scheduler else args.workers)
+    _budget.check(f"ringcontact study {args.study}", est, args.accept_long,
+                  f"--max-revs = {args.max_revs} rev a point at --steps-per-rev {args.steps_per_rev} or more",
+                  "fewer points or --max-revs, or higher speeds (a slow revolution needs many steps)")
 
 
 def _run(args) -> int:
@@ -441,6 +456,8 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
                      steps_per_rev=int(args.steps_per_rev))
     from sweep.cluster import connect
 
+    _budget.check("ringcontact study runup", _budget.runup(spec), args.accept_long,
+                  f"--duration-s = {args.duration_s:g} s from {a:g} to {b:g} rpm", "a shorter --duration-s")
     with connect(args.scheduler) as client:
         info = run_runup(spec, out, executor=client)
     print(f"study runup: {info['steps']} steps in {info['wall_s']:.1f} s wall")

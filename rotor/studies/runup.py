@@ -36,6 +36,11 @@ from rotor.dynamics.system import HarmonicForce, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
 
+#: the shortest window of the time-frequency cascade (s, :func:`stft_cascade`); a run-up needs two of them
+SHORTEST_WINDOW_S = 0.1
+SHORTEST_DURATION_S = 2 * SHORTEST_WINDOW_S
+
+
 @dataclass(frozen=True)
 class RunupSpec:
     """A linear speed ramp.
@@ -198,7 +203,7 @@ def stft_cascade(r: dict, channel: str, window_s: float | None = None, overlap: 
     t = r["t"]
     fs = 1.0 / float(np.median(np.diff(t)))
     T = t[-1] - t[0]
-    win_s = window_s if window_s is not None else max(0.1, T / 40)
+    win_s = window_s if window_s is not None else max(SHORTEST_WINDOW_S, T / 40)
     n = int(round(win_s * fs))
     if n < 16 or n > x.size:
         raise InputError(f"window_s = {win_s:g} s: needs 16..{x.size} samples at {fs:g} Hz")
