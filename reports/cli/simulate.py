@@ -46,6 +46,7 @@ from pathlib import Path
 
 import numpy as np
 
+from contact import plausible
 from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
@@ -56,6 +57,7 @@ from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_s
 
 
 def _parser() -> argparse.ArgumentParser:
+    from rotor.studies.steady_state import SteadyStateOptions     # the detector's shortest transient: one bound
     p = Parser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
     p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
     p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
@@ -90,7 +92,7 @@ def _parser() -> argparse.ArgumentParser:
                         "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
                         "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
                         "amplitudes of --dofs in the summary")
-    p.add_argument("--max-revs", type=count(24, 100000), default=None,
+    p.add_argument("--max-revs", type=count(SteadyStateOptions.min_revs, 100000), default=None,
                    help="--steady: transient cap in revolutions (default 8000: at the paper's point A the end faces "
                         "creep for about 2 000 revolutions before the ring settles; at least 24, the detector's "
                         "shortest transient)")
@@ -229,7 +231,7 @@ def _system(args):
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
 
-    check_positive("speed_rpm", args.speed_rpm, "rpm", upper=1e5)
+    check_positive("speed_rpm", args.speed_rpm, "rpm", upper=plausible.top("run_speed_rpm"))
     check_positive("revolutions", args.revolutions, "rev", upper=1e6)
     if args.steps_per_rev is not None:
         check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e6)

@@ -33,6 +33,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
+from contact import plausible
 from contact.errors import FailedPointsError, InputError, RingContactError
 from contact.package_data import shipped
 from contact.units import check_positive
@@ -41,6 +42,7 @@ from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, o
 
 
 def _common(p: argparse.ArgumentParser, out: str):
+    from rotor.studies.steady_state import SteadyStateOptions
     p.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
     p.add_argument("--out", type=out_dir, default=out, help=f"result directory (default {out})")
     p.add_argument("--figures", type=out_dir, default=None, help="figure directory (default <out>/figures)")
@@ -48,7 +50,9 @@ def _common(p: argparse.ArgumentParser, out: str):
     _scheduler(p)
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=256,
                    help="minimum time steps per revolution (default 256)")
-    p.add_argument("--max-revs", type=count(1, 100000), default=1500, help="transient cap in revolutions (default 1500)")
+    p.add_argument("--max-revs", type=count(SteadyStateOptions.min_revs, 100000), default=1500,
+                   help=f"transient cap in revolutions (default 1500; at least {SteadyStateOptions.min_revs}, the "
+                        "detector's shortest transient)")
     p.add_argument("--elements", type=count(1, 64), default=None,
                    help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
@@ -360,7 +364,7 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from rotor.studies.steady_state import _scene_model
     from sweep import point_tasks
 
-    check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
+    check_positive("rpm_max", args.rpm_max, "rpm", upper=plausible.top("rpm_max"))
     if args.rpm_min > args.rpm_max:
         raise InputError(f"--rpm-min = {args.rpm_min:g} rpm: must be <= --rpm-max = {args.rpm_max:g} rpm")
     speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))

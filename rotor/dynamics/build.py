@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from contact import plausible
 from contact.errors import InputError
 from contact.units import check_positive
 from rotor.dynamics.kernels import support_law_from_params
@@ -35,7 +36,8 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
 
     ls = scene.loose_support
     n = model.n_dofs
-    check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True, upper=1e4)
+    check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True,
+                   upper=plausible.top("run_speed_rpm") * math.pi / 30)     # the command line's top speed
     require_ground(model, "time integration")   # a free rotor has no rest position (rotor.model.topology)
     sup = None if ls is None else _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m)
     if ls is None:

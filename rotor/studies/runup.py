@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact.errors import InputError
+from contact import plausible
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import HarmonicForce, largest_stable_step
@@ -66,9 +67,9 @@ class RunupSpec:
     preload_n: float | None = None
 
     def __post_init__(self):
-        check_positive("rpm_start", self.rpm_start, "rpm", upper=1e5)
-        check_positive("rpm_end", self.rpm_end, "rpm", upper=1e5)
-        check_positive("duration_s", self.duration_s, "s", upper=1e4)
+        check_positive("rpm_start", self.rpm_start, "rpm", upper=plausible.top("run_speed_rpm"))
+        check_positive("rpm_end", self.rpm_end, "rpm", upper=plausible.top("run_speed_rpm"))
+        check_positive("duration_s", self.duration_s, "s", upper=plausible.top("duration_s"))
         check_positive("segment_s", self.segment_s, "s", upper=1.0)
         check_positive("sample_rate_hz", self.sample_rate_hz, "Hz", upper=1e7)
         if self.steps_per_rev < 16:

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact.errors import InputError
+from contact import plausible
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import RotorSystem, largest_stable_step
@@ -461,7 +462,7 @@ def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = No
     (``elements_per_segment``, None: the scene's)."""
     from rotor.dynamics.build import system_from_model
 
-    check_positive("speed_rpm", speed_rpm, "rpm", allow_zero=True, upper=1e5)
+    check_positive("speed_rpm", speed_rpm, "rpm", allow_zero=True, upper=plausible.top("run_speed_rpm"))
     sc, model = _scene_model(scene, elements_per_segment)
     omega = float(speed_rpm) * math.pi / 30.0
     system = system_from_model(model, sc, omega, tilt_ignored=bool(tilt_ignored), mu=mu, preload_N=preload_n,
