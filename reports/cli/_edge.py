@@ -91,11 +91,28 @@ def count(lo: int, hi: int, what: str = ""):
     return parse
 
 
+#: bytes a written name may grow by: a temporary ``.NAME.PID.XXXXXXXX.tmp`` (contact.files) or a prefix's
+#: longest suffix (``-misalignment.png``)
+NAME_GROWTH = 32
+
+
 def _probe(path: Path, kind: str) -> Path:
     """Raise ``ArgumentTypeError`` unless ``path`` can be written as a ``kind`` ('dir' or 'file')."""
     shown = str(path)
     if not shown.strip():
         raise argparse.ArgumentTypeError(f"= '': must name a {'directory' if kind == 'dir' else 'file'}")
+    too_long = [part for part in path.parts if len(os.fsencode(part)) + (NAME_GROWTH if kind == "file" else 0) > 255]
+    if too_long or len(os.fsencode(shown)) + NAME_GROWTH > 4096:
+        raise argparse.ArgumentTypeError(f"= {shown[:60]}… ({len(shown)} characters): a name longer than the file "
+                                         f"system takes (255 bytes a name, {255 - NAME_GROWTH} for a file the job "
+                                         "writes, 4096 a path); a shorter name")
+    try:
+        return _probe_kind(path, kind, shown)
+    except OSError as exc:            # a path the system refuses to look at (permissions, loops)
+        raise argparse.ArgumentTypeError(f"= {shown}: cannot be used ({exc.strerror or exc})") from None
+
+
+def _probe_kind(path: Path, kind: str, shown: str) -> Path:
     if path.exists():
         if kind == "dir" and not path.is_dir():
             raise argparse.ArgumentTypeError(f"= {shown}: is a file, a directory is needed")

@@ -227,6 +227,9 @@ def _branch(args) -> int:
     from rotor.studies.orbit import branch
 
     name, channels, loose = _scene(args)
+    if args.station is not None and not args.station.strip():
+        raise InputError(f"--station = {args.station!r}: names nothing; give <station>.y or <station>.z (have "
+                         f"{', '.join(channels)}), or leave --station out for {channels[0]}")
     station = args.station or channels[0]
     if station not in channels:
         raise InputError(f"--station = {station}: not a response channel of {name} "

@@ -32,11 +32,22 @@ from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefi
 RPM = 30 / math.pi
 
 
-def _load(args):
+def _load(args, modal: bool = True):
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
     scene = load_scene(args.scene)
-    return scene, assemble(scene, elements_per_segment=args.elements)
+    model = assemble(scene, elements_per_segment=args.elements)
+    if modal:
+        _require_mass(scene, model)
+    return scene, model
+
+
+def _require_mass(scene, model) -> None:
+    """A modal job on a scene with no mass at all (every density and disk mass 0) is refused: it has no
+    vibration modes, and an empty table or a Campbell diagram of nulls would say nothing."""
+    if not np.any(model.M):
+        raise InputError(f"scene {scene.name!r}: no mass anywhere (every material density and disk mass is 0), so "
+                         "no vibration modes; give the shaft a density_kg_m3 or a disk a mass_kg")
 
 
 def _warn_free(model, args) -> None:
@@ -164,7 +175,7 @@ def cmd_critical(args) -> int:
 
 def cmd_unbalance(args) -> int:
     from rotor.linear.unbalance import forced_response
-    scene, model = _load(args)
+    scene, model = _load(args, modal=False)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(wmax / (args.points or scene.analysis.speed_points), wmax,
                          args.points or scene.analysis.speed_points)

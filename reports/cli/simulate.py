@@ -138,6 +138,11 @@ def _run(args) -> int:
     if args.max_revs is not None and not args.steady:
         raise InputError(f"--max-revs = {args.max_revs} rev: the transient cap of --steady, which is not given "
                          "(add --steady, or leave --max-revs out)")
+    if args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev:
+        n, k = args.steps_per_rev, args.record_per_rev
+        raise InputError(f"--record-per-rev = {k}: must divide --steps-per-rev = {n} (a sample every whole number "
+                         f"of steps; {n} steps would be recorded at {n // max(1, n // k)} a revolution): e.g. "
+                         f"--steps-per-rev {-(-n // k) * k}, or --record-per-rev {max(d for d in range(1, k + 1) if n % d == 0)}")
     if args.steady and (args.scheme != "production" or int(round(args.revolutions)) < 1
                         or (args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev)):
         raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
@@ -212,7 +217,12 @@ def _run(args) -> int:
 
 
 def _dof_names(args, model, primary_only: bool) -> list[str]:
-    """``--dofs``, else y and z of ``--stations``, else of the scene's response stations."""
+    """``--dofs``, else y and z of ``--stations``, else of the scene's response stations; a list that names
+    nothing (``--dofs ''``, ``--stations ,``) is refused, not read as the default."""
+    for flag, text in (("--dofs", args.dofs), ("--stations", args.stations)):
+        if text is not None and not any(s.strip() for s in text.split(",")):
+            raise InputError(f"{flag} = {text!r}: names nothing; give comma-separated names, or leave {flag} out "
+                             "for the default")
     if args.dofs:
         return [s.strip() for s in args.dofs.split(",") if s.strip()]
     if args.stations:

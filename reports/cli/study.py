@@ -358,6 +358,19 @@ def _require_finished(flag: str, d: Path) -> None:
         raise InputError(f"{flag} = {d}: not a finished study ({st['why']}); rerun the study to complete it")
 
 
+def _distinct(speeds, args):
+    """``speeds`` (rpm), refused when two coincide at the 0.1 rpm of the points' keys
+    (:func:`rotor.studies.steady_state.sweep_tasks`): they would be one point twice."""
+    keys = {f"{float(s):.1f}" for s in speeds}
+    if len(keys) < len(speeds):
+        lo, hi = float(speeds[0]), float(speeds[-1])
+        most = int(round((hi - lo) / 0.1)) + 1
+        raise InputError(f"--points = {args.points}: speeds from {lo:g} to {hi:g} rpm, {(hi - lo) / max(len(speeds) - 1, 1):.3g} "
+                         f"rpm apart, coincide at the 0.1 rpm the points are stored by; at most {most} points over "
+                         "this range, or a wider range")
+    return speeds
+
+
 def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study cascade``: steady state at each speed of a range (Figs. 12, 16, 17)."""
     from reports.studies.cascade import cascade_figures
@@ -367,7 +380,7 @@ def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     check_positive("rpm_max", args.rpm_max, "rpm", upper=plausible.top("rpm_max"))
     if args.rpm_min > args.rpm_max:
         raise InputError(f"--rpm-min = {args.rpm_min:g} rpm: must be <= --rpm-max = {args.rpm_max:g} rpm")
-    speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
+    speeds = _distinct(np.linspace(args.rpm_min, args.rpm_max, int(args.points)), args)
     kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts, **_mesh(args)}
     if args.clearance_mm is not None:
         kw["clearance_m"] = check_positive("clearance_mm", args.clearance_mm, "mm", upper=10) * 1e-3
@@ -402,7 +415,7 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from sweep import point_tasks
 
     sweep_tasks = _tasks(args)
-    speeds = np.linspace(0.0, args.rpm_max, int(args.points))
+    speeds = _distinct(np.linspace(0.0, args.rpm_max, int(args.points)), args)
     # the scene's own clearance/misalignment is one shared 'base' curve of both figures
     mesh = _mesh(args)
     tasks = sweep_tasks(args.scene, speeds, prefix="base-rpm", options=opts, **mesh)
@@ -438,7 +451,7 @@ def _map(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from reports.studies.regime_map import map_figures
     from rotor.studies.steady_state import sweep_tasks
 
-    speeds = np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points))
+    speeds = _distinct(np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points)), args)
     tasks = []
     for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
         tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts)

@@ -20,7 +20,7 @@ from pathlib import Path
 
 from contact.errors import DatasetError, InputError
 from reports.studies.cascade import cascade_redraw
-from reports.studies.common import read_csv_rows, require_columns
+from reports.studies.common import read_csv_rows, require_columns, require_finite
 from reports.studies.params import COLUMNS, grids_from_rows, params_grids
 
 #: committed CSV -> what is drawn from it
@@ -51,6 +51,8 @@ def redraw(src, dst) -> list[Path]:
     present = [name for name in SOURCES if (src / name).is_file()]
     if not present:
         raise InputError(f"--from = {src}: holds none of {', '.join(SOURCES)} (the tables `study publish` writes)")
+    for name in present:                          # a NaN or inf cell anywhere: refused before any figure
+        require_finite(src / name, read_csv_rows(src / name))
     draws = []
     if "study-sensitivity-points.csv" in present:
         tabs, variants = tables_from_points_csv(src / "study-sensitivity-points.csv")

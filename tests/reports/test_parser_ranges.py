@@ -50,7 +50,8 @@ BASES = {
        for s in ("map", "runup", "testrig", "params", "point", "cascade")},
 }
 #: options that need another one to mean anything (the --steady transient cap)
-NEEDS = {("simulate", "--max-revs"): ["--steady", "--revolutions", "1"]}
+NEEDS = {("simulate", "--max-revs"): ["--steady", "--revolutions", "1"],
+         ("simulate", "--steps-per-rev"): ["--record-per-rev", "1"]}     # the samples divide the steps
 #: options whose range is a resource, not a physical limit: any count in it is taken, and proving it would
 #: start that many processes
 RESOURCES = {"--workers"}
