@@ -46,7 +46,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contact import plausible
+from contact import interrupts, plausible
 from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
@@ -143,6 +143,10 @@ def _run(args) -> int:
         raise InputError(f"--record-per-rev = {k}: must divide --steps-per-rev = {n} (a sample every whole number "
                          f"of steps; {n} steps would be recorded at {n // max(1, n // k)} a revolution): e.g. "
                          f"--steps-per-rev {-(-n // k) * k}, or --record-per-rev {max(d for d in range(1, k + 1) if n % d == 0)}")
+    from rotor.studies.steady_state import SAMPLES_FOR_5X
+    if args.steady and args.record_per_rev < SAMPLES_FOR_5X:
+        raise InputError(f"--record-per-rev = {args.record_per_rev}: --steady resolves 1X-5X, which needs at least "
+                         f"{SAMPLES_FOR_5X} samples a revolution")
     if args.steady and (args.scheme != "production" or int(round(args.revolutions)) < 1
                         or (args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev)):
         raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
@@ -166,9 +170,10 @@ def _run(args) -> int:
     extra = {}
     if args.steady:
         amp_names = _dof_names(args, model, primary_only=False)
-        tr, dt, n_steps, extra = _steady_run(args, system, model, T, amp_names, [model.dof_index(n) for n in amp_names])
-    else:
-        tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
+        tr, dt, n_steps, extra = interrupts.in_thread(_steady_run, args, system, model, T, amp_names,
+                                                      [model.dof_index(n) for n in amp_names])
+    else:      # in a thread: Ctrl-C is honoured at once, not after the compiled loop (measured: 20 s later)
+        tr = interrupts.in_thread(run, system, dt, n_steps, q0=system.offset, record_every=rec)
     run_s = time.perf_counter() - t0
     sup = system.support  # None: a scene without a loose support (no contact, no end faces)
     r1, r2 = cons.edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
@@ -265,8 +270,10 @@ def _system(args):
                                    preload_N=args.preload_n, clearance_m=clearance_m, **kw)
     args.steps_chosen = args.steps_per_rev is None
     if args.steps_chosen:     # as orbit and the studies: the contact step limit with a margin, whole record samples
-        from rotor.studies.steady_state import SteadyStateOptions, step_per_rev
-        args.steps_per_rev = step_per_rev(system, SteadyStateOptions(samples_per_rev=args.record_per_rev))
+        from rotor.studies.steady_state import SAMPLES_FOR_5X, SteadyStateOptions, step_per_rev
+        k = args.record_per_rev
+        n = step_per_rev(system, SteadyStateOptions(samples_per_rev=k if k >= SAMPLES_FOR_5X else None))
+        args.steps_per_rev = -(-n // k) * k          # a whole number of steps between samples
     return scene, model, system, info
 
 

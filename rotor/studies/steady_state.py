@@ -45,6 +45,10 @@ from rotor.dynamics.support_record import contact_summary
 TRANSIENT_SAMPLES_PER_REV = 64
 
 
+#: the fewest samples a revolution that resolve the 5X harmonic (above its Nyquist rate of 10 with a margin)
+SAMPLES_FOR_5X = 12
+
+
 @dataclass(frozen=True)
 class SteadyStateOptions:
     """Controls of :func:`steady_state`.
@@ -100,8 +104,8 @@ class SteadyStateOptions:
                 continue
             if int(v) != v or v < 1:
                 raise InputError(f"{name} = {v}: must be a positive integer")
-        if self.samples_per_rev is not None and self.samples_per_rev < 12:
-            raise InputError(f"samples_per_rev = {self.samples_per_rev}: need >= 12 to resolve 5X")
+        if self.samples_per_rev is not None and self.samples_per_rev < SAMPLES_FOR_5X:
+            raise InputError(f"samples_per_rev = {self.samples_per_rev}: need >= {SAMPLES_FOR_5X} to resolve 5X")
         check_positive("stable_fraction", self.stable_fraction, "-", upper=1.0)
         check_positive("chunk_s", self.chunk_s, "s", upper=100.0)
         check_positive("tol", self.tol, "-", upper=0.1)

@@ -51,12 +51,17 @@ BASES = {
 }
 #: options that need another one to mean anything (the --steady transient cap)
 NEEDS = {("simulate", "--max-revs"): ["--steady", "--revolutions", "1"],
-         ("simulate", "--steps-per-rev"): ["--record-per-rev", "1"]}     # the samples divide the steps
+         ("simulate", "--steps-per-rev"): ["--record-per-rev", "1"],     # the samples divide the steps
+         ("simulate", "--revolutions"): ["--steps-per-rev", "100000", "--record-per-rev", "1"],   # at least a step
+         ("study cascade", "--rpm-min"): ["--rpm-max", "200000"]}      # a range, not a single bound
 #: options whose range is a resource, not a physical limit: any count in it is taken, and proving it would
 #: start that many processes
 RESOURCES = {"--workers"}
 #: limits that depend on the scene (its clearance, its ring radius), checked by the job with the scene's numbers
-SCENE_DEPENDENT = {("fem3d point", "penetration_mm"), ("fem3d vtu", "penetration_mm")}
+SCENE_DEPENDENT = {(job, "penetration_mm") for job in ("fem3d point", "fem3d vtu", "fem-point", "fem-vtu")} | {
+    (job, "--h-mm") for job in ("fem-point", "fem-vtu", "fem-paper")}       # the clearance, the rings' thickness
+#: options that need a finished study to be read at all (no limit of their own beyond the parser's)
+NEEDS_A_STUDY = {"study publish"}
 #: the mismatches measured before the fix: the default run's cases
 MEASURED = {("simulate", "--speed-rpm", "high"), ("orbit", "--speed-rpm", "high"), ("study point", "--speed-rpm", "high"),
             ("study cascade", "--max-revs", "low"), ("simulate", "--max-revs", "low"), ("fem3d point", "--tilt-arcmin", "high"),
@@ -163,6 +168,8 @@ def _params():
 
 @pytest.mark.parametrize("name, flag, side, value", _params())
 def test_a_value_the_parser_accepts_is_accepted_by_the_job(name, flag, side, value, inputs, tmp_path, monkeypatch):
+    if name in NEEDS_A_STUDY:
+        pytest.skip("needs a finished study directory before its options are read")
     if (name, flag) in SCENE_DEPENDENT:
         pytest.skip("the limit depends on the scene (checked by the job with the scene's numbers)")
     from reports.cli import _budget
