@@ -346,6 +346,11 @@ def _trust_cases() -> list:
                             ("study cascade", ["study", "cascade", "--no-progress", "--out"], "y" * 300),
                             ("fem3d vtu", ["fem3d", "vtu", "0.02", "--out"], LONG_NAME)):
         c.append((f"{job} over-long output name", [*argv, "{tmp}/" + name], None))
+    long_in = "{tmp}/" + "z" * 300            # an input name past 255 bytes (Path.exists raised ENAMETOOLONG)
+    c += [(f"{' '.join(a[:2])} over-long input name", a, None)
+          for a in (["rotor", "modes", long_in], ["law", "--csv", long_in], [*sim, "--scene", long_in],
+                    ["fem-point", "0.01", "--scene", long_in + ".toml"], ["bearing", long_in + ".toml", "--out", "{tmp}/o"],
+                    ["study", "redraw", "--from", long_in], ["study", "export", long_in])]
     # long work refused before it starts, with the estimate and the flag that accepts it
     c += [("orbit --steps-per-rev 100000", ["orbit", "paper-table4", "--speed-rpm", "10500", "--steps-per-rev",
                                             "100000"], "--accept-long"),
