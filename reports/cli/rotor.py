@@ -140,6 +140,11 @@ def cmd_campbell(args) -> int:
             "frequency_hz": [[None if not np.isfinite(v) else float(v) for v in row] for row in camp.frequency_hz],
             "whirl": [list(w) for w in camp.whirl], "damped": bool(args.damped),
             "damping_ratio": _finite_rows(camp.damping_ratio), "log_decrement": _finite_rows(camp.log_decrement)}
+    missing = int(np.sum(~np.isfinite(camp.frequency_hz)))
+    if missing:      # said, not left to a reader of the JSON to find as nulls
+        print(f"ringcontact rotor campbell: warning: {missing} of {camp.frequency_hz.size} whirl frequencies are "
+              f"missing (null in the JSON, blank in the table): fewer than {n_modes} "
+              f"{'underdamped ' if args.damped else ''}modes of a kind at some speeds", file=sys.stderr)
     head = f"{'speed (rpm)':>11} " + " ".join(f"{'mode ' + str(j + 1) + ' (Hz, zeta)':>23}" for j in range(n_modes))
     lines = [scene.title + (" (damped: frequencies and zeta with C)" if args.damped else " (undamped: zeta = 0)"),
              head]

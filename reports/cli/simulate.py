@@ -131,10 +131,8 @@ def main(argv: list[str] | None = None) -> int:
         return fail("ringcontact simulate", e)
 
 
-def _run(args) -> int:
-    from rotor.dynamics.production import simulate_production, warm_up
-    from rotor.dynamics.reference import simulate_reference
-
+def _check_options(args) -> None:
+    """Options that contradict each other, refused in the user's terms before anything is built."""
     if args.max_revs is not None and not args.steady:
         raise InputError(f"--max-revs = {args.max_revs} rev: the transient cap of --steady, which is not given "
                          "(add --steady, or leave --max-revs out)")
@@ -151,6 +149,13 @@ def _run(args) -> int:
                         or (args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev)):
         raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
                          "dividing --steps-per-rev")   # refused before building or compiling anything
+
+
+def _run(args) -> int:
+    from rotor.dynamics.production import simulate_production, warm_up
+    from rotor.dynamics.reference import simulate_reference
+
+    _check_options(args)            # contradictions refused before building or compiling anything
     scene, model, system, law_info = _system(args)
     names = _dof_names(args, model, primary_only=True)
     idx = [model.dof_index(n) for n in names]
