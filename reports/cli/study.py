@@ -366,7 +366,7 @@ def _distinct(speeds, args):
         lo, hi = float(speeds[0]), float(speeds[-1])
         most = int(round((hi - lo) / 0.1)) + 1
         raise InputError(f"--points = {args.points}: speeds from {lo:g} to {hi:g} rpm, {(hi - lo) / max(len(speeds) - 1, 1):.3g} "
-                         f"rpm apart, coincide at the 0.1 rpm the points are stored by; at most {most} points over "
+                         f"rpm apart, coincide at the 0.1 rpm the points are stored by; at most {most} point(s) over "
                          "this range, or a wider range")
     return speeds
 

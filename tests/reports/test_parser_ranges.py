@@ -53,7 +53,9 @@ BASES = {
 NEEDS = {("simulate", "--max-revs"): ["--steady", "--revolutions", "1"],
          ("simulate", "--steps-per-rev"): ["--record-per-rev", "1"],     # the samples divide the steps
          ("simulate", "--revolutions"): ["--steps-per-rev", "100000", "--record-per-rev", "1"],   # at least a step
-         ("study cascade", "--rpm-min"): ["--rpm-max", "200000"]}      # a range, not a single bound
+         ("study cascade", "--rpm-min"): ["--rpm-max", "200000", "--points", "1"],  # a range, not a single bound
+         # speeds at least 0.1 rpm apart (the points' keys): a range of 0.001 rpm holds one
+         **{(f"study {s}", "--rpm-max"): ["--points", "1"] for s in ("cascade", "params", "map")}}
 #: options whose range is a resource, not a physical limit: any count in it is taken, and proving it would
 #: start that many processes
 RESOURCES = {"--workers"}
