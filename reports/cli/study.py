@@ -503,8 +503,9 @@ def _sensitivity(args) -> int:
             raise InputError(f"variants: unknown {bad}; known: {', '.join(known)}")
         variants = [known[w] for w in want]
     out = Path(args.out)
-    if args.report_only and not any((out / "points").glob("*.json")):
-        raise InputError(f"--out = {out}: no stored points to report (run the study without --report-only first)")
+    if args.report_only:      # no computing: what is stored is reported
+        if not any((out / "points").glob("*.json")):
+            raise InputError(f"--out = {out}: no stored points to report (run the study without --report-only first)")
     else:
         tasks = sens.study_tasks(variants, scene=args.scene)
         t0 = time.perf_counter()
