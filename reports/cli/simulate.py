@@ -132,7 +132,11 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _check_options(args) -> None:
-    """Options that contradict each other, refused in the user's terms before anything is built."""
+    """Options that contradict each other or name nothing, refused in the user's terms before anything is built."""
+    for flag, text in (("--dofs", args.dofs), ("--stations", args.stations)):
+        if text is not None and not any(s.strip() for s in text.split(",")):
+            raise InputError(f"{flag} = {text!r}: names nothing; give comma-separated names, or leave {flag} out "
+                             "for the default")
     if args.max_revs is not None and not args.steady:
         raise InputError(f"--max-revs = {args.max_revs} rev: the transient cap of --steady, which is not given "
                          "(add --steady, or leave --max-revs out)")
@@ -227,12 +231,8 @@ def _run(args) -> int:
 
 
 def _dof_names(args, model, primary_only: bool) -> list[str]:
-    """``--dofs``, else y and z of ``--stations``, else of the scene's response stations; a list that names
-    nothing (``--dofs ''``, ``--stations ,``) is refused, not read as the default."""
-    for flag, text in (("--dofs", args.dofs), ("--stations", args.stations)):
-        if text is not None and not any(s.strip() for s in text.split(",")):
-            raise InputError(f"{flag} = {text!r}: names nothing; give comma-separated names, or leave {flag} out "
-                             "for the default")
+    """``--dofs``, else y and z of ``--stations``, else of the scene's response stations (a list that names
+    nothing was refused by :func:`_check_options`)."""
     if args.dofs:
         return [s.strip() for s in args.dofs.split(",") if s.strip()]
     if args.stations:

@@ -253,6 +253,8 @@ def _run(args) -> int:
     if args.study == "sensitivity":
         return _sensitivity(args)
     from rotor.model.scene import load_scene
+    from sweep.store import ResultStore
+    ResultStore(args.out).check_layout()   # a damaged or foreign run directory: refused by name, first
     scene = load_scene(args.scene)  # a bad scene is refused here, not by every point of the sweep
     _law_clearances(args, scene)
     out = Path(args.out)

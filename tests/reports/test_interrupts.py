@@ -177,9 +177,12 @@ CASES = {
     "fem-vtu (SIGTERM)": pytest.param(FEM_VTU, _cpu(2.5), signal.SIGTERM),
     "fem3d vtu": (["fem3d", "vtu", "0.02", "--out", "out/q.vtu", "--no-cache"], _cpu(2.5), signal.SIGINT),
     "calibrate": (["calibrate", "--out", "out"] + ["--dataset", D2] * 10, _cpu(2.0), signal.SIGTERM),
-    "calibrate (SIGINT)": (["calibrate", "--out", "out"] + ["--dataset", D2] * 10, _cpu(2.0), signal.SIGINT),
-    "branch": (BRANCH, _cpu(2.0), signal.SIGINT),
-    "bearing": (["bearing", "clamped", "--out", "out", "--workers", "2"], _any_sweep_running, signal.SIGINT),
+    # slow: the default run keeps one case per mechanism (the jobs below share theirs with the cases above)
+    "calibrate (SIGINT)": pytest.param(["calibrate", "--out", "out"] + ["--dataset", D2] * 10, _cpu(2.0), signal.SIGINT,
+                                       marks=pytest.mark.slow),
+    "branch": pytest.param(BRANCH, _cpu(2.0), signal.SIGINT, marks=pytest.mark.slow),
+    "bearing": pytest.param(["bearing", "clamped", "--out", "out", "--workers", "2"], _any_sweep_running, signal.SIGINT,
+                            marks=pytest.mark.slow),
 }
 #: a line a long job prints before it starts (reports/cli/_budget.py): not part of the interruption
 ANNOUNCED = re.compile(r"^ringcontact [a-z -]+: estimated .* of computing .*; starting$")
