@@ -101,7 +101,9 @@ def _probe(path: Path, kind: str) -> Path:
     shown = str(path)
     if not shown.strip():
         raise argparse.ArgumentTypeError(f"= '': must name a {'directory' if kind == 'dir' else 'file'}")
-    too_long = [part for part in path.parts if len(os.fsencode(part)) + (NAME_GROWTH if kind == "file" else 0) > 255]
+    grows = NAME_GROWTH if kind == "file" else 0       # the file's own name, not its folders'
+    too_long = [part for part in path.parts[:-1] if len(os.fsencode(part)) > 255] + (
+        [path.name] if len(os.fsencode(path.name)) + grows > 255 else [])
     if too_long or len(os.fsencode(shown)) + NAME_GROWTH > 4096:
         raise argparse.ArgumentTypeError(f"= {shown[:60]}… ({len(shown)} characters): a name longer than the file "
                                          f"system takes (255 bytes a name, {255 - NAME_GROWTH} for a file the job "
