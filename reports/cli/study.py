@@ -256,6 +256,7 @@ def _run(args) -> int:
     from sweep.store import ResultStore
     ResultStore(args.out).check_layout()   # a damaged or foreign run directory: refused by name, first
     scene = load_scene(args.scene)  # a bad scene is refused here, not by every point of the sweep
+    _paper_stations(args, scene)
     _law_clearances(args, scene)
     out = Path(args.out)
     figs = Path(args.figures) if args.figures else out / "figures"
@@ -266,6 +267,22 @@ def _run(args) -> int:
     for f in study(args, out, figs, opts):
         print(f"  wrote {f}")
     return 0
+
+
+def _paper_stations(args, scene) -> None:
+    """The figures of point, params, testrig and runup are the paper's: disk 1, disk 2 and the support s
+    (reports/studies/common.py: LOCATIONS); a scene without those stations is refused before any point
+    (``study cascade`` draws any scene's stations)."""
+    from reports.studies.common import LOCATIONS
+    from rotor.model.assembly import assemble
+    if args.study not in ("point", "params", "testrig", "runup"):
+        return
+    have = assemble(scene, elements_per_segment=getattr(args, "elements", None)).response_stations()
+    need = [ch.split(".")[0] for ch, _ in LOCATIONS]
+    if not set(need) <= set(have):
+        raise InputError(f"--scene = {args.scene}: study {args.study} draws the paper's stations {', '.join(need)}; "
+                         f"the scene has {', '.join(have)}: use study cascade (any stations), simulate --steady or "
+                         "orbit for this scene")
 
 
 def _same_law(out: Path, sc) -> None:

@@ -38,6 +38,9 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
     n = model.n_dofs
     check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True,
                    upper=plausible.top("run_speed_rpm") * math.pi / 30)     # the command line's top speed
+    if not np.any(model.M):      # every DOF massless: nothing moves in time (a condensed system of 0 DOFs)
+        raise InputError(f"scene {scene.name!r}: no mass anywhere (every material density and disk mass is 0), so "
+                         "nothing to integrate in time; give the shaft a density_kg_m3 or a disk a mass_kg")
     require_ground(model, "time integration")   # a free rotor has no rest position (rotor.model.topology)
     sup = None if ls is None else _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m)
     if ls is None:

@@ -322,6 +322,14 @@ def _trust_cases() -> list:
               (f"rotor {sub} big_scene", ["rotor", sub, "{big_scene}"], None),
               (f"rotor {sub} fifo scene", ["rotor", sub, "{fifo}"], None)]
     sim = ["simulate", "--speed-rpm", "10500", "--out", "{tmp}/o"]
+    c += [("simulate zero_mass", ["simulate", "--speed-rpm", "3000", "--scene", "{zero_mass}", "--out", "{tmp}/o"], None),
+          ("orbit zero_mass", ["orbit", "{zero_mass}", "--speed-rpm", "3000"], None)]
+    for sub in ("point", "params", "testrig", "runup"):      # the paper's stations drawn (was an internal error)
+        c.append((f"study {sub} on a scene without disk1/disk2/s", ["study", sub, "--scene", "verify-jeffcott",
+                                                                   "--no-progress", "--out", "{tmp}/o"], "verify-jeffcott"))
+    for sub in ("point", "params", "testrig", "map", "runup"):
+        c += [(f"study {sub} --out {d}", ["study", sub, "--no-progress", "--out", "{" + d + "}"], None)
+              for d in ("study_points_file", "study_garbage_journal")]
     c += [("simulate --scene deep_toml", [*sim, "--scene", "{deep_toml}"], None),
           ("orbit deep_toml", ["orbit", "{deep_toml}", "--speed-rpm", "10500"], None),
           ("simulate --law deep_json", [*sim, "--law", "{deep_json}"], None),
