@@ -168,8 +168,9 @@ def read_dataset(path, kind: str | None = None) -> ReferenceDataset:
         raise DatasetError(f"{path}: cannot read reference dataset ({exc})") from exc
     try:
         doc = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise DatasetError(f"{path}: not valid JSON (truncated or corrupted?): {exc}") from exc
+    except (json.JSONDecodeError, RecursionError) as exc:     # RecursionError: nested beyond any dataset
+        raise DatasetError(f"{path}: not valid JSON (truncated, corrupted or nested too deeply): "
+                           f"{str(exc)[:120]}") from None
     if not isinstance(doc, dict) or doc.get("schema") != SCHEMA:
         raise DatasetError(f"{path}: schema is {doc.get('schema') if isinstance(doc, dict) else None!r}, "
                            f"expected {SCHEMA!r}")

@@ -69,11 +69,39 @@ def stop_children(grace_s: float = 0.0) -> int:
     return len(children)
 
 
+_PENDING = [0]                           # the signal being honoured (0: none)
+
+
 def _raise(signum, frame):
     for s in SIGNALS:                    # once on the way out, further signals would only break the cleanup
         signal.signal(s, signal.SIG_IGN)
+    _PENDING[0] = int(signum)
     stop_children()
     raise Interrupted(signum)
+
+
+def _again(signum, frame):
+    """The signal's exception was swallowed (see :func:`_unraisable`): raise it again, now in ordinary code."""
+    if _PENDING[0]:
+        raise Interrupted(_PENDING[0])
+
+
+def _unraisable(hook):
+    """A ``sys.unraisablehook`` that catches :class:`Interrupted` raised where Python ignores exceptions (a
+    function run at fork, ``logging``'s lock release, or a C library's callback into Python, such as
+    llvmlite's object cache while numba compiles): Python would print "Exception ignored" with a traceback
+    and go on computing. Instead the main thread is signalled again 10 ms later (SIGALRM, :func:`_again`), which
+    raises the interruption in ordinary code (swallowed again: the same once more)."""
+    def unraisable(args):
+        if isinstance(args.exc_value, Interrupted):
+            if threading.current_thread() is threading.main_thread():
+                signal.setitimer(signal.ITIMER_REAL, 0.01)   # shortly, once out of the context that swallowed it
+            else:
+                import _thread
+                _thread.interrupt_main(signal.SIGALRM)
+            return
+        hook(args)
+    return unraisable
 
 
 @contextlib.contextmanager
@@ -85,11 +113,16 @@ def handled():
         yield
         return
     previous = {s: signal.signal(s, _raise) for s in SIGNALS}
+    previous[signal.SIGALRM] = signal.signal(signal.SIGALRM, _again)
+    hook, sys.unraisablehook = sys.unraisablehook, _unraisable(sys.unraisablehook)
     _ACTIVE[0] = True
     try:
         yield
     finally:
         _ACTIVE[0] = False
+        _PENDING[0] = 0
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        sys.unraisablehook = hook
         for s, h in previous.items():
             signal.signal(s, h if h is not None else signal.SIG_DFL)
 
@@ -128,10 +161,39 @@ def finish(exc: KeyboardInterrupt) -> tuple[int, str]:
     from contact.files import discard_own_temporaries
 
     signum = getattr(exc, "signum", signal.SIGINT)
+    _PENDING[0] = 0                      # honoured: a swallowed copy is not raised again
+    if threading.current_thread() is threading.main_thread():
+        signal.setitimer(signal.ITIMER_REAL, 0)
     discard_own_temporaries()
     stop_children()
     what = kept(exc) or "no output half-written (every file is written whole or not at all); run again"
     return 128 + int(signum), f"interrupted ({signal.Signals(signum).name}): {what}"
+
+
+def in_thread(func, *args, **kwargs):
+    """``func(*args, **kwargs)`` run in a thread of its own while this (main) thread waits for it in Python, so a
+    signal is honoured at once even during a long compiled call that releases the GIL (numba ``nogil``, such as
+    the production step loop): a signal is handled only between Python instructions of the main thread, which
+    a compiled loop of 20 s in the main thread would hold back for those 20 s. On an interruption the thread
+    is left computing a result nobody will keep (the dispatcher ends the process without waiting for it,
+    :func:`busy_threads`). Outside :func:`handled`, or from another thread, a plain call."""
+    if not _ACTIVE[0] or threading.current_thread() is not threading.main_thread():
+        return func(*args, **kwargs)
+    box = {}
+
+    def target():
+        try:
+            box["value"] = func(*args, **kwargs)
+        except BaseException as exc:     # noqa: BLE001 - handed to the caller as it is
+            box["error"] = exc
+
+    worker = threading.Thread(target=target, name=f"ringcontact-{getattr(func, '__name__', 'work')}")
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.05)
+    if "error" in box:
+        raise box["error"]
+    return box["value"]
 
 
 def busy_threads(grace_s: float = 1.0) -> list[str]:

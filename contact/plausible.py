@@ -76,6 +76,11 @@ def range_text(name: str) -> str:
     return f"in {'[' if lo_in else '('}{lo:g}, {hi:g}{']' if hi_in else ')'}{u}"
 
 
+def top(name: str) -> float:
+    """The high end of ``name``'s range: the one bound a job and its parser share (e.g. the highest speed)."""
+    return RANGES[name][1]
+
+
 def inside(name: str, value: float) -> bool:
     """True if ``value`` is finite and inside the plausible range of ``name``."""
     lo, hi, _, lo_in, hi_in, _ = RANGES[name]

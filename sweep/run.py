@@ -257,10 +257,12 @@ def run_sweep(tasks: list[Task], store: ResultStore | str | os.PathLike, *, exec
     keys = [k for t in tasks for k, _ in t.points]
     if len(set(keys)) != len(keys):
         dup = sorted({k for k in keys if keys.count(k) > 1})
-        raise InputError(f"tasks: duplicate keys {dup[:5]}")
+        raise InputError(f"tasks: duplicate keys {dup[:5]}: points whose parameters coincide at the keys' rounding "
+                         "(e.g. speeds closer than 0.1 rpm); fewer points or a wider range")
     say = log if log is not None else (lambda m: print(m, file=sys.stderr))
     t_start = time.perf_counter()
     summary = SweepSummary()
+    store.check_layout()          # damaged or foreign parts refused by name, before the lock file is written
     with DirectoryLock(store.root, wait_s=lock_wait_s):
         removed = remove_stale_temporaries(store.root, store.points)
         if removed:

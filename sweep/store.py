@@ -85,6 +85,51 @@ class ResultStore:
     def json_path(self, key: str) -> Path:
         return self.points / f"{key}.json"
 
+    # -- what is there -------------------------------------------------
+    def check_layout(self) -> None:
+        """Refuse, by name and with what to do, a run directory whose parts are of the wrong kind or not this
+        suite's (a file where ``points/`` belongs, a journal or status file holding something else), before
+        anything is written: :class:`DatasetError`. Finished points are never touched by the advice."""
+        keep = "move it away (the finished points stay and are verified one by one) or use another --out"
+        if self.root.exists() and not self.root.is_dir():
+            raise DatasetError(f"{self.root}: a file, not a run directory; use another --out")
+        if (self.points.exists() or self.points.is_symlink()) and not self.points.is_dir():
+            raise DatasetError(f"{self.points}: a file where the folder of finished points belongs; move it away "
+                               "or use another --out")
+        for name in (MANIFEST, JOURNAL, STATUS_FILE, TIMING):
+            p = self.root / name
+            if (p.exists() or p.is_symlink()) and not p.is_file():
+                raise DatasetError(f"{p}: not a regular file (a folder, a pipe or a dangling link); {keep}")
+        self._check_journal(keep)
+        p = self.root / STATUS_FILE
+        if p.is_file():
+            try:
+                doc = json.loads(p.read_bytes().decode("utf-8"))
+                ok = isinstance(doc, dict) and doc.get("state") in STATES
+            except (ValueError, RecursionError):
+                ok = False
+            if not ok:
+                raise DatasetError(f"{p}: not a status file of this suite (JSON with a state of {', '.join(STATES)}); "
+                                   f"{keep}")
+
+    def _check_journal(self, keep: str) -> None:
+        """The journal must be this suite's: UTF-8 lines of JSON entries (only the last may be cut by a kill)."""
+        p = self.root / JOURNAL
+        if not p.is_file():
+            return
+        try:
+            lines = p.read_bytes().decode("utf-8").splitlines()
+        except UnicodeDecodeError:
+            raise DatasetError(f"{p}: not a journal of this suite (not UTF-8 text); {keep}") from None
+        bad = 0
+        for line in lines[:-1]:
+            try:
+                bad += not isinstance(json.loads(line).get("key"), str)
+            except (ValueError, AttributeError, RecursionError):
+                bad += 1
+        if bad:
+            raise DatasetError(f"{p}: {bad} line(s) that are not journal entries of this suite; {keep}")
+
     # -- writing -------------------------------------------------------
     def write_manifest(self, manifest: dict) -> Path:
         """Write ``sweep.json`` (atomically) with its own SHA-256: what the sweep is, code revision, environment."""
@@ -141,7 +186,7 @@ class ResultStore:
     def journal_keys(self) -> set[str]:
         """Keys of every point ever stored here (unreadable lines, e.g. one cut by a kill, are skipped)."""
         try:
-            lines = (self.root / JOURNAL).read_text(encoding="utf-8").splitlines()
+            lines = (self.root / JOURNAL).read_bytes().decode("utf-8", errors="replace").splitlines()
         except OSError:
             return set()
         keys = set()
@@ -236,6 +281,8 @@ def load_sweep(store: ResultStore | str | os.PathLike, tasks: list[Task] | None 
 
 
 STATUS_FILE = "status.json"
+#: the states a status file may record
+STATES = ("running", "interrupted", "incomplete", "complete")
 
 
 def write_status(root: str | os.PathLike, state: str, **fields) -> Path:

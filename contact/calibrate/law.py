@@ -189,8 +189,8 @@ class CalibratedLaw:
     def from_json(cls, text: str, source: str = "<string>") -> "CalibratedLaw":
         try:
             doc = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise DatasetError(f"{source}: not valid JSON: {exc}") from exc
+        except (json.JSONDecodeError, RecursionError) as exc:     # RecursionError: nested beyond any law file
+            raise DatasetError(f"{source}: not valid JSON (or nested too deeply): {str(exc)[:120]}") from None
         if not isinstance(doc, dict) or doc.get("schema") != SCHEMA or doc.get("version") != VERSION:
             raise DatasetError(f"{source}: not a {SCHEMA} v{VERSION} file")
         check_document_sha256(doc, source)

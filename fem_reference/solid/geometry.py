@@ -115,8 +115,8 @@ class RigidMotion:
         if abs(self.translation_m) > 0.01:
             raise InputError(f"translation_m = {self.translation_m:g} m: must be within +-0.01 m "
                              "(wrong unit? metres expected)")
-        if abs(self.tilt_rad) > 0.05:
-            raise InputError(f"tilt_rad = {self.tilt_rad:g} rad: must be within +-0.05 rad "
+        if abs(self.tilt_rad) > MAX_TILT_RAD:
+            raise InputError(f"tilt_rad = {self.tilt_rad:g} rad: must be within +-{MAX_TILT_RAD:g} rad "
                              "(small-rotation model; wrong unit? radians expected)")
 
     @classmethod
@@ -124,6 +124,11 @@ class RigidMotion:
         """Motion whose mid-plane penetration is ``penetration_m`` (Delta r = r - delta0, m)."""
         check_finite("penetration_m", penetration_m, "m")
         return cls(translation_m=geom.clearance_m + penetration_m, tilt_rad=tilt_rad)
+
+
+#: the largest tilt of the small-rotation model of :class:`RigidMotion` (rad, 172 arcmin); the 3D jobs' parsers
+#: take their ``--tilt-arcmin`` range from it
+MAX_TILT_RAD = 0.05
 
 
 @dataclass(frozen=True)

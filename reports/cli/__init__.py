@@ -17,6 +17,7 @@ physical input (:mod:`contact.plausible`).
 """
 from __future__ import annotations
 
+import errno
 import importlib
 import os
 import sys
@@ -104,13 +105,26 @@ def _run(job: str, rest: list[str], program: bool = False) -> int:
     except BrokenPipeError:          # output piped into head & co.
         sys.stderr.close()
         return 0
+    except OSError as exc:
+        if exc.errno != errno.ENAMETOOLONG:
+            return _internal(job, exc)
+        name = os.fsdecode(exc.filename or "")     # only a name the user typed (or one made from it) is too long
+        print(f"ringcontact {job}: error: {name[:60]}… ({len(name)} characters): a file or folder name longer than "
+              "the file system takes (255 bytes a name, 4096 a path); a shorter name", file=sys.stderr)
+        return 2
     except (Exception, MemoryError) as exc:   # never a traceback for the user
-        if os.environ.get("RINGCONTACT_DEBUG"):
-            raise
-        print(f"ringcontact {job}: internal error: {type(exc).__name__}: {' '.join(str(exc).split())[:300]} "
-              "(a bug: please report it with the command line; RINGCONTACT_DEBUG=1 shows the traceback)",
-              file=sys.stderr)
-        return 1
+        return _internal(job, exc)
+
+
+def _internal(job: str, exc: BaseException) -> int:
+    """An error the suite did not foresee: one line, exit status 1 (``RINGCONTACT_DEBUG=1``: the traceback)."""
+    if os.environ.get("RINGCONTACT_DEBUG"):
+        raise exc
+    print(f"ringcontact {job}: internal error: {type(exc).__name__}: {' '.join(str(exc).split())[:300]} "
+          "(a bug: please report it with the command line; RINGCONTACT_DEBUG=1 shows the traceback)",
+          file=sys.stderr)
+    return 1
+
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -48,9 +48,11 @@ def fail(prog: str, exc: BaseException) -> int:
     return int(getattr(exc, "exit_status", 2))
 
 
-def quantity(name: str):
-    """A ``type=`` for a physical input whose plausible range is ``contact.plausible.RANGES[name]``."""
-    unit = plausible.RANGES[name][2]
+def quantity(name: str, low: float | None = None, high: float | None = None, why: str = ""):
+    """A ``type=`` for a physical input whose plausible range is ``contact.plausible.RANGES[name]``, narrowed
+    to ``[low, high]`` where the job itself accepts less (``why`` says why; the job imports the same bound).
+    The callable carries its bounds (``.name``, ``.low``, ``.high``, ``.unit``) for tests that walk parsers."""
+    lo, hi, unit, lo_in, hi_in, _ = plausible.RANGES[name]
     u = "" if unit == "-" else f" {unit}"
 
     def parse(text: str) -> float:
@@ -59,10 +61,16 @@ def quantity(name: str):
         except ValueError:
             raise argparse.ArgumentTypeError(f"= {text}{u}: not a number") from None
         if not plausible.inside(name, value):
-            why = "must be finite" if not math.isfinite(value) else f"must be {plausible.range_text(name)}"
-            raise argparse.ArgumentTypeError(f"= {text}{u}: {why}")
+            why_ = "must be finite" if not math.isfinite(value) else f"must be {plausible.range_text(name)}"
+            raise argparse.ArgumentTypeError(f"= {text}{u}: {why_}")
+        if (low is not None and value < low) or (high is not None and value > high):
+            a, b = (lo if low is None else low), (hi if high is None else high)
+            raise argparse.ArgumentTypeError(f"= {text}{u}: must be in [{a:g}, {b:g}]{u}" + (f" ({why})" if why else ""))
         return value
     parse.__name__ = name
+    parse.name, parse.unit = name, unit
+    parse.low = (lo, lo_in) if low is None or low < lo else (low, True)
+    parse.high = (hi, hi_in) if high is None or high > hi else (high, True)
     return parse
 
 
@@ -79,7 +87,13 @@ def count(lo: int, hi: int, what: str = ""):
             raise argparse.ArgumentTypeError(f"= {text}{w}: must be in [{lo}, {hi}]")
         return value
     parse.__name__ = "count"
+    parse.name, parse.unit, parse.low, parse.high = "count", what, (lo, True), (hi, True)
     return parse
+
+
+#: bytes a written name may grow by: a temporary ``.NAME.PID.XXXXXXXX.tmp`` (contact.files) or a prefix's
+#: longest suffix (``-misalignment.png``)
+NAME_GROWTH = 32
 
 
 def _probe(path: Path, kind: str) -> Path:
@@ -87,6 +101,20 @@ def _probe(path: Path, kind: str) -> Path:
     shown = str(path)
     if not shown.strip():
         raise argparse.ArgumentTypeError(f"= '': must name a {'directory' if kind == 'dir' else 'file'}")
+    grows = NAME_GROWTH if kind == "file" else 0       # the file's own name, not its folders'
+    too_long = [part for part in path.parts[:-1] if len(os.fsencode(part)) > 255] + (
+        [path.name] if len(os.fsencode(path.name)) + grows > 255 else [])
+    if too_long or len(os.fsencode(shown)) + NAME_GROWTH > 4096:
+        raise argparse.ArgumentTypeError(f"= {shown[:60]}… ({len(shown)} characters): a name longer than the file "
+                                         f"system takes (255 bytes a name, {255 - NAME_GROWTH} for a file the job "
+                                         "writes, 4096 a path); a shorter name")
+    try:
+        return _probe_kind(path, kind, shown)
+    except OSError as exc:            # a path the system refuses to look at (permissions, loops)
+        raise argparse.ArgumentTypeError(f"= {shown}: cannot be used ({exc.strerror or exc})") from None
+
+
+def _probe_kind(path: Path, kind: str, shown: str) -> Path:
     if path.exists():
         if kind == "dir" and not path.is_dir():
             raise argparse.ArgumentTypeError(f"= {shown}: is a file, a directory is needed")

@@ -66,7 +66,8 @@ def add_scene_options(p: argparse.ArgumentParser, *, default: str = DEFAULT_SCEN
     g.add_argument("--tilt-ignored", action="store_true",
                    help="line contact: no moment between bearing and support (paper §5.2, Fig. 16)")
     if transient:
-        p.add_argument("--max-revs", type=count(24, 100000, "revolutions"), default=None,
+        from rotor.studies.steady_state import SteadyStateOptions      # the detector's shortest transient
+        p.add_argument("--max-revs", type=count(SteadyStateOptions.min_revs, 100000, "revolutions"), default=None,
                        help=f"transient cap of the steady-state detection in revolutions (default "
                             f"{MAX_TRANSIENT_REVS}: at the paper's point A the end faces creep for about 2 000 "
                             "revolutions before the ring settles; at least 24, the detector's shortest transient)")

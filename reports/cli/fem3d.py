@@ -93,11 +93,18 @@ def _fmt_point(rec: dict) -> str:
     return "\n".join(lines)
 
 
+def _tilt_arcmin():
+    """``--tilt-arcmin`` within the 3D model's small-rotation range (fem_reference.solid.geometry.MAX_TILT_RAD)."""
+    from fem_reference.solid.geometry import MAX_TILT_RAD
+    top = int(MAX_TILT_RAD / ARCMIN * 10) / 10          # 171.8: rounded down, so the bound is inside the model's
+    return quantity("tilt_arcmin", low=-top, high=top, why="the 3D model's small rotations")
+
+
 def point_main(argv: list[str]) -> int:
     """``fem3d point``: solve one (penetration, tilt) and print it (or JSON with --json)."""
     ap = Parser(prog="ringcontact fem3d point", description="solve one 3D contact point")
     ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="mid-plane penetration Δr = r − δ0 [mm]")
-    ap.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), default=0.0, help="tilt [arcmin]")
+    ap.add_argument("--tilt-arcmin", type=_tilt_arcmin(), default=0.0, help="tilt [arcmin]")
     ap.add_argument("--tilt-axis", choices=("z", "y"), default="z",
                     help="z: translation along +y, tilt theta_z (canonical); y: translation along +z, tilt theta_y "
                          "(the rotated case: same magnitudes, vectors rotated, see docs/reference/contact-laws.md §1)")
@@ -244,7 +251,7 @@ def vtu_main(argv: list[str]) -> int:
     ap = Parser(prog="ringcontact fem3d vtu",
                 description="contact pressure and rigid gap on the support bore (half ring) as VTU")
     ap.add_argument("penetration_mm", type=quantity("penetration_mm"), help="mid-plane penetration Δr = r − δ0 [mm]")
-    ap.add_argument("--tilt-arcmin", type=quantity("tilt_arcmin"), default=0.0, help="tilt about z [arcmin]")
+    ap.add_argument("--tilt-arcmin", type=_tilt_arcmin(), default=0.0, help="tilt about z [arcmin]")
     ap.add_argument("--scene", default="clamped", help=SCENE_HELP)
     ap.add_argument("--level", default="Q2", choices=_levels(), help="mesh level (default Q2, the finest reference level)")
     ap.add_argument("--out", type=out_file, required=True, help="output .vtu file")

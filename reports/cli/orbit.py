@@ -33,6 +33,7 @@ import time
 from pathlib import Path
 
 from contact.errors import InputError, RingContactError
+from reports.cli import _budget
 from reports.cli._edge import Parser, count, fail, in_file, out_file, out_prefix, quantity
 from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, override_words,
                                         scene_from_args, warm_up_shown)
@@ -45,6 +46,7 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON (default: a short table)")
     p.add_argument("--out", type=out_file, default=None, help="also write the JSON result to this file")
     add_progress_option(p)
+    _budget.add_accept_long(p)
 
 
 def _orbit_parser() -> argparse.ArgumentParser:
@@ -86,6 +88,20 @@ def _scene(args) -> tuple:
     from rotor.studies.steady_state import _scene_model
     sc, model = _scene_model(args.scene, None, _overrides(args).get("law"))
     return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
+
+
+def _check_work(args, prog: str, rpm: float, points: int = 0) -> None:
+    """The shooting work at ``rpm`` (and ``points`` orbits of a branch) against the budget, before it starts
+    (:func:`reports.cli._budget.orbit`)."""
+    from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
+
+    system = point_system(args.scene, rpm, **_overrides(args))[2]
+    n = int(args.steps_per_rev or step_per_rev(system, SteadyStateOptions()))
+    est = _budget.orbit(system, n, getattr(args, "period_revs", None), points)
+    cause = (f"--steps-per-rev = {n}" if args.steps_per_rev else
+             f"{n} steps per revolution (the contact step limit at {rpm:g} rpm)")
+    _budget.check(prog, est, args.accept_long, cause + (f" and --max-points = {points}" if points else ""),
+                  "fewer steps per revolution" + (" or --max-points" if points else ""))
 
 
 def law_fields(loose, max_edge_penetration_m: float, max_tilt_in_contact_arcmin: float | None = None) -> dict:
@@ -214,6 +230,7 @@ def _orbit(args) -> int:
     from rotor.studies.orbit import orbit
 
     name, _, loose = _scene(args)
+    _check_work(args, "ringcontact orbit", args.speed_rpm)
     res, events = _watched("ringcontact orbit", args, lambda: orbit(
         args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, period_revs=args.period_revs,
         **_overrides(args)))
@@ -282,10 +299,14 @@ def _branch(args) -> int:
     from rotor.studies.orbit import branch
 
     name, channels, loose = _scene(args)
+    if args.station is not None and not args.station.strip():
+        raise InputError(f"--station = {args.station!r}: names nothing; give <station>.y or <station>.z (have "
+                         f"{', '.join(channels)}), or leave --station out for {channels[0]}")
     station = args.station or channels[0]
     if station not in channels:
         raise InputError(f"--station = {station}: not a response channel of {name} "
                          f"(have {', '.join(channels)})")
+    _check_work(args, "ringcontact branch", min(args.rpm_start, args.rpm_end), int(args.max_points))
     t0 = time.perf_counter()
     chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}
     res, events = _watched("ringcontact branch", args, lambda: branch(

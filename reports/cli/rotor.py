@@ -26,19 +26,32 @@ import sys
 import numpy as np
 
 from contact.errors import InputError, RingContactError
+from reports.cli import _budget
 from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
 from reports.cli._scene_options import add_scene_options, finish, linear_scene
 
 RPM = 30 / math.pi
 
 
-def _load(args, misalignment: bool = False):
+def _load(args, misalignment: bool = False, modal: bool = True):
     """Scene (with ``--misalignment-mm`` where ``misalignment``; the other loose-support overrides refused:
-    :func:`reports.cli._scene_options.linear_scene`) and its assembled model."""
+    :func:`reports.cli._scene_options.linear_scene`) and its assembled model; ``modal``: a scene without any
+    mass is refused (:func:`_require_mass`)."""
     from rotor.model.assembly import assemble
     from rotor.model.scene import load_scene
     scene = linear_scene(args, load_scene(args.scene), misalignment=misalignment)
-    return scene, assemble(scene, elements_per_segment=args.elements)
+    model = assemble(scene, elements_per_segment=args.elements)
+    if modal:
+        _require_mass(scene, model)
+    return scene, model
+
+
+def _require_mass(scene, model) -> None:
+    """A modal job on a scene with no mass at all (every density and disk mass 0) is refused: it has no
+    vibration modes, and an empty table or a Campbell diagram of nulls would say nothing."""
+    if not np.any(model.M):
+        raise InputError(f"scene {scene.name!r}: no mass anywhere (every material density and disk mass is 0), so "
+                         "no vibration modes; give the shaft a density_kg_m3 or a disk a mass_kg")
 
 
 def _warn_free(model, args) -> None:
@@ -133,10 +146,13 @@ def _plot_mode_shapes(args, scene, model, res) -> None:
 def cmd_campbell(args) -> int:
     from rotor.linear.modes import campbell, critical_speeds
     scene, model = _load(args)
-    _warn_free(model, args)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(0.0, wmax, args.points or scene.analysis.speed_points)
     n_modes = args.modes or scene.analysis.modes
+    _budget.check("ringcontact rotor campbell", _budget.campbell(model.n_dofs, len(speeds)), args.accept_long,
+                  f"--points = {len(speeds)} speeds of a {model.n_dofs}-DOF model"
+                  + (f" (--elements {args.elements})" if args.elements else ""), "fewer --points or --elements")
+    _warn_free(model, args)
     camp = campbell(model, speeds, n_modes=n_modes, lock_loose_support=not args.open_support, damped=args.damped)
     if args.plot:
         from reports.rotor_plots import campbell_figure, save
@@ -150,6 +166,11 @@ def cmd_campbell(args) -> int:
             "frequency_rad_s": _finite_rows(camp.frequency_hz * 2 * math.pi),
             "whirl": [list(w) for w in camp.whirl], "damped": bool(args.damped),
             "damping_ratio": _finite_rows(camp.damping_ratio), "log_decrement": _finite_rows(camp.log_decrement)}
+    missing = int(np.sum(~np.isfinite(camp.frequency_hz)))
+    if missing:      # said, not left to a reader of the JSON to find as nulls
+        print(f"ringcontact rotor campbell: warning: {missing} of {camp.frequency_hz.size} whirl frequencies are "
+              f"missing (null in the JSON, blank in the table): fewer than {n_modes} "
+              f"{'underdamped ' if args.damped else ''}modes of a kind at some speeds", file=sys.stderr)
     head = f"{'speed (' + _su(args) + ')':>13} " + " ".join(f"{f'mode {j + 1} ({_fu(args)}, zeta)':>23}"
                                                           for j in range(n_modes))
     lines = [scene.title + (" (damped: frequencies and zeta with C)" if args.damped else " (undamped: zeta = 0)"),
@@ -189,7 +210,7 @@ def cmd_critical(args) -> int:
 
 def cmd_unbalance(args) -> int:
     from rotor.linear.unbalance import forced_response
-    scene, model = _load(args, misalignment=args.order == 2)
+    scene, model = _load(args, misalignment=args.order == 2, modal=False)
     wmax = _max_speed(args, scene)
     speeds = np.linspace(wmax / (args.points or scene.analysis.speed_points), wmax,
                          args.points or scene.analysis.speed_points)
@@ -246,6 +267,7 @@ def cmd_response(args) -> int:
         if not all(stations):
             raise InputError(f"--stations = {args.stations!r}: an empty name in the list; give comma-separated "
                              "station, disk, bearing or support names (or leave --stations out for the default)")
+    _response_work(args)
     from rotor.model.scene import load_scene
     scene = linear_scene(args, load_scene(args.scene), misalignment=True)
     summary = run_response(scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
@@ -257,7 +279,7 @@ def cmd_response(args) -> int:
 
 def cmd_static(args) -> int:
     from rotor.linear.static import static_deflection
-    scene, model = _load(args)
+    scene, model = _load(args, modal=False)
     st = static_deflection(model)
     total = st.load_N[[i for i, n in enumerate(model.dof_names) if n.endswith(".y")]].sum(), \
         st.load_N[[i for i, n in enumerate(model.dof_names) if n.endswith(".z")]].sum()
@@ -277,6 +299,18 @@ def cmd_static(args) -> int:
     lines += [f"{r['element']:>12} {r['force_y_N']:>12.4f} {r['force_z_N']:>12.4f}" for r in reactions]
     _emit(args, data, "\n".join(lines))
     return 0
+
+
+def _response_work(args) -> None:
+    """The run's steps (Newmark) and records against the work budget (:func:`reports.cli._budget.stepping`)."""
+    from rotor.model.assembly import assemble
+    from rotor.model.scene import load_scene
+    n_dofs = assemble(load_scene(args.scene), elements_per_segment=args.elements).n_dofs
+    steps = args.revolutions * args.steps_per_rev if args.method == "newmark" else 0
+    est = _budget.stepping(steps, args.revolutions * args.record_per_rev, n_dofs)
+    _budget.check("ringcontact rotor response", est, args.accept_long,
+                  f"--revolutions = {args.revolutions:g} rev at --steps-per-rev {args.steps_per_rev} and "
+                  f"--record-per-rev {args.record_per_rev} ({args.method})", "fewer revolutions, steps or records")
 
 
 def cmd_report(args) -> int:
@@ -331,6 +365,7 @@ def _parser() -> argparse.ArgumentParser:
     common(sp)
     sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
     sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX-campbell.png and .svg")
+    _budget.add_accept_long(sp)
     sp.add_argument("--damped", action="store_true", help="include viscous damping: damped frequencies and each "
                     "mode's damping ratio zeta and log decrement (default undamped, zeta = 0)")
     _crossings(sp, "of the --plot")
@@ -365,6 +400,7 @@ def _parser() -> argparse.ArgumentParser:
     sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override)")
     sp.add_argument("--json", action="store_true", help="print the summary as JSON")
     sp.add_argument("--out", type=out_dir, default="response-out", help="output directory (default response-out)")
+    _budget.add_accept_long(sp)
     sp.set_defaults(func=cmd_response)
     sp = sub.add_parser("report", help="regenerate reports/published/rotor-* (figures and tables)")
     sp.add_argument("--out", type=out_dir, default=PUBLISHED, help=f"output directory (default {PUBLISHED})")

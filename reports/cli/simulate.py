@@ -46,9 +46,11 @@ from pathlib import Path
 
 import numpy as np
 
+from contact import interrupts, plausible
 from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
+from reports.cli import _budget
 from reports.cli._edge import Parser, count, fail, out_dir, quantity
 from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, max_revs, scene_from_args,
                                         warm_up_shown)
@@ -57,6 +59,7 @@ from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_s
 
 
 def _parser() -> argparse.ArgumentParser:
+    from rotor.studies.steady_state import SteadyStateOptions     # the detector's shortest transient: one bound
     p = Parser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
     add_scene_options(p, transient=True)
     p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
@@ -79,42 +82,32 @@ def _parser() -> argparse.ArgumentParser:
                         "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
                         "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
                         "amplitudes of --dofs in the summary")
-    p.add_argument("--accept-long", action="store_true",
-                   help=f"run even when the estimate exceeds the budget ({WORK_BUDGET_S / 60:g} min of stepping or "
-                        f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB of records)")
+    _budget.add_accept_long(p)
     p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
     add_progress_option(p)
     return p
 
 
-# what a run may cost without --accept-long, and the measured step cost it is estimated from:
-# reports/published/perf-period-map.md, one Table 4 revolution (28 DOFs) at 256 steps in 1.08 ms
-WORK_BUDGET_S = 1800.0
-MEMORY_BUDGET_BYTES = 2 * 2 ** 30
-STEP_COST_S = 1.08e-3 / 256
-STEP_COST_DOFS = 28
+# what a run may cost without --accept-long, and the measured step cost it is estimated from: one rule for every
+# job (reports/cli/_budget.py)
+WORK_BUDGET_S = _budget.WORK_BUDGET_S
+MEMORY_BUDGET_BYTES = _budget.MEMORY_BUDGET_BYTES
 
 
 def work_estimate(n_steps: int, n_records: int, n_dofs: int, scheme: str) -> tuple[float, float]:
-    """``(seconds, bytes)``: the stepping time from the measured step cost (dense matrix products: scaled with
-    the square of the DOFs; the paper's reference scheme about 200x slower, reports/published/perf-integrators.md)
-    and the memory of the records (time, q, v of every DOF, 4 relative displacements and rates, contact force
-    and moment, end-face forces, stick flags: 8 bytes each), plus the CSV text (about 16 bytes a number)."""
-    per_step = STEP_COST_S * max(1.0, (n_dofs / STEP_COST_DOFS) ** 2) * (200.0 if scheme == "reference" else 1.0)
-    per_record = (1 + 2 * n_dofs + 4 + 4 + 4 + 4 + 2) * 8 + (2 * n_dofs + 30) * 16
-    return n_steps * per_step, n_records * per_record
+    """``(seconds, bytes)`` of a run (:func:`reports.cli._budget.stepping`; the paper's reference scheme about
+    200x slower than the production one, reports/published/perf-integrators.md)."""
+    est = _budget.stepping(n_steps, n_records, n_dofs, 200.0 if scheme == "reference" else 1.0)
+    return est.seconds, est.nbytes
 
 
 def check_budget(args, n_steps: int, n_records: int, n_dofs: int) -> None:
-    """Refuse, before anything is computed, a run estimated beyond the budget unless ``--accept-long``."""
-    secs, nbytes = work_estimate(n_steps, n_records, n_dofs, args.scheme)
-    if args.accept_long or (secs <= WORK_BUDGET_S and nbytes <= MEMORY_BUDGET_BYTES):
-        return
-    raise InputError(f"--revolutions = {args.revolutions:g} rev at --steps-per-rev {args.steps_per_rev} and "
-                     f"--record-per-rev {args.record_per_rev}: estimated {secs / 60:.3g} min of stepping and "
-                     f"{nbytes / 2 ** 30:.3g} GiB of records ({n_steps:.3g} steps, {n_records:.3g} records of {n_dofs} "
-                     f"DOFs), beyond the budget of {WORK_BUDGET_S / 60:g} min and {MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB; "
-                     "fewer revolutions or records, or --accept-long to run it anyway")
+    """Refuse, before anything is computed, a run estimated beyond the budget unless ``--accept-long``;
+    announce a long one (:func:`reports.cli._budget.check`)."""
+    est = _budget.stepping(n_steps, n_records, n_dofs, 200.0 if args.scheme == "reference" else 1.0)
+    _budget.check("ringcontact simulate", est, args.accept_long,
+                  f"--revolutions = {args.revolutions:g} rev at --steps-per-rev {args.steps_per_rev} and "
+                  f"--record-per-rev {args.record_per_rev}", "fewer revolutions or records")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -126,17 +119,35 @@ def main(argv: list[str] | None = None) -> int:
         return fail("ringcontact simulate", e)
 
 
-def _run(args) -> int:
-    from rotor.dynamics.production import simulate_production, warm_up
-    from rotor.dynamics.reference import simulate_reference
-
+def _check_options(args) -> None:
+    """Options that contradict each other or name nothing, refused in the user's terms before anything is built."""
+    for flag, text in (("--dofs", args.dofs), ("--stations", args.stations)):
+        if text is not None and not any(s.strip() for s in text.split(",")):
+            raise InputError(f"{flag} = {text!r}: names nothing; give comma-separated names, or leave {flag} out "
+                             "for the default")
     if args.max_revs is not None and not args.steady:
         raise InputError(f"--max-revs = {args.max_revs} rev: the transient cap of --steady, which is not given "
                          "(add --steady, or leave --max-revs out)")
+    if args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev:
+        n, k = args.steps_per_rev, args.record_per_rev
+        raise InputError(f"--record-per-rev = {k}: must divide --steps-per-rev = {n} (a sample every whole number "
+                         f"of steps; {n} steps would be recorded at {n // max(1, n // k)} a revolution): e.g. "
+                         f"--steps-per-rev {-(-n // k) * k}, or --record-per-rev {max(d for d in range(1, k + 1) if n % d == 0)}")
+    from rotor.studies.steady_state import SAMPLES_FOR_5X
+    if args.steady and args.record_per_rev < SAMPLES_FOR_5X:
+        raise InputError(f"--record-per-rev = {args.record_per_rev}: --steady resolves 1X-5X, which needs at least "
+                         f"{SAMPLES_FOR_5X} samples a revolution")
     if args.steady and (args.scheme != "production" or int(round(args.revolutions)) < 1
                         or (args.steps_per_rev is not None and args.steps_per_rev % args.record_per_rev)):
         raise InputError("--steady: needs the production scheme, --revolutions >= 1 and --record-per-rev "
                          "dividing --steps-per-rev")   # refused before building or compiling anything
+
+
+def _run(args) -> int:
+    from rotor.dynamics.production import simulate_production, warm_up
+    from rotor.dynamics.reference import simulate_reference
+
+    _check_options(args)            # contradictions refused before building or compiling anything
     scene, model, system, law_info = _system(args)
     names = _dof_names(args, model, primary_only=True)
     idx = [model.dof_index(n) for n in names]
@@ -148,7 +159,8 @@ def _run(args) -> int:
         raise InputError(f"--revolutions = {args.revolutions:g} rev: less than one time step at {args.steps_per_rev} "
                          f"steps a revolution; at least {1 / args.steps_per_rev:.3g} rev")
     rec = max(1, args.steps_per_rev // args.record_per_rev)
-    check_budget(args, n_steps, n_steps // rec + 1, model.n_dofs)
+    transient = int(args.max_revs or 8000) * args.steps_per_rev if args.steady else 0   # --steady: at most
+    check_budget(args, n_steps + transient, n_steps // rec + 1, model.n_dofs)
     run = simulate_production if args.scheme == "production" else simulate_reference
     # compile or load the step loop now (the --steady detector uses it too), the seconds shown on a terminal
     compiled = warm_up_shown("ringcontact simulate", args, warm_up)
@@ -156,9 +168,10 @@ def _run(args) -> int:
     extra = {}
     if args.steady:
         amp_names = _dof_names(args, model, primary_only=False)
-        tr, dt, n_steps, extra = _steady_run(args, system, model, T, amp_names, [model.dof_index(n) for n in amp_names])
-    else:
-        tr = run(system, dt, n_steps, q0=system.offset, record_every=rec)
+        tr, dt, n_steps, extra = interrupts.in_thread(_steady_run, args, system, model, T, amp_names,
+                                                      [model.dof_index(n) for n in amp_names])
+    else:      # in a thread: Ctrl-C is honoured at once, not after the compiled loop (measured: 20 s later)
+        tr = interrupts.in_thread(run, system, dt, n_steps, q0=system.offset, record_every=rec)
     run_s = time.perf_counter() - t0
     sup = system.support  # None: a scene without a loose support (no contact, no end faces)
     r1, r2 = cons.edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
@@ -207,7 +220,8 @@ def _run(args) -> int:
 
 
 def _dof_names(args, model, primary_only: bool) -> list[str]:
-    """``--dofs``, else y and z of ``--stations``, else of the scene's response stations."""
+    """``--dofs``, else y and z of ``--stations``, else of the scene's response stations (a list that names
+    nothing was refused by :func:`_check_options`)."""
     if args.dofs:
         return [s.strip() for s in args.dofs.split(",") if s.strip()]
     if args.stations:
@@ -229,7 +243,7 @@ def _system(args):
     from rotor.model.loose_support_scene import with_law
     from rotor.model.scene import load_scene
 
-    check_positive("speed_rpm", args.speed_rpm, "rpm", upper=1e5)
+    check_positive("speed_rpm", args.speed_rpm, "rpm", upper=plausible.top("run_speed_rpm"))
     check_positive("revolutions", args.revolutions, "rev", upper=1e6)
     if args.steps_per_rev is not None:
         check_positive("steps_per_rev", args.steps_per_rev, "steps", upper=1e6)
@@ -245,8 +259,10 @@ def _system(args):
                                preload_N=kw.pop("preload_n", None), **kw)
     args.steps_chosen = args.steps_per_rev is None
     if args.steps_chosen:     # as orbit and the studies: the contact step limit with a margin, whole record samples
-        from rotor.studies.steady_state import SteadyStateOptions, step_per_rev
-        args.steps_per_rev = step_per_rev(system, SteadyStateOptions(samples_per_rev=args.record_per_rev))
+        from rotor.studies.steady_state import SAMPLES_FOR_5X, SteadyStateOptions, step_per_rev
+        k = args.record_per_rev
+        n = step_per_rev(system, SteadyStateOptions(samples_per_rev=k if k >= SAMPLES_FOR_5X else None))
+        args.steps_per_rev = -(-n // k) * k          # a whole number of steps between samples
     ls = scene.loose_support
     cal = ls.calibrated if ls is not None else None
     info = {"note": ls.law_note() if ls is not None else {},

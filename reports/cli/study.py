@@ -34,12 +34,15 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from contact.errors import FailedPointsError, InputError, RingContactError
+from contact import plausible
+from contact.errors import InputError, RingContactError
 from contact.package_data import shipped
 from contact.units import check_positive
+from reports.cli import _budget
 from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, out_file, quantity
-from reports.cli._scene_options import (DEFAULT_SCENE, add_scene_options, finish, max_revs, refuse_overrides,
-                                        scene_from_args, warm_up_shown)
+from reports.cli._study_sweep import compile_first as _compile_first, mesh as _mesh, overrides as _ov
+from reports.cli._study_sweep import run_study_sweep
+from reports.cli._scene_options import DEFAULT_SCENE, add_scene_options, finish, max_revs, refuse_overrides
 
 
 def _common(p: argparse.ArgumentParser, out: str, scene: str = DEFAULT_SCENE):
@@ -53,6 +56,7 @@ def _common(p: argparse.ArgumentParser, out: str, scene: str = DEFAULT_SCENE):
     p.add_argument("--elements", type=count(1, 64), default=None,
                    help="shaft elements per segment (default: the scene's mesh; paper-table4 has the paper's 1)")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
+    _budget.add_accept_long(p)
 
 
 def _scheduler(p: argparse.ArgumentParser) -> None:
@@ -84,6 +88,7 @@ def _method_note(args) -> dict:
 
 
 def _parser() -> argparse.ArgumentParser:
+    from rotor.studies.runup import SHORTEST_DURATION_S
     p = Parser(prog="ringcontact study", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="study", required=True)
     c = sub.add_parser("cascade", help="steady-state spectrum cascade over speed (Figs. 12, 16, 17)")
@@ -112,7 +117,8 @@ def _parser() -> argparse.ArgumentParser:
     _common(ru, "runs/runup")
     ru.add_argument("--rpm-start", type=quantity("run_speed_rpm"), default=600.0)
     ru.add_argument("--rpm-end", type=quantity("run_speed_rpm"), default=18000.0)
-    ru.add_argument("--duration-s", type=quantity("duration_s"), default=20.0)
+    ru.add_argument("--duration-s", type=quantity("duration_s", low=SHORTEST_DURATION_S,
+                                                  why="two windows of the time-frequency cascade"), default=20.0)
     ru.add_argument("--down", action="store_true", help="run down: from the higher of the two speeds to the lower")
     mp = sub.add_parser("map", help="where the support sticks, slips and impacts over (speed, clearance)")
     _common(mp, "runs/map")
@@ -185,79 +191,6 @@ def _options(args) -> dict:
     return {"steps_per_rev": int(args.steps_per_rev), "max_revs": max_revs(args)}
 
 
-def _ov(args) -> dict:
-    """The scene overrides given (:func:`reports.cli._scene_options.scene_from_args`, SI keywords)."""
-    return dict(scene_from_args(args).overrides)
-
-
-def _mesh(args) -> dict:
-    """The ``elements_per_segment`` override of every point (empty: the scene's mesh)."""
-    if getattr(args, "elements", None) is None:
-        return {}
-    check_positive("elements", args.elements, "elements per segment", upper=64)
-    return {"elements_per_segment": int(args.elements)}
-
-
-def _sweep(tasks, out: Path, args, description: dict):
-    from sweep import point_tasks, run_sweep
-    from sweep.cluster import connect
-    from rotor.studies.steady_state import _scene_model
-
-    sc, _ = _scene_model(args.scene, _mesh(args).get("elements_per_segment"), _ov(args).get("law"))
-    _same_law(out, sc)
-    import dataclasses
-    scene_doc = dataclasses.asdict(sc)
-    if sc.loose_support is not None:
-        scene_doc["loose_support"].pop("calibrated", None)     # named by law_file and law_sha256
-        if sc.loose_support.calibrated is not None:
-            print(f"study {args.study}: law {sc.loose_support.law_file} (sha256 {sc.loose_support.law_sha256})")
-    manifest = {"study": args.study, "description": description, "scene_name": sc.name, "scene": scene_doc,
-                **_mesh(args)}
-    _compile_first(args)
-    t0 = time.perf_counter()
-    with connect(args.scheduler) as client:
-        s = run_sweep(tasks, out, executor=client, max_workers=args.workers, manifest=manifest,
-                      progress=False if args.no_progress else None)
-    wall = time.perf_counter() - t0
-    n_points = len(point_tasks(tasks))
-    print(f"study {args.study}: {n_points} points, {len(s.computed)} computed, {len(s.reused)} reused, "
-          f"{len(s.recomputed)} recomputed, {len(s.failed)} failed, wall {wall:.1f} s")
-    for k, e in s.failed.items():
-        print(f"  FAILED {k}: {e}", file=sys.stderr)
-    if s.failed:
-        raise FailedPointsError(f"{len(s.failed)} of {n_points} points failed (FAILED lines above); no figures "
-                                f"written; the finished points stay in {out}, a rerun computes only the rest")
-    _say_unsettled(out, point_tasks(tasks), args)
-    return s, wall
-
-
-def _compile_first(args) -> None:
-    """Compile the step loop here (or load it from the disk cache), its seconds shown on a terminal, so that the
-    local workers load it from the disk cache instead of each compiling it unseen (not for a cluster: its
-    workers have their own cache)."""
-    if args.scheduler is not None:
-        return
-    if getattr(args, "method", "transient") == "shooting":
-        from rotor.dynamics.period_map import warm_up
-    else:
-        from rotor.dynamics.production import warm_up
-    warm_up_shown(f"study {args.study}", argparse.Namespace(progress=False if args.no_progress else None), warm_up)
-
-
-def _say_unsettled(out: Path, tasks, args) -> None:
-    """Count the points whose transient reached no steady state within the cap (``converged`` False) and say so."""
-    from sweep.store import ResultStore
-
-    store = ResultStore(out)
-    keys = [t.key for t in tasks if not store.info(t.key).get("converged", True)]
-    if keys:
-        speeds = ", ".join(f"{store.info(k).get('speed_rpm', float('nan')):g}" for k in keys[:8])
-        print(f"study {args.study}: {len(keys)} of {len(tasks)} points not converged within --max-revs = "
-              f"{max_revs(args)} revolutions (at {speeds}{' …' if len(keys) > 8 else ''} rpm): their amplitudes are "
-              "those of the last revolutions, not of a steady state (converged = 0 in the CSV, marked in the "
-              "figures); a higher --max-revs, or --method shooting for the periodic orbit")
-
-
 def _run(args) -> int:
     if args.study == "publish":
         return _publish(args)
@@ -271,7 +204,10 @@ def _run(args) -> int:
     if args.study == "sensitivity":
         return _sensitivity(args)
     from rotor.studies.steady_state import _scene_model
+    from sweep.store import ResultStore
+    ResultStore(args.out).check_layout()   # a damaged or foreign run directory: refused by name, first
     scene, _ = _scene_model(args.scene, None, _ov(args).get("law"))  # a bad scene or law: refused here, not per point
+    _paper_stations(args, scene)
     _law_clearances(args, scene)
     out = Path(args.out)
     figs = Path(args.figures) if args.figures else out / "figures"
@@ -284,24 +220,20 @@ def _run(args) -> int:
     return 0
 
 
-def _same_law(out: Path, sc) -> None:
-    """Refuse to add to a study whose stored points were computed with another contact law: an analytic law by
-    name, a calibrated one by its file's checksum (a refitted law file is another law). The points' parameters
-    name the scene file only, so they alone would be reused."""
-    from sweep.store import ResultStore
-
-    store = ResultStore(out)
-    before = store.read_manifest(required=False)
-    if not before or not store.points.is_dir() or not any(store.points.glob("*.json")):
+def _paper_stations(args, scene) -> None:
+    """The figures of point, params, testrig and runup are the paper's: disk 1, disk 2 and the support s
+    (reports/studies/common.py: LOCATIONS); a scene without those stations is refused before any point
+    (``study cascade`` draws any scene's stations)."""
+    from reports.studies.common import LOCATIONS
+    from rotor.model.assembly import assemble
+    if args.study not in ("point", "params", "testrig", "runup"):
         return
-    old = (before.get("scene") or {}).get("loose_support") or {}
-    ls = sc.loose_support
-    was = old.get("law_sha256") or old.get("law", "conformal")
-    now = ("conformal" if ls is None else ls.law_sha256 or ls.law)
-    if was != now:
-        said = {True: "the law file with sha256 ", False: ""}
-        raise InputError(f"--out = {out}: its points were computed with {said[len(was) == 64]}{was}, the scene now "
-                         f"names {said[len(now) == 64]}{now}; use another --out (or remove {out}) for this law")
+    have = assemble(scene, elements_per_segment=getattr(args, "elements", None)).response_stations()
+    need = [ch.split(".")[0] for ch, _ in LOCATIONS]
+    if not set(need) <= set(have):
+        raise InputError(f"--scene = {args.scene}: study {args.study} draws the paper's stations {', '.join(need)}; "
+                         f"the scene has {', '.join(have)}: use study cascade (any stations), simulate --steady or "
+                         "orbit for this scene")
 
 
 def _law_clearances(args, scene) -> None:
@@ -377,19 +309,32 @@ def _require_finished(flag: str, d: Path) -> None:
         raise InputError(f"{flag} = {d}: not a finished study ({st['why']}); rerun the study to complete it")
 
 
+def _distinct(speeds, args):
+    """``speeds`` (rpm), refused when two coincide at the 0.1 rpm of the points' keys
+    (:func:`rotor.studies.steady_state.sweep_tasks`): they would be one point twice."""
+    keys = {f"{float(s):.1f}" for s in speeds}
+    if len(keys) < len(speeds):
+        lo, hi = float(speeds[0]), float(speeds[-1])
+        most = int(round((hi - lo) / 0.1)) + 1
+        raise InputError(f"--points = {args.points}: speeds from {lo:g} to {hi:g} rpm, {(hi - lo) / max(len(speeds) - 1, 1):.3g} "
+                         f"rpm apart, coincide at the 0.1 rpm the points are stored by; at most {most} point(s) over "
+                         "this range, or a wider range")
+    return speeds
+
+
 def _cascade(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study cascade``: steady state at each speed of a range (Figs. 12, 16, 17)."""
     from reports.studies.cascade import cascade_figures
     from rotor.studies.steady_state import _scene_model
     from sweep import point_tasks
 
-    check_positive("rpm_max", args.rpm_max, "rpm", upper=1e5)
+    check_positive("rpm_max", args.rpm_max, "rpm", upper=plausible.top("rpm_max"))
     if args.rpm_min > args.rpm_max:
         raise InputError(f"--rpm-min = {args.rpm_min:g} rpm: must be <= --rpm-max = {args.rpm_max:g} rpm")
-    speeds = np.linspace(args.rpm_min, args.rpm_max, int(args.points))
+    speeds = _distinct(np.linspace(args.rpm_min, args.rpm_max, int(args.points)), args)
     kw = {"tilt_ignored": bool(args.tilt_ignored), "options": opts, **_mesh(args), **_ov(args)}
     tasks = _tasks(args)(args.scene, speeds, **kw)
-    s, wall = _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **_method_note(args), **kw})
+    s, wall = run_study_sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), **_method_note(args), **kw})
     _timing(out, s, wall, args)
     _, model = _scene_model(args.scene, _mesh(args).get("elements_per_segment"))
     tasks = point_tasks(tasks)          # what is stored: one point per speed (shooting blocks hold several)
@@ -406,7 +351,7 @@ def _point(args, out: Path, figs: Path, opts: dict) -> list[Path]:
 
     speeds = args.speed_rpm or [4500.0, 10500.0]
     tasks = sweep_tasks(args.scene, speeds, options=opts, history_revs=8, **_mesh(args), **_ov(args))
-    _sweep(tasks, out, args, {"speeds_rpm": speeds})
+    run_study_sweep(tasks, out, args, {"speeds_rpm": speeds})
     return point_figures(out, figs, tasks=tasks)
 
 
@@ -416,7 +361,7 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from sweep import point_tasks
 
     sweep_tasks = _tasks(args)
-    speeds = np.linspace(0.0, args.rpm_max, int(args.points))
+    speeds = _distinct(np.linspace(0.0, args.rpm_max, int(args.points)), args)
     # the scene's own clearance/misalignment is one shared 'base' curve of both figures
     # (--clearance-mm / --misalignment-mm: the base values, held by the curves that vary the other one)
     mesh = {**_mesh(args), **_ov(args)}
@@ -427,7 +372,7 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     for d in _floats(args.misalignments_mm, "misalignments_mm", "mm"):
         tasks += sweep_tasks(args.scene, speeds, prefix=f"d{d:g}mm-rpm", options=opts,
                              **{**mesh, "misalignment_m": d * 1e-3})
-    _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
+    run_study_sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm,
                               "misalignments_mm": args.misalignments_mm, **_method_note(args)})
     return params_figures(out, figs, tasks=point_tasks(tasks))
 
@@ -446,7 +391,7 @@ def _testrig(args, out: Path, figs: Path, opts: dict) -> list[Path]:
                                  misalignment_m=1e-3, options=opts, history_revs=8, **ov)
         tasks += sweep_tasks(args.scene, [rpm], prefix="c0.05mm-d3mm-rpm", clearance_m=0.05e-3,
                              misalignment_m=3e-3, options=opts, history_revs=8, **ov)
-    _sweep(tasks, out, args, {"speeds_rpm": [3600, 5500], "clearances_mm": [0.01, 0.05],
+    run_study_sweep(tasks, out, args, {"speeds_rpm": [3600, 5500], "clearances_mm": [0.01, 0.05],
                               "misalignments_mm": [1, 3]})
     return testrig_figures(out, figs, tasks=tasks)
 
@@ -457,12 +402,12 @@ def _map(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     from rotor.studies.steady_state import sweep_tasks
 
     refuse_overrides(args, ("--clearance-mm",), "study map sweeps the clearance itself (--clearances-mm)")
-    speeds = np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points))
+    speeds = _distinct(np.linspace(args.rpm_max / args.points, args.rpm_max, int(args.points)), args)
     tasks = []
     for c in _floats(args.clearances_mm, "clearances_mm", "mm"):
         tasks += sweep_tasks(args.scene, speeds, prefix=f"c{c:g}mm-rpm", clearance_m=c * 1e-3, options=opts,
                              **_ov(args))
-    _sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm})
+    run_study_sweep(tasks, out, args, {"speeds_rpm": speeds.tolist(), "clearances_mm": args.clearances_mm})
     return map_figures(out, figs, tasks=tasks)
 
 
@@ -480,6 +425,8 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
                      steps_per_rev=int(args.steps_per_rev), **_ov(args))
     from sweep.cluster import connect
 
+    _budget.check("ringcontact study runup", _budget.runup(spec), args.accept_long,
+                  f"--duration-s = {args.duration_s:g} s from {a:g} to {b:g} rpm", "a shorter --duration-s")
     _compile_first(args)
     with connect(args.scheduler) as client:
         info = run_runup(spec, out, executor=client)
@@ -496,7 +443,7 @@ def _readings(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     args.elements = None                  # _sweep's manifest: the scene's mesh; each task names its own
     tasks = reading_tasks(args.scene, READING_NAMES, [POINT_B_RPM, POINT_A_RPM], (None, mesh), options=opts)
     low = reading_tasks(args.scene, READING_NAMES, LOW_RPM, (None, mesh), options=opts, history_revs=1, prefix="low-")
-    _sweep(tasks + low, out, args, {"speeds_rpm": [POINT_B_RPM, POINT_A_RPM], "low_speeds_rpm": list(LOW_RPM),
+    run_study_sweep(tasks + low, out, args, {"speeds_rpm": [POINT_B_RPM, POINT_A_RPM], "low_speeds_rpm": list(LOW_RPM),
                                     "readings": list(READING_NAMES), "elements_per_segment": [None, mesh]})
     reading = shipped("reports", "notes", "section5-readings-reading.md")
     return publish_readings(out, Path(args.to), scene=args.scene, tasks=tasks, low_tasks=low,
@@ -525,8 +472,9 @@ def _sensitivity(args) -> int:
             raise InputError(f"variants: unknown {bad}; known: {', '.join(known)}")
         variants = [known[w] for w in want]
     out = Path(args.out)
-    if args.report_only and not any((out / "points").glob("*.json")):
-        raise InputError(f"--out = {out}: no stored points to report (run the study without --report-only first)")
+    if args.report_only:      # no computing: what is stored is reported
+        if not any((out / "points").glob("*.json")):
+            raise InputError(f"--out = {out}: no stored points to report (run the study without --report-only first)")
     else:
         tasks = sens.study_tasks(variants, scene=args.scene)
         t0 = time.perf_counter()

@@ -66,6 +66,24 @@ def read_csv_rows(path) -> list[dict]:
     return [dict(zip(header, r)) for r in table[1:]]
 
 
+def require_finite(path, rows: list[dict]) -> None:
+    """Refuse (DatasetError) a table with a NaN or infinite number in any cell, naming its line and column: the
+    tables ``study publish`` writes hold finite numbers only, so such a cell was edited or damaged, and a figure
+    would silently leave the point out."""
+    import math
+
+    from contact.errors import DatasetError
+    for i, row in enumerate(rows):
+        for col, cell in row.items():
+            try:
+                bad = not math.isfinite(float(cell))
+            except (TypeError, ValueError):
+                continue                         # text columns (keys, regimes) and empty cells: their readers say
+            if bad:
+                raise DatasetError(f"{path}: line {i + 2}, column {col} = {cell.strip()}: not a finite number (the "
+                                   "study tables hold finite numbers only); restore the file or run the study again")
+
+
 def require_columns(path, rows: list[dict], columns) -> None:
     """Refuse (DatasetError) a CSV without rows or lacking any of ``columns``."""
     from contact.errors import DatasetError

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from contact.errors import DatasetError, InputError
 from reports.studies.cascade import CASCADE_TITLE, NOTILT_TITLE, cascade_redraw, spectrum_redraw
-from reports.studies.common import read_csv_rows, require_columns
+from reports.studies.common import read_csv_rows, require_columns, require_finite
 from reports.studies.params import COLUMNS, grids_from_rows, params_grids
 
 #: the scene the committed study-sensitivity-points.csv was computed on (its factors are labelled with that
@@ -57,6 +57,8 @@ def redraw(src, dst) -> list[Path]:
     present = [name for name in SOURCES if (src / name).is_file()]
     if not present:
         raise InputError(f"--from = {src}: holds none of {', '.join(SOURCES)} (the tables `study publish` writes)")
+    for name in present:                          # a NaN or inf cell anywhere: refused before any figure
+        require_finite(src / name, read_csv_rows(src / name))
     draws = []
     if "study-sensitivity-points.csv" in present:
         tabs, variants = tables_from_points_csv(src / "study-sensitivity-points.csv")

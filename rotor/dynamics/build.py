@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from contact import plausible
 from contact.errors import InputError
 from contact.units import check_positive
 from rotor.dynamics.kernels import support_law_from_params
@@ -36,7 +37,11 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
 
     ls = scene.loose_support
     n = model.n_dofs
-    check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True, upper=1e4)
+    check_positive("speed_rad_s", speed_rad_s, "rad/s", allow_zero=True,
+                   upper=plausible.top("run_speed_rpm") * math.pi / 30)     # the command line's top speed
+    if not np.any(model.M):      # every DOF massless: nothing moves in time (a condensed system of 0 DOFs)
+        raise InputError(f"scene {scene.name!r}: no mass anywhere (every material density and disk mass is 0), so "
+                         "nothing to integrate in time; give the shaft a density_kg_m3 or a disk a mass_kg")
     model = model.at_speed(speed_rad_s)          # bearings with a speed table (rotor.model.scene.Bearing)
     require_ground(model, "time integration")   # a free rotor has no rest position (rotor.model.topology)
     sup = None if ls is None else _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m)

@@ -38,7 +38,7 @@ compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.produ
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
 def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
               Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
               has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,

@@ -548,6 +548,9 @@ def bundled_scenes() -> list[str]:
     return [stem(e) for e in entries(SCENE_DIR, ".toml")]
 
 
+#: the largest scene file read (bytes): a rotor of thousands of stations is a few hundred KiB
+MAX_SCENE_BYTES = 4 * 2 ** 20
+
 def load_scene(path_or_name: str | Path) -> Scene:
     """Read, validate and convert a scene file (or a bundled scene name) to SI.
 
@@ -557,6 +560,11 @@ def load_scene(path_or_name: str | Path) -> Scene:
     InputError : a field is missing, out of range, has an unknown unit or name.
     """
     path = scene_path(path_or_name)
+    if isinstance(path, Path) and path.exists() and not path.is_file():     # a pipe blocks, a device never ends
+        raise DatasetError(f"scene file {str(path)!r}: not a regular file (a folder, pipe or device)")
+    if isinstance(path, Path) and path.is_file() and path.stat().st_size > MAX_SCENE_BYTES:
+        raise DatasetError(f"scene file {str(path)!r}: {path.stat().st_size / 2 ** 20:.3g} MiB, more than a scene "
+                           f"file holds (at most {MAX_SCENE_BYTES // 2 ** 10} KiB)")
     try:
         data = path.read_bytes()
     except OSError as exc:
@@ -564,8 +572,8 @@ def load_scene(path_or_name: str | Path) -> Scene:
         raise DatasetError(f"scene file {str(path)!r}: cannot read: {exc.strerror or exc}{hint}") from None
     try:
         doc = tomllib.loads(data.decode("utf-8"))
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise DatasetError(f"scene file {str(path)!r}: not valid TOML: {exc}") from None
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError, RecursionError) as exc:   # Recursion: nested too deeply
+        raise DatasetError(f"scene file {str(path)!r}: not valid TOML: {' '.join(str(exc).split())[:160]}") from None
     return parse_scene(doc, origin=path.name, base_dir=path.parent if isinstance(path, os.PathLike) else None)
 
 
@@ -573,6 +581,6 @@ def loads_scene(text: str, origin: str = "<string>") -> Scene:
     """Parse a scene from TOML text (tests, scripting)."""
     try:
         doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
+    except (tomllib.TOMLDecodeError, RecursionError) as exc:
         raise DatasetError(f"scene {origin}: not valid TOML: {exc}") from None
     return parse_scene(doc, origin=origin)

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contact.errors import InputError
+from contact import plausible
 from contact.units import ARCMIN, check_positive
 from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
@@ -193,7 +194,7 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     returns support (a neighbouring speed's, :func:`cascade`).
     """
     t_start = time.perf_counter()
-    check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)    # an orbit needs a period: no zero speed
+    check_positive("speed_rpm", speed_rpm, "rpm", upper=plausible.top("run_speed_rpm"))    # an orbit needs a period: no zero speed
     if period_revs is not None and not (int(period_revs) == period_revs and 1 <= period_revs <= MAX_PERIOD_REVS):
         raise InputError(f"period_revs = {period_revs}: must be a whole number of revolutions, 1 to {MAX_PERIOD_REVS}")
     _, model, system = point_system(scene, speed_rpm, **_overrides(overrides))
@@ -251,8 +252,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     transient, then Newton), an unstable one included, instead of the one a transient from rest reaches.
     """
     t_start = time.perf_counter()
-    check_positive("rpm_start", rpm_start, "rpm", upper=1e5)
-    check_positive("rpm_end", rpm_end, "rpm", upper=1e5)
+    check_positive("rpm_start", rpm_start, "rpm", upper=plausible.top("run_speed_rpm"))
+    check_positive("rpm_end", rpm_end, "rpm", upper=plausible.top("run_speed_rpm"))
     if rpm_start == rpm_end:
         raise InputError(f"rpm_end = {rpm_end:g} rpm: must differ from rpm_start = {rpm_start:g} rpm")
     ov = _overrides(overrides)

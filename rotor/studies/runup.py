@@ -30,11 +30,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact.errors import InputError
+from contact import plausible
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import HarmonicForce, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
+
+#: the shortest window of the time-frequency cascade (s, :func:`stft_cascade`); a run-up needs two of them
+SHORTEST_WINDOW_S = 0.1
+SHORTEST_DURATION_S = 2 * SHORTEST_WINDOW_S
+
 
 @dataclass(frozen=True)
 class RunupSpec:
@@ -62,9 +68,9 @@ class RunupSpec:
     law: str | None = None
 
     def __post_init__(self):
-        check_positive("rpm_start", self.rpm_start, "rpm", upper=1e5)
-        check_positive("rpm_end", self.rpm_end, "rpm", upper=1e5)
-        check_positive("duration_s", self.duration_s, "s", upper=1e4)
+        check_positive("rpm_start", self.rpm_start, "rpm", upper=plausible.top("run_speed_rpm"))
+        check_positive("rpm_end", self.rpm_end, "rpm", upper=plausible.top("run_speed_rpm"))
+        check_positive("duration_s", self.duration_s, "s", upper=plausible.top("duration_s"))
         check_positive("segment_s", self.segment_s, "s", upper=1.0)
         check_positive("sample_rate_hz", self.sample_rate_hz, "Hz", upper=1e7)
         if self.steps_per_rev < 16:
@@ -199,7 +205,7 @@ def stft_cascade(r: dict, channel: str, window_s: float | None = None, overlap: 
     t = r["t"]
     fs = 1.0 / float(np.median(np.diff(t)))
     T = t[-1] - t[0]
-    win_s = window_s if window_s is not None else max(0.1, T / 40)
+    win_s = window_s if window_s is not None else max(SHORTEST_WINDOW_S, T / 40)
     n = int(round(win_s * fs))
     if n < 16 or n > x.size:
         raise InputError(f"window_s = {win_s:g} s: needs 16..{x.size} samples at {fs:g} Hz")

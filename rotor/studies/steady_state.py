@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contact import plausible
 from contact.errors import InputError, OutsideDomainError
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
@@ -42,6 +43,10 @@ from rotor.periodic.shooting import TRANSIENT_SAMPLES_PER_REV
 # Stations come from the scene (rotor.model.assembly.RotorModel.response_stations): every disk, bearing
 # and support station is recorded, the primary ones (disks, the loose support's bearing station,
 # supports; for Table 4 the paper's disk1, disk2, 5, s) form the Poincaré section.
+
+
+#: the fewest samples a revolution that resolve the 5X harmonic (above its Nyquist rate of 10 with a margin)
+SAMPLES_FOR_5X = 12
 
 
 @dataclass(frozen=True)
@@ -99,8 +104,8 @@ class SteadyStateOptions:
                 continue
             if int(v) != v or v < 1:
                 raise InputError(f"{name} = {v}: must be a positive integer")
-        if self.samples_per_rev is not None and self.samples_per_rev < 12:
-            raise InputError(f"samples_per_rev = {self.samples_per_rev}: need >= 12 to resolve 5X")
+        if self.samples_per_rev is not None and self.samples_per_rev < SAMPLES_FOR_5X:
+            raise InputError(f"samples_per_rev = {self.samples_per_rev}: need >= {SAMPLES_FOR_5X} to resolve 5X")
         check_positive("stable_fraction", self.stable_fraction, "-", upper=1.0)
         check_positive("chunk_s", self.chunk_s, "s", upper=100.0)
         check_positive("tol", self.tol, "-", upper=0.1)
@@ -469,7 +474,7 @@ def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = No
     None: the scene's)."""
     from rotor.dynamics.build import system_from_model
 
-    check_positive("speed_rpm", speed_rpm, "rpm", allow_zero=True, upper=1e5)
+    check_positive("speed_rpm", speed_rpm, "rpm", allow_zero=True, upper=plausible.top("run_speed_rpm"))
     sc, model = _scene_model(scene, elements_per_segment, law)
     omega = float(speed_rpm) * math.pi / 30.0
     system = system_from_model(model, sc, omega, tilt_ignored=bool(tilt_ignored), mu=mu, preload_N=preload_n,

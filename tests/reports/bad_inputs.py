@@ -345,8 +345,114 @@ def _scene_option_cases() -> list:
     return c
 
 
+LONG_NAME = "x" * 250
+
+
+def _trust_cases() -> list:
+    """Issue "Trust under attack": damaged run directories, hostile scene files, names nothing can hold, work
+    beyond the budget, options that name nothing, and values the parser took that the job refused."""
+    cas = ["study", "cascade", "--points", "2", "--rpm-min", "3000", "--rpm-max", "3100", "--no-progress", "--out"]
+    c = [(f"study cascade --out {d}", [*cas, "{" + d + "}"], None)
+         for d in ("study_garbage_journal", "study_points_file", "study_foreign_status", "study_status_dir",
+                   "study_text_journal")]
+    for sub in ("modes", "campbell", "critical-speeds"):
+        c += [(f"rotor {sub} zero_mass", ["rotor", sub, "{zero_mass}"], None),
+              (f"rotor {sub} deep_toml", ["rotor", sub, "{deep_toml}"], None),
+              (f"rotor {sub} big_scene", ["rotor", sub, "{big_scene}"], None),
+              (f"rotor {sub} fifo scene", ["rotor", sub, "{fifo}"], None)]
+    sim = ["simulate", "--speed-rpm", "10500", "--out", "{tmp}/o"]
+    c += [("simulate zero_mass", ["simulate", "--speed-rpm", "3000", "--scene", "{zero_mass}", "--out", "{tmp}/o"], None),
+          ("orbit zero_mass", ["orbit", "{zero_mass}", "--speed-rpm", "3000"], None)]
+    for sub in ("point", "params", "testrig", "runup"):      # the paper's stations drawn (was an internal error)
+        c.append((f"study {sub} on a scene without disk1/disk2/s", ["study", sub, "--scene", "verify-jeffcott",
+                                                                   "--no-progress", "--out", "{tmp}/o"], "verify-jeffcott"))
+    for sub in ("point", "params", "testrig", "map", "runup"):
+        c += [(f"study {sub} --out {d}", ["study", sub, "--no-progress", "--out", "{" + d + "}"], None)
+              for d in ("study_points_file", "study_garbage_journal")]
+    c += [("simulate --scene deep_toml", [*sim, "--scene", "{deep_toml}"], None),
+          ("orbit deep_toml", ["orbit", "{deep_toml}", "--speed-rpm", "10500"], None),
+          ("simulate --law deep_json", [*sim, "--law", "{deep_json}"], None),
+          ("simulate --dofs EMPTY", [*sim, "--dofs", ""], None),
+          ("simulate --stations ' , '", [*sim, "--stations", " , "], None),
+          ("simulate --steps-per-rev 100 --record-per-rev 64", [*sim, "--steps-per-rev", "100", "--record-per-rev",
+                                                                 "64"], "64"),
+          ("branch --station EMPTY", ["branch", "paper-table4", "--rpm-start", "10500", "--rpm-end", "11000",
+                                      "--station", ""], None),
+          ("study runup --duration-s 0.05", ["study", "runup", "--duration-s", "0.05", "--out", "{tmp}/o"], "0.05 s"),
+          ("study cascade --points 2000 over 1-2 rpm", ["study", "cascade", "--points", "2000", "--rpm-min", "1",
+                                                        "--rpm-max", "2", "--out", "{tmp}/o"], "2000"),
+          ("study redraw NaN cell", ["study", "redraw", "--from", "{redraw_nan}", "--out", "{tmp}/o"], "nan"),
+          ("fem3d point --tilt-arcmin 172", ["fem3d", "point", "0.02", "--tilt-arcmin", "172"], "172 arcmin"),
+          ("fem3d vtu --tilt-arcmin 600", ["fem3d", "vtu", "0.02", "--tilt-arcmin", "600", "--out", "{tmp}/q.vtu"],
+           "600 arcmin")]
+    # a file name the job's temporary (.NAME.PID.XXXXXXXX.tmp) or suffix would take past 255 bytes; a folder's
+    # own name past 255 bytes (was an internal OSError, ENAMETOOLONG)
+    for job, argv, name in (("simulate", [*sim[:3], "--out"], "y" * 300), ("fem-vtu", ["fem-vtu", "0.01"], LONG_NAME),
+                            ("orbit", ["orbit", "paper-table4", "--speed-rpm", "10500", "--out"], LONG_NAME),
+                            ("rotor campbell", ["rotor", "campbell", "verify-jeffcott", "--plot"], LONG_NAME),
+                            ("study cascade", ["study", "cascade", "--no-progress", "--out"], "y" * 300),
+                            ("fem3d vtu", ["fem3d", "vtu", "0.02", "--out"], LONG_NAME)):
+        c.append((f"{job} over-long output name", [*argv, "{tmp}/" + name], None))
+    long_in = "{tmp}/" + "z" * 300            # an input name past 255 bytes (Path.exists raised ENAMETOOLONG)
+    c += [(f"{' '.join(a[:2])} over-long input name", a, None)
+          for a in (["rotor", "modes", long_in], ["law", "--csv", long_in], [*sim, "--scene", long_in],
+                    ["fem-point", "0.01", "--scene", long_in + ".toml"], ["bearing", long_in + ".toml", "--out", "{tmp}/o"],
+                    ["study", "redraw", "--from", long_in], ["study", "export", long_in])]
+    # long work refused before it starts, with the estimate and the flag that accepts it
+    c += [("orbit --steps-per-rev 100000", ["orbit", "paper-table4", "--speed-rpm", "10500", "--steps-per-rev",
+                                            "100000"], "--accept-long"),
+          ("branch --steps-per-rev 100000", ["branch", "paper-table4", "--rpm-start", "10500", "--rpm-end", "11000",
+                                             "--steps-per-rev", "100000"], "--accept-long"),
+          ("simulate 1e5 rev at 1e5 steps", [*sim, "--revolutions", "100000", "--steps-per-rev", "100000",
+                                             "--record-per-rev", "1"], "--accept-long"),
+          ("study runup --duration-s 3600", ["study", "runup", "--duration-s", "3600", "--no-progress", "--out",
+                                             "{tmp}/o"], "--accept-long"),
+          ("study cascade 18 rpm", ["study", "cascade", "--rpm-max", "18", "--points", "2", "--no-progress", "--out",
+                                    "{tmp}/o"], "--accept-long"),
+          ("rotor campbell 64 elements 2000 points", ["rotor", "campbell", "paper-table4", "--elements", "64",
+                                                      "--points", "2000", "--modes", "200"], "--accept-long"),
+          ("rotor response newmark 1e5 rev", ["rotor", "response", "paper-table4", "--speed-rpm", "3000",
+                                              "--revolutions", "100000", "--method", "newmark", "--steps-per-rev",
+                                              "65536", "--out", "{tmp}/r"], "--accept-long")]
+    return c
+
+
+def _trust_inputs(root: Path, p: dict) -> None:
+    """Damaged study directories, hostile scene and law files (:func:`_trust_cases`)."""
+    scene = (ROOT / "rotor" / "scenes" / "verify-jeffcott.toml").read_text()
+    files = {"deep_toml": "x = " + "[" * 5000 + "]" * 5000 + "\n",
+             "zero_mass": _scene_variant(scene, "mass_kg = 10", "mass_kg = 0"),
+             "big_scene": scene + "# padding\n" * 600_000}
+    for k, text in files.items():
+        p[k] = root / f"{k}.toml"
+        p[k].write_text(text)
+    p["deep_json"] = root / "deep.json"
+    p["deep_json"].write_text("[" * 100_000 + "]" * 100_000)
+    dirs = {"study_garbage_journal": {"journal.jsonl": bytes(range(128, 256)) * 8},
+            "study_text_journal": {"journal.jsonl": b"hello\nworld\nnot a journal\n"},
+            "study_points_file": {"points": b"not a folder\n"},
+            "study_foreign_status": {"status.json": b'{"state": "finished by someone else", "owner": "tool"}\n'},
+            "study_status_dir": {"status.json/": b""}}
+    for name, parts in dirs.items():
+        d = root / name
+        d.mkdir(exist_ok=True)
+        for part, data in parts.items():
+            if part.endswith("/"):
+                (d / part).mkdir(exist_ok=True)
+            else:
+                (d / part).write_bytes(data)
+        p[name] = d
+    cascade = (ROOT / "reports" / "published" / "study-cascade.csv").read_text().splitlines()
+    row = cascade[1].split(",")
+    row[cascade[0].split(",").index("disk1_v1X_mm_s")] = "nan"
+    d = root / "redraw_nan"
+    d.mkdir(exist_ok=True)
+    (d / "study-cascade.csv").write_text(cascade[0] + "\n" + ",".join(row) + "\n" + "\n".join(cascade[2:]) + "\n")
+    p["redraw_nan"] = d
+
+
 CASES = _law_cases() + _fem_cases() + _fem3d_cases() + _calibrate_cases() + _rotor_cases() + _simulate_cases() \
-    + _study_cases() + _orbit_cases() + _other_cases() + _bearing_cases() + _scene_option_cases()
+    + _study_cases() + _orbit_cases() + _other_cases() + _bearing_cases() + _scene_option_cases() + _trust_cases()
 
 
 def _ring_inputs(root: Path, p: dict) -> None:
@@ -434,6 +540,7 @@ def make_inputs(root: Path) -> dict[str, str]:
     p["nosuch_scene"] = "no-such-scene"
     _ring_inputs(root, p)
     _redraw_inputs(root, p)
+    _trust_inputs(root, p)
     return {k: str(v) for k, v in p.items()}
 
 

@@ -32,10 +32,10 @@ from cli_parsers import job_parsers, subparsers  # noqa: E402
 ROTOR_COMMANDS = {"rotor modes", "rotor campbell", "rotor critical-speeds", "rotor unbalance", "rotor response",
                   "rotor static",
                   "simulate", "orbit", "branch", "study cascade", "study point", "study params", "study testrig",
-                  "study map", "study runup"}
+                  "study map", "study runup", "study readings"}
 #: the commands that detect a steady state and so take --max-revs
 TRANSIENT_COMMANDS = {"simulate", "study cascade", "study point", "study params", "study testrig", "study map",
-                      "study runup"}
+                      "study runup", "study readings"}
 #: what each command needs besides the scene to parse
 REQUIRED = {"simulate": ["--speed-rpm", "3000"], "orbit": ["--speed-rpm", "3000"],
             "branch": ["--rpm-start", "3000", "--rpm-end", "3010"], "rotor response": ["--speed-rpm", "3000"]}
@@ -203,7 +203,7 @@ def test_every_study_point_gets_the_overrides(sub, tmp_path, monkeypatch):
 
     def capture(tasks, *a, **k):
         raise _Tasks(tasks)
-    monkeypatch.setattr(study, "_sweep", capture)
+    monkeypatch.setattr(study, "run_study_sweep", capture)
     monkeypatch.setattr(runup, "run_runup", lambda spec, *a, **k: capture([spec]))
     typed = dict(zip(OVERRIDES_E2E[::2], OVERRIDES_E2E[1::2]))
     argv = [a for f, v in typed.items() if f not in OWN.get(sub, ()) for a in (f, v)]
