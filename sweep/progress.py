@@ -6,7 +6,7 @@ a job's ``--progress``), so piped output, log files and CI runs stay clean.
 
 Long computations that are not sweeps (a first compile, a shooting orbit, a branch) say what they are doing
 through :func:`report`: a call that costs nothing unless a job installed a listener with :func:`reporting`
-(the command line: ``reports/cli/_progress.py``); :class:`Elapsed` shows the seconds spent on a step that
+(the command line: ``reports/cli/_scene_options.py``); :class:`Elapsed` shows the seconds spent on a step that
 reports nothing (the first compile of the step loop).
 """
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Run the gallery's worked examples for the documentation build: their printed output and figure.
 
-Each ``docs/examples/exNN_*.py`` is run in its own Python process (matplotlib's Agg backend, the
+Each worked example of ``docs/examples/`` is run in its own Python process (matplotlib's Agg backend, the
 repository on the path): its ``main()`` (or ``gallery()``, where ``main()`` runs longer than a build should
 wait) prints the walk-through and returns a matplotlib figure,
 saved as ``docs/_generated/gallery/<stem>.png`` beside ``<stem>.txt`` (the printed output). A run is

@@ -306,9 +306,9 @@ def _branch(args) -> int:
     if station not in channels:
         raise InputError(f"--station = {station}: not a response channel of {name} "
                          f"(have {', '.join(channels)})")
+    chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}   # a bad --from-orbit first
     _check_work(args, "ringcontact branch", min(args.rpm_start, args.rpm_end), int(args.max_points))
     t0 = time.perf_counter()
-    chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}
     res, events = _watched("ringcontact branch", args, lambda: branch(
         args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(max_points=int(args.max_points)),
         **chosen, **_overrides(args)))

@@ -238,9 +238,10 @@ CONTACT_COLUMNS = ("peak_contact_force_N", "mean_contact_force_N", "peak_contact
                    "stick_share_right_face", "stick_share_left_face")
 
 
-def _number(x) -> float:
-    """A CSV cell of an info field: NaN where the point has none (no contact, or stored before the field)."""
-    return float("nan") if x is None else float(x)
+def _number(x):
+    """A CSV cell of an info field: empty where the point has none (no contact: no mean contact force; one face:
+    no left face; or stored before the field), never NaN (the study tables hold finite numbers only)."""
+    return "" if x is None else float(x)
 
 
 def _fmt(x, unit="", d=3):

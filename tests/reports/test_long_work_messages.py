@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 import io
 import json
+import re
 
 import pytest
 
@@ -113,9 +114,10 @@ def test_orbit_failure_says_what_was_tried_and_what_to_change(one_iteration, cap
 
 def test_branch_says_why_there_was_no_orbit_at_the_start(one_iteration, capsys):
     assert cli.main(["branch", "paper-table4", "--rpm-start", "15000", "--rpm-end", "15100", "--mu", "0"]) == 1
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith("ringcontact branch: error: no orbit at the start (--rpm-start): "
-                                               "no periodic orbit at 15000 rpm: 3 Newton attempts")
+    err = [ln for ln in capsys.readouterr().err.strip().splitlines()
+           if not ln.startswith("ringcontact branch: estimated")]      # the work estimate (reports/cli/_budget.py)
+    assert len(err) == 1 and re.match(r"ringcontact branch: error: no orbit at the start \(--rpm-start\): "
+                                      r"no periodic orbit at 15000 rpm: [1-9] Newton attempts", err[0]), err
     assert "What to try: --period-revs" in err[0]
 
 

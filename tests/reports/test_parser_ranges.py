@@ -33,6 +33,7 @@ BASES = {
     "rotor critical-speeds": ["rotor", "critical-speeds", "verify-jeffcott"],
     "rotor campbell": ["rotor", "campbell", "verify-jeffcott"],
     "rotor modes": ["rotor", "modes", "verify-jeffcott"],
+    "rotor static": ["rotor", "static", "verify-jeffcott"],
     "simulate": ["simulate", "--speed-rpm", "10500", "--out", "{tmp}/o"],
     "fem-point": ["fem-point", "@0.01"],
     "fem-check": ["fem-check"],
@@ -47,7 +48,7 @@ BASES = {
     "branch": ["branch", "paper-table4", "--rpm-start", "10500", "--rpm-end", "11000"],
     "study publish": ["study", "publish", "--cascade", "{dir}", "--out", "{tmp}/o"],
     **{f"study {s}": ["study", s, "--out", "{tmp}/o", "--no-progress"]
-       for s in ("map", "runup", "testrig", "params", "point", "cascade")},
+       for s in ("map", "runup", "testrig", "params", "point", "cascade", "readings")},
 }
 #: options that need another one to mean anything (the --steady transient cap)
 NEEDS = {("simulate", "--max-revs"): ["--steady", "--revolutions", "1"],
