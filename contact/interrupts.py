@@ -72,6 +72,13 @@ def stop_children(grace_s: float = 0.0) -> int:
 _PENDING = [0]                           # the signal being honoured (0: none)
 
 
+def pending() -> int:
+    """The signal being honoured (0: none). A job that failed in another way after the signal arrived (the
+    interruption raised inside an import leaves a half-initialised module behind, whose next use fails) was
+    interrupted: the dispatcher reports it so (``reports/cli/__init__.py``)."""
+    return int(_PENDING[0])
+
+
 def _raise(signum, frame):
     for s in SIGNALS:                    # once on the way out, further signals would only break the cleanup
         signal.signal(s, signal.SIG_IGN)

@@ -117,7 +117,12 @@ def _run(job: str, rest: list[str], program: bool = False) -> int:
 
 
 def _internal(job: str, exc: BaseException) -> int:
-    """An error the suite did not foresee: one line, exit status 1 (``RINGCONTACT_DEBUG=1``: the traceback)."""
+    """An error the suite did not foresee: one line, exit status 1 (``RINGCONTACT_DEBUG=1``: the traceback); an
+    error that follows a Ctrl-C or SIGTERM (:func:`contact.interrupts.pending`) is that interruption."""
+    if interrupts.pending():
+        status, text = interrupts.finish(interrupts.Interrupted(interrupts.pending()))
+        print(f"ringcontact {job}: {text}", file=sys.stderr)
+        return status
     if os.environ.get("RINGCONTACT_DEBUG"):
         raise exc
     print(f"ringcontact {job}: internal error: {type(exc).__name__}: {' '.join(str(exc).split())[:300]} "

@@ -317,3 +317,20 @@ def test_an_interruption_swallowed_where_python_ignores_exceptions_is_raised_aga
         assert time.monotonic() - t0 < 2
     assert info.value.signum == signal.SIGTERM
     assert interrupts.finish(info.value)[0] == 143
+
+
+def test_an_error_after_the_signal_is_the_interruption(capsys, monkeypatch):
+    """Ctrl-C raised inside an import leaves a half-initialised module whose next use fails (seen: ``bearing``
+    interrupted at start-up, "partially initialized module 'multiprocessing'"): that failure is reported as the
+    interruption (exit 130, one line), not as an internal error."""
+    import signal
+
+    from contact import interrupts
+    from reports import cli
+    monkeypatch.setattr(interrupts, "_PENDING", [int(signal.SIGINT)])
+    status = cli._internal("bearing", AttributeError("partially initialized module 'multiprocessing'"))
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 130 and len(err) == 1 and err[0].startswith("ringcontact bearing: interrupted (SIGINT)")
+    assert interrupts.pending() == 0
+    assert cli._internal("bearing", AttributeError("x")) == 1          # without a signal: an internal error
+    assert "internal error" in capsys.readouterr().err
