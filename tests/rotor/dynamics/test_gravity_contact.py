@@ -108,9 +108,10 @@ def test_ring_carries_the_weight_by_statics():
     spr, g, L = 1024, 9.81, 0.8
     tr = simulate_production(system, 2 * math.pi / w / spr, 24 * spr, q0, v0, record_every=spr)
     fy, fz, my, mz = tr.f_contact[-1]
-    assert fy * L + mz == pytest.approx(10 * g * L / 2 + 0.5 * g * L, rel=1e-3)
+    # after 24 revolutions the settling transient leaves 5e-6 and 8.5e-5 of these (measured): 2e-4 bounds both
+    assert fy * L + mz == pytest.approx(10 * g * L / 2 + 0.5 * g * L, rel=2e-4)
     y_a = tr.q[-1, model.dof_index("A.y")]
-    assert fy - 2.0e6 * y_a == pytest.approx((10 + 0.5 + 0.5) * g, rel=1e-3)
+    assert fy - 2.0e6 * y_a == pytest.approx((10 + 0.5 + 0.5) * g, rel=2e-4)
     assert abs(mz) > 0.01 * abs(fy) * L          # the tilt moment matters (the check above needs it)
     assert fz == pytest.approx(0.0, abs=1e-9) and my == pytest.approx(0.0, abs=1e-9)
     # without gravity the ring floats free: no contact at all
