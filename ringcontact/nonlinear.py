@@ -65,7 +65,8 @@ class SimulationResult(ContactSummary, ResultMethods):
     ``duration_revs`` the revolutions integrated; ``t_s`` (N,) sample times (s); ``displacement_m`` (N, c) the channels ``channels`` (``<station>.y|z``, m);
     ``r1_m``, ``r2_m`` the ring edges' offsets from the support's centre (m); ``contact_force_N`` (N,) the radial
     force magnitude on the bearing ring (N), ``contact_force_y_N``, ``contact_force_z_N``, ``contact_moment_Nm``;
-    ``face_right_stuck``, ``face_left_stuck`` (1 stuck); the summary fields over the record (peak, shares).
+    ``face_right_stuck``, ``face_left_stuck`` (1 stuck); the summary fields over the record (peak, shares);
+    ``steady_state`` None, or with ``steady=True`` what the detector found (see :func:`simulate`).
     """
 
     scene: str
@@ -86,6 +87,7 @@ class SimulationResult(ContactSummary, ResultMethods):
     face_left_stuck: np.ndarray
     clearance_m: float | None
     contact: dict
+    steady_state: dict | None = None
     trajectory: object = internal()
     _dim = "time"
 
@@ -110,29 +112,62 @@ class SimulationResult(ContactSummary, ResultMethods):
 def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_rev: int | None = None,
              record_per_rev: int = 64, stations=None, clearance_m: float | None = None,
              misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
-             tilt_ignored: bool = False, elements: int | None = None) -> SimulationResult:
+             tilt_ignored: bool = False, elements: int | None = None, steady: bool = False,
+             max_revs: int = 8000) -> SimulationResult:
     """Integrate ``revolutions`` revolutions at ``speed_rpm`` (rpm) from rest, as ``ringcontact simulate``.
 
     ``steps_per_rev`` None: chosen as ``simulate`` and ``orbit`` choose it (256 or more where the contact step
     limit needs it, a multiple of ``record_per_rev``; :func:`rotor.studies.steady_state.step_per_rev`).
     ``stations``: recorded stations (default the scene's disks, loose-support bearing and supports).
+    ``steady`` True: as ``simulate --steady``: the transient is integrated until the Poincaré detector of
+    :func:`rotor.studies.steady_state.steady_state` finds a period (at most ``max_revs`` revolutions) and
+    discarded; the result holds ``revolutions`` revolutions after it, rounded up to whole periods
+    (:func:`rotor.studies.steady_record.record_after_steady`), and ``steady_state`` says whether a period was
+    found (``converged``, ``period_revs``, ``transient_revs``, ``poincare_change``). A record that is not periodic
+    is returned with ``converged`` False, not refused.
     """
     from rotor.dynamics.constraints import edge_offsets
     from rotor.dynamics.production import simulate_production
     from rotor.dynamics.support_record import contact_columns, contact_summary
-    from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
+    from contact.errors import InputError
+    from rotor.dynamics.initial import linear_initial_state
+    from rotor.studies.steady_record import record_after_steady
+    from rotor.studies.steady_state import (SAMPLES_FOR_5X, SteadyStateOptions, point_system, steady_state,
+                                            step_per_rev)
 
     check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)
     check_positive("revolutions", revolutions, "rev", upper=1e6)
     sc, model, system = point_system(as_scene(scene), speed_rpm, **_overrides(
         clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
-    n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions(samples_per_rev=record_per_rev)))
+    if int(record_per_rev) != record_per_rev or record_per_rev < 1:
+        raise InputError(f"simulate: record_per_rev = {record_per_rev}: must be a whole number of samples >= 1")
+    if steps_per_rev is None:      # a multiple of record_per_rev; the detector's transient sampling too
+        fives = SteadyStateOptions(samples_per_rev=int(record_per_rev)) if record_per_rev >= SAMPLES_FOR_5X else \
+            SteadyStateOptions()
+        steps_per_rev = math.ceil(step_per_rev(system, fives) / record_per_rev) * int(record_per_rev)
+    n = int(steps_per_rev)
     check_positive("record_per_rev", record_per_rev, "samples", upper=n)
     names = [f"{s}.{c}" for s in (stations or model.response_stations(primary_only=True)) for c in ("y", "z")]
     idx = [model.dof_index(x) for x in names]
     dt = 2 * math.pi / (system.omega_rad_s * n)
-    tr = simulate_production(system, dt, max(1, int(round(revolutions * n))), q0=system.offset,
-                             record_every=max(1, n // int(record_per_rev)))
+    steady_info = None
+    if steady:
+        check_positive("max_revs", max_revs, "rev", upper=1e6)
+        if n % int(record_per_rev) or int(record_per_rev) < SAMPLES_FOR_5X or int(round(revolutions)) < 1:
+            raise InputError(f"simulate: steady = True needs revolutions >= 1 (got {revolutions:g} rev) and "
+                             f"record_per_rev >= {SAMPLES_FOR_5X} dividing steps_per_rev {n} (got {record_per_rev})")
+        opts = SteadyStateOptions(steps_per_rev=n, samples_per_rev=int(record_per_rev), spectrum_revs=1,
+                                  max_revs=int(max_revs))
+        q_start, v_start = linear_initial_state(system, 0.0)
+        ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
+        tr, dt, _, kept = record_after_steady(system, ss, int(round(revolutions)), int(record_per_rev))
+        n, revolutions = ss.steps_per_rev, kept
+        conv = ss.convergence
+        steady_info = {"converged": bool(conv.converged), "period_revs": int(conv.period),
+                       "transient_revs": int(ss.transient_revs + ss.revolutions), "poincare_change": float(conv.change)}
+    else:
+        tr = simulate_production(system, dt, max(1, int(round(revolutions * n))), q0=system.offset,
+                                 record_every=max(1, n // int(record_per_rev)))
     sup = system.support
     r1, r2 = edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
     cols = contact_columns(tr.f_contact, tr.face_force, tr.modes)
@@ -141,7 +176,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
         sc.name, float(speed_rpm), float(revolutions), n, dt, tuple(names), tr.t, tr.q[:, idx], r1, r2,
         cols["contact_force_N"], cols["contact_force_y_N"], cols["contact_force_z_N"], cols["contact_moment_Nm"],
         cols["face_right_stuck"], cols["face_left_stuck"], sup.law.clearance_m if sup is not None else None,
-        summary, tr)
+        summary, steady_info, tr)
 
 
 # ------------------------------------------------------------------------------------------------------------

@@ -276,8 +276,8 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
 
     Returns ``(trajectory, dt, n_steps, summary fields)``.
     """
-    from rotor.dynamics.production import simulate_production
     from rotor.dynamics.initial import linear_initial_state
+    from rotor.studies.steady_record import record_after_steady
     from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
     from sweep.progress import Events, reporting
 
@@ -291,14 +291,7 @@ def _steady_run(args, system, model, T: float, names: list[str], idx: list[int])
     with reporting(Events("ringcontact simulate --steady", enabled=args.progress)) as events, events:  # on a terminal
         ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
     conv = ss.convergence
-    period = conv.period if conv.converged else 1
-    keep = int(math.ceil(keep / period) * period)  # whole periods: exact DFT bins
-    dt = T / ss.steps_per_rev  # the detector may refine the step (contact step limit)
-    rec = ss.steps_per_rev // args.record_per_rev
-    n_steps = keep * ss.steps_per_rev
-    tr = simulate_production(system, dt, n_steps, q0=ss.q_end, v0=ss.v_end,
-                             t0=(ss.transient_revs + ss.revolutions) * T,
-                             modes0=tuple(int(m) for m in ss.modes[-1]), record_every=rec, check_step=False)
+    tr, dt, n_steps, keep = record_after_steady(system, ss, keep, args.record_per_rev)
     amps = np.abs(harmonic_amplitudes(tr.v[:-1, idx] - tr.v[:-1, idx].mean(axis=0), keep))
     extra = {"transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
              "period_revs": int(conv.period), "poincare_change": float(conv.change),

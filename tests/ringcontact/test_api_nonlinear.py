@@ -120,3 +120,34 @@ def test_branch_and_cascade_of_a_stuck_ring(stuck, tmp_path):
     assert np.array_equal(ds["velocity_amplitude_m_s"].values, c.velocity_amplitude_m_s)
     import matplotlib.pyplot as plt
     plt.close("all")
+
+
+def test_simulate_steady_gives_the_numbers_of_simulate_steady(tmp_path):
+    """``simulate(..., steady=True)`` is ``ringcontact simulate --steady``: the same detected transient, the same
+    kept record (whole periods) and contact summary. At the paper's point B (10 500 rpm, Dai et al. 2025 §5.1) the
+    ring hits its support part of each revolution (section5-readings.md: 56 % contact on the paper's mesh), and
+    the kept record repeats itself from one revolution to the next (the detector found period 1)."""
+    r = rc.simulate("paper-table4", 10500.0, revolutions=3, steady=True)
+    assert cli(["simulate", "--scene", "paper-table4", "--speed-rpm", "10500", "--revolutions", "3", "--steady",
+                "--out", str(tmp_path / "run")]) == 0
+    d = json.loads((tmp_path / "run" / "simulate-summary.json").read_text())
+    assert r.steady_state["converged"] and d["steady_converged"]
+    assert (r.steady_state["transient_revs"], r.steady_state["period_revs"], r.duration_revs) == (
+        d["transient_revs"], d["period_revs"], d["record_revs"])
+    for key in ("peak_contact_force_N", "mean_contact_force_N", "contact_share", "stick_share_right_face"):
+        assert r.contact[key] == d[key], key
+    assert 0.05 < r.contact_share < 0.95                      # contact and separation in each revolution
+    per_rev = (len(r.t_s) - 1) // int(r.duration_revs)
+    x = r.displacement_m
+    assert np.max(np.abs(x[per_rev:] - x[:-per_rev])) < 1e-3 * np.ptp(x)
+    assert r.to_dict()["steady_state"]["period_revs"] == 1
+    plain = rc.simulate("paper-table4", 10500.0, revolutions=3)
+    assert plain.steady_state is None
+
+
+def test_simulate_steady_refuses_a_record_that_cannot_resolve_5x():
+    """The detector resolves 1X-5X (rotor.studies.steady_state.SAMPLES_FOR_5X); a plain run has no such need."""
+    with pytest.raises(rc.InputError, match="record_per_rev >= 12"):
+        rc.simulate("paper-table4", 10500.0, revolutions=3, steady=True, record_per_rev=4)
+    r = rc.simulate("paper-table4", 4500.0, revolutions=2, record_per_rev=4)     # a plain run may sample coarsely
+    assert len(r.t_s) == 9 and r.steady_state is None
