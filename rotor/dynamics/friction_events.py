@@ -178,3 +178,29 @@ def _event_time(alpha_held, ev, e, s0, d0, h, P, hold):
     for k in range(2):
         hold[k] = ev[k] and th[k] <= theta + SAME_EVENT
     return theta
+
+
+@njit(cache=True)
+def _release_fraction(f_start, f_end, released, mu_N, hold):
+    """Fraction ``θ ∈ [0, 1]`` of the step at which the holding force of a released face, linear between its start
+    ``f_start[k]`` and its stuck end ``f_end[k]`` (N, (2, 2)), reaches ``μN`` in magnitude: the root of
+    ``|f_s + θ (f_e − f_s)|² = (μN)²``, the earliest over the faces marked in ``released``; ``hold`` (in place)
+    keeps the faces whose release is at ``θ`` (within ``SAME_EVENT``)."""
+    th = np.full(2, 2.0)
+    theta = 1.0
+    for k in range(2):
+        if released[k]:
+            d0 = f_end[k, 0] - f_start[k, 0]
+            d1 = f_end[k, 1] - f_start[k, 1]
+            qa = d0 * d0 + d1 * d1
+            qb = 2.0 * (f_start[k, 0] * d0 + f_start[k, 1] * d1)
+            qc = f_start[k, 0] ** 2 + f_start[k, 1] ** 2 - mu_N[k] ** 2
+            if qc >= 0.0 or qa == 0.0:
+                f = 0.0
+            else:
+                f = (-qb + math.sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa)
+            th[k] = min(max(f, 0.0), 1.0)
+            theta = min(theta, th[k])
+    for k in range(2):
+        hold[k] = released[k] and th[k] <= theta + SAME_EVENT
+    return theta

@@ -26,8 +26,8 @@ from numba import njit
 
 from contact.compiled_cache import compiled_with
 from contact.loose_support import point_force_jacobian
-from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
-                                            _velocity_events)
+from rotor.dynamics.friction_events import (_event_time, _held_friction, _release_fraction, _substep_matrices,
+                                            _switch_at_event, _velocity_events)
 from rotor.dynamics.kernels import law_tuple
 from rotor.dynamics.production_kernels import (_load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into,
                                                newton_work)
@@ -36,6 +36,7 @@ compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.produ
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
+RELEASE_HOLD = 100.0   # a released face's friction is held at mu_N until its speed passes this many w_reg
 
 
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
@@ -93,6 +94,21 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     phi_pl = phi_face.copy()
     jr_pl = just_released.copy()
     p_pl, v_pl, a_pl, al_pl = np.empty(nr), np.empty(nr), np.empty(nr), np.empty(NC)
+    # a face released (stick -> slip) slips with its release force mu_N (direction of the holding force at the
+    # release) until its speed passes RELEASE_HOLD w_reg (friction_events, "Release")
+    rel = np.zeros(2, dtype=np.bool_)
+    rel_dir = np.zeros((2, 2))
+    rel0 = rel.copy()
+    rel_dir0 = rel_dir.copy()
+    rel_pl = rel.copy()
+    rel_dir_pl = rel_dir.copy()
+    w_hold = RELEASE_HOLD * w_reg
+    # a release inside the step: the faces released in the plain pass, their holding force at its start and end
+    rel_ev = np.zeros(2, dtype=np.bool_)
+    rel_fs = np.zeros((2, 2))
+    rel_fe = np.zeros((2, 2))
+    release_event = False
+    stuck_at_event = False      # a face stuck at the located event: the rest of the step ends consistent
     Ai, Wh, Sh = Ainv, W, S
     h = dt
     h1 = 0.0
@@ -110,6 +126,10 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 phi0[k, 0] = phi_face[k, 0]
                 phi0[k, 1] = phi_face[k, 1]
                 jr0[k] = just_released[k]
+                rel0[k] = rel[k]
+                rel_ev[k] = False
+                rel_dir0[k, 0] = rel_dir[k, 0]
+                rel_dir0[k, 1] = rel_dir[k, 1]
         # ---------------------------------------------------------------- the step body, length h
         bdt2 = beta * h * h
         gdt = gamma * h
@@ -136,12 +156,16 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             matvec_into(P_0, wv4, w_old_0)
             matvec_into(P_1, wv4, w_old_1)
             for k in range(2):
-                tried[k] = modes[k] == 1
+                # a held released face starting from rest: no reversal test (w_old = 0), it slips
+                tried[k] = modes[k] == 1 or (rel[k] and w_old[k, 0] ** 2 + w_old[k, 1] ** 2 <= w_reg * w_reg)
                 stuck0[k] = modes[k] == 1
-                freeze[k] = hold[k]
+                freeze[k] = hold[k] or rel[k]
                 if hold[k]:
                     freeze_dir[k, 0] = hold_dir[k, 0]
                     freeze_dir[k, 1] = hold_dir[k, 1]
+                elif rel[k]:
+                    freeze_dir[k, 0] = rel_dir[k, 0]
+                    freeze_dir[k, 1] = rel_dir[k, 1]
                 phi_old[k, 0] = phi_face[k, 0]
                 phi_old[k, 1] = phi_face[k, 1]
             g[:] = 0.0
@@ -156,14 +180,17 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     # slipping faces not yet tried in this step, else give up
                     flipped = False
                     for k in range(n_faces):
-                        if modes[k] == 0 and not tried[k] and not hold[k]:
+                        if modes[k] == 0 and not tried[k] and not hold[k] and not rel[k]:
                             modes[k] = 1
                             tried[k] = True
                             phi_face[k] = phi[k]
                             flipped = True
                     if flipped and passes < max_passes + 4:
                         for k in range(2):
-                            freeze[k] = hold[k]
+                            freeze[k] = hold[k] or rel[k]
+                            if rel[k] and not hold[k]:
+                                freeze_dir[k, 0] = rel_dir[k, 0]
+                                freeze_dir[k, 1] = rel_dir[k, 1]
                         continue
                     # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
                     # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
@@ -173,9 +200,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         phi_face[k] = phi[k]
                     break
                 alpha[:] = alpha_new
-                if (freeze[0] and not hold[0]) or (freeze[1] and not hold[1]):
+                if (freeze[0] and not (hold[0] or rel[0])) or (freeze[1] and not (hold[1] or rel[1])):
                     for k in range(2):
-                        freeze[k] = hold[k]
+                        freeze[k] = hold[k] or rel[k]
                     continue
                 for i in range(NC):
                     w_new[i] = w_pre[i] + gdt * alpha[i]
@@ -213,14 +240,25 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     wo[1] = w_old[k, 1]
                     fo[0] = phi_old[k, 0]
                     fo[1] = phi_old[k, 1]
-                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if just_released[k] else w_stick,
+                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_stick,
                                       tried[k], fo, stick_mean_weight if stuck0[k] else 0.0)
+                    if locate and phase == PLAIN and nm == 1 and stuck0[k]:
+                        # stuck through the step by the impulse bound, but its end holding force past mu_N: the
+                        # release is inside this step, located (the plain rule releases it a step late)
+                        rel_ev[k] = fk[0] ** 2 + fk[1] ** 2 > (mu_N[k] * (1.0 + 1e-12)) ** 2
+                        if rel_ev[k]:
+                            rel_fs[k, 0] = fo[0]
+                            rel_fs[k, 1] = fo[1]
+                            rel_fe[k, 0] = fk[0]
+                            rel_fe[k, 1] = fk[1]
                     if nm != modes[k]:
                         changed = True
                         modes[k] = nm
                         if nm == 1:
                             tried[k] = True
                             phi_face[k] = phi[k]
+                            rel[k] = False
+                            rel_ev[k] = False
                         else:
                             nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
                             freeze[k] = True
@@ -229,6 +267,16 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                                 freeze_dir[k, 1] = mu_N[k] * fk[1] / nrm
                             else:
                                 freeze_dir[k] = 0.0
+                            if locate and stuck0[k] and nrm > 0:
+                                rel[k] = True
+                                rel_dir[k, 0] = freeze_dir[k, 0]
+                                rel_dir[k, 1] = freeze_dir[k, 1]
+                                if phase == PLAIN:
+                                    rel_ev[k] = True
+                                    rel_fs[k, 0] = fo[0]
+                                    rel_fs[k, 1] = fo[1]
+                                    rel_fe[k, 0] = fk[0]
+                                    rel_fe[k, 1] = fk[1]
                 if not changed or passes >= max_passes:
                     for k in range(2):
                         phi_face[k] = phi[k]
@@ -240,6 +288,11 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 for k in range(2):
                     if modes[k] == 1 and not stuck0[k]:
                         onset = True
+            if phase == FROM_EVENT and stuck_at_event:
+                # the sub-step took the face's velocity at the event (the root of the held step's velocity
+                # polynomial, not of this sub-step's: O(h^3) apart) to zero; restarting from the consistent
+                # acceleration keeps that jump from ringing in the stuck multipliers
+                onset = True
             # largest ω_c Δt met: radial tangent stiffness of the law at the new state
             for i in range(NC):
                 u_new[i] = u_pre[i] + bdt2 * alpha[i]
@@ -281,15 +334,43 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 modes[:] = modes0
                 phi_face[:, :] = phi0
                 just_released[:] = jr0
+                rel_pl[:] = rel
+                rel_dir_pl[:, :] = rel_dir
+                rel[:] = rel0
+                rel_dir[:, :] = rel_dir0
                 matvec_into(Bt, a, alpha)
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
                 continue
+            if locate and (rel_ev[0] or rel_ev[1]):
+                # a release: the step redone up to the instant the holding force reached mu_N, the faces kept
+                # stuck (hold), released there (friction_events, "Release")
+                theta = _release_fraction(rel_fs, rel_fe, rel_ev, mu_N, hold)
+                modes[:] = modes0
+                phi_face[:, :] = phi0
+                just_released[:] = jr0
+                rel[:] = rel0
+                rel_dir[:, :] = rel_dir0
+                matvec_into(Bt, a, alpha)
+                release_event = True
+                h1 = theta * dt
+                if h1 > 1e-12 * dt:
+                    Ai, Wh, Sh = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
+                    h = h1
+                    phase = TO_EVENT
+                    continue
+                h1 = 0.0
+                pn[:] = p
+                vn[:] = v
+                an[:] = a
+                phase = TO_EVENT
         elif phase == HELD:
             theta = _event_time(alpha, ev, e_dir, s0, d0, h, P, hold)
             modes[:] = modes0
             phi_face[:, :] = phi0
             just_released[:] = jr0
+            rel[:] = rel0
+            rel_dir[:, :] = rel_dir0
             if theta > 1.0:                     # not reached with the friction held: the plain result stands
                 hold[:] = False
                 pn[:] = p_pl
@@ -299,6 +380,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 modes[:] = modes_pl
                 phi_face[:, :] = phi_pl
                 just_released[:] = jr_pl
+                rel[:] = rel_pl
+                rel_dir[:, :] = rel_dir_pl
                 phase = PLAIN
             else:
                 matvec_into(Bt, a, alpha)
@@ -318,7 +401,27 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             _load(t0 + (step - 1) * dt + h1, static, orders, cosm, sinm, omega_f, Q)
             an[:] = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
                                   a1, params, w_reg)
+            for k in range(2):
+                if hold[k]:
+                    rel[k] = False
+                    nrm = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
+                    if release_event and modes[k] == 1 and nrm > 0:
+                        # at the located release the holding force is mu_N to the step's accuracy: released
+                        modes[k] = 0
+                        just_released[k] = True
+                        phi_face[k, 0] = mu_N[k] * phi_face[k, 0] / nrm
+                        phi_face[k, 1] = mu_N[k] * phi_face[k, 1] / nrm
+                        nrm = mu_N[k]
+                    if modes[k] == 0 and just_released[k] and nrm > 0:
+                        rel[k] = True
+                        rel_dir[k, 0] = mu_N[k] * phi_face[k, 0] / nrm
+                        rel_dir[k, 1] = mu_N[k] * phi_face[k, 1] / nrm
+            stuck_at_event = False
+            for k in range(2):
+                if hold[k] and modes[k] == 1:
+                    stuck_at_event = True
             hold[:] = False
+            release_event = False
             status[4] += 1
             p[:] = pn
             v[:] = vn
@@ -337,6 +440,14 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         p[:] = pn
         v[:] = vn
         a[:] = an
+        if rel[0] or rel[1]:                    # the release force held until the face's speed passes w_hold
+            matvec_into(Bt, v, w_end)
+            for k in range(2):
+                if rel[k]:
+                    a0 = P[k, 0] @ w_end[:4]
+                    b0 = P[k, 1] @ w_end[:4]
+                    if modes[k] != 0 or a0 * a0 + b0 * b0 >= w_hold * w_hold:
+                        rel[k] = False
         fin = True
         for i in range(nr):
             if not (math.isfinite(p[i]) and math.isfinite(v[i])):
