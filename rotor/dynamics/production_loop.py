@@ -36,7 +36,7 @@ compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.produ
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
-RELEASE_HOLD = 100.0   # a released face's friction is held at mu_N until its speed passes this many w_reg
+RELEASE_HOLD = 1000.0   # a released face's friction is held at mu_N until its speed passes this many w_reg
 
 
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
@@ -98,11 +98,10 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     # release) until its speed passes RELEASE_HOLD w_reg (friction_events, "Release")
     rel = np.zeros(2, dtype=np.bool_)
     rel_dir = np.zeros((2, 2))
-    rel0 = rel.copy()
-    rel_dir0 = rel_dir.copy()
-    rel_pl = rel.copy()
-    rel_dir_pl = rel_dir.copy()
     w_hold = RELEASE_HOLD * w_reg
+    # the low-speed stick trial: with the events located a stop is found where the velocity reaches zero, so
+    # only a face slower than w_reg (no slip direction) is tried in stick before (w_stick a step early)
+    w_try = min(w_stick, w_reg) if locate else w_stick
     # a release inside the step: the faces released in the plain pass, their holding force at its start and end
     rel_ev = np.zeros(2, dtype=np.bool_)
     rel_fs = np.zeros((2, 2))
@@ -126,10 +125,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 phi0[k, 0] = phi_face[k, 0]
                 phi0[k, 1] = phi_face[k, 1]
                 jr0[k] = just_released[k]
-                rel0[k] = rel[k]
                 rel_ev[k] = False
-                rel_dir0[k, 0] = rel_dir[k, 0]
-                rel_dir0[k, 1] = rel_dir[k, 1]
         # ---------------------------------------------------------------- the step body, length h
         bdt2 = beta * h * h
         gdt = gamma * h
@@ -156,8 +152,26 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             matvec_into(P_0, wv4, w_old_0)
             matvec_into(P_1, wv4, w_old_1)
             for k in range(2):
-                # a held released face starting from rest: no reversal test (w_old = 0), it slips
-                tried[k] = modes[k] == 1 or (rel[k] and w_old[k, 0] ** 2 + w_old[k, 1] ** 2 <= w_reg * w_reg)
+                # a slow slip, w_reg < |w| < w_hold: Coulomb's force along the start-of-step slip, held over the
+                # step, not the regularised one (its deficit near a stop or after a release is w_reg-sized); a
+                # face at rest whose force is at mu_N (just released): that force, held (friction_events, "Slow
+                # slips"). Decided from the step's start alone, so a step replayed from its start is the same step.
+                rel[k] = False
+                sw2 = w_old[k, 0] ** 2 + w_old[k, 1] ** 2
+                if locate and modes[k] == 0:
+                    if w_reg * w_reg < sw2 < w_hold * w_hold:
+                        rel[k] = True
+                        sw = math.sqrt(sw2)
+                        rel_dir[k, 0] = -mu_N[k] * w_old[k, 0] / sw
+                        rel_dir[k, 1] = -mu_N[k] * w_old[k, 1] / sw
+                    elif sw2 <= w_reg * w_reg:
+                        fn = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
+                        if fn >= mu_N[k] * (1.0 - 1e-9) and fn > 0.0:
+                            rel[k] = True
+                            rel_dir[k, 0] = mu_N[k] * phi_face[k, 0] / fn
+                            rel_dir[k, 1] = mu_N[k] * phi_face[k, 1] / fn
+                # a held face starting from rest: no reversal test (w_old = 0), it slips
+                tried[k] = modes[k] == 1 or (rel[k] and sw2 <= w_reg * w_reg)
                 stuck0[k] = modes[k] == 1
                 freeze[k] = hold[k] or rel[k]
                 if hold[k]:
@@ -240,7 +254,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     wo[1] = w_old[k, 1]
                     fo[0] = phi_old[k, 0]
                     fo[1] = phi_old[k, 1]
-                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_stick,
+                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_try,
                                       tried[k], fo, stick_mean_weight if stuck0[k] else 0.0)
                     if locate and phase == PLAIN and nm == 1 and stuck0[k]:
                         # stuck through the step by the impulse bound, but its end holding force past mu_N: the
@@ -334,10 +348,6 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 modes[:] = modes0
                 phi_face[:, :] = phi0
                 just_released[:] = jr0
-                rel_pl[:] = rel
-                rel_dir_pl[:, :] = rel_dir
-                rel[:] = rel0
-                rel_dir[:, :] = rel_dir0
                 matvec_into(Bt, a, alpha)
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
@@ -349,8 +359,6 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 modes[:] = modes0
                 phi_face[:, :] = phi0
                 just_released[:] = jr0
-                rel[:] = rel0
-                rel_dir[:, :] = rel_dir0
                 matvec_into(Bt, a, alpha)
                 release_event = True
                 h1 = theta * dt
@@ -369,8 +377,6 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             modes[:] = modes0
             phi_face[:, :] = phi0
             just_released[:] = jr0
-            rel[:] = rel0
-            rel_dir[:, :] = rel_dir0
             if theta > 1.0:                     # not reached with the friction held: the plain result stands
                 hold[:] = False
                 pn[:] = p_pl
@@ -380,8 +386,6 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 modes[:] = modes_pl
                 phi_face[:, :] = phi_pl
                 just_released[:] = jr_pl
-                rel[:] = rel_pl
-                rel_dir[:, :] = rel_dir_pl
                 phase = PLAIN
             else:
                 matvec_into(Bt, a, alpha)
@@ -402,20 +406,14 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             an[:] = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
                                   a1, params, w_reg)
             for k in range(2):
-                if hold[k]:
-                    rel[k] = False
-                    nrm = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
-                    if release_event and modes[k] == 1 and nrm > 0:
-                        # at the located release the holding force is mu_N to the step's accuracy: released
-                        modes[k] = 0
-                        just_released[k] = True
-                        phi_face[k, 0] = mu_N[k] * phi_face[k, 0] / nrm
-                        phi_face[k, 1] = mu_N[k] * phi_face[k, 1] / nrm
-                        nrm = mu_N[k]
-                    if modes[k] == 0 and just_released[k] and nrm > 0:
-                        rel[k] = True
-                        rel_dir[k, 0] = mu_N[k] * phi_face[k, 0] / nrm
-                        rel_dir[k, 1] = mu_N[k] * phi_face[k, 1] / nrm
+                nrm = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
+                if hold[k] and release_event and modes[k] == 1 and nrm > 0:
+                    # at the located release the holding force is mu_N to the step's accuracy: released, its
+                    # force mu_N along the holding force (held from rest in the rest of the step)
+                    modes[k] = 0
+                    just_released[k] = True
+                    phi_face[k, 0] = mu_N[k] * phi_face[k, 0] / nrm
+                    phi_face[k, 1] = mu_N[k] * phi_face[k, 1] / nrm
             stuck_at_event = False
             for k in range(2):
                 if hold[k] and modes[k] == 1:
@@ -440,14 +438,6 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         p[:] = pn
         v[:] = vn
         a[:] = an
-        if rel[0] or rel[1]:                    # the release force held until the face's speed passes w_hold
-            matvec_into(Bt, v, w_end)
-            for k in range(2):
-                if rel[k]:
-                    a0 = P[k, 0] @ w_end[:4]
-                    b0 = P[k, 1] @ w_end[:4]
-                    if modes[k] != 0 or a0 * a0 + b0 * b0 >= w_hold * w_hold:
-                        rel[k] = False
         fin = True
         for i in range(nr):
             if not (math.isfinite(p[i]) and math.isfinite(v[i])):
