@@ -355,6 +355,14 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             if locate and (rel_ev[0] or rel_ev[1]):
                 # a release: the step redone up to the instant the holding force reached mu_N, the faces kept
                 # stuck (hold), released there (friction_events, "Release")
+                # the holding force at the start: the consistent one at the start's (p, v) (a function of the
+                # step's start, so that the located map is differentiable there), not the recorded multiplier
+                _load(t - dt, static, orders, cosm, sinm, omega_f, Q)
+                phi_s = phi0.copy()
+                _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes0, mu_N, a1, params, w_reg, phi_s)
+                for k in range(2):
+                    rel_fs[k, 0] = phi_s[k, 0]
+                    rel_fs[k, 1] = phi_s[k, 1]
                 theta = _release_fraction(rel_fs, rel_fe, rel_ev, mu_N, hold)
                 modes[:] = modes0
                 phi_face[:, :] = phi0
