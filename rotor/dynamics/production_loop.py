@@ -36,7 +36,7 @@ compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.produ
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
-RELEASE_HOLD = 1000.0   # a released face's friction is held at mu_N until its speed passes this many w_reg
+RELEASE_HOLD = 1000.0   # a held slow slip (a released face, a rectilinear stop) is held below this many w_reg
 
 
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
@@ -159,14 +159,22 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 rel[k] = False
                 sw2 = w_old[k, 0] ** 2 + w_old[k, 1] ** 2
                 if locate and modes[k] == 0:
-                    if w_reg * w_reg < sw2 < w_hold * w_hold:
+                    fn = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
+                    held = fn >= mu_N[k] * (1.0 - 1e-9) and fn > 0.0
+                    if not held and w_reg * w_reg < sw2 < w_hold * w_hold:
+                        # a rectilinear slow slip (its acceleration along its velocity: Den Hartog's stops), whose
+                        # direction the step keeps: held too
+                        ay = P[k, 0, 0] * alpha[0] + P[k, 0, 1] * alpha[1] + P[k, 0, 2] * alpha[2] + P[k, 0, 3] * alpha[3]
+                        az = P[k, 1, 0] * alpha[0] + P[k, 1, 1] * alpha[1] + P[k, 1, 2] * alpha[2] + P[k, 1, 3] * alpha[3]
+                        cr = w_old[k, 0] * az - w_old[k, 1] * ay
+                        held = cr * cr <= 1e-12 * sw2 * (ay * ay + az * az)
+                    if held and w_reg * w_reg < sw2 < w_hold * w_hold:
                         rel[k] = True
                         sw = math.sqrt(sw2)
                         rel_dir[k, 0] = -mu_N[k] * w_old[k, 0] / sw
                         rel_dir[k, 1] = -mu_N[k] * w_old[k, 1] / sw
                     elif sw2 <= w_reg * w_reg:
-                        fn = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
-                        if fn >= mu_N[k] * (1.0 - 1e-9) and fn > 0.0:
+                        if held:
                             rel[k] = True
                             rel_dir[k, 0] = mu_N[k] * phi_face[k, 0] / fn
                             rel_dir[k, 1] = mu_N[k] * phi_face[k, 1] / fn
