@@ -161,7 +161,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 if locate and modes[k] == 0:
                     fn = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
                     held = fn >= mu_N[k] * (1.0 - 1e-9) and fn > 0.0
-                    if not held and w_reg * w_reg < sw2 < w_hold * w_hold:
+                    if w_reg * w_reg < sw2 < w_hold * w_hold:
                         # a rectilinear slow slip (its acceleration along its velocity: Den Hartog's stops), whose
                         # direction the step keeps: held too
                         ay = P[k, 0, 0] * alpha[0] + P[k, 0, 1] * alpha[1] + P[k, 0, 2] * alpha[2] + P[k, 0, 3] * alpha[3]
