@@ -82,16 +82,16 @@ def _event_fraction(s0, d0, d1, h):
 
 
 @njit(cache=True)
-def _velocity_events(w0, w1, modes0, modes1, released0, P, n_faces, w_min, ev):
+def _velocity_events(w0, w1, modes0, modes1, released0, P, n_faces, w_min, ev, mu_N):
     """Mark in ``ev`` (2,) the faces slipping at the start of the step, faster than ``w_min`` (m/s; the
     friction regularisation ``w_reg``, below which the slip direction is not defined) and not just
     released (``released0``: they start from rest), whose velocity reversed (``w_n+1 · w_n ≤ 0``) or
     which stuck by its end; returns how many. ``w0``, ``w1``: the condensed velocities ``Bt v`` (NC,) at the
-    start and at the end of the step (m/s, rad/s)."""
+    start and at the end of the step (m/s, rad/s); a face without friction (``mu_N[k]`` 0, N) has no event."""
     count = 0
     for k in range(2):
         ev[k] = False
-        if k >= n_faces or modes0[k] != 0 or released0[k]:
+        if k >= n_faces or modes0[k] != 0 or released0[k] or mu_N[k] <= 0.0:
             continue
         a0 = P[k, 0] @ w0[:4]
         b0 = P[k, 1] @ w0[:4]

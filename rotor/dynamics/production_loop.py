@@ -99,9 +99,6 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     rel = np.zeros(2, dtype=np.bool_)
     rel_dir = np.zeros((2, 2))
     w_hold = RELEASE_HOLD * w_reg
-    # the low-speed stick trial: with the events located a stop is found where the velocity reaches zero, so
-    # only a face slower than w_reg (no slip direction) is tried in stick before (w_stick a step early)
-    w_try = min(w_stick, w_reg) if locate else w_stick
     # a release inside the step: the faces released in the plain pass, their holding force at its start and end
     rel_ev = np.zeros(2, dtype=np.bool_)
     rel_fs = np.zeros((2, 2))
@@ -262,7 +259,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     wo[1] = w_old[k, 1]
                     fo[0] = phi_old[k, 0]
                     fo[1] = phi_old[k, 1]
-                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_try,
+                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_stick,
                                       tried[k], fo, stick_mean_weight if stuck0[k] else 0.0)
                     if locate and phase == PLAIN and nm == 1 and stuck0[k]:
                         # stuck through the step by the impulse bound, but its end holding force past mu_N: the
@@ -345,7 +342,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         if phase == PLAIN:
             if locate:
                 matvec_into(Bt, vn, w_end)          # (wv = Bt v, the step's start, from the step body)
-            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev) > 0:
+            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N) > 0:
                 p_pl[:] = pn                                        # the plain result, kept
                 v_pl[:] = vn
                 a_pl[:] = an
