@@ -99,6 +99,11 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     rel = np.zeros(2, dtype=np.bool_)
     rel_dir = np.zeros((2, 2))
     w_hold = RELEASE_HOLD * w_reg
+    # the low-speed stick trial: with the events located a stop is where the velocity reaches zero (a reversal,
+    # located), so only a face slower than w_reg (no slip direction) is tried in stick before; the plain rule's
+    # w_stick sticks a face a step early and, a threshold on the step grid, makes the located map jump (Table 4 at
+    # 10 500 rpm, T/512: 14 switches a period and central differences that do not converge, against 4 and 4.9e-7)
+    w_try = min(w_stick, w_reg) if locate else w_stick
     # a release inside the step: the faces released in the plain pass, their holding force at its start and end
     rel_ev = np.zeros(2, dtype=np.bool_)
     rel_fs = np.zeros((2, 2))
@@ -259,7 +264,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     wo[1] = w_old[k, 1]
                     fo[0] = phi_old[k, 0]
                     fo[1] = phi_old[k, 1]
-                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_stick,
+                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_try,
                                       tried[k], fo, stick_mean_weight if stuck0[k] else 0.0)
                     if locate and phase == PLAIN and nm == 1 and stuck0[k]:
                         # stuck through the step by the impulse bound, but its end holding force past mu_N: the
