@@ -37,6 +37,7 @@ compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.produ
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
 RELEASE_HOLD = 1000.0   # a held slow slip (a released face, a rectilinear stop) is held below this many w_reg
+RECTILINEAR = 1e-9      # a slow slip is rectilinear where sin² of its velocity-acceleration angle is below this
 
 
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
@@ -169,7 +170,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         ay = P[k, 0, 0] * alpha[0] + P[k, 0, 1] * alpha[1] + P[k, 0, 2] * alpha[2] + P[k, 0, 3] * alpha[3]
                         az = P[k, 1, 0] * alpha[0] + P[k, 1, 1] * alpha[1] + P[k, 1, 2] * alpha[2] + P[k, 1, 3] * alpha[3]
                         cr = w_old[k, 0] * az - w_old[k, 1] * ay
-                        held = cr * cr <= 1e-12 * sw2 * (ay * ay + az * az)
+                        held = cr * cr <= RECTILINEAR * sw2 * (ay * ay + az * az)
                     if held and w_reg * w_reg < sw2 < w_hold * w_hold:
                         rel[k] = True
                         sw = math.sqrt(sw2)
