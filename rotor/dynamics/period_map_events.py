@@ -23,12 +23,12 @@ released in the step before, which the replay starts without): a replay that doe
 
 Measured against central differences of the located map (scaled monodromy, tests/rotor/dynamics/
 test_period_map_events.py): Den Hartog's (1931) oscillator, non-stop (two located reversals per period) and
-stick-slip (stick onsets and releases), agree to 1e-7. **Not yet shown on Table 4**: at 10 500 rpm (512 steps
-per revolution; two stick onsets and two releases in the period, one of the onsets located) the agreement is
-4e-5 to 7e-5 where the plain map's is 7e-7, but there the reference itself does not converge: central differences
-of the located map at 1e-8 and 1e-9 of each component's range differ by 2e-4 (the located map is not smooth
-to that level near the stick onset). Until that is resolved, Table 4 shooting uses the plain map
-(``locate_events`` False).
+stick-slip (stick onsets and releases), agree to 1e-6. **Not yet shown on Table 4 to 1e-6**: at 10 500 rpm (512
+steps per revolution, 60 revolutions from the linear state; two stick onsets and two releases in the period) the
+agreement is 5.2e-6 and 5.5e-6 against central differences at 1e-7 and 1e-8 of each component's range, which
+agree with each other to 3.8e-7 (before the releases were located: 4e-5 to 7e-5, the reference not converging,
+2e-4). Contact onset and loss (an edge penetration crossing zero) are not located inside the step; the steps
+held as slow slips (:mod:`rotor.dynamics.friction_events`) are differenced as event steps.
 """
 from __future__ import annotations
 

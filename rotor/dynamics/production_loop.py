@@ -2,10 +2,12 @@
 
 One step: predictor, condensed Newton with the active-set loop (:func:`rotor.dynamics.production_kernels.
 _solve_support`, the stick/slip rules of :mod:`rotor.dynamics.constraints`), correction, stick-onset
-re-projection. With ``locate_events``, a step in which a face's slip velocity reached zero is redone in
-three passes of the same step body (:mod:`rotor.dynamics.friction_events`): (1) re-solved with the
+re-projection. With ``locate_events`` (the default), a step in which a face's slip velocity reached zero is
+redone in three passes of the same step body (:mod:`rotor.dynamics.friction_events`): (1) re-solved with the
 event faces' friction held, which gives the event time; (2) the sub-step up to the event, friction
-held; the friction state is switched at the event; (3) the sub-step from the event to the end.
+held; the friction state is switched at the event; (3) the sub-step from the event to the end. A release is
+redone in passes (2) and (3), its time from the holding force; a slow slip's friction is held over its step
+(friction_events, "Release" and "Slow slips").
 
 The step body is written once, inside the loop over the steps: called as a function it cost ~12 % of
 the step (measured on the Table 4 rotor: the reference counts of the ~30 arrays it takes, per call).
@@ -36,7 +38,7 @@ compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.produ
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
-RELEASE_HOLD = 1000.0   # a held slow slip (a released face, a rectilinear stop) is held below this many w_reg
+RELEASE_HOLD = 1000.0   # slow slips (friction_events, "Slow slips") are held below this many w_reg
 RECTILINEAR = 1e-9      # a slow slip is rectilinear where sin² of its velocity-acceleration angle is below this
 
 
