@@ -11,7 +11,8 @@ Writes ``reports/published/perf-friction-events.md``:
    the first 10 revolutions.
 2. Den Hartog's (1931) oscillator (tests/rotor/dynamics/dynamics_denhartog.py): steady amplitude error
    against the exact one, events off and on, at T/100 … T/800 (non-stop, damped and undamped) and
-   T/400 … T/3200 (stick-slip).
+   T/400 … T/3200 (stick-slip), with the observed order between successive step halvings.
+3. The undamped non-stop cases after 1 500 periods: the state one period apart (m), events off and on.
 
 Run: ``nice -n 0 .venv/bin/python benchmarks/bench_friction_events.py [--baseline DIR]`` (a few minutes).
 """
@@ -56,7 +57,7 @@ def steady_point(locate: bool):
     model = assemble(scene)
     system = system_from_model(model, scene, RPM * 2 * math.pi / 60)
     opts = SteadyStateOptions(steps_per_rev=NPER, spectrum_revs=64, samples_per_rev=NPER)
-    extra = {"locate_events": True} if locate else {}
+    extra = {"locate_events": bool(locate)}
     with mock.patch.object(rp, "NewmarkOptions", functools.partial(NewmarkOptions, **extra)):
         t0, c0 = time.perf_counter(), time.process_time()
         res = steady_state(system, model, options=opts)
@@ -112,14 +113,15 @@ def transient_runs() -> dict:
 
 
 def den_hartog_rows() -> list[str]:
-    """Amplitude errors against Den Hartog (1931), events off and on."""
+    """Amplitude errors against Den Hartog (1931), events off and on, and the observed orders."""
     from dynamics_denhartog import DenHartog
     from dynamics_standin import friction_body
     from test_friction_events import _extreme
     from rotor.dynamics.production import simulate_production
     from rotor.dynamics.system import NewmarkOptions
 
-    rows = ["| case | ζ | ω (rad/s) | steps per period | error, events off | error, events on |", "|---|---|---|---|---|---|"]
+    rows = ["| case | ζ | ω (rad/s) | steps per period | error, events off | error, events on | order, events on |",
+            "|---|---|---|---|---|---|---|"]
     cases = [("non-stop", 0.2, 0.1, 50.0, (100, 200, 400, 800), 60), ("non-stop", 0.2, 0.1, 100.0, (100, 200, 400, 800), 60),
              ("non-stop", 0.2, 0.0, 50.0, (100, 200, 400, 800), 150), ("non-stop", 0.2, 0.0, 100.0, (100, 200, 400, 800), 150),
              ("stick-slip", 0.6, 0.1, 25.0, (400, 800, 1600, 3200), 40)]
@@ -127,6 +129,7 @@ def den_hartog_rows() -> list[str]:
         s = friction_body(F=F, P0=1.0, omega=omega, zeta=zeta)
         dh = DenHartog(s.M[0, 0], s.C[0, 0], s.K[0, 0], F, 1.0, omega)
         X0 = dh.steady_state()[0]
+        prev = None
         for nper in steps:
             errs = []
             for locate in (False, True):
@@ -136,7 +139,33 @@ def den_hartog_rows() -> list[str]:
                 y, v = tr.q[-nper - 1:, 0], tr.v[-nper - 1:, 0]
                 amp = 0.5 * (_extreme(y, v, dt) + _extreme(-y, -v, dt)) if name == "non-stop" else 0.5 * np.ptp(y)
                 errs.append(abs(amp - X0) / X0)
-            rows.append(f"| {name} | {zeta} | {omega:g} | {nper} | {errs[0]:.2e} | {errs[1]:.2e} |")
+            order = f"{math.log2(prev / errs[1]):.2f}" if prev else ""
+            prev = errs[1]
+            rows.append(f"| {name} | {zeta} | {omega:g} | {nper} | {errs[0]:.2e} | {errs[1]:.2e} | {order} |")
+    return rows
+
+
+def drift_rows() -> list[str]:
+    """Undamped non-stop Den Hartog cases, 1 500 periods from rest: the state one period apart at the end."""
+    from dynamics_denhartog import DenHartog
+    from dynamics_standin import friction_body
+    from rotor.dynamics.production import simulate_production
+    from rotor.dynamics.system import NewmarkOptions
+
+    rows = ["| ω (rad/s) | steps per period | amplitude X0 (m) | drift per period, events off (m) | "
+            "drift per period, events on (m) |", "|---|---|---|---|---|"]
+    for omega in (50.0, 100.0):
+        s = friction_body(F=0.2, P0=1.0, omega=omega, zeta=0.0)
+        dh = DenHartog(s.M[0, 0], s.C[0, 0], s.K[0, 0], 0.2, 1.0, omega)
+        X0 = dh.steady_state()[0]
+        for nper in (100, 200, 400, 800):
+            cells = []
+            for locate in (False, True):
+                tr = simulate_production(s, dh.T / nper, 1500 * nper, check_step=False, record_every=nper,
+                                         options=NewmarkOptions(locate_events=locate))
+                d = np.hypot(np.diff(tr.q[-101:, 0]), np.diff(tr.v[-101:, 0]) / omega)   # (y, ẏ/ω), last 100
+                cells.append(f"{d.max():.2e}")
+            rows.append(f"| {omega:g} | {nper} | {X0:.4e} | {cells[0]} | {cells[1]} |")
     return rows
 
 
@@ -173,9 +202,9 @@ def main(argv=None) -> int:
              f"Alternating in one run, median of {REPEATS} (min–max), numba compiled beforehand.", "",
              "| variant | wall (s), median (min–max) | CPU (s), median (min–max) | revolutions |", "|---|---|---|---|"]
     for name, label in (("before", "before the change (previous commit, subprocess)"),
-                        ("off_sub", "this change, `locate_events = False` (default), subprocess as the line above"),
-                        ("off", "this change, `locate_events = False` (default)"),
-                        ("on", "this change, `locate_events = True`")):
+                        ("off_sub", "this change, `locate_events = True` (default), subprocess as the line above"),
+                        ("off", "this change, `locate_events = False`"),
+                        ("on", "this change, `locate_events = True` (default)")):
         if walls[name]:
             cells = []
             for j in (0, 1):
@@ -183,6 +212,14 @@ def main(argv=None) -> int:
                 cells.append(f"{statistics.median(w):.2f} ({min(w):.2f}–{max(w):.2f})")
             lines.append(f"| {label} | {cells[0]} | {cells[1]} | {res[name][0]} |")
     off, on = statistics.median(tr_runs["off"]), statistics.median(tr_runs["on"])
+    ratio = statistics.median([x[0] for x in walls["on"]]) / statistics.median([x[0] for x in walls["off"]])
+    lines += ["", f"Wall-time ratio of the steady point, events on / off (medians): {ratio:.2f}.", ""]
+    lines += [f"1X–5X velocity amplitudes (mm/s) of the steady point, events off / on:", "",
+              "| channel | " + " | ".join(f"{h}X off | {h}X on" for h in range(1, 6)) + " |",
+              "|---|" + "---|" * 10]
+    for i, name in enumerate(NAMES):
+        lines.append(f"| {name} | " + " | ".join(f"{res['off'][1][i, h] * 1e3:.4g} | {res['on'][1][i, h] * 1e3:.4g}"
+                                                    for h in range(5)) + " |")
     lines += ["", f"The first 10 revolutions from rest alone ({10 * NPER} steps, the impacts and stick/slip switches of the "
               f"transient), alternating, median of {REPEATS} CPU times: events off {off:.3f} s, on {on:.3f} s "
               f"(ratio {on / off:.2f}); events located: {tr_runs['events']}.", "",
@@ -195,6 +232,10 @@ def main(argv=None) -> int:
               "(stick-slip, half the peak-to-peak of the last period, as tests/rotor/dynamics/test_dynamics_verification.py); "
               "from rest, 60 periods (damped), 150 (undamped), 40 (stick-slip).", ""]
     lines += den_hartog_rows()
+    lines += ["", "## 3. Den Hartog, undamped, non-stop (F/P0 = 0.2): periodic?", "",
+              "From rest, 1 500 periods; the largest difference of (y, ẏ/ω) one period apart over the last 100 "
+              "periods (m). With no damping a free vibration the step leaves behind never decays.", ""]
+    lines += drift_rows()
     atomic_write_text(OUT / "perf-friction-events.md", "\n".join(lines) + "\n")
     print("\n".join(lines))
     return 0

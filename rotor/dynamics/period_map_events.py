@@ -23,22 +23,25 @@ released in the step before, which the replay starts without): a replay that doe
 
 Measured against central differences of the located map (scaled monodromy, tests/rotor/dynamics/
 test_period_map_events.py): Den Hartog's (1931) oscillator, non-stop (two located reversals per period) and
-stick-slip (stick onsets and releases), agree to 1e-7. **Not yet shown on Table 4**: at 10 500 rpm (512 steps
-per revolution; two stick onsets and two releases in the period, one of the onsets located) the agreement is
-4e-5 to 7e-5 where the plain map's is 7e-7, but there the reference itself does not converge: central differences
-of the located map at 1e-8 and 1e-9 of each component's range differ by 2e-4 (the located map is not smooth
-to that level near the stick onset). Until that is resolved, Table 4 shooting uses the plain map
-(``locate_events`` False).
+stick-slip (stick onsets and releases), agree to 1e-6. **Not yet shown on Table 4 to 1e-6**: at 10 500 rpm (512
+steps per revolution, 60 revolutions from the linear state; two stick onsets and two releases in the period) the
+agreement is 5.2e-6 and 5.5e-6 against central differences at 1e-7 and 1e-8 of each component's range, which
+agree with each other to 3.8e-7 (before the releases were located: 4e-5 to 7e-5, the reference not converging,
+2e-4). Contact onset and loss (an edge penetration crossing zero) are not located inside the step; the steps
+held as slow slips (:mod:`rotor.dynamics.friction_events`) are differenced as event steps.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
-from rotor.dynamics.production_loop import step_loop
+from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
 #: central-difference step of an event step's derivative, relative to each component's range over the run
-EVENT_STEP_REL = 1e-7
+#: (1e-6: on Den Hartog's stick-slip period of tests/rotor/dynamics/test_period_map_events.py the located monodromy
+#: is 2.7e-7 from central differences of the whole map at 1e-6, 1.6e-6 at 1e-7 and 6e-6 at 1e-8: the round-off of
+#: the differenced step's Newton solves grows as the step shrinks)
+EVENT_STEP_REL = 1e-6
 
 
 def event_steps(pm, tr) -> list[int]:
@@ -49,10 +52,19 @@ def event_steps(pm, tr) -> list[int]:
     P = pm.prepared.P
     modes = tr.modes.astype(np.int64)
     out = set(np.flatnonzero(np.any(modes[1:, :pm.n_faces] != modes[:-1, :pm.n_faces], axis=1)).tolist())
+    w_reg = pm.options.w_reg
+    w_hold = RELEASE_HOLD * w_reg
+    mu_N = pm.prepared.limits
     for k in range(pm.n_faces):
         wk = tr.w @ P[k].T                                  # (N+1, 2) the face's relative velocity
         turned = np.einsum("ij,ij->i", wk[:-1], wk[1:]) <= 0.0
         out |= set(np.flatnonzero(turned & (modes[:-1, k] == 0)).tolist())
+        if pm.options.locate_events:
+            # steps whose face force is held (production_loop: a slow slip, or a face at rest at mu_N)
+            speed = np.hypot(wk[:-1, 0], wk[:-1, 1])
+            force = np.hypot(tr.face_force[:-1, k, 0], tr.face_force[:-1, k, 1])
+            held = (speed > w_reg) & (speed < w_hold) | (speed <= w_reg) & (force >= mu_N[k] * (1 - 1e-9))
+            out |= set(np.flatnonzero(held & (modes[:-1, k] == 0)).tolist())
     return sorted(out)
 
 

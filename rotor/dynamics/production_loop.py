@@ -2,10 +2,12 @@
 
 One step: predictor, condensed Newton with the active-set loop (:func:`rotor.dynamics.production_kernels.
 _solve_support`, the stick/slip rules of :mod:`rotor.dynamics.constraints`), correction, stick-onset
-re-projection. With ``locate_events``, a step in which a face's slip velocity reached zero is redone in
-three passes of the same step body (:mod:`rotor.dynamics.friction_events`): (1) re-solved with the
+re-projection. With ``locate_events`` (the default), a step in which a face's slip velocity reached zero is
+redone in three passes of the same step body (:mod:`rotor.dynamics.friction_events`): (1) re-solved with the
 event faces' friction held, which gives the event time; (2) the sub-step up to the event, friction
-held; the friction state is switched at the event; (3) the sub-step from the event to the end.
+held; the friction state is switched at the event; (3) the sub-step from the event to the end. A release is
+redone in passes (2) and (3), its time from the holding force; a slow slip's friction is held over its step
+(friction_events, "Release" and "Slow slips").
 
 The step body is written once, inside the loop over the steps: called as a function it cost ~12 % of
 the step (measured on the Table 4 rotor: the reference counts of the ~30 arrays it takes, per call).
@@ -26,8 +28,8 @@ from numba import njit
 
 from contact.compiled_cache import compiled_with
 from contact.loose_support import point_force_jacobian
-from rotor.dynamics.friction_events import (_event_time, _held_friction, _substep_matrices, _switch_at_event,
-                                            _velocity_events)
+from rotor.dynamics.friction_events import (_event_time, _held_friction, _release_fraction, _substep_matrices,
+                                            _switch_at_event, _velocity_events)
 from rotor.dynamics.kernels import law_tuple
 from rotor.dynamics.production_kernels import (_load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into,
                                                newton_work)
@@ -36,6 +38,8 @@ compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.produ
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
+RELEASE_HOLD = 1000.0   # slow slips (friction_events, "Slow slips") are held below this many w_reg
+RECTILINEAR = 1e-9      # a slow slip is rectilinear where sin² of its velocity-acceleration angle is below this
 
 
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
@@ -93,6 +97,22 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     phi_pl = phi_face.copy()
     jr_pl = just_released.copy()
     p_pl, v_pl, a_pl, al_pl = np.empty(nr), np.empty(nr), np.empty(nr), np.empty(NC)
+    # a face released (stick -> slip) slips with its release force mu_N (direction of the holding force at the
+    # release) until its speed passes RELEASE_HOLD w_reg (friction_events, "Release")
+    rel = np.zeros(2, dtype=np.bool_)
+    rel_dir = np.zeros((2, 2))
+    w_hold = RELEASE_HOLD * w_reg
+    # the low-speed stick trial: with the events located a stop is where the velocity reaches zero (a reversal,
+    # located), so only a face slower than w_reg (no slip direction) is tried in stick before; the plain rule's
+    # w_stick sticks a face a step early and, a threshold on the step grid, makes the located map jump (Table 4 at
+    # 10 500 rpm, T/512: 14 switches a period and central differences that do not converge, against 4 and 4.9e-7)
+    w_try = min(w_stick, w_reg) if locate else w_stick
+    # a release inside the step: the faces released in the plain pass, their holding force at its start and end
+    rel_ev = np.zeros(2, dtype=np.bool_)
+    rel_fs = np.zeros((2, 2))
+    rel_fe = np.zeros((2, 2))
+    release_event = False
+    stuck_at_event = False      # a face stuck at the located event: the rest of the step ends consistent
     Ai, Wh, Sh = Ainv, W, S
     h = dt
     h1 = 0.0
@@ -110,6 +130,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 phi0[k, 0] = phi_face[k, 0]
                 phi0[k, 1] = phi_face[k, 1]
                 jr0[k] = just_released[k]
+                rel_ev[k] = False
         # ---------------------------------------------------------------- the step body, length h
         bdt2 = beta * h * h
         gdt = gamma * h
@@ -136,12 +157,42 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             matvec_into(P_0, wv4, w_old_0)
             matvec_into(P_1, wv4, w_old_1)
             for k in range(2):
-                tried[k] = modes[k] == 1
+                # a slow slip, w_reg < |w| < w_hold: Coulomb's force along the start-of-step slip, held over the
+                # step, not the regularised one (its deficit near a stop or after a release is w_reg-sized); a
+                # face at rest whose force is at mu_N (just released): that force, held (friction_events, "Slow
+                # slips"). Decided from the step's start alone, so a step replayed from its start is the same step.
+                rel[k] = False
+                sw2 = w_old[k, 0] ** 2 + w_old[k, 1] ** 2
+                if locate and modes[k] == 0:
+                    fn = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
+                    held = fn >= mu_N[k] * (1.0 - 1e-9) and fn > 0.0
+                    if w_reg * w_reg < sw2 < w_hold * w_hold:
+                        # a rectilinear slow slip (its acceleration along its velocity: Den Hartog's stops), whose
+                        # direction the step keeps: held too
+                        ay = P[k, 0, 0] * alpha[0] + P[k, 0, 1] * alpha[1] + P[k, 0, 2] * alpha[2] + P[k, 0, 3] * alpha[3]
+                        az = P[k, 1, 0] * alpha[0] + P[k, 1, 1] * alpha[1] + P[k, 1, 2] * alpha[2] + P[k, 1, 3] * alpha[3]
+                        cr = w_old[k, 0] * az - w_old[k, 1] * ay
+                        held = cr * cr <= RECTILINEAR * sw2 * (ay * ay + az * az)
+                    if held and w_reg * w_reg < sw2 < w_hold * w_hold:
+                        rel[k] = True
+                        sw = math.sqrt(sw2)
+                        rel_dir[k, 0] = -mu_N[k] * w_old[k, 0] / sw
+                        rel_dir[k, 1] = -mu_N[k] * w_old[k, 1] / sw
+                    elif sw2 <= w_reg * w_reg:
+                        if held:
+                            rel[k] = True
+                            rel_dir[k, 0] = mu_N[k] * phi_face[k, 0] / fn
+                            rel_dir[k, 1] = mu_N[k] * phi_face[k, 1] / fn
+                # a held face starting from rest: no reversal test (w_old = 0), it slips
+                tried[k] = modes[k] == 1 or (rel[k] and sw2 <= w_reg * w_reg)
                 stuck0[k] = modes[k] == 1
-                freeze[k] = hold[k]
+                freeze[k] = hold[k] or rel[k]
                 if hold[k]:
                     freeze_dir[k, 0] = hold_dir[k, 0]
                     freeze_dir[k, 1] = hold_dir[k, 1]
+                elif rel[k]:
+                    freeze_dir[k, 0] = rel_dir[k, 0]
+                    freeze_dir[k, 1] = rel_dir[k, 1]
                 phi_old[k, 0] = phi_face[k, 0]
                 phi_old[k, 1] = phi_face[k, 1]
             g[:] = 0.0
@@ -156,14 +207,17 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     # slipping faces not yet tried in this step, else give up
                     flipped = False
                     for k in range(n_faces):
-                        if modes[k] == 0 and not tried[k] and not hold[k]:
+                        if modes[k] == 0 and not tried[k] and not hold[k] and not rel[k]:
                             modes[k] = 1
                             tried[k] = True
                             phi_face[k] = phi[k]
                             flipped = True
                     if flipped and passes < max_passes + 4:
                         for k in range(2):
-                            freeze[k] = hold[k]
+                            freeze[k] = hold[k] or rel[k]
+                            if rel[k] and not hold[k]:
+                                freeze_dir[k, 0] = rel_dir[k, 0]
+                                freeze_dir[k, 1] = rel_dir[k, 1]
                         continue
                     # no exact root (e.g. the sharp one-edge selection of the law, edge_transition_m
                     # = 0, where the edge penetrations cross): keep the least-residual iterate, count it
@@ -173,9 +227,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         phi_face[k] = phi[k]
                     break
                 alpha[:] = alpha_new
-                if (freeze[0] and not hold[0]) or (freeze[1] and not hold[1]):
+                if (freeze[0] and not (hold[0] or rel[0])) or (freeze[1] and not (hold[1] or rel[1])):
                     for k in range(2):
-                        freeze[k] = hold[k]
+                        freeze[k] = hold[k] or rel[k]
                     continue
                 for i in range(NC):
                     w_new[i] = w_pre[i] + gdt * alpha[i]
@@ -213,14 +267,25 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     wo[1] = w_old[k, 1]
                     fo[0] = phi_old[k, 0]
                     fo[1] = phi_old[k, 1]
-                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if just_released[k] else w_stick,
+                    nm = _mode_update(modes[k], fk, wk, wo, mu_N[k], 0.0 if (just_released[k] or rel[k]) else w_try,
                                       tried[k], fo, stick_mean_weight if stuck0[k] else 0.0)
+                    if locate and phase == PLAIN and nm == 1 and stuck0[k]:
+                        # stuck through the step by the impulse bound, but its end holding force past mu_N: the
+                        # release is inside this step, located (the plain rule releases it a step late)
+                        rel_ev[k] = fk[0] ** 2 + fk[1] ** 2 > (mu_N[k] * (1.0 + 1e-12)) ** 2
+                        if rel_ev[k]:
+                            rel_fs[k, 0] = fo[0]
+                            rel_fs[k, 1] = fo[1]
+                            rel_fe[k, 0] = fk[0]
+                            rel_fe[k, 1] = fk[1]
                     if nm != modes[k]:
                         changed = True
                         modes[k] = nm
                         if nm == 1:
                             tried[k] = True
                             phi_face[k] = phi[k]
+                            rel[k] = False
+                            rel_ev[k] = False
                         else:
                             nrm = math.sqrt(fk[0] ** 2 + fk[1] ** 2)
                             freeze[k] = True
@@ -229,6 +294,16 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                                 freeze_dir[k, 1] = mu_N[k] * fk[1] / nrm
                             else:
                                 freeze_dir[k] = 0.0
+                            if locate and stuck0[k] and nrm > 0:
+                                rel[k] = True
+                                rel_dir[k, 0] = freeze_dir[k, 0]
+                                rel_dir[k, 1] = freeze_dir[k, 1]
+                                if phase == PLAIN:
+                                    rel_ev[k] = True
+                                    rel_fs[k, 0] = fo[0]
+                                    rel_fs[k, 1] = fo[1]
+                                    rel_fe[k, 0] = fk[0]
+                                    rel_fe[k, 1] = fk[1]
                 if not changed or passes >= max_passes:
                     for k in range(2):
                         phi_face[k] = phi[k]
@@ -240,6 +315,11 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 for k in range(2):
                     if modes[k] == 1 and not stuck0[k]:
                         onset = True
+            if phase == FROM_EVENT and stuck_at_event:
+                # the sub-step took the face's velocity at the event (the root of the held step's velocity
+                # polynomial, not of this sub-step's: O(h^3) apart) to zero; restarting from the consistent
+                # acceleration keeps that jump from ringing in the stuck multipliers
+                onset = True
             # largest ω_c Δt met: radial tangent stiffness of the law at the new state
             for i in range(NC):
                 u_new[i] = u_pre[i] + bdt2 * alpha[i]
@@ -270,7 +350,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         if phase == PLAIN:
             if locate:
                 matvec_into(Bt, vn, w_end)          # (wv = Bt v, the step's start, from the step body)
-            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev) > 0:
+            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N) > 0:
                 p_pl[:] = pn                                        # the plain result, kept
                 v_pl[:] = vn
                 a_pl[:] = an
@@ -285,6 +365,34 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
                 continue
+            if locate and (rel_ev[0] or rel_ev[1]):
+                # a release: the step redone up to the instant the holding force reached mu_N, the faces kept
+                # stuck (hold), released there (friction_events, "Release")
+                # the holding force at the start: the consistent one at the start's (p, v) (a function of the
+                # step's start, so that the located map is differentiable there), not the recorded multiplier
+                _load(t - dt, static, orders, cosm, sinm, omega_f, Q)
+                phi_s = phi0.copy()
+                _reproject(p, v, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes0, mu_N, a1, params, w_reg, phi_s)
+                for k in range(2):
+                    rel_fs[k, 0] = phi_s[k, 0]
+                    rel_fs[k, 1] = phi_s[k, 1]
+                theta = _release_fraction(rel_fs, rel_fe, rel_ev, mu_N, hold)
+                modes[:] = modes0
+                phi_face[:, :] = phi0
+                just_released[:] = jr0
+                matvec_into(Bt, a, alpha)
+                release_event = True
+                h1 = theta * dt
+                if h1 > 1e-12 * dt:
+                    Ai, Wh, Sh = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
+                    h = h1
+                    phase = TO_EVENT
+                    continue
+                h1 = 0.0
+                pn[:] = p
+                vn[:] = v
+                an[:] = a
+                phase = TO_EVENT
         elif phase == HELD:
             theta = _event_time(alpha, ev, e_dir, s0, d0, h, P, hold)
             modes[:] = modes0
@@ -318,7 +426,21 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
             _load(t0 + (step - 1) * dt + h1, static, orders, cosm, sinm, omega_f, Q)
             an[:] = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
                                   a1, params, w_reg)
+            for k in range(2):
+                nrm = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
+                if hold[k] and release_event and modes[k] == 1 and nrm > 0:
+                    # at the located release the holding force is mu_N to the step's accuracy: released, its
+                    # force mu_N along the holding force (held from rest in the rest of the step)
+                    modes[k] = 0
+                    just_released[k] = True
+                    phi_face[k, 0] = mu_N[k] * phi_face[k, 0] / nrm
+                    phi_face[k, 1] = mu_N[k] * phi_face[k, 1] / nrm
+            stuck_at_event = False
+            for k in range(2):
+                if hold[k] and modes[k] == 1:
+                    stuck_at_event = True
             hold[:] = False
+            release_event = False
             status[4] += 1
             p[:] = pn
             v[:] = vn

@@ -263,8 +263,9 @@ class NewmarkOptions:
     (True: stick onsets tested on, and restarted from, the consistent multipliers and
     acceleration; no low-speed stick trial right after a release; see :mod:`rotor.dynamics.constraints`,
     "Stick onset"; False: the former rule, which chatters at stops with the face force at μN), and
-    ``locate_events`` (production scheme only: a slip velocity reversal or stick onset inside a step is
-    located and the step split there, :mod:`rotor.dynamics.friction_events`)."""
+    ``locate_events`` (production scheme only, on by default: a slip velocity reversal, stick onset or release
+    inside a step is located and the step split there, and a slow slip's friction is Coulomb's, held over the
+    step, :mod:`rotor.dynamics.friction_events`; False: the plain step, switches on step boundaries)."""
 
     beta: float = 0.25
     gamma: float = 0.5
@@ -279,7 +280,7 @@ class NewmarkOptions:
     max_passes: int = 6
     stick_mean_weight: float = 0.5
     consistent_stick_onset: bool = True
-    locate_events: bool = False
+    locate_events: bool = True
 
 
 # ---------------------------------------------------------------------------

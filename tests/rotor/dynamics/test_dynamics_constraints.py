@@ -15,7 +15,7 @@ from contact.errors import InputError, OutsideDomainError
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.build import system_from_model
 from rotor.dynamics.reference import simulate_reference
-from rotor.dynamics.system import check_time_step, largest_stable_step
+from rotor.dynamics.system import NewmarkOptions, check_time_step, largest_stable_step
 from rotor.dynamics.production import simulate_production
 
 
@@ -68,7 +68,9 @@ def test_stuck_face_multipliers_equal_paper_demand_split(table4):
     scene, model = table4
     s = system_from_model(model, scene, _rpm(4500))
     dt = 2 * math.pi / _rpm(4500) / 512
-    tr = simulate_production(s, dt, 1024, q0=s.offset)
+    # the plain step: its stuck steps' friction impulse is the mean of their end forces (Moreau's bound below);
+    # a located step's is not (the slip force up to the event, the holding force after it)
+    tr = simulate_production(s, dt, 1024, q0=s.offset, options=NewmarkOptions(locate_events=False))
     both = np.nonzero(np.all(tr.modes == cons.STICK, axis=1))[0]
     assert both.size > 10
     k = both[-1]
@@ -90,10 +92,11 @@ def test_paper_and_production_scheme_agree(table4):
     scene, model = table4
     s = system_from_model(model, scene, _rpm(10500))
     dt = 2 * math.pi / _rpm(10500) / 256
-    tp = simulate_production(s, dt, 700, q0=s.offset)
+    plain = NewmarkOptions(locate_events=False)    # the paper's scheme has no event location
+    tp = simulate_production(s, dt, 700, q0=s.offset, options=plain)
     q0, v0, t0, m0 = tp.q[-1], tp.v[-1], tp.t[-1], tuple(tp.modes[-1])
     tr = simulate_reference(s, dt, 96, q0=q0, v0=v0, t0=t0, modes0=m0)
-    tp = simulate_production(s, dt, 96, q0=q0, v0=v0, t0=t0, modes0=m0)
+    tp = simulate_production(s, dt, 96, q0=q0, v0=v0, t0=t0, modes0=m0, options=plain)
     dyn = np.linalg.norm(tp.q - s.offset, axis=1).max()
     diff = np.linalg.norm(tr.q - tp.q, axis=1)
     same = np.all(tr.modes == tp.modes, axis=1)
@@ -167,9 +170,13 @@ def test_hard_cases_run_or_stop_clearly(table4, label, kw, start):
     # one-edge rule of Dai et al. (2025) Eqs. 18-19, all where the edge penetrations cross; none
     # with the edge transition of contact.tilt (edge_transition_m = 0.2 um)
     assert tr.unconverged_steps == 0
-    # Coulomb's bound on every stuck step's friction impulse (Moreau 1988: the step-mean force)
+    # Coulomb's bound on every stuck step's friction impulse (Moreau 1988: the step-mean force); a step that ends
+    # stuck after slipping has its stop located inside it (NewmarkOptions.locate_events, the default): its impulse is
+    # the slip force up to the stop and the holding force after, not the mean of its end forces, so the bound is
+    # checked on the steps stuck at both ends (measured with the events located: mean/μN up to 1.12 on the steps
+    # that stop, 0.999 on those stuck throughout)
     fm = 0.5 * (tr.face_force[1:] + tr.face_force[:-1])
-    stuck = tr.modes[1:] == cons.STICK
+    stuck = (tr.modes[1:] == cons.STICK) & (tr.modes[:-1] == cons.STICK)
     assert np.all(np.hypot(fm[..., 0], fm[..., 1])[stuck] <= s.support.mu_N * (1 + 1e-9) + 1e-12)
 
 
@@ -194,8 +201,9 @@ def test_the_two_fixes_are_what_remove_chatter_and_stalls(table4_inertial):
     scene, model = table4_inertial
     dt = 2 * math.pi / _rpm(10500) / 256
     s = system_from_model(model, scene, _rpm(10500), mu=1.0)
+    # the control is the plain step (with the events located the former rule no longer chatters here)
     old = simulate_production(s, dt, 2560, q0=s.offset, check_step=False,
-                              options=NewmarkOptions(consistent_stick_onset=False))
+                              options=NewmarkOptions(consistent_stick_onset=False, locate_events=False))
     d = np.diff(old.modes.astype(int), axis=0) != 0
     assert (d[:-2] & d[1:-1] & d[2:]).sum() > 0
     new = simulate_production(s, dt, 2560, q0=s.offset, check_step=False)
@@ -223,7 +231,8 @@ def test_paper_scheme_on_a_hard_case_same_rules_as_production(table4):
     s = system_from_model(model, scene, _rpm(10500), clearance_m=1e-6)
     q0 = np.zeros(s.n)
     tr = simulate_reference(s, dt, 2560, q0=q0, check_step=False)
-    tp = simulate_production(s, dt, 2560, q0=q0, check_step=False)
+    # the plain step: the paper's scheme has no event location (the same discretisation is compared)
+    tp = simulate_production(s, dt, 2560, q0=q0, check_step=False, options=NewmarkOptions(locate_events=False))
     d = np.diff(tr.modes.astype(int), axis=0) != 0
     assert (d[:-2] & d[1:-1] & d[2:]).sum() == 0 and tr.unconverged_steps == 0
     # the same stick/slip events on each face, in the same order, each within one step: the two

@@ -54,7 +54,9 @@ def test_located_monodromy_equals_central_differences_through_events(F, omega, s
     scales = np.concatenate([np.full(nr, np.abs(tr.q).max()), np.full(nr, np.abs(tr.v).max())])
     Ms, Mf = (m * scales[None, :] / scales[:, None] for m in (res.monodromy, _fd(pm, r, scales)))
     assert np.abs(Ms - Mf).max() / np.abs(Mf).max() < 1e-6
-    # the event-time derivatives matter: the plain map's monodromy at the same state is another matrix
-    plain = period_map(period_map_setup(pm.system, pm.dt, NewmarkOptions(tol=1e-13), check_step=False), r.state, r.t,
-                       NPER, modes0=r.modes)
-    assert np.abs(plain.monodromy * scales[None, :] / scales[:, None] - Ms).max() > 1e-2
+    # the event-time derivatives matter: the plain map's monodromy at the same state is another matrix, a thousand
+    # times further than the agreement above (measured 0.19 non-stop, 7.2e-3 stick-slip; 0.62 stick-slip before the
+    # releases were located and slow slips held, when the located map's orbit carried the regularisation's deficit)
+    plain = period_map(period_map_setup(pm.system, pm.dt, NewmarkOptions(tol=1e-13, locate_events=False),
+                                        check_step=False), r.state, r.t, NPER, modes0=r.modes)
+    assert np.abs(plain.monodromy * scales[None, :] / scales[:, None] - Ms).max() > 1e-3 * np.abs(Mf).max()
