@@ -36,6 +36,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests" / "rotor" / "dynamics"))
 
 from contact.files import atomic_write_text  # noqa: E402
+from rotor.dynamics.system import NewmarkOptions  # noqa: E402
 
 OUT = ROOT / "reports" / "published"
 RPM = 10500.0
@@ -201,10 +202,12 @@ def main(argv=None) -> int:
              f"## 1. Table 4 rotor, {RPM:g} rpm, T/{NPER}: one steady point (transient + 64 revolutions)", "",
              f"Alternating in one run, median of {REPEATS} (min–max), numba compiled beforehand.", "",
              "| variant | wall (s), median (min–max) | CPU (s), median (min–max) | revolutions |", "|---|---|---|---|"]
+    default = NewmarkOptions().locate_events
     for name, label in (("before", "before the change (previous commit, subprocess)"),
-                        ("off_sub", "this change, `locate_events = True` (default), subprocess as the line above"),
-                        ("off", "this change, `locate_events = False`"),
-                        ("on", "this change, `locate_events = True` (default)")):
+                        ("off_sub", f"this change, default options (`locate_events = {default}`), subprocess as the "
+                                    "line above"),
+                        ("off", "this change, `locate_events = False`" + ("" if default else " (default)")),
+                        ("on", "this change, `locate_events = True`" + (" (default)" if default else ""))):
         if walls[name]:
             cells = []
             for j in (0, 1):
