@@ -131,7 +131,9 @@ def test_continuation_in_clearance_at_fixed_speed():
 
 @pytest.mark.slow
 def test_period_doubling_on_table4_and_the_doubled_branch():
-    """Table 4 rotor (Dai et al. 2025) from 10 600 rpm up, on the member of the stuck face's continuum that the
+    """Table 4 rotor (Dai et al. 2025) with the former reading of Eq. 34 (scene paper-table4-inertial: the 150 mm
+    sleeve, inertial-at-joint; paper-table4's reading since section5-readings.md has no doubling here) from
+    10 600 rpm up, on the member of the stuck face's continuum that the
     transient settles on (rotor/periodic/shooting.py): the complex pair near −1 leaves the circle (Neimark–Sacker
     near 10 610 rpm), then meets the real axis outside it: a real multiplier passes −1 near 10 628 rpm. Past it the multiplier is checked with the
     finite-difference monodromy (no face mode change over the period there, so both derivatives are the
@@ -143,16 +145,16 @@ def test_period_doubling_on_table4_and_the_doubled_branch():
     from rotor.periodic.period_flow import advance, make_flow, monodromy_fd
     from rotor.studies.steady_state import point_system
 
-    b = branch("paper-table4", 10600.0, 10680.0, options=ContinuationOptions(max_points=20), amplitudes=False)
+    b = branch("paper-table4-inertial", 10600.0, 10680.0, options=ContinuationOptions(max_points=20), amplitudes=False)
     pds = [x for x in b.branch.bifurcations if x.kind == "period_doubling"]
     assert len(pds) == 1 and 10600 < pds[0].parameter * 30 / math.pi < 10680
     n, modes, scales = b.start.steps_per_rev, b.start.shooting.modes, b.start.shooting.scales
     after = b.branch.points[pds[0].index]
-    sysm = point_system("paper-table4", after.parameter * 30 / math.pi)[2]
+    sysm = point_system("paper-table4-inertial", after.parameter * 30 / math.pi)[2]
     flow_fd = make_flow(sysm, 2 * math.pi / after.parameter / n, "fd")
     mu = np.linalg.eigvals(monodromy_fd(flow_fd, after.state, 0.0, n, modes))
     assert np.min(mu.real[np.abs(mu.imag) < 1e-9]) < -1.0
-    pb = speed_problem(lambda w: point_system("paper-table4", w * 30 / math.pi)[2], n, modes0=modes)
+    pb = speed_problem(lambda w: point_system("paper-table4-inertial", w * 30 / math.pi)[2], n, modes0=modes)
     b2 = switch_period_doubling(pb, b.branch, pds[0], 10700 * math.pi / 30, scales=scales,
                                 lam_scale=8 * math.pi / 30, options=ContinuationOptions(max_points=4))
     assert b2.period_revs == 2 and len(b2.points) >= 3
