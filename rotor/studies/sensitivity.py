@@ -35,6 +35,7 @@ import numpy as np
 
 from contact.errors import InputError
 from contact.units import check_positive
+from rotor.studies.scene_digest import check_digest, scene_digest
 
 # ---------------------------------------------------------------------------------------------
 # overrides of the unstated inputs
@@ -226,8 +227,11 @@ ORDERS = (1, 2, 3, 4, 5)
 
 
 def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = None, options: dict | None = None,
-                      cases: list | None = None, reading: str | None = None):
+                      cases: list | None = None, reading: str | None = None, scene_sha256: str | None = None):
     """Steady states of every case at one speed for one variant, as ``(arrays, info)``.
+
+    ``scene_sha256``: the digest of the variant's resolved scene its task was made from
+    (:func:`rotor.studies.scene_digest.scene_digest`); refused if the scene now digests otherwise.
 
     The reference case ('base': δ0 = 0.05 mm, δ = 1 mm, tilt on) starts from the misalignment
     offset at rest; every other case starts from its end state (continuation).
@@ -245,6 +249,7 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
     if not names or names[0] != "base" or any(c not in CASES for c in names):
         raise InputError(f"cases = {names}: must start with 'base' and be among {', '.join(CASE_NAMES)}")
     sc, model = variant_model(scene, overrides or {}, reading)
+    check_digest(scene_sha256, sc, what=f"sensitivity point at {speed_rpm:g} rpm")
     opts = SteadyStateOptions(**(options or {}))
     omega = float(speed_rpm) * math.pi / 30.0
     C = len(names)
@@ -283,11 +288,13 @@ def variant_tasks(scene: str, variant: Variant, speeds_rpm, *, options: dict | N
     """One :class:`sweep.Task` of :func:`run_variant_point` per speed for ``variant``.
 
     Keys ``<variant>-rpm<speed>``; params hold the absolute overrides (resolved from the factors
-    against the scene), so a stored point says exactly what it was computed with."""
+    against the scene) and the digest of the resolved scene (``scene_sha256``), so a stored point says exactly
+    what it was computed with, and one computed before the scene file changed is stale, not reused."""
     from sweep import Task
 
     ov = scaled_overrides(_reading_scene(scene, variant.reading), variant.factors) if variant.factors else {}
     extra = {"reading": variant.reading} if variant.reading else {}
+    extra["scene_sha256"] = scene_digest(variant_model(scene, ov, variant.reading)[0])
     return [Task(f"{variant.name}-rpm{float(s):.0f}", run_variant_point,
                  {"scene": scene, "speed_rpm": float(s), "overrides": ov, "options": dict(options or {}), **extra})
             for s in speeds_rpm]
