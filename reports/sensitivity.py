@@ -15,7 +15,7 @@ import numpy as np
 
 from contact.errors import InputError
 from reports.sensitivity_figure import figure, per_speed_ratios  # noqa: F401 (re-exported)
-from reports.studies.common import write_csv
+from reports.studies.common import integrator_text, write_csv
 from rotor.studies import sensitivity as sens
 from sweep import ResultStore, load_sweep
 
@@ -247,6 +247,8 @@ def publish(out, to, variants, *, extra: str = "", timing: dict | None = None, c
     files = [write_csv_rows(to / "study-sensitivity.csv", rws)]
     files.append(write_csv(to / "study-sensitivity-points.csv", *point_rows(tabs, variants)))
     text, _ = note(tabs, variants, timing=timing, code=code)
+    infos = [p.info for p in load_sweep(ResultStore(out)).values()]
+    text = text.replace("\n\n## Ranges", "\n\n" + integrator_text(infos, code) + "\n\n## Ranges", 1)
     text += ("\n## Trends at each speed over all variants\n\nCounts over the variants (one-at-a-time and "
              "combinations) of how often each piece of the paper's findings holds at disk 2, all points (periodic or "
              "not), counting a variant only where every compared case collides at that speed (the paper's "

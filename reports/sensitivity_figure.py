@@ -67,14 +67,14 @@ def tables_from_points_csv(path) -> tuple[dict, list]:
     """``({variant: AmplitudeTable}, variants)`` rebuilt from ``study-sensitivity-points.csv``.
 
     The table holds disk 2 and the support (the CSV's locations), amplitudes back in SI; the variants
-    are the study's (:func:`rotor.studies.sensitivity.study_variants`) where the names match, in the
+    are the study's (:func:`rotor.studies.sensitivity.all_variants`) where the names match, in the
     CSV's order, else a variant without factors named as in the CSV.
     """
     rows = read_csv_rows(path)
     locs = (("disk2", "disk2.y"), ("support", "s.y"))
     cols = [f"{lab}_{h}X_{u}" for lab, _ in locs for h in sens.ORDERS for u in ("um", "mm_s")]
     require_columns(path, rows, ["variant", "speed_rpm", "case", "periodic", "contact_fraction"] + cols)
-    known = {v.name: v for v in sens.study_variants()}
+    known = {v.name: v for v in sens.all_variants()}
     names = list(dict.fromkeys(r["variant"] for r in rows))
     try:
         tabs = {name: _table(rows, name, locs) for name in names}

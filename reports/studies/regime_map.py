@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from reports.studies.common import load_points, pyplot, save, write_csv
+from reports.studies.common import integrator_text, load_points, pyplot, save, write_csv
 
 
 REGIMES = ("stick", "slip", "impact", "contact")
@@ -66,5 +66,21 @@ def map_note(points) -> str:
     c = Counter(p.info["label"] for p in points)
     lines.append("Counts: " + ", ".join(f"{k} {v}" for k, v in sorted(c.items())) + f" of {len(points)} points; "
                  f"{sum(not p.info['converged'] for p in points)} without a periodic steady state.")
-    lines.append("")
+    lines += ["", model_text(points), integrator_text([p.info for p in points]), ""]
     return "\n".join(lines)
+
+
+def model_text(points) -> str:
+    """The scene and its reading of Eq. 34 the points were computed with (from their params; the scene's
+    reading as the scene file has it now, rotor.studies.readings.scene_reading)."""
+    from rotor.model.scene import load_scene
+    from rotor.studies.readings import scene_reading
+
+    names = sorted({str(p.params.get("scene", "?")) for p in points})
+    try:
+        readings = sorted({scene_reading(load_scene(n)) or "none of rotor.studies.readings" for n in names})
+    except Exception:      # a scene that no longer loads: name it only
+        readings = ["unknown (the scene no longer loads)"]
+    digest = sorted({str(p.params["scene_sha256"]) for p in points if "scene_sha256" in p.params})
+    return (f"Model: scene {', '.join(names)}, misalignment excitation read as {', '.join(readings)} "
+            f"(section5-readings.md)" + (f"; scene digest {', '.join(digest)}" if digest else "") + ".")

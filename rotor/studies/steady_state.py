@@ -33,7 +33,7 @@ from contact import plausible
 from contact.errors import InputError, OutsideDomainError
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.system import RotorSystem, largest_stable_step
+from rotor.dynamics.system import NewmarkOptions, RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
 from sweep.progress import report
@@ -546,7 +546,8 @@ def point_record(res: SteadyResult, sc, model, system, opts: SteadyStateOptions,
             "static": bool(res.static), "wall_s": float(res.wall_s),
             "law": system.support.law.name if system.support is not None else None,
             "elements_per_segment": elements_per_segment, "n_dofs": int(model.n_dofs),
-            "options": dataclasses.asdict(opts), **res.regime(), **_law_info(sc, res),
+            "options": dataclasses.asdict(opts), "integrator": dataclasses.asdict(NewmarkOptions()),
+            **res.regime(), **_law_info(sc, res),
             **(contact_summary(res.t, res.f_contact, res.modes, n_faces=res.n_faces)
                if system.support is not None else {})}
     return arrays, info
