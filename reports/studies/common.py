@@ -140,7 +140,8 @@ def integrator_text(infos, commit: str = "") -> str:
     if len(kinds) > 1:
         return "Integrator: the points were computed with different options (their info.integrator)."
     o = dict(kinds.pop()) if kinds else dataclasses.asdict(NewmarkOptions())
-    said = "" if rec and all(rec) else (f" (not recorded by the points; the defaults{' at ' + commit if commit else ''})")
+    said = "" if rec and all(rec) else (" (the points predate the record of the options: NewmarkOptions' defaults"
+                                         + (f"; {commit}" if commit else "") + ")")
     return (f"Integrator: the production Newmark scheme (rotor.dynamics.production), NewmarkOptions β {o['beta']:g}, "
             f"γ {o['gamma']:g}, Newton tol {o['tol']:g}, w_reg {o['w_reg']:g} m/s, locate_events "
             f"{o['locate_events']}{said}: friction events {'located' if o['locate_events'] else 'not located'} "
