@@ -200,30 +200,7 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
         L += [f"Code: {code}.", ""]
     if timing:
         L += [f"**Timing:** {timing.get('text', '')}", ""]
-    L += ["## Ranges and why they are plausible for an aero-engine support", "",
-          "| input (scene value) | factors | plausible because |", "|---|---|---|",
-          "| k_s,θ, c_s,θ support tilt stiffness/damping (1.5e5 N m/rad, 15 N m s/rad) | ×0.01, ×0.1, ×10, ×100 | "
-          "k_s b²: b = 10 mm … 1 m; a squirrel cage or bearing housing frame spans 20–300 mm axially (×0.04–×9); the "
-          "extremes bracket a near-pinned and a near-clamped housing |",
-          "| J_s support tilt inertia (1.9 kg m²) | ×0.1, ×3 | 100 kg with a radius of gyration of 44–240 mm |",
-          "| a0 transition-shaft angular stiffness (5e6 N m/rad) | ×0.01 … ×100 | spline/curvic joints: from a loose "
-          "spline (5e4) to solid-shaft-like (5e8) |",
-          "| a1 cubic stiffness (1.25e12 N m/rad³) | ×0, ×10, ×100 | from a linear joint to one whose stiffness "
-          "doubles at 0.2 mrad |",
-          "| k_s, c_s support to ground (= k3, c3: 1.5e7 N/m, 1.5e3 N s/m) | ×0.1, ×3, ×10 | aero-engine support "
-          "stiffness 1e6–1e8 N/m (squirrel cage to stiff casing frame) |",
-          "| m_sp transition-shaft mass (per reading: 9 kg short sleeve, 25.2 kg long sleeve) | ×0.3, ×3 | 2.7–76 kg "
-          "sleeve; 2X force ∝ m_sp L, moment ∝ m_sp L² (Eq. 34) |",
-          "| L transition-shaft lever (per reading: 75 mm, 210 mm) | ×0.5, ×2 | 38–420 mm from the sleeve centre to a "
-          "centring surface; 2X force ∝ L, 2X moment ∝ L² (Eq. 34) |",
-          "| reading of Eq. 34 (where the pair acts, m_sp, L) | the five of `rotor.studies.readings` | the paper gives "
-          "the magnitudes, not where they act nor m_sp, L (section5-readings.md) |",
-          "| c_c collision factor (100 s/m, Table 4 '100 s/N' read as s/m) | ×0.01, ×0.1, ×10 | a Hunt–Crossley "
-          "(1975) factor for steel on steel is ~0.1–0.5 s/m (restitution 0.8–0.95 at 0.1–1 m/s, e ≈ 1 − 2αv/3); "
-          "×0.01 brings 100 s/m to 1 s/m, ×10 brackets the other side |",
-          "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×5 (preload 1 and 25 kN) | only the product "
-          "μ·preload enters; μ 0.1–0.5 and a nut preload of 1–15 kN give ×0.07–×5 |",
-          ""]
+    L += _ranges_lines()
     L += ["## Findings × variants", "",
           "| variant | base regime by speed | clearance (Fig. 18, displacement) | misalignment (Fig. 19, displacement) | tilt (Fig. 16, velocity) "
           "| periodic speeds (base / all 6 cases) |", "|---|---|---|---|---|---|"]
@@ -244,6 +221,34 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
                  f"| {int(t.ok('base').sum())}/{len(t.speeds_rpm)} / {n6}/{len(t.speeds_rpm)} |")
     L += [""] + readings_table(tabs, variants)
     return "\n".join(L), verdicts
+
+
+def _ranges_lines() -> list[str]:
+    """The ranges table of the note: each unstated input, its factors and why they are plausible."""
+    return ["## Ranges and why they are plausible for an aero-engine support", "",
+          "| input (scene value) | factors | plausible because |", "|---|---|---|",
+          "| k_s,θ, c_s,θ support tilt stiffness/damping (1.5e5 N m/rad, 15 N m s/rad) | ×0.01, ×100 (former study also ×0.1, ×10) | "
+          "k_s b²: b = 10 mm … 1 m; a squirrel cage or bearing housing frame spans 20–300 mm axially (×0.04–×9); the "
+          "extremes bracket a near-pinned and a near-clamped housing |",
+          "| J_s support tilt inertia (1.9 kg m²) | ×3 (former also ×0.1) | 100 kg with a radius of gyration of 44–240 mm |",
+          "| a0 transition-shaft angular stiffness (5e6 N m/rad) | ×0.01, ×100 (former also ×0.1, ×10) | spline/curvic joints: from a loose "
+          "spline (5e4) to solid-shaft-like (5e8) |",
+          "| a1 cubic stiffness (1.25e12 N m/rad³) | not varied here (former ×0, ×10, ×100) | from a linear joint to one whose stiffness "
+          "doubles at 0.2 mrad |",
+          "| k_s, c_s support to ground (= k3, c3: 1.5e7 N/m, 1.5e3 N s/m) | ×0.1, ×10 (former also ×3) | aero-engine support "
+          "stiffness 1e6–1e8 N/m (squirrel cage to stiff casing frame) |",
+          "| m_sp transition-shaft mass (per reading: 9 kg short sleeve, 25.2 kg long sleeve) | ×0.3, ×3 | 2.7–76 kg "
+          "sleeve; 2X force ∝ m_sp L, moment ∝ m_sp L² (Eq. 34) |",
+          "| L transition-shaft lever (per reading: 75 mm, 210 mm) | ×0.5, ×2 | 38–420 mm from the sleeve centre to a "
+          "centring surface; 2X force ∝ L, 2X moment ∝ L² (Eq. 34) |",
+          "| reading of Eq. 34 (where the pair acts, m_sp, L) | the five of `rotor.studies.readings` | the paper gives "
+          "the magnitudes, not where they act nor m_sp, L (section5-readings.md) |",
+          "| c_c collision factor (100 s/m, Table 4 '100 s/N' read as s/m) | ×0.01 (former also ×0.1, ×10) | a Hunt–Crossley "
+          "(1975) factor for steel on steel is ~0.1–0.5 s/m (restitution 0.8–0.95 at 0.1–1 m/s, e ≈ 1 − 2αv/3); "
+          "×0.01 brings 100 s/m to 1 s/m, ×10 brackets the other side |",
+          "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×5 (preload 1 and 25 kN) | only the product "
+          "μ·preload enters; μ 0.1–0.5 and a nut preload of 1–15 kN give ×0.07–×5 |",
+          ""]
 
 
 def _scene_reading(scene: str = "paper-table4") -> str:
