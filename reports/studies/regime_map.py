@@ -66,7 +66,10 @@ def map_note(points) -> str:
     c = Counter(p.info["label"] for p in points)
     lines.append("Counts: " + ", ".join(f"{k} {v}" for k, v in sorted(c.items())) + f" of {len(points)} points; "
                  f"{sum(not p.info['converged'] for p in points)} without a periodic steady state.")
-    lines += ["", model_text(points), integrator_text([p.info for p in points]), ""]
+    caps = sorted({int((p.info.get("options") or {}).get("max_revs", 0)) for p in points} - {0})
+    lines += ["", model_text(points) + (f" Transient cap {', '.join(map(str, caps))} revolutions a point (a point "
+                                        "not periodic by then is counted as such)." if caps else ""),
+              integrator_text([p.info for p in points]), ""]
     return "\n".join(lines)
 
 

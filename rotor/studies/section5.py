@@ -221,7 +221,7 @@ def first_slip(points) -> tuple[float | None, float]:
 def contact_pattern(arrays, info) -> dict:
     """How the ring meets the support over a point's recorded revolutions (the last ones of
     :func:`rotor.studies.steady_state.run_point`): ``impacts_per_rev`` (contact onsets, r1 or r2 crossing δ0
-    outwards, per revolution), ``contact_share`` (of the record), ``period_revs`` and the amplitudes (N) of the
+    outwards, per revolution; the record of whole revolutions counted as a loop), ``contact_share`` (of the record), ``period_revs`` and the amplitudes (N) of the
     radial contact force's 1X, 2X, 3X (``force_1x_N`` …; |(Fy, Fz)| of each harmonic, zero without contact).
 
     Where the finding on 1X or 3X with δ fails (§5.3.2), these show whether the contact changes its pattern
@@ -236,7 +236,8 @@ def contact_pattern(arrays, info) -> dict:
     f = np.asarray(arrays["f_contact"], float)[: revs * spr, :2]
     F = np.abs(harmonic_amplitudes(f - f.mean(axis=0), revs, (1, 2, 3))) if revs else np.zeros((3, 2))
     Fr = np.hypot(F[:, 0], F[:, 1])
-    return {"impacts_per_rev": float(np.sum(on[1:] & ~on[:-1]) / max(revs, 1)), "contact_share": float(on.mean()),
+    onsets = int(np.sum(on & ~np.roll(on, 1)))          # whole revolutions of a periodic record: wrap around
+    return {"impacts_per_rev": onsets / max(revs, 1), "contact_share": float(on.mean()),
             "period_revs": int(info.get("period_revs", 0)), "force_1x_N": float(Fr[0]), "force_2x_N": float(Fr[1]),
             "force_3x_N": float(Fr[2])}
 
