@@ -570,7 +570,7 @@ def beyond_law_record(model, system, exc, *, speed_rpm: float, misalignment_m, t
             "misalignment_m": float(misalignment_m if misalignment_m is not None
                                     else (model.scene.misalignment.offset_m if model.scene.misalignment else 0.0)),
             "tilt_ignored": bool(tilt_ignored), "elements_per_segment": elements_per_segment,
-            "transient_revs": 0, "record_revs": 0}
+            "transient_revs": 0, "record_revs": 0, "integrator": dataclasses.asdict(NewmarkOptions())}
     return arrays, info
 
 
