@@ -44,3 +44,20 @@ def test_the_line_separates_the_speeds_by_contact_share():
 
 def test_no_periodic_speed_no_line():
     assert misalignment_lines(_speed(9000.0, (0.5, 0.5, 0.5), (1, 1, 1), (1, 2, 3), converged=False), "m") == []
+
+
+def test_the_reports_name_the_integrator_options_the_points_recorded():
+    """Every study note names the NewmarkOptions its points were computed with (recorded in each point's info by
+    rotor/studies/steady_state.py), so that a change of default (locate_events) shows in the published text."""
+    import dataclasses
+
+    from reports.studies.common import integrator_text
+    from rotor.dynamics.system import NewmarkOptions
+
+    on = dataclasses.asdict(dataclasses.replace(NewmarkOptions(), locate_events=True))
+    off = dataclasses.asdict(dataclasses.replace(NewmarkOptions(), locate_events=False))
+    assert "locate_events True: friction events located inside" in integrator_text([{"integrator": on}] * 2)
+    assert "locate_events False: friction events not located" in integrator_text([{"integrator": off}])
+    assert "different options" in integrator_text([{"integrator": on}, {"integrator": off}])
+    assert "predate the record" in integrator_text([{}], "points computed at commit abc") and "abc" in \
+        integrator_text([{}], "points computed at commit abc")
