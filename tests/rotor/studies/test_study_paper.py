@@ -35,7 +35,7 @@ LAW = ("mechanism, where 2X/3X barely move with δ0: the conformal law's stiffne
        "clearances by 1.6 % and 3.9 % (0.5 % at 1 µm; tests/rotor/studies/test_section5.py); a change against "
        "the paper's sense is not explained by it")
 MIS3 = ("mechanism: 3X stops rising with δ where the ring is on the bore most of the revolution at δ = 2 mm: "
-        "contact share there 65-76 % at the five failing periodic speeds of 9 000-12 000 rpm (paper's mesh 9 000, 10 200, "
+        "contact share there 64-76 % at the five failing periodic speeds of 9 000-12 000 rpm (paper's mesh 9 000, 10 200, "
         "10 800; converged 9 000, 9 600 rpm) against 29-47 % at the two where 3X rises (paper's mesh 12 000, converged "
         "10 200); the contact-force 3X then peaks at δ = 1 mm (paper's mesh 9 000 rpm: 45 / 278 / 121 N, 1 / 2 / 1 "
         "impacts per revolution); there is no contact without misalignment (δ = 0.1 µm: max r/δ0 <= 0.09) "
