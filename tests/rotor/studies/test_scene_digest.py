@@ -94,3 +94,22 @@ def test_a_point_whose_scene_changed_after_its_task_was_made_is_refused(scene_fi
     _edit(scene_file, "clearance_mm = 0.06", "clearance_mm = 0.07")
     with pytest.raises(InputError, match="changed since the task was made"):
         task.func(**task.params)
+
+
+def test_shooting_points_and_blocks_carry_the_digest_too(scene_file, tmp_path):
+    """`study cascade --method shooting`: its point and block tasks are stale after a scene edit as well."""
+    from rotor.studies.shooting_block import shooting_block_tasks
+    from rotor.studies.shooting_point import shooting_sweep_tasks
+
+    store = ResultStore(tmp_path / "shoot")
+    point = shooting_sweep_tasks(str(scene_file), [9000.0])[0]
+    block = shooting_block_tasks(str(scene_file), [9000.0, 9300.0])[0]
+    assert block.outputs[0][1]["scene_sha256"] == point.params["scene_sha256"] == block.params["scene_sha256"]
+    _store_point(store, point)
+    _edit(scene_file, "clearance_mm = 0.05", "clearance_mm = 0.06")
+    again = shooting_sweep_tasks(str(scene_file), [9000.0])[0]
+    assert store.check(again.key, again.params)[0] == "stale"
+    with pytest.raises(InputError, match="now digests to"):
+        point.func(**point.params)
+    with pytest.raises(InputError, match="now digests to"):
+        block.func(**block.params)
