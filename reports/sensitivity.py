@@ -230,10 +230,10 @@ def _ranges_lines() -> list[str]:
           "| k_s,θ, c_s,θ support tilt stiffness/damping (1.5e5 N m/rad, 15 N m s/rad) | ×0.01, ×100 (former study also ×0.1, ×10) | "
           "k_s b²: b = 10 mm … 1 m; a squirrel cage or bearing housing frame spans 20–300 mm axially (×0.04–×9); the "
           "extremes bracket a near-pinned and a near-clamped housing |",
-          "| J_s support tilt inertia (1.9 kg m²) | ×3 (former also ×0.1) | 100 kg with a radius of gyration of 44–240 mm |",
+          "| J_s support tilt inertia (1.9 kg m²) | ×0.1, ×3 | 100 kg with a radius of gyration of 44–240 mm |",
           "| a0 transition-shaft angular stiffness (5e6 N m/rad) | ×0.01, ×100 (former also ×0.1, ×10) | spline/curvic joints: from a loose "
           "spline (5e4) to solid-shaft-like (5e8) |",
-          "| a1 cubic stiffness (1.25e12 N m/rad³) | not varied here (former ×0, ×10, ×100) | from a linear joint to one whose stiffness "
+          "| a1 cubic stiffness (1.25e12 N m/rad³) | ×0, ×100 (former also ×10) | from a linear joint to one whose stiffness "
           "doubles at 0.2 mrad |",
           "| k_s, c_s support to ground (= k3, c3: 1.5e7 N/m, 1.5e3 N s/m) | ×0.1, ×10 (former also ×3) | aero-engine support "
           "stiffness 1e6–1e8 N/m (squirrel cage to stiff casing frame) |",

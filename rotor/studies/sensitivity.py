@@ -576,8 +576,8 @@ def reading_variants(scene: str = "paper-table4") -> list:
 
 #: the other one-at-a-time inputs under the scene's reading, one factor each side of the scene's value
 #: (the study of the former reading had 2–4 factors each; trimmed to keep the study within ~40 CPU-min)
-OTHER_FACTORS = {"ks_theta": (0.01, 100.0), "a0": (0.01, 100.0), "ks": (0.1, 10.0), "cc": (0.01,),
-                 "preload": (0.2, 5.0), "js": (3.0,)}
+OTHER_FACTORS = {"ks_theta": (0.01, 100.0), "a0": (0.01, 100.0), "a1": (0.0, 100.0), "ks": (0.1, 10.0),
+                 "cc": (0.01,), "preload": (0.2, 5.0), "js": (0.1, 3.0)}
 
 
 def study_variants() -> list:
@@ -585,7 +585,7 @@ def study_variants() -> list:
     then the other unstated inputs under the scene's reading (:data:`OTHER_FACTORS`). The former study's
     variants stay available by name (:func:`one_at_a_time`, :func:`combinations`) through ``--variants``."""
     known = {v.name: v for v in one_at_a_time()}
-    names = {"ks_theta": "ks_theta", "a0": "a0", "ks": "ks", "cc": "cc", "preload": "muN", "js": "js"}
+    names = {"ks_theta": "ks_theta", "a0": "a0", "a1": "a1", "ks": "ks", "cc": "cc", "preload": "muN", "js": "js"}
     other = [known[f"{names[g]}-x{f:g}"] for g, fs in OTHER_FACTORS.items() for f in fs]
     return reading_variants() + other
 
