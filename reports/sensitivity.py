@@ -15,7 +15,7 @@ import numpy as np
 
 from contact.errors import InputError
 from reports.sensitivity_figure import figure, per_speed_ratios  # noqa: F401 (re-exported)
-from reports.studies.common import write_csv
+from reports.studies.common import integrator_text, write_csv
 from rotor.studies import sensitivity as sens
 from sweep import ResultStore, load_sweep
 
@@ -160,14 +160,23 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
     L = ["# Sensitivity of the paper's Section 5 findings to the inputs Table 4 does not give", "",
          "Dai et al. 2025 (Actuators 14:422) §5 states three findings over the high-speed range (clearance, Fig. 18; "
          "misalignment, Fig. 19; tilt, Fig. 16) that hold only in part on our Table 4 rotor with the scene's documented "
-         "assumptions (model as corrected: misalignment excitation `inertial-at-joint`, tilt ignored without any moment; "
-         "per-finding verdicts in `study-findings.md` and `tests/rotor/studies/test_study_paper.py`). This study asks whether "
-         "a plausible reading of the unstated inputs (`[ASSUMED]` in `rotor/scenes/paper-table4.toml`) makes them hold. "
+         f"assumptions (misalignment excitation read as `{_scene_reading()}`, section5-readings.md; tilt ignored without "
+         "any moment; per-finding verdicts in `study-findings.md` and `tests/rotor/studies/test_study_paper.py`). This "
+         "study asks whether a plausible value of the unstated inputs (`[ASSUMED]` in `rotor/scenes/paper-table4.toml`), "
+         "under every reading of Eq. 34 (`rotor.studies.readings`), makes them hold. "
          "Regenerate: `ringcontact study sensitivity --out <dir>` (resumable; `rotor/studies/sensitivity.py`, "
          "`reports/sensitivity.py`).", "",
          "## Method", "",
-         f"* Speeds {', '.join(f'{s:.0f}' for s in sens.SPEEDS_RPM)} rpm: the paper's 'high speed' range of §5.3.1 "
-         "(9 000–18 000 rpm) in even steps, including its point B (10 500 rpm).",
+         f"* Speeds {', '.join(f'{s:.0f}' for s in sens.SPEEDS_RPM)} rpm: the first third of the paper's 'high speed' "
+         "range of §5.3.1 (band H1 of study-findings.md), including its point B (10 500 rpm). Above 12 000 rpm the "
+         "scene's reading has no periodic steady state within 1 500 revolutions (study-findings.md), so those speeds "
+         "decide nothing on periodic states and cost about four times as much (the former study's 13 500 and "
+         "15 000 rpm are left out: `rotor.studies.sensitivity.SPEEDS_RPM`).",
+         "* Variants (trimmed to about 40 CPU-minutes on the shared machine): every reading of Eq. 34 as it is and "
+         "with m_sp ×0.3, ×3 and L ×0.5, ×2 (`reading-<name>…`; the scene's own reading is `base`, `msp-x…`, "
+         "`lever-x…`), and, under the scene's reading, the other unstated inputs one factor each side of the scene's "
+         "value (`rotor.studies.sensitivity.OTHER_FACTORS`; the former study had 2–4 factors each and combinations, "
+         "still available by name with `--variants`).",
          "* At each speed and variant: the reference case (δ0 = 0.05 mm, δ = 1 mm, tilt on) from rest, then "
          "δ0 = 0.03 and 0.08 mm, δ = 0.5 and 2 mm, and tilt ignored, each **continued** from the reference end state "
          "(one branch of solutions, as the tests do). Steady state by the Poincaré detector of `rotor.studies.steady_state` "
@@ -191,29 +200,7 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
         L += [f"Code: {code}.", ""]
     if timing:
         L += [f"**Timing:** {timing.get('text', '')}", ""]
-    L += ["## Ranges and why they are plausible for an aero-engine support", "",
-          "| input (scene value) | factors | plausible because |", "|---|---|---|",
-          "| k_s,θ, c_s,θ support tilt stiffness/damping (1.5e5 N m/rad, 15 N m s/rad) | ×0.01, ×0.1, ×10, ×100 | "
-          "k_s b²: b = 10 mm … 1 m; a squirrel cage or bearing housing frame spans 20–300 mm axially (×0.04–×9); the "
-          "extremes bracket a near-pinned and a near-clamped housing |",
-          "| J_s support tilt inertia (1.9 kg m²) | ×0.1, ×3 | 100 kg with a radius of gyration of 44–240 mm |",
-          "| a0 transition-shaft angular stiffness (5e6 N m/rad) | ×0.01 … ×100 | spline/curvic joints: from a loose "
-          "spline (5e4) to solid-shaft-like (5e8) |",
-          "| a1 cubic stiffness (1.25e12 N m/rad³) | ×0, ×10, ×100 | from a linear joint to one whose stiffness "
-          "doubles at 0.2 mrad |",
-          "| k_s, c_s support to ground (= k3, c3: 1.5e7 N/m, 1.5e3 N s/m) | ×0.1, ×3, ×10 | aero-engine support "
-          "stiffness 1e6–1e8 N/m (squirrel cage to stiff casing frame) |",
-          "| m_sp transition-shaft mass (9 kg) | ×0.1, ×0.3, ×3 | 0.9–27 kg sleeve; 2X force ∝ m_sp L (Eq. 34) |",
-          "| L transition-shaft lever (75 mm) | ×0.33, ×2 | 25–150 mm from the sleeve centre to a centring surface; "
-          "2X force ∝ L, 2X moment ∝ L² (Eq. 34) |",
-          "| c_c collision factor (100 s/m, Table 4 '100 s/N' read as s/m) | ×0.01, ×0.1, ×10 | a Hunt–Crossley "
-          "(1975) factor for steel on steel is ~0.1–0.5 s/m (restitution 0.8–0.95 at 0.1–1 m/s, e ≈ 1 − 2αv/3); "
-          "×0.01 brings 100 s/m to 1 s/m, ×10 brackets the other side |",
-          "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×5 (preload 1 and 25 kN) | only the product "
-          "μ·preload enters; μ 0.1–0.5 and a nut preload of 1–15 kN give ×0.07–×5 |",
-          "| combinations | see the table | the one-at-a-time variants that brought a finding to the paper's side at "
-          "a collision speed, or kept the bearing colliding over the whole range (`rotor.studies.sensitivity.combinations`) |",
-          ""]
+    L += _ranges_lines()
     L += ["## Findings × variants", "",
           "| variant | base regime by speed | clearance (Fig. 18, displacement) | misalignment (Fig. 19, displacement) | tilt (Fig. 16, velocity) "
           "| periodic speeds (base / all 6 cases) |", "|---|---|---|---|---|---|"]
@@ -232,8 +219,66 @@ def note(tabs: dict, variants, *, timing: dict | None = None, code: str = "") ->
                  f"| {_cell(per['misalignment_q'], allp['misalignment_q'], coll['misalignment_q'], '3X ratio ' + _fmt(kr['mis_3X_disk2']) + ', 1X spread ' + _fmt(100 * kr['mis_1X_spread_max'], 2) + ' %')} "
                  f"| {_cell(per['tilt_v'], allp['tilt_v'], coll['tilt_v'], 'off/on ' + _fmt(kr['tilt_disk2']))} "
                  f"| {int(t.ok('base').sum())}/{len(t.speeds_rpm)} / {n6}/{len(t.speeds_rpm)} |")
-    L += [""]
+    L += [""] + readings_table(tabs, variants)
     return "\n".join(L), verdicts
+
+
+def _ranges_lines() -> list[str]:
+    """The ranges table of the note: each unstated input, its factors and why they are plausible."""
+    return ["## Ranges and why they are plausible for an aero-engine support", "",
+          "| input (scene value) | factors | plausible because |", "|---|---|---|",
+          "| k_s,θ, c_s,θ support tilt stiffness/damping (1.5e5 N m/rad, 15 N m s/rad) | ×0.01, ×100 (former study also ×0.1, ×10) | "
+          "k_s b²: b = 10 mm … 1 m; a squirrel cage or bearing housing frame spans 20–300 mm axially (×0.04–×9); the "
+          "extremes bracket a near-pinned and a near-clamped housing |",
+          "| J_s support tilt inertia (1.9 kg m²) | ×0.1, ×3 | 100 kg with a radius of gyration of 44–240 mm |",
+          "| a0 transition-shaft angular stiffness (5e6 N m/rad) | ×0.01, ×100 (former also ×0.1, ×10) | spline/curvic joints: from a loose "
+          "spline (5e4) to solid-shaft-like (5e8) |",
+          "| a1 cubic stiffness (1.25e12 N m/rad³) | ×0, ×100 (former also ×10) | from a linear joint to one whose stiffness "
+          "doubles at 0.2 mrad |",
+          "| k_s, c_s support to ground (= k3, c3: 1.5e7 N/m, 1.5e3 N s/m) | ×0.1, ×10 (former also ×3) | aero-engine support "
+          "stiffness 1e6–1e8 N/m (squirrel cage to stiff casing frame) |",
+          "| m_sp transition-shaft mass (per reading: 9 kg short sleeve, 25.2 kg long sleeve) | ×0.3, ×3 | 2.7–76 kg "
+          "sleeve; 2X force ∝ m_sp L, moment ∝ m_sp L² (Eq. 34) |",
+          "| L transition-shaft lever (per reading: 75 mm, 210 mm) | ×0.5, ×2 | 38–420 mm from the sleeve centre to a "
+          "centring surface; 2X force ∝ L, 2X moment ∝ L² (Eq. 34) |",
+          "| reading of Eq. 34 (where the pair acts, m_sp, L) | the five of `rotor.studies.readings` | the paper gives "
+          "the magnitudes, not where they act nor m_sp, L (section5-readings.md) |",
+          "| c_c collision factor (100 s/m, Table 4 '100 s/N' read as s/m) | ×0.01 (former also ×0.1, ×10) | a Hunt–Crossley "
+          "(1975) factor for steel on steel is ~0.1–0.5 s/m (restitution 0.8–0.95 at 0.1–1 m/s, e ≈ 1 − 2αv/3); "
+          "×0.01 brings 100 s/m to 1 s/m, ×10 brackets the other side |",
+          "| μN end-face friction limit (0.3 × 5000 N) | ×0.2, ×5 (preload 1 and 25 kN) | only the product "
+          "μ·preload enters; μ 0.1–0.5 and a nut preload of 1–15 kN give ×0.07–×5 |",
+          ""]
+
+
+def _scene_reading(scene: str = "paper-table4") -> str:
+    from rotor.model.scene import load_scene
+    from rotor.studies.readings import scene_reading
+
+    return scene_reading(load_scene(scene)) or "none of rotor.studies.readings"
+
+
+def readings_table(tabs: dict, variants) -> list[str]:
+    """Markdown: per reading of Eq. 34, over its variants (as it is, m_sp and L varied), how many make each
+    finding hold (periodic speeds) and the reading's own base regime by speed."""
+    groups: dict = {}
+    for v in variants:
+        if v.name in tabs and (v.reading is not None or v.name == "base" or v.name.split("-x")[0] in ("msp", "lever")):
+            groups.setdefault(v.reading or _scene_reading(), []).append(v)
+    if not groups:
+        return []
+    key = {"clearance": "clearance_q", "misalignment": "misalignment_q", "tilt": "tilt_v"}
+    L = ["## Per reading of Eq. 34", "", "Variants per reading: as it is, m_sp ×0.3, ×3, L ×0.5, ×2; a finding counts for "
+         "a variant when it holds at ≥ 67 % of the periodic speeds (at least 2). Names of the holding variants in the "
+         "table above.", "", "| reading | variants | clearance holds | misalignment holds | tilt holds | its base regime "
+         "by speed |", "|---|---|---|---|---|---|"]
+    for r, vs in groups.items():
+        ev = [sens.evaluate(tabs[v.name]) for v in vs]
+        base = next((v for v in vs if not v.factors), None)
+        cells = [f"{sum(e[k].holds for e in ev)}/{len(vs)}" for k in key.values()]
+        L.append(f"| {r}{' (scene)' if r == _scene_reading() else ''} | {len(vs)} | " + " | ".join(cells)
+                 + f" | {_regimes(tabs[base.name]) if base else '—'} |")
+    return L + [""]
 
 
 def publish(out, to, variants, *, extra: str = "", timing: dict | None = None, code: str = "",
@@ -247,8 +292,10 @@ def publish(out, to, variants, *, extra: str = "", timing: dict | None = None, c
     files = [write_csv_rows(to / "study-sensitivity.csv", rws)]
     files.append(write_csv(to / "study-sensitivity-points.csv", *point_rows(tabs, variants)))
     text, _ = note(tabs, variants, timing=timing, code=code)
-    text += ("\n## Trends at each speed over all variants\n\nCounts over the variants (one-at-a-time and "
-             "combinations) of how often each piece of the paper's findings holds at disk 2, all points (periodic or "
+    infos = [p.info for p in load_sweep(ResultStore(out)).values()]
+    text = text.replace("\n\n## Ranges", "\n\n" + integrator_text(infos, code) + "\n\n## Ranges", 1)
+    text += ("\n## Trends at each speed over all variants\n\nCounts over the variants (every reading and "
+             "its m_sp, L variants, and the other one-at-a-time inputs) of how often each piece of the paper's findings holds at disk 2, all points (periodic or "
              "not), counting a variant only where every compared case collides at that speed (the paper's "
              "mechanism). It separates what the unstated inputs change from what none of them changes.\n\n"
              + trends_by_speed(tabs) + "\n")

@@ -49,9 +49,10 @@ PANELS = {
 
 def variant_label(variant, base: dict) -> str:
     """``"support tilt stiffness & damping k_s,θ ×0.01 → 1.5 kN·m/rad"``; one line per factor."""
+    reading = getattr(variant, "reading", None)
     if not variant.factors:
-        return "Table 4 rotor as published (reference)"
-    lines = []
+        return f"reading {reading} of Eq. 34, as it is" if reading else "Table 4 rotor as published (reference)"
+    lines = [f"reading {reading}:"] if reading else []
     for key, factor in variant.factors.items():
         words, param, scale, unit = FACTOR_WORDS.get(key, (key, None, 1.0, ""))
         value = base.get(param, math.nan) * factor * scale
@@ -67,14 +68,14 @@ def tables_from_points_csv(path) -> tuple[dict, list]:
     """``({variant: AmplitudeTable}, variants)`` rebuilt from ``study-sensitivity-points.csv``.
 
     The table holds disk 2 and the support (the CSV's locations), amplitudes back in SI; the variants
-    are the study's (:func:`rotor.studies.sensitivity.study_variants`) where the names match, in the
+    are the study's (:func:`rotor.studies.sensitivity.all_variants`) where the names match, in the
     CSV's order, else a variant without factors named as in the CSV.
     """
     rows = read_csv_rows(path)
     locs = (("disk2", "disk2.y"), ("support", "s.y"))
     cols = [f"{lab}_{h}X_{u}" for lab, _ in locs for h in sens.ORDERS for u in ("um", "mm_s")]
     require_columns(path, rows, ["variant", "speed_rpm", "case", "periodic", "contact_fraction"] + cols)
-    known = {v.name: v for v in sens.study_variants()}
+    known = {v.name: v for v in sens.all_variants()}
     names = list(dict.fromkeys(r["variant"] for r in rows))
     try:
         tabs = {name: _table(rows, name, locs) for name in names}
@@ -157,8 +158,10 @@ def figure(tabs: dict, variants, prefix: Path, *, scene: str = "paper-table4") -
     plt = pyplot()
     chosen = [v for v in variants if v.name in tabs]
     names = [v.name for v in chosen]
-    base = sens.base_values(load_scene(scene))
-    labels = [variant_label(v, base) for v in chosen]
+    from rotor.studies.readings import reading_scene
+
+    sc = load_scene(scene)
+    labels = [variant_label(v, sens.base_values(reading_scene(sc, v.reading) if v.reading else sc)) for v in chosen]
     pitch = np.array([1.0 + 0.45 * lab.count("\n") for lab in labels])      # a row per label line, in row units
     rows_y = np.cumsum(pitch) - pitch / 2
     fig, axes = plt.subplots(1, 3, figsize=(16, 0.34 * pitch.sum() + 2.6), sharey=True)

@@ -131,7 +131,9 @@ def _parser() -> argparse.ArgumentParser:
     se.add_argument("--out", type=out_dir, default="runs/sensitivity", help="result directory (default runs/sensitivity)")
     se.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")
     _scheduler(se)
-    se.add_argument("--variants", default=None, help="comma list of variant names (default: all; see rotor.studies.sensitivity)")
+    se.add_argument("--variants", default=None, help="comma list of variant names (default: the study's, "
+                                                     "rotor.studies.sensitivity.study_variants; the former study's "
+                                                     "one-at-a-time and combinations by name)")
     se.add_argument("--report-only", action="store_true", help="no computing: report what is in --out")
     se.add_argument("--report-out", "--to", dest="to", type=out_dir, default=PUBLISHED,
                     help=f"where study-sensitivity.{{md,csv,png,svg}} go (default {PUBLISHED})")
@@ -466,7 +468,7 @@ def _sensitivity(args) -> int:
     variants = sens.study_variants()
     if args.variants:
         want = [w.strip() for w in args.variants.split(",") if w.strip()]
-        known = {v.name: v for v in variants}
+        known = {v.name: v for v in sens.all_variants()}
         bad = [w for w in want if w not in known]
         if bad:
             raise InputError(f"variants: unknown {bad}; known: {', '.join(known)}")

@@ -124,3 +124,25 @@ def harmonic_table(points, quantity: str = "v", channels=("disk1.y", "disk2.y", 
             col = channel_column(p, c) if quantity != "u" else {"y": 0, "z": 1, "θy": 2, "θz": 3}[c]
             A[i, j] = h[[o - 1 for o in orders], col]
     return rpm, A
+
+
+def integrator_text(infos, commit: str = "") -> str:
+    """One sentence naming the time integrator's options the points were computed with: ``info["integrator"]``
+    of the points (rotor.dynamics.system.NewmarkOptions as recorded by rotor/studies/steady_state.py), or, for
+    points that predate that record, the options' defaults at the points' commit (``commit``) as this code has
+    them. Says whether slip reversals and stick onsets were located inside the step (``locate_events``)."""
+    import dataclasses
+
+    from rotor.dynamics.system import NewmarkOptions
+
+    rec = [i.get("integrator") for i in infos if isinstance(i, dict)]
+    kinds = {tuple(sorted(r.items())) for r in rec if r}
+    if len(kinds) > 1:
+        return "Integrator: the points were computed with different options (their info.integrator)."
+    o = dict(kinds.pop()) if kinds else dataclasses.asdict(NewmarkOptions())
+    said = "" if rec and all(rec) else (" (the points predate the record of the options: NewmarkOptions' defaults"
+                                         + (f"; {commit}" if commit else "") + ")")
+    return (f"Integrator: the production Newmark scheme (rotor.dynamics.production), NewmarkOptions β {o['beta']:g}, "
+            f"γ {o['gamma']:g}, Newton tol {o['tol']:g}, w_reg {o['w_reg']:g} m/s, locate_events "
+            f"{o['locate_events']}{said}: friction events {'located' if o['locate_events'] else 'not located'} "
+            "inside the step.")

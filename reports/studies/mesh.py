@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from reports.studies.common import harmonic_table, pyplot, save
+from reports.studies.common import harmonic_table, integrator_text, pyplot, save
 
 KINDS = ("cascade", "notilt", "params", "point")
 
@@ -69,7 +69,8 @@ def findings_note(paper: dict, converged: dict, elements: int, *, extra: str = "
              "included; the paper's own split is 9 000 rpm (§5.3.1).", "",
              "Forward critical speeds (rpm, support locked): paper's mesh (1 element per segment) "
              + ", ".join(f"{x:.0f}" for x in c1) + f"; {elements} elements per segment " + ", ".join(f"{x:.0f}" for x in cn)
-             + f" (third {100 * (c1[2] / cn[2] - 1):+.1f} % on the paper's mesh).", ""]
+             + f" (third {100 * (c1[2] / cn[2] - 1):+.1f} % on the paper's mesh).", "",
+             integrator_text([p.info for runs in (paper, converged) for pts in runs.values() for p in pts or []]), ""]
     lines += band_table(vp, vc, elements)
     for tag, pts in (("paper's mesh", paper.get("point")), (f"{elements} elements/segment", converged.get("point"))):
         if pts:
@@ -121,12 +122,52 @@ def mechanism_lines(paper: dict, converged: dict, elements: int) -> list[str]:
                 "whatever δ0, and 2X/3X barely change with it; a change against the paper's sense is not explained "
                 "by this.")
     for tag, runs in (("paper's mesh", paper), (f"{elements} elements/segment", converged)):
+        out += misalignment_lines(runs.get("params") or [], tag)
+    for tag, runs in (("paper's mesh", paper), (f"{elements} elements/segment", converged)):
         if runs.get("cascade"):
             rpm, share = first_slip(runs["cascade"])
             if rpm is not None:
                 out.append(f"- Relative displacement below 9 000 rpm, {tag}: the end faces first slip at {rpm:.0f} rpm "
                            f"(contact {100 * share:.0f} % of the record there); see section5-readings.md for every reading.")
     return out
+
+
+def misalignment_lines(params, tag: str) -> list[str]:
+    """§5.3.2 at the periodic speeds of band H1 (every δ periodic): the contact pattern per δ
+    (:func:`rotor.studies.section5.misalignment_mechanism`), where 1X and 3X fail and hold, and the two
+    measured regularities: the contact share at δ = 0.5 mm where 1X holds and fails (against
+    :data:`rotor.studies.section5.ENGAGED_SHARE`), at δ = 2 mm where 3X rises and not (``SATURATED_SHARE``)."""
+    from reports.studies.findings import _PARAM_CASES, _amps
+    from rotor.studies.section5 import (ENGAGED_SHARE, SATURATED_SHARE, in_band, misalignment_1x, misalignment_3x,
+                                        misalignment_mechanism)
+
+    by: dict = {}
+    for p in params:
+        case = _PARAM_CASES.get(p.key.rsplit("rpm", 1)[0] + "rpm")
+        if case in ("d0.5", "base", "d2") and in_band(p.params["speed_rpm"], "H1"):
+            by.setdefault(p.params["speed_rpm"], {})[case] = p
+    rows, share, low = [], {True: [], False: []}, {True: [], False: []}
+    for rpm in sorted(by):
+        pts = by[rpm]
+        if len(pts) < 3 or not all(p.info.get("converged") for p in pts.values()) or "r1" not in pts["base"].arrays:
+            continue
+        pat, text = misalignment_mechanism({c: (p.arrays, p.info) for c, p in pts.items()})
+        amps = {c: _amps(p, "q") for c, p in pts.items()}
+        ok1, ok3 = misalignment_1x(amps)[0], misalignment_3x(amps)[0]
+        share[ok3].append(pat["d2"]["contact_share"])
+        low[ok1].append(pat["d0.5"]["contact_share"])
+        rows.append(f"{rpm:.0f} rpm (1X {'holds' if ok1 else 'fails'}, 3X {'rises' if ok3 else 'does not rise'}): {text}")
+    if not rows:
+        return []
+
+    def rng(x):
+        return f"{100 * min(x):.0f}–{100 * max(x):.0f} %" if x else "none"
+
+    return [f"- Misalignment (§5.3.2), {tag}, δ = 0.5 / 1 / 2 mm at the periodic speeds of 9 000–12 000 rpm: "
+            + "; ".join(rows) + ". "
+            f"Contact share at δ = 2 mm where 3X does not rise: {rng(share[False])}; where it rises: {rng(share[True])} "
+            f"(threshold {100 * SATURATED_SHARE:.0f} %). Contact share at δ = 0.5 mm where 1X moves by more than "
+            f"10 %: {rng(low[False])}; where it holds: {rng(low[True])} (threshold {100 * ENGAGED_SHARE:.0f} %)."]
 
 
 def _agreement(a, b) -> str:

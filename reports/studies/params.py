@@ -5,7 +5,8 @@ from pathlib import Path
 
 import numpy as np
 
-from reports.studies.common import LOCATIONS, harmonic_table, load_points, pyplot, read_csv_rows, save, write_csv
+from reports.studies.common import (LOCATIONS, harmonic_table, integrator_text, load_points, pyplot, read_csv_rows, save,
+                                    write_csv)
 
 
 #: amplitudes at or below this are drawn as "below floor" marks on the lower edge, not as points of the
@@ -120,7 +121,8 @@ def params_note(points) -> str:
     """Markdown: Figs. 18-19 trends over the high-speed range, from our numbers."""
     lines = ["# Harmonic amplitudes vs speed for several clearances and misalignments (paper Figs. 18–19)", "",
              "Displacement amplitudes (µm) of 1X, 2X, 3X at disk 1, disk 2 and the 3# bearing support, "
-             "`ringcontact study params`. Trend checks below use the speeds ≥ 9 000 rpm (the paper's 'high speed').", ""]
+             "`ringcontact study params`. Trend checks below use the speeds ≥ 9 000 rpm (the paper's 'high speed').", "",
+             integrator_text([p.info for p in points]), ""]
     beyond = [p for p in points if "outside_law_domain" in p.info]
     if beyond:
         lines += ["Points where the load drives the ring past the conformal law's neat-fit limit (no record; a gap "

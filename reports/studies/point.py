@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from reports.studies.common import LOCATIONS, channel_column, harmonic_table, load_points, pyplot, save
+from reports.studies.common import LOCATIONS, channel_column, harmonic_table, integrator_text, load_points, pyplot, save
 
 
 def point_figures(out, figs, *, tasks=None, prefix: str = "study-point") -> list[Path]:
@@ -82,7 +82,7 @@ def point_note(points) -> str:
     lines = ["# Response at the paper's points A and B (Figs. 13–15)", "",
              "`ringcontact study point` (4 500 and 10 500 rpm): deflection over one revolution (static misalignment "
              "removed), orbits, time histories and y-velocity spectra at disk 1, disk 2 and the 3# bearing support, "
-             "and the relative edge offsets r1, r2 against the clearance.", "",
+             "and the relative edge offsets r1, r2 against the clearance.", "", integrator_text([p.info for p in points]), "",
              "| speed (rpm) | regime | contact (% time) | periodic (period) | 2X/1X disk 1 | 2X/1X support | "
              "(3X+4X+5X)/1X disk 1 | disk 2 | support | max r/δ0 |", "|---|---|---|---|---|---|---|---|---|---|"]
     for p in points:

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from reports.studies.common import LOCATIONS, pyplot, save
+from reports.studies.common import integrator_text, LOCATIONS, pyplot, save
 
 
 def runup_figures(out, figs, *, prefix: str = "study-runup") -> list[Path]:
@@ -65,7 +65,9 @@ def runup_note(out) -> str:
              f"{r['t'][-1] - r['t'][0]:.1f} s ({info['accel_rpm_per_s']:.0f} rpm/s), Table 4 rotor, integrated in "
              f"{info['segments']} constant-speed segments with the rotation angle carried across (`rotor.studies.runup`); "
              f"{info['steps']} steps of {info['dt_s'] * 1e6:.1f} µs in {info['wall_s']:.0f} s wall. Cascade: Hann-window "
-             "STFT of the y velocity, amplitude-corrected.", ""]
+             "STFT of the y velocity, amplitude-corrected. Misalignment excitation read as "
+             f"`{info.get('reading') or 'not recorded (a run before the record named it)'}` (section5-readings.md).",
+             "", integrator_text([info]), ""]
     for ch, lab in LOCATIONS:
         tc, fr, A, rpm_c = stft_cascade(r, ch)
         one = np.array([A[i, np.argmin(np.abs(fr - rpm_c[i] / 60))] for i in range(len(tc))])

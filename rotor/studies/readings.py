@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact.errors import InputError, OutsideDomainError
+from rotor.studies.scene_digest import check_digest, scene_digest
 
 #: the short sleeve: 9 kg over 150 mm, i.e. 60 kg per metre
 _SLEEVE_KG_PER_M = 9.0 / 0.150
@@ -130,15 +131,17 @@ def reading_model(scene_name: str, name: str, elements_per_segment: int | None =
 
 
 def run_reading_point(scene: str, reading_name: str, speed_rpm: float, elements_per_segment: int | None = None,
-                      options: dict | None = None, history_revs: int = 8):
+                      options: dict | None = None, history_revs: int = 8, scene_sha256: str | None = None):
     """Steady state of one reading at one speed, as ``(arrays, info)`` of
-    :func:`rotor.studies.steady_state.point_record` plus ``info["reading"]`` (a :class:`sweep.Task` function)."""
+    :func:`rotor.studies.steady_state.point_record` plus ``info["reading"]`` (a :class:`sweep.Task` function;
+    ``scene_sha256`` as in :func:`rotor.studies.scene_digest.check_digest`)."""
     from contact.units import check_positive
     from rotor.dynamics.build import system_from_model
     from rotor.studies.steady_state import SteadyStateOptions, point_record, steady_state
 
     check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)
     sc, model = reading_model(scene, reading_name, elements_per_segment)
+    check_digest(scene_sha256, sc, elements_per_segment, what=f"reading {reading_name} at {speed_rpm:g} rpm")
     opts = SteadyStateOptions(**(options or {}))
     system = system_from_model(model, sc, float(speed_rpm) * math.pi / 30.0)
     r = reading(reading_name)
@@ -161,7 +164,8 @@ def run_reading_point(scene: str, reading_name: str, speed_rpm: float, elements_
 def reading_tasks(scene: str, names, speeds_rpm, meshes=(None, 2), *, options: dict | None = None,
                   history_revs: int = 8, prefix: str = "") -> list:
     """One :class:`sweep.Task` per (reading, mesh, speed); keys ``<prefix><reading>-e<mesh>-rpm<speed>``
-    (mesh ``paper`` for the scene's own mesh)."""
+    (mesh ``paper`` for the scene's own mesh); params carry the resolved scene's digest
+    (rotor/studies/scene_digest.py), so a point stored before the scene changed is stale, not reused."""
     from sweep import Task
 
     out = []
@@ -171,7 +175,8 @@ def reading_tasks(scene: str, names, speeds_rpm, meshes=(None, 2), *, options: d
             for s in speeds_rpm:
                 tag = "paper" if m is None else str(int(m))
                 params = {"scene": scene, "reading_name": name, "speed_rpm": float(s),
-                          "options": dict(options or {}), "history_revs": int(history_revs)}
+                          "options": dict(options or {}), "history_revs": int(history_revs),
+                          "scene_sha256": scene_digest(reading_model(scene, name, m)[0], m)}
                 if m is not None:
                     params["elements_per_segment"] = int(m)
                 out.append(Task(f"{prefix}{name}-e{tag}-rpm{float(s):.0f}", run_reading_point, params))

@@ -33,7 +33,7 @@ from contact.errors import InputError
 from contact import plausible
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.system import HarmonicForce, largest_stable_step
+from rotor.dynamics.system import HarmonicForce, NewmarkOptions, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
 
@@ -152,10 +152,16 @@ def simulate_runup(spec: RunupSpec, *, progress=None) -> dict:
             "segment_steps": seg_steps, "steps": n_seg * seg_steps, "least_residual_steps": int(unconv),
             "clearance_m": float(sys0.support.law.clearance_m), "accel_rpm_per_s": wdot * 30 / math.pi,
             "wall_s": time.perf_counter() - t_wall, "law": sys0.support.law.name,
+            "integrator": dataclasses.asdict(NewmarkOptions()), "reading": _reading_name(sc),
             **(sc.loose_support.law_note() if sc.loose_support is not None else {}),   # a calibrated law's file
             **contact_summary(arrays["t"], arrays["f_contact"], arrays["modes"], arrays["face_force"],
                               sys0.support.faces()[2])}
     return {"arrays": arrays, "info": info}
+
+
+def _reading_name(scene) -> str | None:
+    from rotor.studies.readings import scene_reading
+    return scene_reading(scene) if getattr(scene, "misalignment", None) is not None else None
 
 
 def _runup_task(**params):

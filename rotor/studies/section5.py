@@ -216,3 +216,62 @@ def first_slip(points) -> tuple[float | None, float]:
         if p.info.get("stick_fraction", 1.0) < 1.0:
             return float(p.params["speed_rpm"]), float(p.info["contact_fraction"])
     return None, 0.0
+
+
+def contact_pattern(arrays, info) -> dict:
+    """How the ring meets the support over a point's recorded revolutions (the last ones of
+    :func:`rotor.studies.steady_state.run_point`): ``impacts_per_rev`` (contact onsets, r1 or r2 crossing δ0
+    outwards, per revolution; the record of whole revolutions counted as a loop), ``contact_share`` (of the record), ``period_revs`` and the amplitudes (N) of the
+    radial contact force's 1X, 2X, 3X (``force_1x_N`` …; |(Fy, Fz)| of each harmonic, zero without contact).
+
+    Where the finding on 1X or 3X with δ fails (§5.3.2), these show whether the contact changes its pattern
+    between the δ values (a regime switch) and how its force's harmonics move."""
+    from rotor.studies.steady_state import harmonic_amplitudes
+
+    d0 = float(info["clearance_m"])
+    r1, r2 = np.asarray(arrays["r1"], float), np.asarray(arrays["r2"], float)
+    spr = int(info["samples_per_rev"])
+    revs = len(r1) // spr
+    on = (r1 > d0) | (r2 > d0)
+    f = np.asarray(arrays["f_contact"], float)[: revs * spr, :2]
+    F = np.abs(harmonic_amplitudes(f - f.mean(axis=0), revs, (1, 2, 3))) if revs else np.zeros((3, 2))
+    Fr = np.hypot(F[:, 0], F[:, 1])
+    onsets = int(np.sum(on & ~np.roll(on, 1)))          # whole revolutions of a periodic record: wrap around
+    return {"impacts_per_rev": onsets / max(revs, 1), "contact_share": float(on.mean()),
+            "period_revs": int(info.get("period_revs", 0)), "force_1x_N": float(Fr[0]), "force_2x_N": float(Fr[1]),
+            "force_3x_N": float(Fr[2])}
+
+
+#: §5.3.2, measured at the periodic speeds of band H1 on both meshes (study-findings.md, Mechanisms measured;
+#: tests/rotor/studies/test_study_paper.py): 3X stops rising with δ where the ring is on the bore more than this
+#: share of the revolution at δ = 2 mm (failing speeds 64–76 %, rising ones 29–47 %) ...
+SATURATED_SHARE = 0.55
+#: ... and 1X stays within 10 % where the contact is already established at δ = 0.5 mm, at least this share
+#: (holding speeds 48–77 %; the speeds where 1X moves 38–52 % have 0–34 %: the contact, absent without
+#: misalignment, then grows with δ and moves 1X with it)
+ENGAGED_SHARE = 0.40
+
+
+def misalignment_mechanism(points: dict) -> tuple[dict, str]:
+    """The contact behind §5.3.2 at one speed: ``points`` maps ``d0.5``, ``base``, ``d2`` to ``(arrays, info)``.
+
+    Returns ``({case: contact_pattern}, text)``: impacts per revolution, contact share, contact-force 1X and 3X
+    (N) and the support's y 1X and 3X (µm) for δ = 0.5 / 1 / 2 mm."""
+    cases = ("d0.5", "base", "d2")
+    pat = {c: contact_pattern(*points[c]) for c in cases}
+
+    def amp(c, h):
+        a, i = points[c]
+        return abs(a["harm_q"][h - 1, list(a["channels"]).index("s.y")]) * 1e6
+
+    def per(c):
+        p = pat[c]["period_revs"]
+        return f"{pat[c]['impacts_per_rev']:.3g}" + (f" (period {p})" if p > 1 else "")
+
+    text = ("impacts/rev " + " / ".join(per(c) for c in cases)
+            + "; contact " + " / ".join(f"{100 * pat[c]['contact_share']:.0f}" for c in cases) + " %"
+            + "; contact-force 1X " + " / ".join(f"{pat[c]['force_1x_N']:.0f}" for c in cases)
+            + " N, 3X " + " / ".join(f"{pat[c]['force_3x_N']:.0f}" for c in cases) + " N"
+            + "; support 1X " + " / ".join(f"{amp(c, 1):.3g}" for c in cases)
+            + " µm, 3X " + " / ".join(f"{amp(c, 3):.3g}" for c in cases) + " µm")
+    return pat, text

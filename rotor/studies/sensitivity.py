@@ -1,14 +1,9 @@
 """Sensitivity of the paper's Section 5 findings to the inputs Table 4 does not give.
 
-Dai et al. 2025 (Actuators 14:422), Section 5, state three qualitative findings that our Table 4
-rotor does not reproduce with the scene's documented assumptions (issue 8):
-
-1. **clearance** (§5.3.1, Fig. 18): at high speed (9 000–18 000 rpm) the 2X and 3X amplitudes of
-   the lateral displacement *decrease* as the clearance δ0 grows (0.03 → 0.05 → 0.08 mm);
-2. **misalignment** (§5.3.2, Fig. 19): as the misalignment δ grows (0.5 → 1 → 2 mm) the 1X
-   amplitudes stay essentially unchanged while 2X and 3X increase;
-3. **tilt** (§5.2, Fig. 16 vs Fig. 12): ignoring the angular deflection at the loose support
-   "markedly" reduces the harmonics 3X–5X (of the y velocity, the paper's cascades).
+Dai et al. 2025, Section 5, state three qualitative findings our Table 4 rotor reproduces only in part:
+**clearance** (§5.3.1, Fig. 18: at high speed 2X and 3X of the displacement fall as δ0 grows, 0.03 → 0.05 →
+0.08 mm), **misalignment** (§5.3.2, Fig. 19: as δ grows, 0.5 → 1 → 2 mm, 1X stays while 2X and 3X rise) and
+**tilt** (§5.2, Fig. 16 vs 12: ignoring the support's tilt "markedly" reduces 3X–5X of the y velocity).
 
 This module builds scene *variants* — the loaded scene with named inputs replaced
 (:func:`apply_overrides`, :func:`dataclasses.replace`, re-assembled by :func:`rotor.model.assembly.assemble`)
@@ -35,6 +30,7 @@ import numpy as np
 
 from contact.errors import InputError
 from contact.units import check_positive
+from rotor.studies.scene_digest import check_digest, scene_digest
 
 # ---------------------------------------------------------------------------------------------
 # overrides of the unstated inputs
@@ -226,8 +222,11 @@ ORDERS = (1, 2, 3, 4, 5)
 
 
 def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = None, options: dict | None = None,
-                      cases: list | None = None, reading: str | None = None):
+                      cases: list | None = None, reading: str | None = None, scene_sha256: str | None = None):
     """Steady states of every case at one speed for one variant, as ``(arrays, info)``.
+
+    ``scene_sha256``: the digest of the variant's resolved scene its task was made from
+    (:func:`rotor.studies.scene_digest.scene_digest`); refused if the scene now digests otherwise.
 
     The reference case ('base': δ0 = 0.05 mm, δ = 1 mm, tilt on) starts from the misalignment
     offset at rest; every other case starts from its end state (continuation).
@@ -245,6 +244,7 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
     if not names or names[0] != "base" or any(c not in CASES for c in names):
         raise InputError(f"cases = {names}: must start with 'base' and be among {', '.join(CASE_NAMES)}")
     sc, model = variant_model(scene, overrides or {}, reading)
+    check_digest(scene_sha256, sc, what=f"sensitivity point at {speed_rpm:g} rpm")
     opts = SteadyStateOptions(**(options or {}))
     omega = float(speed_rpm) * math.pi / 30.0
     C = len(names)
@@ -253,7 +253,10 @@ def run_variant_point(scene: str, speed_rpm: float, overrides: dict | None = Non
     hu = np.zeros((C, len(ORDERS), 4))
     periodic = np.zeros(C, bool)
     cfrac = np.zeros(C)
+    from rotor.dynamics.system import NewmarkOptions
+
     info = {"speed_rpm": float(speed_rpm), "overrides": check_overrides(overrides or {}), "cases": names,
+            "integrator": dataclasses.asdict(NewmarkOptions()),
             **({"reading": reading} if reading else {})}
     base = None
     for i, name in enumerate(names):
@@ -283,11 +286,13 @@ def variant_tasks(scene: str, variant: Variant, speeds_rpm, *, options: dict | N
     """One :class:`sweep.Task` of :func:`run_variant_point` per speed for ``variant``.
 
     Keys ``<variant>-rpm<speed>``; params hold the absolute overrides (resolved from the factors
-    against the scene), so a stored point says exactly what it was computed with."""
+    against the scene) and the digest of the resolved scene (``scene_sha256``), so a stored point says exactly
+    what it was computed with, and one computed before the scene file changed is stale, not reused."""
     from sweep import Task
 
     ov = scaled_overrides(_reading_scene(scene, variant.reading), variant.factors) if variant.factors else {}
     extra = {"reading": variant.reading} if variant.reading else {}
+    extra["scene_sha256"] = scene_digest(variant_model(scene, ov, variant.reading)[0])
     return [Task(f"{variant.name}-rpm{float(s):.0f}", run_variant_point,
                  {"scene": scene, "speed_rpm": float(s), "overrides": ov, "options": dict(options or {}), **extra})
             for s in speeds_rpm]
@@ -487,11 +492,13 @@ def evaluate(table: AmplitudeTable, *, require_periodic: bool = True, require_co
 # the study: speeds and one-at-a-time variants (ranges argued in reports/published/study-sensitivity.md)
 # ---------------------------------------------------------------------------------------------
 
-#: the paper's 'high speed' range of §5.3.1 (9 000–18 000 rpm) in 1 500 rpm steps from 9 000 to
-#: 15 000 rpm; 10 500 rpm is its point B. 16 500 and 18 000 rpm are left out: on the scene as published
-#: none of the six cases is periodic there within 1 500 revolutions (measured), so they decide nothing
-#: on periodic states, and they cost ~40 s per (variant, speed) against ~20 s below.
-SPEEDS_RPM = (9000.0, 10500.0, 12000.0, 13500.0, 15000.0)
+#: the first third of the paper's 'high speed' range of §5.3.1 (band H1 of rotor.studies.section5), in
+#: 1 500 rpm steps; 10 500 rpm is its point B. Above 12 000 rpm the scene's reading has no periodic steady
+#: state within 1 500 revolutions on either mesh (study-findings.md: from 12 900 rpm on the paper's mesh), so
+#: 13 500 and 15 000 rpm decide nothing on periodic states and cost ~70 s per (variant, speed) against ~18 s
+#: (every case runs the full 1 500 revolutions); the former study's five speeds are kept as :data:`FORMER_SPEEDS_RPM`.
+SPEEDS_RPM = (9000.0, 10500.0, 12000.0)
+FORMER_SPEEDS_RPM = (9000.0, 10500.0, 12000.0, 13500.0, 15000.0)
 
 #: steady-state options of the study (as tests/rotor/studies/test_study_paper.py: 16-revolution spectrum records)
 STUDY_OPTIONS = {"spectrum_revs": 16}
@@ -535,13 +542,8 @@ def study_tasks(variants, *, scene: str = "paper-table4", speeds_rpm=SPEEDS_RPM,
 
 
 def combinations() -> list:
-    """Combinations suggested by the one-at-a-time results (see study-sensitivity.md).
-
-    One-at-a-time, only a stiffer support-to-ground frame (``ks-x10``) and a lower end-face friction
-    limit (``muN-x0.2``) put the tilt finding on the paper's side at some speeds, and they, with a
-    soft support tilt (``ks_theta-x0.01``), are the variants that keep the bearing colliding over the
-    whole 9 000–15 000 rpm range (the paper's mechanism for all three findings). Their
-    combinations, and the intermediate ``ks-x3``, are tried."""
+    """Combinations the former study (reading ``inertial-at-joint``) tried after its one-at-a-time results:
+    ``ks-x10``, ``muN-x0.2`` and ``ks_theta-x0.01`` kept the bearing colliding over 9 000–15 000 rpm."""
     why = "combination suggested by the one-at-a-time results"
     return [Variant("ks-x3", {"ks": 3.0}, "support-to-ground k_s, c_s ×3 (between ks-x1 and ks-x10)"),
             Variant("ks-x3+muN-x0.2", {"ks": 3.0, "preload": 0.2}, why),
@@ -552,23 +554,45 @@ def combinations() -> list:
 
 
 def reading_variants(scene: str = "paper-table4") -> list:
-    """Every other reading of Eq. 34 (rotor.studies.readings), as it is and with m_sp and L varied, so that
-    the study covers every reading, not only the scene's."""
+    """Every reading of Eq. 34 (rotor.studies.readings), the scene's included, as it is and with m_sp and L
+    varied (×0.3, ×3; ×0.5, ×2), so that m_sp and L are varied under every reading, not only the scene's.
+    The scene's own reading is named ``base``, ``msp-x…``, ``lever-x…`` (its one-at-a-time rows)."""
     from rotor.model.scene import load_scene
     from rotor.studies.readings import READINGS, scene_reading
 
     current = scene_reading(load_scene(scene))
     out = []
-    for r in READINGS:
-        if r.name == current:
-            continue
+    for r in sorted(READINGS, key=lambda r: r.name != current):      # the scene's reading first
         why = f"reading {r.name} of Eq. 34 ({r.excitation}, m_sp {r.shaft_mass_kg:g} kg, L {r.lever_m * 1e3:g} mm)"
-        out.append(Variant(f"reading-{r.name}", {}, why, reading=r.name))
+        own = r.name == current
+        out.append(Variant("base" if own else f"reading-{r.name}", {},
+                           f"scene as published (paper-table4.toml): {why}" if own else why,
+                           reading=None if own else r.name))
         for g, f in (("msp", 0.3), ("msp", 3.0), ("lever", 0.5), ("lever", 2.0)):
-            out.append(Variant(f"reading-{r.name}+{g}-x{f:g}", {g: f}, f"{why}; {g} ×{f:g}", reading=r.name))
+            out.append(Variant(f"{g}-x{f:g}" if own else f"reading-{r.name}+{g}-x{f:g}", {g: f},
+                               f"{why}; {g} ×{f:g}", reading=None if own else r.name))
     return out
 
 
+#: the other one-at-a-time inputs under the scene's reading, one factor each side of the scene's value
+#: (the study of the former reading had 2–4 factors each; trimmed to keep the study within ~40 CPU-min)
+OTHER_FACTORS = {"ks_theta": (0.01, 100.0), "a0": (0.01, 100.0), "a1": (0.0, 100.0), "ks": (0.1, 10.0),
+                 "cc": (0.01,), "preload": (0.2, 5.0), "js": (0.1, 3.0)}
+
+
 def study_variants() -> list:
-    """Every variant of the study: one-at-a-time, combinations, then the other readings of Eq. 34."""
-    return one_at_a_time() + combinations() + reading_variants()
+    """The variants of the study: every reading of Eq. 34 with m_sp and L varied (:func:`reading_variants`),
+    then the other unstated inputs under the scene's reading (:data:`OTHER_FACTORS`). The former study's
+    variants stay available by name (:func:`one_at_a_time`, :func:`combinations`) through ``--variants``."""
+    known = {v.name: v for v in one_at_a_time()}
+    names = {"ks_theta": "ks_theta", "a0": "a0", "a1": "a1", "ks": "ks", "cc": "cc", "preload": "muN", "js": "js"}
+    other = [known[f"{names[g]}-x{f:g}"] for g, fs in OTHER_FACTORS.items() for f in fs]
+    return reading_variants() + other
+
+
+def all_variants() -> list:
+    """Every variant a name may select: :func:`study_variants`, then the former study's one-at-a-time and
+    combination variants not among them."""
+    out = study_variants()
+    seen = {v.name for v in out}
+    return out + [v for v in one_at_a_time() + combinations() if v.name not in seen]

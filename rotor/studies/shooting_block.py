@@ -24,7 +24,7 @@ import time
 import numpy as np
 
 from rotor.studies.orbit import orbit, warm_options
-from rotor.studies.shooting_point import orbit_point, run_shooting_point
+from rotor.studies.shooting_point import check_task_digest, orbit_point, run_shooting_point, task_digest
 from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
 
 #: speeds per block: a cold start per block bounds the cost of a bad start, while 61 speeds still give
@@ -70,12 +70,13 @@ def run_shooting_block(scene: str, block_rpm: list, prefix: str = "rpm", stored:
                        tilt_ignored: bool = False, mu: float | None = None, preload_n: float | None = None,
                        options: dict | None = None, max_order: float = 6.0, history_revs: int = 4,
                        elements_per_segment: int | None = None, method: str = "shooting",
-                       law: str | None = None) -> dict:
+                       law: str | None = None, scene_sha256: str | None = None) -> dict:
     """The speeds of ``block_rpm`` (rpm, ascending) not in ``stored`` (key -> info of the block's points
     already stored), each from its lower neighbour (module docstring): ``{key: (arrays, info)}`` for
     :func:`sweep.run_sweep`."""
     if method != "shooting":
         raise ValueError(f"method = {method!r}: run_shooting_block computes 'shooting' points")
+    check_task_digest(scene_sha256, scene, elements_per_segment, law, f"shooting block from {block_rpm[0]:g} rpm")
     stored = stored or {}
     kw = {"clearance_m": clearance_m, "misalignment_m": misalignment_m, "tilt_ignored": tilt_ignored, "mu": mu,
           "preload_n": preload_n, "elements_per_segment": elements_per_segment, "law": law}
@@ -99,6 +100,7 @@ def shooting_block_tasks(scene: str, speeds_rpm, *, prefix: str = "rpm", block_s
     from sweep import Task
 
     params = {k: v for k, v in overrides.items() if v is not None}
+    params["scene_sha256"] = task_digest(scene, params)
     speeds = sorted(float(s) for s in speeds_rpm)
     tasks = []
     for i in range(0, len(speeds), int(block_speeds)):

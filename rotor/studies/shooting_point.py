@@ -91,7 +91,7 @@ def run_shooting_point(scene: str, speed_rpm: float, clearance_m: float | None =
                        misalignment_m: float | None = None, tilt_ignored: bool = False, mu: float | None = None,
                        preload_n: float | None = None, options: dict | None = None, max_order: float = 6.0,
                        history_revs: int = 4, elements_per_segment: int | None = None, method: str = "shooting",
-                       fallback: bool = True, law: str | None = None):
+                       fallback: bool = True, law: str | None = None, scene_sha256: str | None = None):
     """Steady state of one operating point by shooting, as ``(arrays, info)`` for :func:`sweep.run_sweep`
     (the arrays of :func:`rotor.studies.steady_state.run_point`; the info adds the Floquet fields and the
     classification of the module docstring). ``method`` is stored in the task's parameters so that a study
@@ -100,6 +100,7 @@ def run_shooting_point(scene: str, speed_rpm: float, clearance_m: float | None =
     ``classification = "no_orbit_found"``, and no arrays beyond ``channels``: for timing the shooting alone)."""
     if method != "shooting":
         raise ValueError(f"method = {method!r}: run_shooting_point computes 'shooting' points")
+    check_task_digest(scene_sha256, scene, elements_per_segment, law, f"shooting point at {speed_rpm:g} rpm")
     t_start = time.perf_counter()
     kw = {"clearance_m": clearance_m, "misalignment_m": misalignment_m, "tilt_ignored": tilt_ignored, "mu": mu,
           "preload_n": preload_n, "elements_per_segment": elements_per_segment, "law": law}
@@ -142,9 +143,30 @@ def orbit_point(res, scene: str, speed_rpm: float, kw: dict, point: dict, fallba
 
 def shooting_sweep_tasks(scene: str, speeds_rpm, *, prefix: str = "rpm", **overrides) -> list:
     """One :class:`sweep.Task` of :func:`run_shooting_point` per speed (rpm), keys as
-    :func:`rotor.studies.steady_state.sweep_tasks`."""
+    :func:`rotor.studies.steady_state.sweep_tasks`, params with the resolved scene's digest."""
     from sweep import Task
 
     params = {k: v for k, v in overrides.items() if v is not None}
+    params["scene_sha256"] = task_digest(scene, params)
     return [Task(f"{prefix}{float(s):.1f}", run_shooting_point,
                  {"scene": scene, "speed_rpm": float(s), **params, "method": "shooting"}) for s in speeds_rpm]
+
+
+def task_digest(scene: str, overrides: dict) -> str:
+    """The resolved scene's digest of a study task (rotor/studies/scene_digest.py): the scene with its mesh and
+    law overrides, as the point builds it."""
+    from rotor.studies.scene_digest import scene_digest
+    from rotor.studies.steady_state import _scene_model
+
+    e = overrides.get("elements_per_segment")
+    return scene_digest(_scene_model(scene, e, overrides.get("law"))[0], e)
+
+
+def check_task_digest(expected: str | None, scene: str, elements_per_segment, law, what: str) -> None:
+    """Refuse a shooting point whose scene changed since its task was made (as run_point does)."""
+    if expected is None:
+        return
+    from rotor.studies.scene_digest import check_digest
+    from rotor.studies.steady_state import _scene_model
+
+    check_digest(expected, _scene_model(scene, elements_per_segment, law)[0], elements_per_segment, what=what)

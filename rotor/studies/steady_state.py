@@ -18,14 +18,13 @@ The two pieces a speed sweep needs (DESIGN.md "Steady state is detected, not gue
    bin ``j`` at ``j/N`` times the rotation frequency, so ``h·f`` is bin ``h·N`` exactly: no
    leakage, no window, the amplitude of a pure harmonic is exact (``2|X_j|/(N s)``).
 
-Everything is SI; speeds are rad/s inside (rpm only in names ending ``_rpm``).
-References: Dai et al. 2025 (Actuators 14:422) §5 for the quantities studied.
+Everything is SI; speeds are rad/s inside (rpm only in names ending ``_rpm``). Dai et al. 2025 §5 for the quantities.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,16 +33,15 @@ from contact import plausible
 from contact.errors import InputError, OutsideDomainError
 from contact.units import check_positive
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.system import RotorSystem, largest_stable_step
+from rotor.dynamics.system import NewmarkOptions, RotorSystem, largest_stable_step
 from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
 from sweep.progress import report
 from rotor.periodic.shooting import TRANSIENT_SAMPLES_PER_REV
+from rotor.studies.scene_digest import check_digest, scene_digest
 
-# Stations come from the scene (rotor.model.assembly.RotorModel.response_stations): every disk, bearing
-# and support station is recorded, the primary ones (disks, the loose support's bearing station,
-# supports; for Table 4 the paper's disk1, disk2, 5, s) form the Poincaré section.
-
+# Stations come from the scene (RotorModel.response_stations): every disk, bearing and support station is
+# recorded, the primary ones (for Table 4 the paper's disk1, disk2, 5, s) form the Poincaré section.
 
 #: the fewest samples a revolution that resolve the 5X harmonic (above its Nyquist rate of 10 with a margin)
 SAMPLES_FOR_5X = 12
@@ -485,8 +483,9 @@ def point_system(scene: str, speed_rpm: float, *, clearance_m: float | None = No
 def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, misalignment_m: float | None = None,
               tilt_ignored: bool = False, mu: float | None = None, preload_n: float | None = None,
               options: dict | None = None, max_order: float = 6.0, history_revs: int = 4,
-              elements_per_segment: int | None = None, law: str | None = None):
-    """Steady state of one operating point, as ``(arrays, info)`` for :func:`sweep.run_sweep`.
+              elements_per_segment: int | None = None, law: str | None = None, scene_sha256: str | None = None):
+    """Steady state of one operating point, as ``(arrays, info)`` for :func:`sweep.run_sweep` (``scene_sha256``:
+    the resolved scene's digest its task was made from, rotor/studies/scene_digest.py; refused if it changed).
 
     Arrays (SI): ``channels`` names; ``harm_q`` (5, c) complex displacement amplitudes of 1X–5X (m),
     ``harm_v`` (5, c) velocity (m/s), ``harm_u`` (5, 4) relative support motion (m, rad);
@@ -502,6 +501,7 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
     sc, model, system = point_system(scene, speed_rpm, clearance_m=clearance_m, misalignment_m=misalignment_m,
                                      tilt_ignored=tilt_ignored, mu=mu, preload_n=preload_n,
                                      elements_per_segment=elements_per_segment, law=law)
+    check_digest(scene_sha256, sc, elements_per_segment, what=f"study point at {speed_rpm:g} rpm")
     try:
         res = steady_state(system, model, options=opts)
     except OutsideDomainError as exc:
@@ -546,7 +546,8 @@ def point_record(res: SteadyResult, sc, model, system, opts: SteadyStateOptions,
             "static": bool(res.static), "wall_s": float(res.wall_s),
             "law": system.support.law.name if system.support is not None else None,
             "elements_per_segment": elements_per_segment, "n_dofs": int(model.n_dofs),
-            "options": dataclasses.asdict(opts), **res.regime(), **_law_info(sc, res),
+            "options": dataclasses.asdict(opts), "integrator": dataclasses.asdict(NewmarkOptions()),
+            **res.regime(), **_law_info(sc, res),
             **(contact_summary(res.t, res.f_contact, res.modes, n_faces=res.n_faces)
                if system.support is not None else {})}
     return arrays, info
@@ -569,7 +570,7 @@ def beyond_law_record(model, system, exc, *, speed_rpm: float, misalignment_m, t
             "misalignment_m": float(misalignment_m if misalignment_m is not None
                                     else (model.scene.misalignment.offset_m if model.scene.misalignment else 0.0)),
             "tilt_ignored": bool(tilt_ignored), "elements_per_segment": elements_per_segment,
-            "transient_revs": 0, "record_revs": 0}
+            "transient_revs": 0, "record_revs": 0, "integrator": dataclasses.asdict(NewmarkOptions())}
     return arrays, info
 
 
@@ -588,12 +589,11 @@ def _law_info(sc, res: SteadyResult) -> dict:
 def sweep_tasks(scene: str, speeds_rpm, *, prefix: str = "rpm", **overrides) -> list:
     """One :class:`sweep.Task` of :func:`run_point` per speed (rpm), same overrides for all.
 
-    Keys are ``<prefix><speed>`` with the speed to 0.1 rpm (``rpm10500.0``)."""
+    Keys are ``<prefix><speed>`` with the speed to 0.1 rpm (``rpm10500.0``); params carry the resolved scene's
+    digest, so that a point stored before the scene changed is stale (rotor/studies/scene_digest.py)."""
     from sweep import Task
 
-    out = []
-    for s in speeds_rpm:
-        params = {"scene": scene, "speed_rpm": float(s)}
-        params.update({k: v for k, v in overrides.items() if v is not None})
-        out.append(Task(f"{prefix}{float(s):.1f}", run_point, params))
-    return out
+    ov = {k: v for k, v in overrides.items() if v is not None}
+    e = ov.get("elements_per_segment")
+    common = {"scene": scene, **ov, "scene_sha256": scene_digest(_scene_model(scene, e, ov.get("law"))[0], e)}
+    return [Task(f"{prefix}{float(s):.1f}", run_point, {**common, "speed_rpm": float(s)}) for s in speeds_rpm]

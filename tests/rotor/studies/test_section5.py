@@ -78,3 +78,23 @@ class _P:
     ([_P(3000, 1.0, 0.0)], (None, 0.0))])
 def test_first_slip(pts, expect):
     assert first_slip(pts) == expect
+
+
+def test_contact_pattern_counts_impacts_and_takes_the_contact_force_harmonics():
+    """A synthetic record of 4 revolutions, 64 samples each: r1 beyond δ0 twice a revolution (a 2X cosine
+    above the clearance a quarter of the time), the contact force a known 1X + 3X signal: the pattern gives
+    2 impacts per revolution, the share of samples beyond δ0, and the harmonic amplitudes exactly (whole
+    revolutions, exact DFT bins)."""
+    from rotor.studies.section5 import contact_pattern
+
+    spr, revs, d0 = 64, 4, 50e-6
+    phi = 2 * np.pi * np.arange(spr * revs) / spr
+    r1 = d0 + 1e-6 * np.cos(2 * phi) - 0.7e-6            # beyond δ0 where cos 2φ > 0.7
+    fy = 300.0 * np.cos(phi) + 120.0 * np.sin(3 * phi)
+    fz = 300.0 * np.sin(phi)
+    arrays = {"r1": r1, "r2": np.zeros_like(r1), "f_contact": np.column_stack([fy, fz, 0 * fy, 0 * fy])}
+    p = contact_pattern(arrays, {"clearance_m": d0, "samples_per_rev": spr, "period_revs": 1})
+    assert p["impacts_per_rev"] == 2.0            # the record starts inside a contact: counted as a loop
+    assert p["contact_share"] == pytest.approx(float(np.mean(np.cos(2 * phi) > 0.7)))
+    assert p["force_1x_N"] == pytest.approx(math.hypot(300.0, 300.0), rel=1e-9)
+    assert p["force_3x_N"] == pytest.approx(120.0, rel=1e-9) and p["force_2x_N"] == pytest.approx(0.0, abs=1e-9)
