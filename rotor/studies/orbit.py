@@ -237,7 +237,7 @@ class BranchResult:
 
 def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
            options: ContinuationOptions | None = None, amplitudes: bool = True, through_grazing: bool | None = None,
-           start=None, period_revs: int | None = None, **overrides) -> BranchResult:
+           start=None, period_revs: int | None = None, locate_events: bool | None = None, **overrides) -> BranchResult:
     """Continue the orbit found at ``rpm_start`` (:func:`orbit`) in speed until ``rpm_end`` (rpm).
 
     The arclength is measured with the start orbit's scales and a speed scale of a tenth of the range.
@@ -250,6 +250,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     ``start``: the full ``(q0, v0)`` of a chosen orbit at ``rpm_start`` (phase 0, e.g. ``phase0_state`` of an
     ``orbit --out`` file, with its ``period_revs``): the branch starts on that orbit (one revolution of
     transient, then Newton), an unstable one included, instead of the one a transient from rest reaches.
+    ``locate_events``: the continuation's maps locate friction events inside the step
+    (:func:`rotor.periodic.period_flow.make_flow`; None: the scheme's default).
     """
     t_start = time.perf_counter()
     check_positive("rpm_start", rpm_start, "rpm", upper=plausible.top("run_speed_rpm"))
@@ -272,7 +274,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
 
     res = first.shooting
     # the orbit's start time is a whole number of revolutions: phase 0, where the continuation's maps start
-    pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes)
+    pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes,
+                       locate_events=locate_events)
     w0, w1 = rpm_start / to_rpm, rpm_end / to_rpm
     follow = continue_through_grazing if follows_grazing(sys_lo.support, through_grazing) else continue_branch
     br = follow(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)

@@ -178,17 +178,18 @@ def test_smooth_branch_needs_no_restart_and_its_scales_follow_the_orbit(branch):
 
 
 def test_rescaled_jacobian_is_the_one_evaluated_in_the_new_scales():
-    """``_rescale`` transforms the scaled state, tangent and bordered Jacobian to new scales without a new
+    """``rescale`` transforms the scaled state, tangent and bordered Jacobian to new scales without a new
     map: they equal the evaluator's own at the same point in the new scales (to round-off)."""
-    from rotor.periodic.continuation import _Evaluator, _rescale
+    from rotor.periodic.branch_types import Evaluator
+    from rotor.periodic.corrector import rescale
 
     pb = speed_problem(lambda w: jeffcott_system(P, w), N, modes0=(0, 0))
-    ev = _Evaluator(pb, SCALES.copy(), 100.0)
+    ev = Evaluator(pb, SCALES.copy(), 100.0)
     x, lam = np.array([2e-5, 1e-5, 0, 0, -3e-3, 6e-3, 0, 0]), 500.0
     R, J, M = ev(x, lam)
     y = np.concatenate([x / ev.s, [lam / ev.ls]])
     tau = np.ones(9) / 3.0
-    y2, tau2, J2 = _rescale(ev, y, tau, M, J, 10.0 * SCALES)          # the floor forces new scales: 10 × SCALES
+    y2, tau2, J2 = rescale(ev, y, tau, M, J, 10.0 * SCALES)          # the floor forces new scales: 10 × SCALES
     assert np.allclose(ev.s, 10.0 * SCALES)
     assert np.allclose(y2[:-1] * ev.s, x, rtol=1e-14, atol=0) and y2[-1] == y[-1]
     assert np.isclose(np.linalg.norm(tau2), 1.0) and np.allclose(tau2[:-1] * ev.s / (tau2[-1] * ev.ls),
@@ -205,26 +206,27 @@ def _fake(lam, dlam_ds, restarted=False):
 def test_a_fold_is_reported_only_where_the_branch_turns():
     """The parameter components of the tangents change sign between points 2 and 3 in each case; only where
     the parameter also moves along them (up into point 2, down after point 3) is it a fold."""
-    from rotor.periodic.continuation import Bifurcation, _confirmed_folds
+    from rotor.periodic.branch_events import confirmed_folds
+    from rotor.periodic.continuation import Bifurcation
 
     fold = [Bifurcation("fold", 3, 2.5, 1.0)]
     turns = [_fake(0.0, 1), _fake(1.0, 1), _fake(2.0, 0.5), _fake(2.1, -0.5), _fake(1.5, -1)]
-    assert _confirmed_folds(turns, fold) == fold
+    assert confirmed_folds(turns, fold) == fold
     goes_on = [_fake(0.0, 1), _fake(1.0, 1), _fake(2.0, 0.5), _fake(2.1, -0.5), _fake(2.5, 1)]   # a tangent turned
-    assert _confirmed_folds(goes_on, fold) == []
+    assert confirmed_folds(goes_on, fold) == []
     last = turns[:4]                                                    # nothing after: not confirmed
-    assert _confirmed_folds(last, fold) == []
+    assert confirmed_folds(last, fold) == []
     jump = turns[:3] + [_fake(2.1, -0.5, True)] + turns[4:]             # reached by a restart: no tangent to compare
-    assert _confirmed_folds(jump, fold) == []
+    assert confirmed_folds(jump, fold) == []
     other = [Bifurcation("period_doubling", 3, 2.05, -1.0)]
-    assert _confirmed_folds(last, other) == other
+    assert confirmed_folds(last, other) == other
 
 
 def test_fold_estimate_is_the_vertex_of_the_parabola():
     """λ(σ) = 3 − (σ − 0.3)² (scaled, λ_s = 2): dλ/dσ = 0.6 at σ = 0 and −0.2 at σ = 0.4, the vertex at
     σ = 0.3 with λ = 3 · 2 = 6, above both points (λ(0) = 5.82, λ(0.4) = 5.98)."""
-    from rotor.periodic.continuation import _fold_estimate
+    from rotor.periodic.branch_events import fold_estimate
 
     a, b = _fake(2.0 * (3 - 0.09), 0.6), _fake(2.0 * (3 - 0.01), -0.2)
-    got = _fold_estimate(a, b, 0.4, 2.0)
+    got = fold_estimate(a, b, 0.4, 2.0)
     assert abs(got - 6.0) < 1e-12 and got > max(a.parameter, b.parameter)

@@ -1,0 +1,90 @@
+"""The pseudo-arclength corrector and its pieces (:mod:`rotor.periodic.continuation`): the phase rows of a stuck
+face's continuum, the unit tangent, Newton on the bordered system, a point's Floquet record, the landing on the
+range's end, and the renewal of the state scales.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from contact.errors import ConvergenceError, InputError, OutsideDomainError
+from rotor.periodic.branch_types import NEUTRAL_TOL, RESCALE_RATIO, BranchPoint, ContinuationOptions, Evaluator
+from rotor.periodic.floquet import floquet
+from rotor.periodic.shooting import min_norm_step, orbit_scales, record_reduced
+
+
+def neutral_rows(J, tol: float = NEUTRAL_TOL) -> np.ndarray:
+    """Phase rows ``(k, n + 1)``: the directions ``v`` with ``D(M − I)D⁻¹ v = 0`` (singular values below
+    ``tol`` times the largest) padded with a zero parameter entry: a stuck face's continuum of orbits."""
+    _, s, vt = np.linalg.svd(J[:, :-1])
+    rows = vt[s < tol * s[0]]
+    return np.hstack([rows, np.zeros((len(rows), 1))])
+
+
+def unit_tangent(J, prev, rcond, phase=None):
+    """Unit tangent: the minimum-norm solution of ``[J; P; prevᵀ] τ = [0; 0; 1]``, normalised (``P`` the
+    phase rows: no motion along the continuum)."""
+    rows = [J] + ([phase] if phase is not None and len(phase) else []) + [prev[None, :]]
+    A = np.vstack(rows)
+    b = np.zeros(A.shape[0])
+    b[-1] = 1.0
+    t, _ = min_norm_step(A, b, rcond)
+    return t / np.linalg.norm(t)
+
+
+def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, anchor=None):
+    """Newton on ``[R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or None.
+    The phase rows ``P`` keep the orbit's place in a stuck face's continuum that of ``anchor``."""
+    y = y_pred.copy()
+    has_phase = phase is not None and len(phase)
+    for it in range(1, opts.max_iter + 1):
+        x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+        try:
+            R, J, M = ev(x, lam)
+        except (OutsideDomainError, ConvergenceError, InputError):   # an iterate the scheme cannot step
+            return None
+        res = float(np.max(np.abs(R)))
+        if not math.isfinite(res):
+            return None
+        A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
+        rhs = -np.concatenate([R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else []))
+        dy, _ = min_norm_step(A, rhs, opts.rcond)
+        y = y + dy
+        if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
+            return y - dy, J, M, it, res
+    return None
+
+
+def make_point(ev, y, J, M, it, res, tau, opts, restarted: int = 0) -> BranchPoint:
+    lam = y[-1] * ev.ls
+    period = ev.pb.n_steps * ev.flow(lam).dt_s
+    return BranchPoint(float(lam), y[:-1] * ev.s, floquet(M, period, tol=opts.multiplier_tol), it, res,
+                       float(tau[-1]), restarted)
+
+
+
+def land(ev, a, b, lam_end: float, opts, phase):
+    """The orbit at exactly ``lam_end``, between the scaled points ``a`` and ``b`` on either side of it: the
+    corrector on the hyperplane ``λ = lam_end`` from their linear interpolation; None if it fails."""
+    e = np.zeros(len(b))
+    e[-1] = 1.0
+    return correct(ev, a + (lam_end / ev.ls - a[-1]) / (b[-1] - a[-1]) * (b - a), e, opts, phase, a)
+
+
+def rescale(ev, y, tau, M, J, floor):
+    """Renew the state scales to the orbit's own peak-to-peak range over one period at ``y`` (never below
+    ``floor``) when they differ by more than :data:`RESCALE_RATIO`: returns ``(y, tau, J)`` in the new
+    scaled variables (``J`` transformed, not recomputed) and sets ``ev.s``."""
+    x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+    p, v, _ = record_reduced(ev.flow(lam), x, 0.0, ev.pb.n_steps, ev.pb.modes0, max(1, ev.pb.n_steps // 256))
+    new = np.maximum(orbit_scales(ev.flow(lam), p, v), floor)
+    ratio = new / ev.s
+    if max(ratio.max(), 1.0 / ratio.min()) <= RESCALE_RATIO:
+        return y, tau, J
+    old, ev.s = ev.s, new
+    y = np.concatenate([y[:-1] / ratio, y[-1:]])
+    tau = np.concatenate([tau[:-1] / ratio, tau[-1:]])
+    J = np.hstack([(M - np.eye(len(new))) * (new[None, :] / new[:, None]), (J[:, -1] * old / new)[:, None]])
+    return y, tau / np.linalg.norm(tau), J
+
