@@ -80,7 +80,13 @@ def bifurcations_between(ev, prev: BranchPoint, new: BranchPoint, index: int, y0
     """Bifurcations between ``prev`` and ``new``. A real multiplier through +1 without a turn of the
     parameter is a branch point (a pitchfork: symmetry breaking, e.g. a planar orbit starting to whirl).
     Across a restart (``new.restarted``) the tangents of two pieces of the map are not compared (no fold), and
-    a multiplier crossing is placed by linear interpolation of its test quantity (no corrector joins them)."""
+    a multiplier crossing is placed by linear interpolation of its test quantity (no corrector joins them).
+
+    A multiplier crossing between two points whose orbits differ in their switches (the end-face mode changes
+    per period, :attr:`BranchPoint.events`, or a restart between them) is a discontinuous bifurcation (Leine &
+    van Campen 2002): where a stick/slip switch appears or leaves, the monodromy changes by a saltation and its
+    multipliers jump across the unit circle instead of passing through it; it is reported as kind
+    ``"discontinuous"`` with the crossing's kind and both sides in ``detail``, not as a failure."""
     fold = prev.dlam_ds * new.dlam_ds < 0 and not new.restarted
     kinds = ["fold"] if fold else []
     kind = crossing(prev.floquet, new.floquet)
@@ -88,10 +94,19 @@ def bifurcations_between(ev, prev: BranchPoint, new: BranchPoint, index: int, y0
         kind = "branch_point"
     if kind is not None and kind not in kinds:
         kinds.append(kind)
-    if new.restarted:
-        return [Bifurcation(k, index, interpolated(k, prev, new), new.floquet.critical) for k in kinds]
-    return [Bifurcation(k, index, refine(ev, y0, tau0, ds, k, prev, new, opts, phase), new.floquet.critical)
-            for k in kinds]
+    switched = bool(new.restarted) or (prev.events >= 0 and new.events >= 0 and prev.events != new.events)
+    out = []
+    for k in kinds:
+        lam = (interpolated(k, prev, new) if new.restarted
+               else refine(ev, y0, tau0, ds, k, prev, new, opts, phase))
+        if k != "fold" and switched:
+            detail = (f"{k.replace('_', ' ')}: largest |multiplier| {prev.floquet.spectral_radius:.4g} -> "
+                      f"{new.floquet.spectral_radius:.4g}, switches per period {prev.events} -> {new.events}"
+                      + (" (across a restart)" if new.restarted else ""))
+            out.append(Bifurcation("discontinuous", index, lam, new.floquet.critical, detail))
+        else:
+            out.append(Bifurcation(k, index, lam, new.floquet.critical))
+    return out
 
 
 def interpolated(kind: str, a: BranchPoint, b: BranchPoint) -> float:

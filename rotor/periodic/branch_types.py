@@ -25,6 +25,8 @@ NEUTRAL_TOL = 1e-8
 RESTART_STEP = 1e-4
 #: how a restarted point was found (``BranchPoint.restarted``; 0: by the corrector)
 SECANT, TRANSIENT, COLD = 1, 2, 3
+#: the restarts by name
+RESTART_NAMES = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold"}
 #: a restart from the linear periodic solution (a new segment's start) is tried this many times, at parameter
 #: steps growing ×4 from ``COLD_STEP`` (scaled parameter; with a tenth of 600–18 000 rpm as the scale: 1.7 to 445 rpm)
 COLD_TRIES, COLD_STEP = 5, 1e-3
@@ -84,7 +86,9 @@ class BranchPoint:
     """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector
     ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent), ``restarted``:
     0 reached by the corrector from the point before, else by a restart past a switch (:func:`rotor.periodic.restarts.restart`):
-    :data:`SECANT`, :data:`TRANSIENT` or :data:`COLD`, how its orbit was shot (:func:`rotor.periodic.restarts.shot`)."""
+    :data:`SECANT`, :data:`TRANSIENT` or :data:`COLD`, how its orbit was shot (:func:`rotor.periodic.restarts.shot`);
+    ``events``: end-face mode changes over the period (−1 unknown), ``why``: for a restarted point, why the
+    corrector failed before it (the last corrector's failure, :attr:`Evaluator.failure`)."""
 
     parameter: float
     state: np.ndarray
@@ -93,23 +97,30 @@ class BranchPoint:
     residual: float
     dlam_ds: float
     restarted: int = 0
+    events: int = -1
+    why: str = ""
 
 
 @dataclass(frozen=True)
 class Bifurcation:
-    """``kind`` ("fold", "branch_point", "period_doubling", "neimark_sacker") between points ``index − 1`` and ``index``,
-    at the interpolated ``parameter``; ``multiplier`` the critical one at point ``index``."""
+    """``kind`` ("fold", "branch_point", "period_doubling", "neimark_sacker", "discontinuous") between points
+    ``index − 1`` and ``index``, at the interpolated ``parameter``; ``multiplier`` the critical one at point
+    ``index``; ``detail``: for a discontinuous (set-valued) bifurcation, the largest |multiplier| on either side
+    and the switches per period that changed between the two points (Leine & van Campen 2002)."""
 
     kind: str
     index: int
     parameter: float
     multiplier: complex
+    detail: str = ""
 
 
 @dataclass(frozen=True)
 class Branch:
-    """Points and bifurcations of one branch, ``period_revs``, why it stopped (``stop``), ``wall_s``, and
-    ``restarts``: points reached by a shooting restart past a switch (:func:`rotor.periodic.restarts.restart`)."""
+    """Points and bifurcations of one branch, ``period_revs``, why it stopped (``stop``), ``wall_s``,
+    ``restarts``: points reached by a shooting restart past a switch (:func:`rotor.periodic.restarts.restart`),
+    and ``failures``: every stall of the corrector, ``(parameter, why, outcome)`` (``outcome``: how it was passed:
+    a smaller step, a restart, or the stop), so that no non-convergence is hidden."""
 
     points: tuple
     bifurcations: tuple
@@ -117,6 +128,7 @@ class Branch:
     stop: str
     wall_s: float
     restarts: int = 0
+    failures: tuple = ()
 
     def parameters(self) -> np.ndarray:
         return np.array([p.parameter for p in self.points])
@@ -155,11 +167,14 @@ class ContinuationOptions:
 
 
 class Evaluator:
-    """``R``, ``M`` and ``∂R/∂λ`` at (x, λ) in scaled variables, with the flow cached per λ."""
+    """``R``, ``M`` and ``∂R/∂λ`` at (x, λ) in scaled variables, with the flow cached per λ. ``events``: the
+    end-face mode changes of the last map evaluated with its Jacobian; ``failure``: why the last corrector
+    failed (set by :func:`rotor.periodic.corrector.correct`)."""
 
     def __init__(self, problem: Problem, scales: np.ndarray, lam_scale: float):
         self.pb, self.s, self.ls = problem, scales, lam_scale
         self._flows: dict = {}
+        self.events, self.failure = -1, ""
 
     def flow(self, lam):
         if lam not in self._flows:
@@ -173,6 +188,7 @@ class Evaluator:
         R = (r.state - x) / self.s
         if not jacobian:
             return R, None, None
+        self.events = int(r.events)
         h = PARAM_REL_STEP * max(abs(lam), 1e-12)
         Rp = advance(self.flow(lam + h), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=False).state
         Rm = advance(self.flow(lam - h), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=False).state

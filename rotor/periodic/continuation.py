@@ -53,15 +53,15 @@ import numpy as np
 
 from sweep.progress import report
 from rotor.periodic.branch_events import bifurcations_between, confirmed_folds
-from rotor.periodic.branch_types import (COLD, NEUTRAL_TOL, PARAM_REL_STEP, RESCALE_RATIO, RESTART_STEP, SECANT,
-                                         TRANSIENT, Bifurcation, Branch, BranchPoint, ContinuationOptions, Evaluator,
-                                         Problem, parameter_problem, speed_problem)
+from rotor.periodic.branch_types import (COLD, NEUTRAL_TOL, PARAM_REL_STEP, RESCALE_RATIO, RESTART_NAMES,
+                                         RESTART_STEP, SECANT, TRANSIENT, Bifurcation, Branch, BranchPoint,
+                                         ContinuationOptions, Evaluator, Problem, parameter_problem, speed_problem)
 from rotor.periodic.corrector import correct, land, make_point, neutral_rows, rescale, unit_tangent
 from rotor.periodic.period_flow import advance
-from rotor.periodic.restarts import restart
+from rotor.periodic.restarts import bridge, restart
 from rotor.periodic.shooting import ShootingOptions, shoot
 
-__all__ = ["COLD", "NEUTRAL_TOL", "PARAM_REL_STEP", "RESCALE_RATIO", "RESTART_STEP", "SECANT", "TRANSIENT",
+__all__ = ["COLD", "NEUTRAL_TOL", "PARAM_REL_STEP", "RESCALE_RATIO", "RESTART_NAMES", "RESTART_STEP", "SECANT", "TRANSIENT",
            "Bifurcation", "Branch", "BranchPoint", "ContinuationOptions", "Evaluator", "Problem", "continue_branch",
            "parameter_problem", "speed_problem", "switch_period_doubling"]
 
@@ -105,7 +105,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         return Branch((), (), problem.period_revs, f"no orbit at the start ({problem.name} = {lam0:g})",
                       time.perf_counter() - t_start)
     pt, y, J, phase, tau = got
-    points, bifs, restarts, fails = [pt], [], 0, 0
+    points, bifs, restarts, fails, failures, stalls = [pt], [], 0, 0, [], []
     direction = math.copysign(1.0, lam_end - lam0)
     ds, stop = opts.ds, "max_points"
     while len(points) < opts.max_points:
@@ -116,31 +116,41 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         if ahead or (side is not None and got is not None and (opts.watch(ev, got[0]) > 0.0) != side):
             stop = "grazing"
             break
-        guide = tau
+        guide, why = tau, ""
         if got is None:
             fails += 1
+            stalls.append(ev.failure)
             if opts.pass_switches and fails == (1 if points[-1].restarted else opts.restart_after):
                 got = restart(ev, points, y, tau, opts, len(phase) > 0)
+            if got is None and opts.pass_switches and ds * 0.5 < opts.ds_min:
+                got = bridge(ev, points, y, direction, opts)
             if got is None:
                 ds *= 0.5
                 if ds < opts.ds_min:
                     stop = "step below ds_min"
+                    failures.append((float(y[-1] * ev.ls), _stall_text(stalls), "stopped: no restart found"))
                     break
                 continue
             y, J, M, it, res, restarted, guide = got
+            why = _stall_text(stalls)
+            failures.append((float(points[-1].parameter), why, f"restart ({RESTART_NAMES[restarted]}) at "
+                             f"{problem.name} = {y[-1] * ev.ls:.6g}"))
             restarts += 1
             ds = opts.ds
         else:
             y, J, M, it, res = got
             restarted = 0
-        fails = 0
+            if stalls:
+                failures.append((float(points[-1].parameter), _stall_text(stalls), f"passed with a step ds = {ds:.3g}"))
+        fails, stalls = 0, []
         phase_new = neutral_rows(J)
         tau_new = unit_tangent(J, guide, opts.rcond, phase_new)
-        pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted)
+        pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
         bifs += bifurcations_between(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
         if (pt.parameter - lam_end) * direction > 0 and (landed := land(ev, y_prev, y, lam_end, opts, phase)):
             y, J, M, it, res = landed        # the last orbit at lam_end itself, not beyond it
-            pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted)
+            pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
+        switched = pt.events != points[-1].events
         points.append(pt)
         report("branch_point", points=len(points), max_points=opts.max_points, parameter=pt.parameter, start=lam0,
                end=lam_end)
@@ -148,8 +158,9 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         if opts.follow_scales:
             y, tau, J = rescale(ev, y, tau, M, J, floor)
         phase = neutral_rows(J)
-        if not restarted:
-            ds = min(ds * 1.5, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
+        if not restarted:      # no growth across a change of the switches per period: the next may be close
+            grow = 1.0 if switched else 1.5
+            ds = min(ds * grow, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
         if (pt.parameter - lam_end) * direction >= 0:
             stop = "end reached"
             break
@@ -157,7 +168,14 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
             stop = "turned back beyond the start"
             break
     return Branch(tuple(points), tuple(confirmed_folds(points, bifs)), problem.period_revs, stop,
-                  time.perf_counter() - t_start, restarts)
+                  time.perf_counter() - t_start, restarts, tuple(failures))
+
+
+def _stall_text(stalls: list) -> str:
+    """The corrector failures of one stall in words: how many, and the last one's reason."""
+    if not stalls:
+        return ""
+    return f"{len(stalls)} corrector failure{'s' * (len(stalls) > 1)}, last: {stalls[-1]}"
 
 
 def switch_period_doubling(problem: Problem, branch: Branch, bif: Bifurcation, lam_end: float, *, scales,

@@ -13,6 +13,9 @@ from rotor.periodic.branch_types import NEUTRAL_TOL, RESCALE_RATIO, BranchPoint,
 from rotor.periodic.floquet import floquet
 from rotor.periodic.shooting import min_norm_step, orbit_scales, record_reduced
 
+#: halvings of a Newton step whose residual grew (:func:`correct`)
+BACKTRACKS = 3
+
 
 def neutral_rows(J, tol: float = NEUTRAL_TOL) -> np.ndarray:
     """Phase rows ``(k, n + 1)``: the directions ``v`` with ``D(M − I)D⁻¹ v = 0`` (singular values below
@@ -34,33 +37,52 @@ def unit_tangent(J, prev, rcond, phase=None):
 
 
 def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, anchor=None):
-    """Newton on ``[R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or None.
-    The phase rows ``P`` keep the orbit's place in a stuck face's continuum that of ``anchor``."""
+    """Newton on ``[R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or None
+    (``ev.failure`` then says why). The phase rows ``P`` keep the orbit's place in a stuck face's continuum
+    that of ``anchor``.
+
+    A step whose residual is larger than the last iterate's is halved (at most :data:`BACKTRACKS` times, each
+    an iteration): where a switch inside the period makes the map's derivative jump (a kink), the full Newton
+    step taken with the Jacobian of one side overshoots to the other and the plain iteration cycles."""
     y = y_pred.copy()
     has_phase = phase is not None and len(phase)
+    last = None              # (y, dy, residual) of the last accepted iterate
+    halvings, trail = 0, []
     for it in range(1, opts.max_iter + 1):
         x, lam = y[:-1] * ev.s, y[-1] * ev.ls
         try:
             R, J, M = ev(x, lam)
-        except (OutsideDomainError, ConvergenceError, InputError):   # an iterate the scheme cannot step
+        except (OutsideDomainError, ConvergenceError, InputError) as e:   # an iterate the scheme cannot step
+            ev.failure = f"iterate {it} outside what the scheme can step ({type(e).__name__})"
             return None
         res = float(np.max(np.abs(R)))
         if not math.isfinite(res):
+            ev.failure = f"iterate {it}: residual not finite"
             return None
+        trail.append(res)
+        if last is not None and res > last[2] and halvings < BACKTRACKS:
+            halvings += 1
+            y = last[0] + 0.5 ** halvings * last[1]
+            continue
+        halvings = 0
         A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
         rhs = -np.concatenate([R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else []))
         dy, _ = min_norm_step(A, rhs, opts.rcond)
+        last = (y, dy, res)
         y = y + dy
         if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
             return y - dy, J, M, it, res
+    ev.failure = (f"no convergence in {opts.max_iter} iterations (residuals "
+                  + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")")
     return None
 
 
-def make_point(ev, y, J, M, it, res, tau, opts, restarted: int = 0) -> BranchPoint:
+def make_point(ev, y, J, M, it, res, tau, opts, restarted: int = 0, why: str = "") -> BranchPoint:
+    """The :class:`BranchPoint` at the scaled ``y`` just evaluated (its switches per period ``ev.events``)."""
     lam = y[-1] * ev.ls
     period = ev.pb.n_steps * ev.flow(lam).dt_s
     return BranchPoint(float(lam), y[:-1] * ev.s, floquet(M, period, tol=opts.multiplier_tol), it, res,
-                       float(tau[-1]), restarted)
+                       float(tau[-1]), restarted, ev.events, why)
 
 
 
