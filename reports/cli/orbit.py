@@ -324,8 +324,6 @@ def _state_start(args, name: str, n_dofs: int) -> dict:
 
     from contact.files import check_run_files
     opt = f"--from-state = {args.from_state}"
-    if args.from_orbit is not None:
-        raise InputError(f"{opt}: give --from-orbit or --from-state, not both")
     try:
         summary = check_run_files(args.from_state, "simulate")
         scene, rpm = summary["scene"], float(summary["speed_rpm"])
@@ -362,6 +360,8 @@ def _branch(args) -> int:
     if station not in channels:
         raise InputError(f"--station = {station}: not a response channel of {name} "
                          f"(have {', '.join(channels)})")
+    if args.from_state is not None and args.from_orbit is not None:
+        raise InputError(f"--from-state = {args.from_state}: give --from-orbit or --from-state, not both")
     chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}   # a bad --from-orbit first
     if args.from_state is not None:                                                  # and a bad --from-state
         from rotor.studies.steady_state import point_system
