@@ -120,8 +120,10 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         if got is None:
             fails += 1
             stalls.append(ev.failure)
-            if opts.pass_switches and fails == (1 if points[-1].restarted else opts.restart_after):
-                got = restart(ev, points, y, tau, opts, len(phase) > 0)
+            # in a stuck face's continuum (phase rows) or just after a restart, the first failure restarts: the
+            # predictor has made the face slip, which no smaller step of the corrector undoes
+            if opts.pass_switches and fails == (1 if points[-1].restarted or len(phase) else opts.restart_after):
+                got = restart(ev, points, y, tau, opts, len(phase) > 0, ds * abs(tau[-1]))
             if got is None and opts.pass_switches and ds * 0.5 < opts.ds_min:
                 got = bridge(ev, points, y, direction, opts)
             if got is None:

@@ -20,11 +20,12 @@ from rotor.periodic.shooting import ShootingOptions, shoot, shoot_from_transient
 BRIDGE_STEPS = (3e-3, 1e-2, 3e-2, 0.1, 0.25, 0.5)
 
 
-def restart(ev, points, y, tau, opts, continuum: bool):
+def restart(ev, points, y, tau, opts, continuum: bool, step_hint: float = 0.0):
     """A point past a switch where the corrector cannot go: shooting (:func:`rotor.periodic.shooting.shoot`,
     Newton with halving and Levenberg–Marquardt retrials, no arclength or phase row) at the fixed parameter
     ``λ_k + 2h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
-    the last step's parameter advance (at least :data:`RESTART_STEP`), four times as long after each failure,
+    the last step's parameter advance (at least :data:`RESTART_STEP` and half ``step_hint``, the parameter
+    advance of the predictor that failed), four times as long after each failure,
     ``restart_tries`` times, at most ``ds_max`` (scaled parameter); then at ``λ_k + 2h`` a transient from the
     last orbit before shooting, then from the linear periodic solution at :data:`COLD_TRIES` steps growing ×4
     (:func:`shot`). In a stuck face's
@@ -42,7 +43,8 @@ def restart(ev, points, y, tau, opts, continuum: bool):
     if abs(d[-1]) < 1e-3 * np.linalg.norm(d):       # at a turn: no direction in the parameter to restart along
         return None
     d = d / np.linalg.norm(d)
-    h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), RESTART_STEP)
+    h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), RESTART_STEP,
+            0.5 * step_hint)
     tries = [(SECANT, min(2.0 * h * 4.0 ** k, opts.ds_max)) for k in range(opts.restart_tries)]
     cold = [(COLD, min(COLD_STEP * 4.0 ** k, opts.ds_max)) for k in range(COLD_TRIES)]
     tries = ([(TRANSIENT, 2.0 * h)] + tries if continuum else tries + [(TRANSIENT, 2.0 * h)]) + cold
