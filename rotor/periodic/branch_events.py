@@ -83,7 +83,7 @@ def bifurcations_between(ev, prev: BranchPoint, new: BranchPoint, index: int, y0
     a multiplier crossing is placed by linear interpolation of its test quantity (no corrector joins them).
 
     A multiplier crossing between two points whose orbits differ in their switches (the end-face mode changes
-    per period, :attr:`BranchPoint.events`, or a restart between them) is a discontinuous bifurcation (Leine &
+    per period, :attr:`BranchPoint.events`) is a discontinuous bifurcation (Leine &
     van Campen 2002): where a stick/slip switch appears or leaves, the monodromy changes by a saltation and its
     multipliers jump across the unit circle instead of passing through it; it is reported as kind
     ``"discontinuous"`` with the crossing's kind and both sides in ``detail``, not as a failure."""
@@ -94,7 +94,7 @@ def bifurcations_between(ev, prev: BranchPoint, new: BranchPoint, index: int, y0
         kind = "branch_point"
     if kind is not None and kind not in kinds:
         kinds.append(kind)
-    switched = bool(new.restarted) or (prev.events >= 0 and new.events >= 0 and prev.events != new.events)
+    switched = prev.events >= 0 and new.events >= 0 and prev.events != new.events
     out = []
     for k in kinds:
         lam = (interpolated(k, prev, new) if new.restarted

@@ -35,12 +35,26 @@ a stuck continuum: the face slips a little and holds again) or from the linear p
 is marked ``restarted`` and no fold is read across it. ``follow_scales`` renews the state scales with the
 orbit's own range (the amplitude grows with the speed squared: with the start's scales the steps creep).
 
+Through switches (issue 24). The maps are those of :class:`Problem` (``locate_events``: friction events
+located inside the step, the map continuous through stick onsets and slip reversals; contact onset is not yet
+located). The corrector (:func:`rotor.periodic.corrector.correct`) halves a Newton step whose residual grew (a
+kink of the map where a switch appears); no step growth across a change of the switches per period; in a
+stuck face's continuum the first failed corrector restarts (measured 5 150–5 190 rpm on the scene's default
+reading: the iterates made the faces slip, 2 to 34 switches, and cycled at 1e-3, while a transient from the
+last orbit 2–5 rpm on converged). Where the corrector fails down to ``ds_min`` and no restart passes, a last
+resort (:func:`rotor.periodic.restarts.bridge`) shoots further on (secant predictor, then the linear periodic
+solution); only if that fails too does the branch stop. Every stall is kept (``Branch.failures``: where, why,
+how it was passed) and each restarted point carries why the corrector failed before it (``BranchPoint.why``).
+
 Bifurcations between consecutive points: a fold where the parameter component of the tangent changes sign and
 the secants into and out of the pair confirm the turn (:func:`rotor.periodic.branch_events.confirmed_folds`);
 period doubling, Neimark–Sacker, and branch points (a real multiplier through +1 with no turn: a pitchfork)
 where the count of multipliers outside the unit circle changes (:func:`rotor.periodic.floquet.crossing`). Each is located by regula falsi on
 the arclength between the two points, on its test quantity (``dλ/ds``, or ``|μ| − 1`` of the largest multiplier
-of the crossing kind), every trial a corrected orbit. :func:`switch_period_doubling` starts the doubled-period branch at a period doubling from the
+of the crossing kind), every trial a corrected orbit. A crossing between two orbits whose switches per period
+differ is reported as a ``discontinuous`` bifurcation (Leine & van Campen 2002: the
+multiplier jumps across the unit circle at the switch), with both sides in its ``detail``
+(:func:`rotor.periodic.branch_events.bifurcations_between`). :func:`switch_period_doubling` starts the doubled-period branch at a period doubling from the
 eigenvector of the multiplier −1.
 """
 from __future__ import annotations

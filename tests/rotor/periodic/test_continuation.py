@@ -230,3 +230,50 @@ def test_fold_estimate_is_the_vertex_of_the_parabola():
     a, b = _fake(2.0 * (3 - 0.09), 0.6), _fake(2.0 * (3 - 0.01), -0.2)
     got = fold_estimate(a, b, 0.4, 2.0)
     assert abs(got - 6.0) < 1e-12 and got > max(a.parameter, b.parameter)
+
+
+def _with_multipliers(lam, mults, events, restarted=0):
+    """A point at ``lam`` whose monodromy has the multipliers ``mults`` and ``events`` switches per period."""
+    from rotor.periodic.continuation import BranchPoint
+    from rotor.periodic.floquet import floquet
+    return BranchPoint(lam, np.zeros(len(mults)), floquet(np.diag(mults), 0.01), 0, 0.0, 1.0, restarted, events)
+
+
+def test_a_multiplier_crossing_where_the_switches_change_is_a_discontinuous_bifurcation():
+    """Leine & van Campen (2002): where a stick/slip switch appears between two orbits the multipliers jump (a
+    saltation), here −0.5 to −1.6; reported as "discontinuous" with both sides, not as the smooth kind. A crossing
+    between orbits with the same switches keeps its kind."""
+    from rotor.periodic.branch_events import bifurcations_between
+
+    a = _with_multipliers(100.0, [0.3, -0.5], 4)
+    b = _with_multipliers(101.0, [0.3, -1.6], 6, restarted=1)
+    (bif,) = bifurcations_between(None, a, b, 1, None, None, 0.1, None, None)
+    assert bif.kind == "discontinuous" and 100.0 < bif.parameter < 101.0
+    assert "period doubling" in bif.detail and "0.5 -> 1.6" in bif.detail and "4 -> 6" in bif.detail
+    (same,) = bifurcations_between(None, a, _with_multipliers(101.0, [0.3, -1.6], 4, 1), 1, None, None, 0.1, None,
+                                   None)
+    assert same.kind == "period_doubling" and same.detail == ""
+    assert bifurcations_between(None, a, _with_multipliers(101.0, [0.3, 0.5], 6, 1), 1, None, None, 0.1, None,
+                                None) == []      # no crossing: nothing, switches or not
+
+
+def test_the_corrector_halves_a_step_whose_residual_grew():
+    """On ``R(x) = sign(x)|x|^(1/3)`` (a cusp, as a map's derivative at a switch) plain Newton doubles the
+    distance each step, ``x ← −2x``, and diverges; with halving the residual falls and ``ev.failure`` says
+    why the corrector stopped."""
+    from rotor.periodic.continuation import ContinuationOptions
+    from rotor.periodic.corrector import correct
+
+    class Cusp:
+        s, ls, events, failure, seen = np.ones(1), 1.0, 0, "", []
+
+        def __call__(self, x, lam, jacobian=True):
+            r = np.cbrt(x)
+            self.seen.append(float(abs(r[0])))
+            d = 1.0 / (3.0 * np.cbrt(x[0]) ** 2)
+            return r, np.array([[d, 0.0]]), None
+
+    ev = Cusp()
+    got = correct(ev, np.array([1.0, 0.0]), np.array([0.0, 1.0]), ContinuationOptions(max_iter=12))
+    assert got is None and ev.failure.startswith("no convergence in 12 iterations")
+    assert ev.seen[-1] < 0.5 * ev.seen[0]          # plain Newton: 2^(1/3) larger at every step
