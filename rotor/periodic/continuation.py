@@ -134,12 +134,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         if got is None:
             fails += 1
             stalls.append(ev.failure)
-            # in a stuck face's continuum (phase rows) or just after a restart, the first failure restarts: the
-            # predictor has made the face slip, which no smaller step of the corrector undoes
-            if opts.pass_switches and fails == (1 if points[-1].restarted or len(phase) else opts.restart_after):
-                got = restart(ev, points, y, tau, opts, len(phase) > 0, ds * abs(tau[-1]))
-            if got is None and opts.pass_switches and ds * 0.5 < opts.ds_min:
-                got = bridge(ev, points, y, direction, opts)
+            got = _past_stall(ev, points, y, tau, ds, phase, direction, fails, opts)
             if got is None:
                 ds *= 0.5
                 if ds < opts.ds_min:
@@ -177,14 +172,36 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         if not restarted:      # no growth across a change of the switches per period: the next may be close
             grow = 1.0 if switched else 1.5
             ds = min(ds * grow, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
-        if (pt.parameter - lam_end) * direction >= 0:
-            stop = "end reached"
-            break
-        if (lam0 - pt.parameter) * direction > opts.back_margin * abs(lam_end - lam0):
-            stop = "turned back beyond the start"
+        if (stop := _ended(pt.parameter, lam0, lam_end, direction, opts)) != "max_points":
             break
     return Branch(tuple(points), tuple(confirmed_folds(points, bifs)), problem.period_revs, stop,
                   time.perf_counter() - t_start, restarts, tuple(failures))
+
+
+def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts):
+    """A point past a stall of the corrector, or None (then the step is halved): with ``pass_switches``, a
+    restart (:func:`rotor.periodic.restarts.restart`) after ``restart_after`` failures in a row, after the first
+    in a stuck face's continuum (phase rows) or just after a restart (the predictor has made the face slip,
+    which no smaller step of the corrector undoes); the last resort (:func:`rotor.periodic.restarts.bridge`)
+    once the next halving would take ``ds`` below ``ds_min``."""
+    if not opts.pass_switches:
+        return None
+    got = None
+    if fails == (1 if points[-1].restarted or len(phase) else opts.restart_after):
+        got = restart(ev, points, y, tau, opts, len(phase) > 0, ds * abs(tau[-1]))
+    if got is None and ds * 0.5 < opts.ds_min:
+        got = bridge(ev, points, y, direction, opts)
+    return got
+
+
+def _ended(lam: float, lam0: float, lam_end: float, direction: float, opts) -> str:
+    """Why the branch ends at the parameter ``lam`` ("end reached", "turned back beyond the start"), or
+    "max_points" (it goes on unless the points run out)."""
+    if (lam - lam_end) * direction >= 0:
+        return "end reached"
+    if (lam0 - lam) * direction > opts.back_margin * abs(lam_end - lam0):
+        return "turned back beyond the start"
+    return "max_points"
 
 
 def _stall_text(stalls: list) -> str:

@@ -178,7 +178,7 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
     opts = options or ContinuationOptions()
     ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
     floor = np.asarray(scales, float)
-    points, bifs, wall, restarts = [], [], 0.0, 0
+    points, bifs, wall, restarts, failures = [], [], 0.0, 0, []
     x, lam, tangent, stop = np.asarray(state0, float), float(lam0), None, "max_points"
     for k in range(max_grazings + 1):
         # the back margin stays the whole range's: a segment after a grazing fold starts turned back
@@ -190,6 +190,7 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
         points += br.points
         bifs += [replace(b, index=b.index + offset) for b in br.bifurcations]
         wall, restarts, stop = wall + br.wall_s, restarts + br.restarts, br.stop
+        failures += br.failures
         if br.stop != "grazing" or not br.points or k == max_grazings:
             break
         crossed = _cross(problem, br.points[-1], floor, ls, opts)
@@ -201,9 +202,10 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
             points += rest.points[1:]
             bifs += [replace(b, index=b.index + offset) for b in rest.bifurcations if b.index > 0]
             wall, restarts = wall + rest.wall_s, restarts + rest.restarts
+            failures += rest.failures
             stop = rest.stop
             break
         graze, kind, past, x, lam, tangent = crossed
         points.append(graze)
         bifs.append(Bifurcation(kind, len(points) - 1, graze.parameter, past))
-    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, wall, restarts)
+    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, wall, restarts, tuple(failures))
