@@ -20,8 +20,12 @@ period (no derivative): the residual ``max |Φ(x) − x|/s`` relative to the orb
 :func:`rotor.periodic.shooting.shoot` from that state (converged, Newton iterations, distance of its orbit from
 the point).
 
+After a fold the branch follows the returning (unstable middle) branch ``--turn-back-rpm`` back and then jumps
+past the fold as a run-up does (:func:`rotor.periodic.restarts.jump_past_fold`, a reported restart);
+``--max-wall-s`` ends the branch after that long (its stop says so).
+
 Run: ``nice .venv/bin/python benchmarks/bench_branch_switches.py [--max-points 1500] [--verify 12]
-[--locate-events on] [--branch-json PATH]``.
+[--locate-events on] [--turn-back-rpm 250] [--max-wall-s S] [--branch-json PATH]``.
 """
 from __future__ import annotations
 
@@ -47,19 +51,32 @@ TO_RPM = 30.0 / math.pi
 LOCATE = {"on": True, "off": False, "default": None}
 
 
-def run_branch(max_points: int, locate_events: bool | None) -> tuple:
+def run_branch(max_points: int, locate_events: bool | None, turn_back_rpm: float | None = None,
+               max_wall_s: float | None = None) -> tuple:
     """The branch (:class:`rotor.studies.orbit.BranchResult`), its ``ringcontact branch --json`` dict and wall time."""
     from rotor.dynamics.period_map import warm_up
     from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
+    from sweep.progress import reporting
+
     warm_up()
     t0 = time.perf_counter()
-    res = branch(SCENE, RPM_START, RPM_END, options=ContinuationOptions(max_points=max_points),
-                 locate_events=locate_events, tilt_ignored=False)
+
+    def progress(kind, fields):      # one line per orbit on stderr, to follow a long run
+        if kind == "branch_point":
+            print(f"orbit {fields['points']}: {fields['parameter'] * TO_RPM:.1f} rpm, "
+                  f"{time.perf_counter() - t0:.0f} s", file=sys.stderr, flush=True)
+
+    with reporting(progress):
+        scale = abs(RPM_END - RPM_START) / 10.0         # the branch's speed scale (rpm)
+        opts = ContinuationOptions(max_points=max_points, max_wall_s=max_wall_s,
+                                   turn_back=None if turn_back_rpm is None else turn_back_rpm / scale)
+        res = branch(SCENE, RPM_START, RPM_END, options=opts, locate_events=locate_events, tilt_ignored=False)
     wall = time.perf_counter() - t0
     d = {"scene": SCENE, "rpm_start": RPM_START, "rpm_end": RPM_END, "period_revs": res.start.period_revs,
-         "steps_per_rev": res.start.steps_per_rev, "locate_events": locate_events, **res.as_dict(),
+         "steps_per_rev": res.start.steps_per_rev, "locate_events": locate_events, "turn_back_rpm": turn_back_rpm,
+         **res.as_dict(),
          "wall_s": round(wall, 3)}
     return res, d, wall
 
@@ -108,8 +125,10 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict]) -> str:
     reached = max((p["speed_rpm"] for p in pts), default=float("nan"))
     lines = ["# Continuation of the Table 4 rotor through stick/slip and contact switches: one branch", "",
              f"Made by `nice .venv/bin/python benchmarks/bench_branch_switches.py --max-points {args.max_points} "
-             f"--verify {args.verify} --locate-events {args.locate_events}` at commit {commit}: one "
-             f"`ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f}` "
+             f"--verify {args.verify} --locate-events {args.locate_events} --turn-back-rpm {args.turn_back_rpm:g}"
+             + (f" --max-wall-s {args.max_wall_s:g}" if args.max_wall_s else "") + f"` at commit {commit}: one "
+             f"`ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f} --turn-back-rpm "
+             f"{args.turn_back_rpm:g}` "
              f"({d['steps_per_rev']} steps per revolution, friction events located inside the step: "
              f"{d['locate_events']}), in one process. Load average at start "
              f"{load[0][0]:.2f}/{load[0][1]:.2f}/{load[0][2]:.2f}, at end {load[1][0]:.2f}/{load[1][1]:.2f}/"
@@ -150,11 +169,13 @@ def main(argv=None) -> int:
     ap.add_argument("--verify", type=int, default=12)
     ap.add_argument("--locate-events", choices=sorted(LOCATE), default="on")
     ap.add_argument("--branch-json", type=Path, default=None)
+    ap.add_argument("--turn-back-rpm", type=float, default=250.0)
+    ap.add_argument("--max-wall-s", type=float, default=None)
     args = ap.parse_args(argv)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                             text=True).stdout.strip()
     load0 = os.getloadavg()
-    res, d, _ = run_branch(args.max_points, LOCATE[args.locate_events])
+    res, d, _ = run_branch(args.max_points, LOCATE[args.locate_events], args.turn_back_rpm, args.max_wall_s)
     load1 = os.getloadavg()
     if args.branch_json is not None:
         atomic_write_text(args.branch_json, json.dumps(d) + "\n")

@@ -31,7 +31,7 @@ def compute(max_points: int) -> dict:
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_branch_switches import run_branch
 
-    return run_branch(max_points, True)[1]
+    return run_branch(max_points, True, 250.0)[1]
 
 
 def main(argv=None) -> int:
@@ -56,7 +56,7 @@ def main(argv=None) -> int:
                 f"nice .venv/bin/python benchmarks/bench_branch_switches.py --branch-json BRANCH.json && "
                 f"nice .venv/bin/python benchmarks/study_bifurcation.py --branch-json BRANCH.json",
                 f"# = ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f} "
-                f"--max-points {args.max_points} --json (friction events located inside the step)"]
+                f"--max-points {args.max_points} --turn-back-rpm 250 --json (friction events located inside the step)"]
     reading = (ROOT / "reports" / "notes" / "study-bifurcation-reading.md").read_text(encoding="utf-8")
     for f in publish([d], ROOT / "reports" / "published", commands=commands, reading=reading):
         print("wrote", f)

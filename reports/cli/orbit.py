@@ -83,6 +83,9 @@ def _branch_parser() -> argparse.ArgumentParser:
                    help="channel of the diagram, <station>.y or <station>.z (default: the scene's first response station, .y)")
     p.add_argument("--from-orbit", type=in_file, default=None, metavar="FILE",
                    help="start on the orbit of an `orbit --out` FILE (same scene, --rpm-start its speed), stable or not")
+    p.add_argument("--turn-back-rpm", type=quantity("run_speed_rpm"), default=None, metavar="RPM",
+                   help="after a fold, follow the returning (middle) branch this far back, then jump past the fold "
+                        "as a run-up does (a restart, reported); default: follow the branch wherever it goes")
     p.add_argument("--from-state", type=in_dir, default=None, metavar="DIR",
                    help="start on the orbit a transient reaches from the end state of a `simulate --out DIR` run "
                         "(same scene, --rpm-start its speed, a whole number of revolutions)")
@@ -369,7 +372,9 @@ def _branch(args) -> int:
     _check_work(args, "ringcontact branch", min(args.rpm_start, args.rpm_end), int(args.max_points))
     t0 = time.perf_counter()
     res, events = _watched("ringcontact branch", args, lambda: branch(
-        args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(max_points=int(args.max_points)),
+        args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(
+            max_points=int(args.max_points), turn_back=None if args.turn_back_rpm is None else
+            args.turn_back_rpm / (abs(args.rpm_end - args.rpm_start) / 10.0)),     # the branch's speed scale
         **chosen, **_overrides(args)))
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),

@@ -148,7 +148,11 @@ class ContinuationOptions:
     the start's scales.
     ``watch``: None, or ``watch(evaluator, y) -> float`` (a contact measure, :mod:`rotor.periodic.grazing`); the
     branch stops (``stop`` "grazing", the crossing point not taken) before a predictor or a corrected point on
-    the other side of its zero than the last point."""
+    the other side of its zero than the last point.
+    ``turn_back``: None, or how far (scaled parameter) the branch may run back after a fold before it jumps past
+    the fold's parameter (:func:`rotor.periodic.restarts.jump_past_fold`: what a run-up does; the returning
+    branch is the unstable middle one of a hysteresis); ``max_wall_s``: stop ("wall time limit") after this
+    long (s)."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -164,6 +168,8 @@ class ContinuationOptions:
     restart_tries: int = 6
     follow_scales: bool = True
     watch: Callable | None = None
+    turn_back: float | None = None
+    max_wall_s: float | None = None
 
 
 class Evaluator:

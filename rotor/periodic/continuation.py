@@ -72,7 +72,7 @@ from rotor.periodic.branch_types import (COLD, NEUTRAL_TOL, PARAM_REL_STEP, RESC
                                          ContinuationOptions, Evaluator, Problem, parameter_problem, speed_problem)
 from rotor.periodic.corrector import correct, land, make_point, neutral_rows, rescale, unit_tangent
 from rotor.periodic.period_flow import advance
-from rotor.periodic.restarts import bridge, restart
+from rotor.periodic.restarts import bridge, jump_past_fold, restart
 from rotor.periodic.shooting import ShootingOptions, shoot
 
 __all__ = ["COLD", "NEUTRAL_TOL", "PARAM_REL_STEP", "RESCALE_RATIO", "RESTART_NAMES", "RESTART_STEP", "SECANT", "TRANSIENT",
@@ -121,27 +121,33 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     pt, y, J, phase, tau = got
     points, bifs, restarts, fails, failures, stalls = [pt], [], 0, 0, [], []
     direction = math.copysign(1.0, lam_end - lam0)
-    ds, stop = opts.ds, "max_points"
+    ds, stop, far = opts.ds, "max_points", pt          # far: the point farthest towards lam_end so far
     while len(points) < opts.max_points:
+        if opts.max_wall_s is not None and time.perf_counter() - t_start > opts.max_wall_s:
+            stop = "wall time limit"
+            break
         y_prev = y
         side = None if opts.watch is None else opts.watch(ev, y) > 0.0
         ahead = side is not None and (opts.watch(ev, y + ds * tau) > 0.0) != side
-        got = None if ahead else correct(ev, y + ds * tau, tau, opts, phase, y_prev)
+        back = opts.turn_back is not None and (far.parameter / ev.ls - y[-1]) * direction > opts.turn_back
+        got = None if ahead or back else correct(ev, y + ds * tau, tau, opts, phase, y_prev)
         if ahead or (side is not None and got is not None and (opts.watch(ev, got[0]) > 0.0) != side):
             stop = "grazing"
             break
         guide, why = tau, ""
         if got is None:
             fails += 1
-            stalls.append(ev.failure)
-            got = _past_stall(ev, points, y, tau, ds, phase, direction, fails, opts)
+            stalls.append(f"turned back at a fold at {problem.name} = {far.parameter:.6g}, followed "
+                          f"{abs(far.parameter - y[-1] * ev.ls):.6g} back" if back else ev.failure)
+            got = _past_stall(ev, points, y, tau, ds, phase, direction, fails, opts, far if back else None)
             if got is None:
-                ds *= 0.5
+                ds = 0.0 if back else 0.5 * ds
                 if ds < opts.ds_min:
-                    stop = "step below ds_min"
+                    stop = "turned back at a fold, no orbit past it" if back else "step below ds_min"
                     failures.append((float(y[-1] * ev.ls), _stall_text(stalls), "stopped: no restart found"))
                     break
                 continue
+        if len(got) == 7:                  # a restart: (y, J, M, iterations, residual, how, guide)
             y, J, M, it, res, restarted, guide = got
             why = _stall_text(stalls)
             failures.append((float(points[-1].parameter), why, f"restart ({RESTART_NAMES[restarted]}) at "
@@ -163,27 +169,28 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
             pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
         switched = pt.events != points[-1].events
         points.append(pt)
+        far = pt if (pt.parameter - far.parameter) * direction > 0 else far
         report("branch_point", points=len(points), max_points=opts.max_points, parameter=pt.parameter, start=lam0,
                end=lam_end)
-        tau = tau_new
-        if opts.follow_scales:
-            y, tau, J = rescale(ev, y, tau, M, J, floor)
+        y, tau, J = rescale(ev, y, tau_new, M, J, floor) if opts.follow_scales else (y, tau_new, J)
         phase = neutral_rows(J)
-        if not restarted:      # no growth across a change of the switches per period: the next may be close
-            grow = 1.0 if switched else 1.5
-            ds = min(ds * grow, opts.ds_max) if it <= 3 else (max(ds * 0.6, opts.ds_min) if it >= 7 else ds)
+        ds = ds if restarted else _next_step(ds, it, switched, opts)
         if (stop := _ended(pt.parameter, lam0, lam_end, direction, opts)) != "max_points":
             break
     return Branch(tuple(points), tuple(confirmed_folds(points, bifs)), problem.period_revs, stop,
                   time.perf_counter() - t_start, restarts, tuple(failures))
 
 
-def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts):
-    """A point past a stall of the corrector, or None (then the step is halved): with ``pass_switches``, a
+def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts, fold=None):
+    """A point past a stall of the corrector, or None (then the step is halved). Past the fold point ``fold``
+    (the branch has run back from it by ``turn_back``): the orbit a run-up jumps to
+    (:func:`rotor.periodic.restarts.jump_past_fold`). Else, with ``pass_switches``, a
     restart (:func:`rotor.periodic.restarts.restart`) after ``restart_after`` failures in a row, after the first
     in a stuck face's continuum (phase rows) or just after a restart (the predictor has made the face slip,
     which no smaller step of the corrector undoes); the last resort (:func:`rotor.periodic.restarts.bridge`)
     once the next halving would take ``ds`` below ``ds_min``."""
+    if fold is not None:
+        return jump_past_fold(ev, np.concatenate([fold.state / ev.s, [fold.parameter / ev.ls]]), direction, opts)
     if not opts.pass_switches:
         return None
     got = None
@@ -192,6 +199,14 @@ def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: i
     if got is None and ds * 0.5 < opts.ds_min:
         got = bridge(ev, points, y, direction, opts)
     return got
+
+
+def _next_step(ds: float, iterations: int, switched: bool, opts) -> float:
+    """The arclength step after a corrector of ``iterations``: ×1.5 after ≤ 3 (not across a change of the
+    switches per period, ``switched``: the next switch may be close), ×0.6 after ≥ 7."""
+    if iterations <= 3:
+        return min(ds * (1.0 if switched else 1.5), opts.ds_max)
+    return max(ds * 0.6, opts.ds_min) if iterations >= 7 else ds
 
 
 def _ended(lam: float, lam0: float, lam_end: float, direction: float, opts) -> str:

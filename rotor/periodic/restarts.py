@@ -18,6 +18,8 @@ from rotor.periodic.shooting import ShootingOptions, shoot, shoot_from_transient
 #: parameter steps (scaled) of the last-resort :func:`bridge` past a stretch no restart passes (with a tenth of
 #: 600–18 000 rpm as the scale: 5 to 870 rpm)
 BRIDGE_STEPS = (3e-3, 1e-2, 3e-2, 0.1, 0.25, 0.5)
+#: parameter step (scaled) past a fold of :func:`jump_past_fold` (with a tenth of 600–18 000 rpm: 17 rpm)
+JUMP_STEP = 1e-2
 
 
 def restart(ev, points, y, tau, opts, continuum: bool, step_hint: float = 0.0):
@@ -76,6 +78,22 @@ def bridge(ev, points, y, direction: float, opts):
         for how in (SECANT, COLD):
             y_pred = y + direction * step * np.concatenate([slope, [1.0]])
             got = shot(ev, y_pred, opts, how, y)
+            if got is not None:
+                return (*got, guide)
+    return None
+
+
+def jump_past_fold(ev, fold_y, direction: float, opts):
+    """The orbit a run-up jumps to past a fold: at the fold's parameter plus :data:`JUMP_STEP` (scaled) in
+    ``direction``, the transient from the orbit at the fold (``fold_y``, scaled, the farthest point reached),
+    then the linear periodic solution (:func:`shot`); what :func:`restart` returns, or None."""
+    guide = np.zeros(len(fold_y))
+    guide[-1] = direction
+    for step in (JUMP_STEP, 4.0 * JUMP_STEP):
+        y_pred = fold_y.copy()
+        y_pred[-1] += direction * step
+        for how in (TRANSIENT, COLD):
+            got = shot(ev, y_pred, opts, how, fold_y)
             if got is not None:
                 return (*got, guide)
     return None
