@@ -135,7 +135,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
             stop = "grazing"
             break
         guide, why = tau, ""
-        if got is None:
+        if got is None:                    # a stall of the corrector, or run back from a fold by turn_back
             fails += 1
             stalls.append(f"turned back at a fold at {problem.name} = {far.parameter:.6g}, followed "
                           f"{abs(far.parameter - y[-1] * ev.ls):.6g} back" if back else ev.failure)
@@ -163,18 +163,18 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         phase_new = neutral_rows(J)
         tau_new = unit_tangent(J, guide, opts.rcond, phase_new)
         pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
-        bifs += bifurcations_between(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
+        if not back:           # across a jump past a fold the two orbits lie on different branches
+            bifs += bifurcations_between(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
         if (pt.parameter - lam_end) * direction > 0 and (landed := land(ev, y_prev, y, lam_end, opts, phase)):
             y, J, M, it, res = landed        # the last orbit at lam_end itself, not beyond it
             pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
-        switched = pt.events != points[-1].events
         points.append(pt)
         far = pt if (pt.parameter - far.parameter) * direction > 0 else far
         report("branch_point", points=len(points), max_points=opts.max_points, parameter=pt.parameter, start=lam0,
                end=lam_end)
         y, tau, J = rescale(ev, y, tau_new, M, J, floor) if opts.follow_scales else (y, tau_new, J)
         phase = neutral_rows(J)
-        ds = ds if restarted else _next_step(ds, it, switched, opts)
+        ds = ds if restarted else _next_step(ds, it, pt.events != points[-2].events, opts)
         if (stop := _ended(pt.parameter, lam0, lam_end, direction, opts)) != "max_points":
             break
     return Branch(tuple(points), tuple(confirmed_folds(points, bifs)), problem.period_revs, stop,

@@ -277,3 +277,24 @@ def test_the_corrector_halves_a_step_whose_residual_grew():
     got = correct(ev, np.array([1.0, 0.0]), np.array([0.0, 1.0]), ContinuationOptions(max_iter=12))
     assert got is None and ev.failure.startswith("no convergence in 12 iterations")
     assert ev.seen[-1] < 0.5 * ev.seen[0]          # plain Newton: 2^(1/3) larger at every step
+
+
+def test_turn_back_follows_the_middle_branch_then_jumps_past_the_fold_as_a_run_up_does():
+    """``turn_back``: past the jump-down fold (726.368 rad/s warped, closed form) the branch follows the unstable
+    middle branch 30 rad/s back (0.3 of λ_s = 100 rad/s), then one restart lands on the lower-right branch just
+    past the fold (the run-up's jump), whose radius is the closed form's there, and goes on to the end."""
+    from rotor.periodic.branch_types import COLD, TRANSIENT
+    pb = speed_problem(lambda w: jeffcott_system(P, w), N, modes0=(0, 0))
+    br = continue_branch(pb, np.zeros(8), 150.0, 900.0, scales=SCALES, lam_scale=100.0,
+                         options=ContinuationOptions(ds=0.1, ds_max=0.4, turn_back=0.3))
+    assert br.stop == "end reached" and br.restarts == 1
+    (k,) = [i for i, p in enumerate(br.points) if p.restarted]
+    jump, before = br.points[k], br.points[k - 1]
+    w_fold = closed_form_folds(P, N)[1][0]
+    assert jump.restarted in (TRANSIENT, COLD) and 0.0 < jump.parameter - w_fold < 1.5         # 1 rad/s past the fold
+    assert w_fold - 40.0 < before.parameter < w_fold - 29.0 and not before.floquet.stable   # the middle branch
+    r = math.hypot(jump.state[0], jump.state[1])
+    # the lower-right branch: below the jump-up fold's radius (7.39 δ0), far from the upper branch (~45 δ0 here)
+    assert r < closed_form_folds(P, N)[0][1] and _curve_distance(jump.parameter, r) < 1e-6
+    assert "turned back at a fold" in jump.why and any("restart (" in f[2] for f in br.failures)
+    assert [b.kind for b in br.bifurcations] == ["fold"] and abs(br.bifurcations[0].parameter / w_fold - 1) < 1e-6
