@@ -184,13 +184,15 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
 def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts, fold=None):
     """A point past a stall of the corrector, or None (then the step is halved). Past the fold point ``fold``
     (the branch has run back from it by ``turn_back``): the orbit a run-up jumps to
-    (:func:`rotor.periodic.restarts.jump_past_fold`). Else, with ``pass_switches``, a
+    (:func:`rotor.periodic.restarts.jump_past_fold`), else the last resort from the fold point
+    (:func:`rotor.periodic.restarts.bridge`, 5 to 870 rpm further on Table 4). Else, with ``pass_switches``, a
     restart (:func:`rotor.periodic.restarts.restart`) after ``restart_after`` failures in a row, after the first
     in a stuck face's continuum (phase rows) or just after a restart (the predictor has made the face slip,
     which no smaller step of the corrector undoes); the last resort (:func:`rotor.periodic.restarts.bridge`)
     once the next halving would take ``ds`` below ``ds_min``."""
-    if fold is not None:
-        return jump_past_fold(ev, np.concatenate([fold.state / ev.s, [fold.parameter / ev.ls]]), direction, opts)
+    if fold is not None:     # the jump a run-up makes; else the last resort from the fold point, further on
+        y_fold = np.concatenate([fold.state / ev.s, [fold.parameter / ev.ls]])
+        return jump_past_fold(ev, y_fold, direction, opts) or bridge(ev, [fold], y_fold, direction, opts)
     if not opts.pass_switches:
         return None
     got = None
