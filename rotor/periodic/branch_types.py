@@ -105,7 +105,7 @@ class BranchPoint:
 class Bifurcation:
     """``kind`` ("fold", "branch_point", "period_doubling", "neimark_sacker", "discontinuous") between points
     ``index − 1`` and ``index``, at the interpolated ``parameter``; ``multiplier`` the critical one at point
-    ``index``; ``detail``: for a discontinuous (set-valued) bifurcation, the largest |multiplier| on either side
+    ``index``; ``detail``: for a discontinuous (set-valued) bifurcation, the spectral radius on either side
     and the switches per period that changed between the two points (Leine & van Campen 2002)."""
 
     kind: str
