@@ -1,25 +1,31 @@
-"""Continuation of the Table 4 rotor across stick/slip switches: before and after, one run.
+"""Continuation of the Table 4 rotor through stick/slip and contact switches: one branch 600 -> 18 000 rpm.
 
-Writes ``reports/published/perf-branch-switches.md`` (+ ``.json``). The Table 4 rotor (``paper-table4``,
-2 240 steps per revolution, the step :func:`rotor.studies.orbit.branch` picks) is followed in speed from
-600 rpm towards 18 000 rpm by :func:`rotor.studies.orbit.branch` (one ``ringcontact branch paper-table4
---rpm-start 600 --rpm-end 18000``), twice, in two processes side by side:
+Writes ``reports/published/perf-branch-switches.md`` (+ ``.json``) and, with ``--branch-json PATH``, the branch
+itself as ``ringcontact branch --json`` writes it (amplitudes included), from which
+``benchmarks/study_bifurcation.py --branch-json PATH`` draws the published bifurcation diagram.
 
-* *before*: ``ContinuationOptions(pass_switches=False, follow_scales=False)``, the corrector alone with the
-  start orbit's scales (what the branch did before :mod:`rotor.periodic.continuation` passed switches);
-* *after*: the defaults (a corrector that stops contracting is given up, restarts past the switch by
-  shooting, scales following the orbit).
+The Table 4 rotor (``paper-table4``, 2 240 steps per revolution, the step :func:`rotor.studies.orbit.branch`
+picks) is followed in speed from 600 rpm to 18 000 rpm by :func:`rotor.studies.orbit.branch` (one
+``ringcontact branch paper-table4 --rpm-start 600 --rpm-end 18000``), with the period maps' friction events
+located inside the step (``--locate-events on``, :attr:`rotor.dynamics.system.NewmarkOptions.locate_events`;
+``off``: switches on step boundaries; ``default``: the scheme's default). Reported: points, highest speed
+reached, why it stopped, wall time with the load average at start and end (shared 2-core machine), every
+restart (the speeds it skipped, how it was shot, why the corrector failed before it), every corrector stall and
+how it was passed, the bifurcations (discontinuous ones with both sides), the stable and unstable stretches.
 
-Each run: points, highest speed reached, why it stopped, restarts (by kind), wall time. The *after* branch is
-then verified on a sample of ``--verify`` points: at each point's speed a fresh flow
-(:func:`rotor.periodic.period_flow.make_flow`) maps the point's own state over its period
-(:func:`rotor.periodic.period_flow.advance`, no derivative): the residual ``max |Φ(x) − x|/s`` relative to the
-orbit's own peak-to-peak scale ``s`` (:func:`rotor.periodic.shooting.orbit_scales`, never below the start's)
-and an independent :func:`rotor.periodic.shooting.shoot` from that state (converged, Newton iterations,
-distance of its orbit from the point).
+The branch is then verified on ``--verify`` points spread over it: at each point's speed a fresh flow
+(:func:`rotor.periodic.period_flow.make_flow`, the same event location) maps the point's own state over its
+period (no derivative): the residual ``max |Φ(x) − x|/s`` relative to the orbit's own peak-to-peak scale ``s``
+(:func:`rotor.periodic.shooting.orbit_scales`, never below the start's), and an independent
+:func:`rotor.periodic.shooting.shoot` from that state (converged, Newton iterations, distance of its orbit from
+the point).
 
-Load average at start and end (shared 2-core machine). Run:
-``nice .venv/bin/python benchmarks/bench_branch_switches.py [--max-points 400] [--verify 16]``.
+After a fold the branch follows the returning (unstable middle) branch ``--turn-back-rpm`` back and then jumps
+past the fold as a run-up does (:func:`rotor.periodic.restarts.jump_past_fold`, a reported restart);
+``--max-wall-s`` ends the branch after that long (its stop says so).
+
+Run: ``nice .venv/bin/python benchmarks/bench_branch_switches.py [--max-points 1500] [--verify 12]
+[--locate-events on] [--turn-back-rpm 250] [--max-wall-s S] [--branch-json PATH]``.
 """
 from __future__ import annotations
 
@@ -27,9 +33,9 @@ import argparse
 import json
 import math
 import os
+import subprocess
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -42,33 +48,40 @@ from contact.files import atomic_write_text  # noqa: E402
 OUT = ROOT / "reports" / "published"
 SCENE, RPM_START, RPM_END = "paper-table4", 600.0, 18000.0
 TO_RPM = 30.0 / math.pi
+LOCATE = {"on": True, "off": False, "default": None}
 
 
-def run_branch(mode: str, max_points: int, n_verify: int) -> dict:
-    """One branch from 600 rpm (``mode`` "before" or "after") with its summary and, for "after", the sample."""
+def run_branch(max_points: int, locate_events: bool | None, turn_back_rpm: float | None = None,
+               max_wall_s: float | None = None) -> tuple:
+    """The branch (:class:`rotor.studies.orbit.BranchResult`), its ``ringcontact branch --json`` dict and wall time."""
     from rotor.dynamics.period_map import warm_up
     from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
+    from sweep.progress import reporting
+
     warm_up()
-    plain = mode == "before"
-    opts = ContinuationOptions(max_points=max_points, pass_switches=not plain, follow_scales=not plain)
     t0 = time.perf_counter()
-    res = branch(SCENE, RPM_START, RPM_END, options=opts, amplitudes=False)
+
+    def progress(kind, fields):      # one line per orbit on stderr, to follow a long run
+        if kind == "branch_point":
+            print(f"orbit {fields['points']}: {fields['parameter'] * TO_RPM:.1f} rpm, "
+                  f"{time.perf_counter() - t0:.0f} s", file=sys.stderr, flush=True)
+
+    with reporting(progress):
+        scale = abs(RPM_END - RPM_START) / 10.0         # the branch's speed scale (rpm)
+        opts = ContinuationOptions(max_points=max_points, max_wall_s=max_wall_s,
+                                   turn_back=None if turn_back_rpm is None else turn_back_rpm / scale)
+        res = branch(SCENE, RPM_START, RPM_END, options=opts, locate_events=locate_events, tilt_ignored=False)
     wall = time.perf_counter() - t0
-    br = res.branch
-    rpm = [p.parameter * TO_RPM for p in br.points]
-    kinds = [int(p.restarted) for p in br.points]
-    out = {"mode": mode, "points": len(br.points), "reached_rpm": max(rpm) if rpm else None, "stop": br.stop,
-           "wall_s": wall, "restarts": {"secant": kinds.count(1), "transient": kinds.count(2), "cold": kinds.count(3)},
-           "bifurcations": [{"kind": b.kind, "speed_rpm": b.parameter * TO_RPM} for b in br.bifurcations],
-           "speeds_rpm": rpm}
-    if not plain and n_verify:
-        out["verified"] = verify(res, n_verify)
-    return out
+    d = {"scene": SCENE, "rpm_start": RPM_START, "rpm_end": RPM_END, "period_revs": res.start.period_revs,
+         "steps_per_rev": res.start.steps_per_rev, "locate_events": locate_events, "turn_back_rpm": turn_back_rpm,
+         **res.as_dict(),
+         "wall_s": round(wall, 3)}
+    return res, d, wall
 
 
-def verify(res, n_verify: int) -> list[dict]:
+def verify(res, n_verify: int, locate_events: bool | None) -> list[dict]:
     """Independent check of ``n_verify`` points spread over the branch (see the module docstring)."""
     from rotor.periodic.period_flow import advance, make_flow
     from rotor.periodic.shooting import ShootingOptions, orbit_scales, record_reduced, shoot
@@ -80,59 +93,103 @@ def verify(res, n_verify: int) -> list[dict]:
     rows = []
     for i in sorted(set(np.linspace(0, len(pts) - 1, min(n_verify, len(pts))).round().astype(int))):
         p = pts[i]
-        flow = make_flow(point_system(SCENE, p.parameter * TO_RPM)[2], 2.0 * math.pi / (p.parameter * n))
+        flow = make_flow(point_system(SCENE, p.parameter * TO_RPM, tilt_ignored=False)[2],
+                         2.0 * math.pi / (p.parameter * n), locate_events=locate_events)
         pv, vv, _ = record_reduced(flow, p.state, 0.0, steps, modes, max(1, steps // 256))
         s = np.maximum(orbit_scales(flow, pv, vv), floor)
         r = advance(flow, p.state, 0.0, steps, modes, jacobian=False)
         sh = shoot(flow, p.state, t0_s=0.0, steps_per_rev=n, period_revs=res.branch.period_revs, modes0=modes,
                    scales=s, options=ShootingOptions())
         rows.append({"index": int(i), "speed_rpm": p.parameter * TO_RPM, "restarted": int(p.restarted),
-                     "residual": float(np.max(np.abs(r.state - p.state) / s)), "events": int(r.events),
-                     "shoot_converged": bool(sh.converged), "shoot_iterations": int(sh.newton_iterations),
+                     "stable": bool(p.floquet.stable), "residual": float(np.max(np.abs(r.state - p.state) / s)),
+                     "events": int(r.events), "shoot_converged": bool(sh.converged),
+                     "shoot_iterations": int(sh.newton_iterations),
                      "shoot_distance": float(np.max(np.abs(sh.state - p.state) / s))})
     return rows
 
 
-def report(runs: dict, load: list, max_points: int) -> str:
-    b, a = runs["before"], runs["after"]
-    lines = ["# Continuation across stick/slip switches (Table 4 rotor), before and after", "",
-             f"`benchmarks/bench_branch_switches.py --max-points {max_points}`: one `ringcontact branch paper-table4 "
-             "--rpm-start 600 --rpm-end 18000` twice, side by side in two processes (2 240 steps per revolution). "
-             f"Load average at start {load[0][0]:.2f}/{load[0][1]:.2f}/{load[0][2]:.2f}, at end "
-             f"{load[1][0]:.2f}/{load[1][1]:.2f}/{load[1][2]:.2f} (shared 2-core machine, other jobs running).", "",
-             "| | before (corrector alone, start scales) | after (restarts past switches, scales follow) |",
-             "|---|---|---|"]
-    for key, fmt in (("points", "{}"), ("reached_rpm", "{:.0f}"), ("stop", "{}"), ("wall_s", "{:.0f}")):
-        lines.append(f"| {key.replace('_', ' ')} | {fmt.format(b[key])} | {fmt.format(a[key])} |")
-    for run in (b, a):
-        run["restart_text"] = ", ".join(f"{k} {v}" for k, v in run["restarts"].items())
-        run["bif_text"] = "; ".join(f"{x['kind']} {x['speed_rpm']:.0f}" for x in run["bifurcations"]) or "none"
-    lines += [f"| restarts (secant, transient, cold) | {b['restart_text']} | {a['restart_text']} |",
-              f"| bifurcations | {b['bif_text']} | {a['bif_text']} |", "",
-              "Verification of the *after* branch: each sampled point's own state mapped over its period with a fresh "
-              "flow (residual relative to the orbit's own peak-to-peak scale, never below the start's), and an "
-              "independent shooting from it.", "",
-              "| point | speed (rpm) | restarted | residual | face mode changes | shooting converged | iterations | "
-              "distance |", "|---|---|---|---|---|---|---|---|"]
-    for r in a.get("verified", []):
-        lines.append(f"| {r['index']} | {r['speed_rpm']:.1f} | {r['restarted']} | {r['residual']:.1e} | {r['events']} | "
-                     f"{r['shoot_converged']} | {r['shoot_iterations']} | {r['shoot_distance']:.1e} |")
+def stretches(points: list[dict]) -> list[tuple[float, float, bool, int]]:
+    """``(from_rpm, to_rpm, stable, points)`` of each run of equal stability along the branch."""
+    out = []
+    for p in points:
+        if out and out[-1][2] == bool(p["stable"]):
+            a, _, st, k = out[-1]
+            out[-1] = (a, p["speed_rpm"], st, k + 1)
+        else:
+            out.append((p["speed_rpm"], p["speed_rpm"], bool(p["stable"]), 1))
+    return out
+
+
+def report(d: dict, load: list, args, commit: str, verified: list[dict]) -> str:
+    pts = d["points"]
+    reached = max((p["speed_rpm"] for p in pts), default=float("nan"))
+    lines = ["# Continuation of the Table 4 rotor through stick/slip and contact switches: one branch", "",
+             f"Made by `nice .venv/bin/python benchmarks/bench_branch_switches.py --max-points {args.max_points} "
+             f"--verify {args.verify} --locate-events {args.locate_events} --turn-back-rpm {args.turn_back_rpm:g}"
+             + (f" --max-wall-s {args.max_wall_s:g}" if args.max_wall_s else "") + f"` at commit {commit}: one "
+             f"`ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f} --turn-back-rpm "
+             f"{args.turn_back_rpm:g}` "
+             f"({d['steps_per_rev']} steps per revolution, friction events located inside the step: "
+             f"{d['locate_events']}), in one process. Load average at start "
+             f"{load[0][0]:.2f}/{load[0][1]:.2f}/{load[0][2]:.2f}, at end {load[1][0]:.2f}/{load[1][1]:.2f}/"
+             f"{load[1][2]:.2f} (shared 2-core machine, other jobs running: the wall time is an upper bound).", "",
+             "| | |", "|---|---|",
+             f"| orbits | {len(pts)} |", f"| reached | {reached:.1f} rpm |", f"| stop | {d['stop']} |",
+             f"| wall | {d['wall_s']:.0f} s |",
+             "| restarts (secant, transient, cold) | " + ", ".join(f"{k} {v}" for k, v in d["restarts"].items()) + " |",
+             f"| corrector stalls | {len(d['corrector_failures'])} |",
+             f"| stable / unstable orbits | {sum(p['stable'] for p in pts)} / {sum(not p['stable'] for p in pts)} |",
+             "", "## Stability along the branch", "",
+             "| from (rpm) | to (rpm) | stable | orbits |", "|---|---|---|---|"]
+    lines += [f"| {a:.1f} | {b:.1f} | {'yes' if st else 'no'} | {k} |" for a, b, st, k in stretches(pts)]
+    lines += ["", "## Bifurcations", "", "| kind | speed (rpm) | detail |", "|---|---|---|"]
+    lines += [f"| {b['kind']} | {b['speed_rpm']:.1f} | {b.get('detail', '')} |" for b in d["bifurcations"]] or ["| none | | |"]
+    lines += ["", "## Restarts (the speeds each skipped, how its orbit was shot, why the corrector failed)", "",
+              "| skipped (rpm) | shot | why the corrector failed before it |", "|---|---|---|"]
+    rows = [f"| {p['skipped_rpm'][0]:.1f} – {p['skipped_rpm'][1]:.1f} | {p['restarted']} | "
+            f"{p.get('restart_reason', '')} |" for p in pts if p.get("skipped_rpm")]
+    lines += rows or ["| none | | |"]
+    lines += ["", "## Corrector stalls (every one, how it was passed)", "",
+              "| at (rpm) | why | outcome |", "|---|---|---|"]
+    lines += [f"| {f['speed_rpm']:.1f} | {f['why']} | {f['outcome']} |" for f in d["corrector_failures"]] or ["| none | | |"]
+    lines += ["", "## Verification", "",
+              "Each sampled point's own state mapped over its period with a fresh flow (residual relative to the "
+              "orbit's own peak-to-peak scale, never below the start's), and an independent shooting from it.", "",
+              "| point | speed (rpm) | restarted | stable | residual | face mode changes | shooting converged | "
+              "iterations | distance |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in verified:
+        lines.append(f"| {r['index']} | {r['speed_rpm']:.1f} | {r['restarted']} | {r['stable']} | {r['residual']:.1e} | "
+                     f"{r['events']} | {r['shoot_converged']} | {r['shoot_iterations']} | {r['shoot_distance']:.1e} |")
     return "\n".join(lines) + "\n"
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--max-points", type=int, default=400)
-    ap.add_argument("--verify", type=int, default=16)
+    ap.add_argument("--max-points", type=int, default=1500)
+    ap.add_argument("--verify", type=int, default=12)
+    ap.add_argument("--locate-events", choices=sorted(LOCATE), default="on")
+    ap.add_argument("--branch-json", type=Path, default=None)
+    ap.add_argument("--turn-back-rpm", type=float, default=250.0)
+    ap.add_argument("--max-wall-s", type=float, default=None)
     args = ap.parse_args(argv)
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+                            text=True).stdout.strip()
     load0 = os.getloadavg()
-    with ProcessPoolExecutor(2) as pool:
-        futs = {m: pool.submit(run_branch, m, args.max_points, args.verify) for m in ("before", "after")}
-        runs = {m: f.result() for m, f in futs.items()}
+    res, d, _ = run_branch(args.max_points, LOCATE[args.locate_events], args.turn_back_rpm, args.max_wall_s)
     load1 = os.getloadavg()
-    atomic_write_text(OUT / "perf-branch-switches.json", json.dumps(runs, indent=1) + "\n")
-    atomic_write_text(OUT / "perf-branch-switches.md", report(runs, [load0, load1], args.max_points))
-    print(report(runs, [load0, load1], args.max_points))
+    if args.branch_json is not None:
+        atomic_write_text(args.branch_json, json.dumps(d) + "\n")
+    verified = verify(res, args.verify, LOCATE[args.locate_events])
+    slim = {k: v for k, v in d.items() if k not in ("points", "start")}
+    slim["speeds_rpm"] = [p["speed_rpm"] for p in d["points"]]
+    slim["stable"] = [p["stable"] for p in d["points"]]
+    slim["verified"] = verified
+    slim["load_average"] = [list(load0), list(load1)]
+    slim["commit"] = commit
+    atomic_write_text(OUT / "perf-branch-switches.json", json.dumps(slim, indent=1) + "\n")
+    text = report(d, [load0, load1], args, commit, verified)
+    atomic_write_text(OUT / "perf-branch-switches.md", text)
+    print(text)
     return 0
 
 

@@ -1,12 +1,14 @@
-"""The study-bifurcation report: the Table 4 rotor's periodic orbits continued in speed, 600-18 000 rpm, in segments.
+"""The study-bifurcation report: the Table 4 rotor's periodic orbits continued in speed, 600-18 000 rpm, in one run.
 
-Each segment is :func:`rotor.studies.orbit.branch` (what ``ringcontact branch paper-table4 --rpm-start A
---rpm-end 18000 --max-points 80`` computes, the same JSON with each segment's ``restarts`` and each point's
-``restarted``); the first starts at 600 rpm, each next one 300 rpm past the highest speed the previous one
-reached (the procedure of the published report). Writes ``reports/published/study-bifurcation.{md,json,png,svg}``
-through :func:`reports.bifurcation.publish`, and the segments' JSON into ``--segments-dir``.
+One :func:`rotor.studies.orbit.branch` from 600 rpm to 18 000 rpm (what ``ringcontact branch paper-table4
+--rpm-start 600 --rpm-end 18000 --json`` computes: each point's ``restarted`` and ``skipped_rpm``, the
+``corrector_failures``), no hand-started segment, with the period maps' friction events located inside the
+step (``--locate-events on``). ``--branch-json PATH`` draws from a branch already computed (the file
+``benchmarks/bench_branch_switches.py --branch-json PATH`` writes, the run whose wall time
+``perf-branch-switches.md`` reports) instead of computing it again. Writes
+``reports/published/study-bifurcation.{md,json,png,svg}`` through :func:`reports.bifurcation.publish`.
 
-Run: ``nice .venv/bin/python benchmarks/study_bifurcation.py [--max-points 80] [--segments-dir DIR]``.
+Run: ``nice .venv/bin/python benchmarks/study_bifurcation.py [--max-points 1500] [--branch-json PATH]``.
 """
 from __future__ import annotations
 
@@ -21,53 +23,42 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-SCENE, RPM_START, RPM_END, GAP_RPM = "paper-table4", 600.0, 18000.0, 300.0
+SCENE, RPM_START, RPM_END = "paper-table4", 600.0, 18000.0
 
 
-def segment(rpm_start: float, max_points: int) -> dict:
-    """One segment as the ``ringcontact branch --json`` output (with ``restarts``, points by each restart kind)."""
-    from rotor.periodic.continuation import ContinuationOptions
-    from rotor.studies.orbit import branch
+def compute(max_points: int) -> dict:
+    """The branch as the ``ringcontact branch --json`` output."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_branch_switches import run_branch
 
-    t0 = time.perf_counter()
-    res = branch(SCENE, rpm_start, RPM_END, options=ContinuationOptions(max_points=max_points))
-    d = {"scene": SCENE, "rpm_start": rpm_start, "rpm_end": RPM_END, "period_revs": res.start.period_revs,
-         "steps_per_rev": res.start.steps_per_rev, **res.as_dict(), "wall_s": round(time.perf_counter() - t0, 3)}
-    return d
+    return run_branch(max_points, True, 250.0)[1]
 
 
 def main(argv=None) -> int:
     from reports.bifurcation import publish
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--max-points", type=int, default=80)
-    ap.add_argument("--segments-dir", type=Path, default=Path("bifurcation-segments"))
+    ap.add_argument("--max-points", type=int, default=1500)
+    ap.add_argument("--branch-json", type=Path, default=None)
     args = ap.parse_args(argv)
-    args.segments_dir.mkdir(parents=True, exist_ok=True)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout
     load0, t0 = os.getloadavg(), time.perf_counter()
-    segments, start = [], RPM_START
-    while start < RPM_END:
-        seg = segment(start, args.max_points)
-        segments.append(seg)
-        (args.segments_dir / f"seg-{start:.0f}.json").write_text(json.dumps(seg) + "\n")
-        reached = max((p["speed_rpm"] for p in seg["points"]), default=start)
-        print(f"segment {start:.0f} rpm: {len(seg['points'])} orbits to {reached:.0f} rpm, {seg['stop']}, "
-              f"restarts {seg['restarts']}, {seg['wall_s']:.0f} s", flush=True)
-        if seg["stop"] == "end reached":
-            break
-        start = max(start, reached) + GAP_RPM
-    load1, wall = os.getloadavg(), time.perf_counter() - t0
-    commands = [f"# computed at commit {commit.strip()}, {time.strftime('%H:%M UTC', time.gmtime())}, "
-                f"{len(segments)} segments, {sum(len(s['points']) for s in segments)} orbits, {wall:.0f} s wall, load "
-                f"{load0[0]:.2f} at start, {load1[0]:.2f} at end",
-                f"nice .venv/bin/python benchmarks/study_bifurcation.py --max-points {args.max_points}",
-                "# = ringcontact branch paper-table4 --rpm-start A --rpm-end 18000 "
-                f"--max-points {args.max_points} for A = "
-                + ", ".join(f"{s['rpm_start']:.0f}" for s in segments)
-                + " (each next A 300 rpm past the highest speed the segment before reached)"]
+    if args.branch_json is not None:
+        d = json.loads(args.branch_json.read_text(encoding="utf-8"))
+        how = f"drawn from {args.branch_json.name} (benchmarks/bench_branch_switches.py --branch-json)"
+    else:
+        d = compute(args.max_points)
+        load1 = os.getloadavg()
+        how = (f"{time.perf_counter() - t0:.0f} s wall, load {load0[0]:.2f} at start, {load1[0]:.2f} at end")
+    reached = max((p["speed_rpm"] for p in d["points"]), default=RPM_START)
+    commands = [f"# computed at commit {commit.strip()}, {time.strftime('%H:%M UTC', time.gmtime())}: one branch, "
+                f"{len(d['points'])} orbits, {RPM_START:.0f} to {reached:.0f} rpm ({d['stop']}), {how}",
+                f"nice .venv/bin/python benchmarks/bench_branch_switches.py --branch-json BRANCH.json && "
+                f"nice .venv/bin/python benchmarks/study_bifurcation.py --branch-json BRANCH.json",
+                f"# = ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f} "
+                f"--max-points {args.max_points} --turn-back-rpm 250 --json (friction events located inside the step)"]
     reading = (ROOT / "reports" / "notes" / "study-bifurcation-reading.md").read_text(encoding="utf-8")
-    for f in publish(segments, ROOT / "reports" / "published", commands=commands, reading=reading):
+    for f in publish([d], ROOT / "reports" / "published", commands=commands, reading=reading):
         print("wrote", f)
     return 0
 

@@ -16,7 +16,9 @@ from reports.studies.common import pyplot, save
 #: marker and colour of each bifurcation kind
 KINDS = {"fold": ("o", "tab:red", "fold"), "period_doubling": ("s", "tab:purple", "period doubling"),
          "neimark_sacker": ("D", "tab:orange", "Neimark–Sacker"),
-         "grazing_fold": ("v", "tab:green", "grazing fold"), "grazing": ("^", "tab:green", "grazing")}
+         "grazing_fold": ("v", "tab:green", "grazing fold"), "grazing": ("^", "tab:green", "grazing"),
+         "branch_point": ("P", "tab:brown", "branch point"),
+         "discontinuous": ("X", "tab:pink", "discontinuous (at a switch)")}
 
 
 def stability_runs(stable) -> list[tuple[int, int, bool]]:
@@ -131,6 +133,22 @@ def _bifurcation_text(bifurcations) -> str:
     return "; ".join(parts) or "none"
 
 
+def restarts_table(segment: dict) -> str:
+    """Markdown table of the points a branch reached by a restart past a switch: the speeds skipped, how the
+    orbit was shot, and why the corrector failed before it (``restart_reason``); "none" if no restart."""
+    lines = ["| skipped (rpm) | shot | why the corrector failed before it |", "|---|---|---|"]
+    rows = [f"| {p['skipped_rpm'][0]:.1f} – {p['skipped_rpm'][1]:.1f} | {p['restarted']} | "
+            f"{p.get('restart_reason') or '–'} |" for p in segment["points"] if p.get("skipped_rpm")]
+    return "\n".join(lines + (rows or ["| none | | |"]))
+
+
+def bifurcations_table(segment: dict) -> str:
+    """Markdown table of a branch's bifurcations: kind, speed and, for a discontinuous one, both sides."""
+    rows = [f"| {b['kind'].replace('_', ' ')} | {b['speed_rpm']:.1f} | {b.get('detail', '')} |"
+            for b in segment["bifurcations"]]
+    return "\n".join(["| kind | speed (rpm) | detail |", "|---|---|---|"] + (rows or ["| none | | |"]))
+
+
 def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading: str = "") -> list[Path]:
     """``study-bifurcation.{png,svg,md,json}`` in ``out_dir`` from branch segments (the JSON of ``ringcontact
     branch`` each; the JSON keeps the amplitudes of ``channel`` only). ``commands``: the command lines that
@@ -142,14 +160,20 @@ def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading
     out_dir = Path(out_dir)
     files = bifurcation_figure(list(segments), channel, out_dir / "study-bifurcation")
     scene = next((s.get("scene") for s in segments if s.get("scene")), "")
+    how = ("in one run from its first speed" if len(segments) == 1 else
+           "in segments started at speeds where the orbit exists")
     lines = [f"# Bifurcation diagram, {scene}: periodic orbits continued in speed", "",
              "Made by `ringcontact branch` (pseudo-arclength continuation of the shooting orbit, "
-             "`rotor/periodic/continuation.py`, Floquet multipliers of each orbit) over the Fig. 12 speed range, in "
-             "segments started at speeds where the orbit exists:", "", "```sh", *commands, "```", "",
+             "`rotor/periodic/continuation.py`, Floquet multipliers of each orbit) over the Fig. 12 speed range, "
+             f"{how}:", "", "```sh", *commands, "```", "",
              f"Figure: `study-bifurcation.png/.svg`, 1X velocity amplitude at {channel} (stable solid, unstable "
              "dashed, bifurcations marked with their kind) and the largest non-neutral |multiplier| against speed. "
              "Data: `study-bifurcation.json` (each segment's points, bifurcations and why it stopped).", "",
              segments_table(segments), ""]
+    if len(segments) == 1 and segments[0]["points"]:
+        lines += ["Bifurcations (a *discontinuous* one: a multiplier that jumps across the unit circle between two "
+                  "orbits whose stick/slip switches per period differ, Leine & van Campen 2002):", "",
+                  bifurcations_table(segments[0]), "", "Restarts past switches:", "", restarts_table(segments[0]), ""]
     if reading:
         lines += [reading.strip(), ""]
     files.append(atomic_write_text(out_dir / "study-bifurcation.md", "\n".join(lines)))

@@ -18,7 +18,16 @@ phase 0 ``peak_contact_force_t_s``, ``mean_contact_force_N``, ``peak_contact_mom
 tell an orbit whose ring stays stuck (contact share 0, stick shares 1) from one that slips and hits.
 ``branch`` follows the orbit over a speed range by pseudo-arclength continuation
 (:func:`rotor.studies.orbit.branch`) and lists each point (with the same support fields) and the
-bifurcations met; ``--plot`` draws the bifurcation diagram (:mod:`reports.bifurcation`).
+bifurcations met (a multiplier that jumps across the unit circle where the switches of the orbit change is a
+``discontinuous`` bifurcation, with both sides in its ``detail``); every stall of the corrector is in
+``corrector_failures`` (speed, why, how it was passed) and each restarted point has its ``restart_reason``;
+``--plot`` draws the bifurcation diagram (:mod:`reports.bifurcation`). The branch starts on the orbit a
+transient from the linear periodic solution reaches, or on a chosen one: ``--from-orbit FILE`` (an ``orbit
+--out`` file: that orbit, stable or not) or ``--from-state DIR`` (a ``simulate --out DIR`` run at
+``--rpm-start`` ending after whole revolutions: the orbit a transient from its last state reaches)::
+
+    ringcontact simulate --scene paper-table4 --speed-rpm 9000 --revolutions 40 --out runs/s9000
+    ringcontact branch paper-table4 --rpm-start 9000 --rpm-end 12000 --from-state runs/s9000
 
 Exit status 1 (one line on stderr, after the results are written) when the orbit did not converge or the
 branch stopped before ``--rpm-end``: a failed point never exits 0.
@@ -34,7 +43,7 @@ from pathlib import Path
 
 from contact.errors import InputError, RingContactError
 from reports.cli import _budget
-from reports.cli._edge import Parser, count, fail, in_file, out_file, out_prefix, quantity
+from reports.cli._edge import Parser, count, fail, in_dir, in_file, out_file, out_prefix, quantity
 from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, override_words,
                                         scene_from_args, warm_up_shown)
 
@@ -74,6 +83,12 @@ def _branch_parser() -> argparse.ArgumentParser:
                    help="channel of the diagram, <station>.y or <station>.z (default: the scene's first response station, .y)")
     p.add_argument("--from-orbit", type=in_file, default=None, metavar="FILE",
                    help="start on the orbit of an `orbit --out` FILE (same scene, --rpm-start its speed), stable or not")
+    p.add_argument("--turn-back-rpm", type=quantity("run_speed_rpm"), default=None, metavar="RPM",
+                   help="after a fold, follow the returning (middle) branch this far back, then jump past the fold "
+                        "as a run-up does (a restart, reported); default: follow the branch wherever it goes")
+    p.add_argument("--from-state", type=in_dir, default=None, metavar="DIR",
+                   help="start on the orbit a transient reaches from the end state of a `simulate --out DIR` run "
+                        "(same scene, --rpm-start its speed, a whole number of revolutions)")
     return p
 
 
@@ -259,7 +274,8 @@ def _branch_table(d: dict, station: str) -> str:
              f"{'peak N':>10}  {station}"]
     between = {}
     for b in d["bifurcations"]:
-        between.setdefault(b["after_point"], []).append(f"  -- {b['kind']} at {b['speed_rpm']:.1f} rpm --")
+        between.setdefault(b["after_point"], []).append(f"  -- {b['kind']} at {b['speed_rpm']:.1f} rpm --"
+                                                        + (f" ({b['detail']})" if b.get("detail") else ""))
     for i, p in enumerate(d["points"]):
         lines += between.get(i, [])
         amp = p.get("velocity_amplitudes_mm_s_1X_to_5X", {}).get(station, [float("nan")])[0]
@@ -270,6 +286,13 @@ def _branch_table(d: dict, station: str) -> str:
                         if p.get("skipped_rpm") else ""))
     lines.append("  bifurcations: " + ("; ".join(f"{b['kind']} at {b['speed_rpm']:.1f} rpm" for b in d["bifurcations"])
                                        or "none"))
+    stalls = d.get("corrector_failures", [])
+    if stalls:
+        passed = sum(1 for f in stalls if f["outcome"].startswith("passed"))
+        lines.append(f"  corrector stalls: {len(stalls)} ({passed} passed with a smaller step, "
+                     f"{sum(1 for f in stalls if f['outcome'].startswith('restart'))} by a restart"
+                     f"{', the last one stopped the branch' if stalls[-1]['outcome'].startswith('stopped') else ''}; "
+                     "corrector_failures in the JSON)")
     return "\n".join(lines)
 
 
@@ -294,6 +317,40 @@ def _chosen_orbit(args, name: str) -> dict:
             "period_revs": int(o["period_revs"]), "steps_per_rev": args.steps_per_rev or int(o["steps_per_rev"])}
 
 
+def _state_start(args, name: str, n_dofs: int) -> dict:
+    """``start`` (full ``(q, v)`` at phase 0) from the last sample of the ``simulate --out`` run ``--from-state``
+    (empty without it): the run complete (:func:`contact.files.check_run_files`), of the branch's scene and
+    ``--rpm-start``, with the branch's DOFs, ended after a whole number of revolutions (phase 0)."""
+    if args.from_state is None:
+        return {}
+    import numpy as np
+
+    from contact.files import check_run_files
+    opt = f"--from-state = {args.from_state}"
+    try:
+        summary = check_run_files(args.from_state, "simulate")
+        scene, rpm = summary["scene"], float(summary["speed_rpm"])
+        with np.load(Path(args.from_state) / "simulate.npz") as z:
+            t, q, v = float(z["t"][-1]), np.array(z["q"][-1], float), np.array(z["v"][-1], float)
+    except RingContactError as e:
+        raise InputError(f"{opt}: not a complete `simulate --out` run ({e})") from None
+    except (OSError, ValueError, KeyError, TypeError, IndexError) as e:
+        raise InputError(f"{opt}: not a `simulate --out` run with simulate.npz ({type(e).__name__}: {e})") from None
+    if scene != name:
+        raise InputError(f"{opt}: a run of scene {scene}, not of {name}")
+    if abs(rpm - args.rpm_start) > 1e-9 * rpm:
+        raise InputError(f"--rpm-start = {args.rpm_start:g} rpm: the run of --from-state is at {rpm!r} rpm; "
+                         "start the branch there")
+    revs = t * rpm / 60.0
+    if abs(revs - round(revs)) > 1e-6 * max(1.0, revs) or round(revs) < 1:
+        raise InputError(f"{opt}: the run ends after {revs:.6g} revolutions; a start needs a whole number (phase 0): "
+                         "run simulate with whole --revolutions")
+    if q.shape != (n_dofs,) or v.shape != (n_dofs,) or not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+        raise InputError(f"{opt}: its state has {q.shape[0] if q.ndim else 0} DOFs, the branch's scene {n_dofs} "
+                         "(another mesh or scene options), or is not finite")
+    return {"start": (q, v)}
+
+
 def _branch(args) -> int:
     from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
@@ -306,11 +363,18 @@ def _branch(args) -> int:
     if station not in channels:
         raise InputError(f"--station = {station}: not a response channel of {name} "
                          f"(have {', '.join(channels)})")
+    if args.from_state is not None and args.from_orbit is not None:
+        raise InputError(f"--from-state = {args.from_state}: give --from-orbit or --from-state, not both")
     chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}   # a bad --from-orbit first
+    if args.from_state is not None:                                                  # and a bad --from-state
+        from rotor.studies.steady_state import point_system
+        chosen.update(_state_start(args, name, point_system(args.scene, args.rpm_start, **_overrides(args))[2].n))
     _check_work(args, "ringcontact branch", min(args.rpm_start, args.rpm_end), int(args.max_points))
     t0 = time.perf_counter()
     res, events = _watched("ringcontact branch", args, lambda: branch(
-        args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(max_points=int(args.max_points)),
+        args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(
+            max_points=int(args.max_points), turn_back=None if args.turn_back_rpm is None else
+            args.turn_back_rpm / (abs(args.rpm_end - args.rpm_start) / 10.0)),     # the branch's speed scale
         **chosen, **_overrides(args)))
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),

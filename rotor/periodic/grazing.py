@@ -34,8 +34,9 @@ import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.dynamics.constraints import edge_offsets
-from rotor.periodic.continuation import (Bifurcation, Branch, ContinuationOptions, Problem, _Evaluator, _neutral,
-                                         _point, _tangent, continue_branch)
+from rotor.periodic.branch_types import Bifurcation, Branch, ContinuationOptions, Evaluator, Problem
+from rotor.periodic.continuation import continue_branch
+from rotor.periodic.corrector import make_point, neutral_rows, unit_tangent
 from rotor.periodic.period_flow import Flow, record
 from rotor.periodic.shooting import min_norm_step
 
@@ -79,7 +80,7 @@ def largest_penetration(flow: Flow, state, n_steps: int, modes0) -> tuple[float,
     return float(pen[n] / flow.system.support.law.clearance_m), n
 
 
-def contact_watch(ev: _Evaluator, y) -> float:
+def contact_watch(ev: Evaluator, y) -> float:
     """The ``watch`` of :class:`rotor.periodic.continuation.ContinuationOptions`: the largest penetration over
     δ0 (–) of the period from the scaled ``y = (x/s, λ/λ_s)``; positive in contact."""
     lam = float(y[-1] * ev.ls)
@@ -89,14 +90,14 @@ def contact_watch(ev: _Evaluator, y) -> float:
         return math.inf     # a predictor the scheme cannot step is deep in contact
 
 
-def _penetration_at(ev: _Evaluator, y, n: int) -> float:
+def _penetration_at(ev: Evaluator, y, n: int) -> float:
     """Edge penetration over δ0 (–) at step ``n`` of the period from the scaled ``y``."""
     flow = ev.flow(float(y[-1] * ev.ls))
     tr = record(flow, y[:-1] * ev.s, 0.0, max(n, 1), ev.pb.modes0, 1)
     return float(penetrations(flow, tr.u[n:n + 1])[0] / flow.system.support.law.clearance_m)
 
 
-def _gradient(ev: _Evaluator, y, n: int) -> np.ndarray:
+def _gradient(ev: Evaluator, y, n: int) -> np.ndarray:
     """``∂g_n/∂y`` (scaled unknowns) by central differences of :func:`_penetration_at`."""
     grad = np.empty(len(y))
     for j in range(len(y)):
@@ -107,7 +108,7 @@ def _gradient(ev: _Evaluator, y, n: int) -> np.ndarray:
     return grad
 
 
-def solve_on_level(ev: _Evaluator, y0, level: float, n: int, opts: ContinuationOptions):
+def solve_on_level(ev: Evaluator, y0, level: float, n: int, opts: ContinuationOptions):
     """The periodic orbit whose penetration at step ``n`` is ``level`` δ0, near the scaled ``y0``: Newton on
     ``[R(y); g_n(y) − level; P (y − y0)]`` (``P`` the phase rows of a stuck face's continuum), solved in the
     minimum-norm sense. Returns ``(y, J, M, residual)`` or None (no convergence in :data:`LEVEL_MAX_ITER`, and
@@ -126,7 +127,7 @@ def solve_on_level(ev: _Evaluator, y0, level: float, n: int, opts: ContinuationO
             break
         if abs(g) < GRAZING_TOL and (best is None or res < best[3]):
             best = (y, J, M, res)
-        phase = _neutral(J)
+        phase = neutral_rows(J)
         A = np.vstack([J, grad[None, :]] + ([phase] if len(phase) else []))
         rhs = -np.concatenate([R, [g]] + ([phase @ (y - y0)] if len(phase) else []))
         dy, _ = min_norm_step(A, rhs, opts.rcond)
@@ -141,7 +142,7 @@ def _cross(problem: Problem, last, floor, ls: float, opts: ContinuationOptions):
     """From ``last`` (the segment's last orbit, on one side of grazing): the grazing orbit and the first orbit
     past it. Returns ``(grazing point, kind, critical multiplier past it, first state, first parameter, first
     tangent)`` or None."""
-    ev = _Evaluator(problem, floor.copy(), ls)
+    ev = Evaluator(problem, floor.copy(), ls)
     y = np.concatenate([last.state / floor, [last.parameter / ls]])
     g_last, n = largest_penetration(ev.flow(last.parameter), last.state, problem.n_steps, problem.modes0)
     got = None
@@ -156,10 +157,10 @@ def _cross(problem: Problem, last, floor, ls: float, opts: ContinuationOptions):
         return None
     y1, J1, M1, res1 = got
     guide = (y1 - y_g) / np.linalg.norm(y1 - y_g)
-    tau1 = _tangent(J1, guide, opts.rcond, _neutral(J1))
+    tau1 = unit_tangent(J1, guide, opts.rcond, neutral_rows(J1))
     kind = "grazing_fold" if last.dlam_ds * tau1[-1] < 0 else "grazing"
-    graze = _point(ev, y_g, J_g, M_g, 0, res_g, tau1, opts)
-    past = _point(ev, y1, J1, M1, 0, res1, tau1, opts).floquet.critical
+    graze = make_point(ev, y_g, J_g, M_g, 0, res_g, tau1, opts)
+    past = make_point(ev, y1, J1, M1, 0, res1, tau1, opts).floquet.critical
     return graze, kind, past, y1[:-1] * floor, float(y1[-1] * ls), tau1
 
 
@@ -177,7 +178,7 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
     opts = options or ContinuationOptions()
     ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
     floor = np.asarray(scales, float)
-    points, bifs, wall, restarts = [], [], 0.0, 0
+    points, bifs, wall, restarts, failures = [], [], 0.0, 0, []
     x, lam, tangent, stop = np.asarray(state0, float), float(lam0), None, "max_points"
     for k in range(max_grazings + 1):
         # the back margin stays the whole range's: a segment after a grazing fold starts turned back
@@ -189,6 +190,7 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
         points += br.points
         bifs += [replace(b, index=b.index + offset) for b in br.bifurcations]
         wall, restarts, stop = wall + br.wall_s, restarts + br.restarts, br.stop
+        failures += br.failures
         if br.stop != "grazing" or not br.points or k == max_grazings:
             break
         crossed = _cross(problem, br.points[-1], floor, ls, opts)
@@ -200,9 +202,10 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
             points += rest.points[1:]
             bifs += [replace(b, index=b.index + offset) for b in rest.bifurcations if b.index > 0]
             wall, restarts = wall + rest.wall_s, restarts + rest.restarts
+            failures += rest.failures
             stop = rest.stop
             break
         graze, kind, past, x, lam, tangent = crossed
         points.append(graze)
         bifs.append(Bifurcation(kind, len(points) - 1, graze.parameter, past))
-    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, wall, restarts)
+    return Branch(tuple(points), tuple(bifs), problem.period_revs, stop, wall, restarts, tuple(failures))

@@ -25,7 +25,7 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.condense import expand
 from rotor.dynamics.period_map import full_state, period_map, period_map_setup, reduced_state
 from rotor.dynamics.production import simulate_production
-from rotor.dynamics.system import RotorSystem, Trajectory
+from rotor.dynamics.system import NewmarkOptions, RotorSystem, Trajectory
 
 #: relative finite-difference step of :func:`monodromy_fd` (of the state's block scale)
 FD_REL_STEP = 1e-6
@@ -70,15 +70,18 @@ class MapResult:
     events: int = 0
 
 
-def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto") -> Flow:
+def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto", locate_events: bool | None = None) -> Flow:
     """Prepare ``system`` for maps of step ``dt_s`` (s); ``backend`` "auto" (= "exact": the monodromy of
     :mod:`rotor.dynamics.period_map`) or "fd" (central differences, :func:`monodromy_fd`, for cross-checks;
-    its step is not checked against the contact limit)."""
+    its step is not checked against the contact limit). ``locate_events``: friction events located inside the
+    step (:attr:`rotor.dynamics.system.NewmarkOptions.locate_events`: the map continuous through them); None:
+    the default of :class:`~rotor.dynamics.system.NewmarkOptions`."""
     if backend == "auto":
         backend = "exact"
     if backend not in ("exact", "fd"):
         raise ValueError(f"backend = {backend!r}: must be 'auto', 'fd' or 'exact' (rotor.dynamics.period_map)")
-    pm = period_map_setup(system, dt_s, check_step=backend == "exact")
+    opts = None if locate_events is None else NewmarkOptions(locate_events=bool(locate_events))
+    pm = period_map_setup(system, dt_s, opts, check_step=backend == "exact")
     return Flow(system, pm.reduced, pm.condensed, pm.T, float(dt_s), backend, pm)
 
 
@@ -101,7 +104,7 @@ def to_full(flow: Flow, state, t_s: float = 0.0) -> tuple[np.ndarray, np.ndarray
 def _run(flow: Flow, state, t0: float, n_steps: int, modes0, record_every: int | None = None) -> Trajectory:
     qk, vk = _kept(flow, state)
     return simulate_production(flow.reduced, flow.dt_s, int(n_steps), qk, vk, t0=float(t0), modes0=tuple(modes0),
-                               record_every=int(record_every or n_steps), check_step=False,
+                               options=flow.handle.options, record_every=int(record_every or n_steps), check_step=False,
                                prepared=flow.handle.prepared)
 
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
-from rotor.periodic.continuation import Branch, ContinuationOptions, Problem, _Evaluator
+from rotor.periodic.branch_types import Branch, ContinuationOptions, Evaluator, Problem
 from rotor.periodic.shooting import min_norm_step
 
 #: most chord iterations of a 2N orbit
@@ -45,7 +45,7 @@ def extrapolate_branch(problem: Problem, branch: Branch, *, scales, lam_scale: f
     opts = options or ContinuationOptions()
     fine = replace(problem, steps_per_rev=2 * problem.steps_per_rev)
     s = np.asarray(scales, float)
-    ev_2n = _Evaluator(fine, s, lam_scale)
+    ev_2n = Evaluator(fine, s, lam_scale)
     pts = branch.points
     n = len(pts)
     ys = [np.concatenate([p.state / s, [p.parameter / lam_scale]]) for p in pts]
@@ -69,7 +69,7 @@ def extrapolate_branch(problem: Problem, branch: Branch, *, scales, lam_scale: f
     return ExtrapolatedBranch(lam, x, lam2, x2, ok)
 
 
-def _chord(ev: _Evaluator, y0, e, opts: ContinuationOptions):
+def _chord(ev: Evaluator, y0, e, opts: ContinuationOptions):
     """The orbit of ``ev``'s problem on the hyperplane ``e·(y − y0) = 0`` near the scaled ``y0``: Newton with the
     Jacobian of the first iterate kept (chord). Returns the scaled ``y`` or None."""
     y, J = np.asarray(y0, float).copy(), None

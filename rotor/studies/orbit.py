@@ -219,7 +219,8 @@ class BranchResult:
     and the contact fields of :attr:`OrbitResult.contact`),
     ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
-    (the :class:`rotor.periodic.continuation.Branch`)."""
+    (the :class:`rotor.periodic.continuation.Branch`); the JSON adds ``corrector_failures``: every stall of
+    the corrector (speed, why, how it was passed: a smaller step, a restart, or the stop)."""
 
     points: tuple
     bifurcations: tuple
@@ -232,12 +233,14 @@ class BranchResult:
         kinds = [p.get("restarted") for p in self.points]
         return {"points": list(self.points), "bifurcations": list(self.bifurcations), "start": self.start.as_dict(),
                 "stop": self.stop, "wall_s": self.wall_s,
-                "restarts": {k: kinds.count(k) for k in RESTART_KINDS.values()}}
+                "restarts": {k: kinds.count(k) for k in RESTART_KINDS.values()},
+                "corrector_failures": [{"speed_rpm": lam * 30.0 / math.pi, "why": why, "outcome": outcome}
+                                       for lam, why, outcome in self.branch.failures]}
 
 
 def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
            options: ContinuationOptions | None = None, amplitudes: bool = True, through_grazing: bool | None = None,
-           start=None, period_revs: int | None = None, **overrides) -> BranchResult:
+           start=None, period_revs: int | None = None, locate_events: bool | None = None, **overrides) -> BranchResult:
     """Continue the orbit found at ``rpm_start`` (:func:`orbit`) in speed until ``rpm_end`` (rpm).
 
     The arclength is measured with the start orbit's scales and a speed scale of a tenth of the range.
@@ -249,7 +252,11 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     points from 600 rpm, met no grazing and reached 2 171 rpm in 338 s at a load average of 10).
     ``start``: the full ``(q0, v0)`` of a chosen orbit at ``rpm_start`` (phase 0, e.g. ``phase0_state`` of an
     ``orbit --out`` file, with its ``period_revs``): the branch starts on that orbit (one revolution of
-    transient, then Newton), an unstable one included, instead of the one a transient from rest reaches.
+    transient, then Newton), an unstable one included, instead of the one a transient from rest reaches;
+    without ``period_revs`` (a state at phase 0, e.g. the end of a ``simulate`` run): the orbit a transient
+    from that state reaches (period found).
+    ``locate_events``: the continuation's maps locate friction events inside the step
+    (:func:`rotor.periodic.period_flow.make_flow`; None: the scheme's default).
     """
     t_start = time.perf_counter()
     check_positive("rpm_start", rpm_start, "rpm", upper=plausible.top("run_speed_rpm"))
@@ -259,8 +266,10 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     ov = _overrides(overrides)
     _, model, sys_lo = point_system(scene, min(rpm_start, rpm_end), **ov)
     n = int(steps_per_rev or step_per_rev(sys_lo, SteadyStateOptions()))
-    chosen = {} if start is None else {"start": start, "period_revs": period_revs,
-                                       "options": ShootingOptions(transient_revs=1, round_growth=2.0)}
+    # a chosen orbit (its period given): one revolution of transient, then Newton; a given state alone: the
+    # transient from it, as from the linear periodic solution
+    chosen = ({} if start is None else {"start": start} if period_revs is None else
+              {"start": start, "period_revs": period_revs, "options": ShootingOptions(transient_revs=1, round_growth=2.0)})
     first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, **chosen, **ov)
     if not first.converged:
         return BranchResult((), (), first, "no orbit at the start", time.perf_counter() - t_start,
@@ -272,7 +281,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
 
     res = first.shooting
     # the orbit's start time is a whole number of revolutions: phase 0, where the continuation's maps start
-    pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes)
+    pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes,
+                       locate_events=locate_events)
     w0, w1 = rpm_start / to_rpm, rpm_end / to_rpm
     follow = continue_through_grazing if follows_grazing(sys_lo.support, through_grazing) else continue_branch
     br = follow(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
@@ -280,16 +290,19 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     for p in br.points:
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
-             "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted))}
-        if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it
+             "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted)),
+             "switches_per_period": int(p.events)}
+        if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it, and why
             d["skipped_rpm"] = [pts[-1]["speed_rpm"], d["speed_rpm"]]
+            d["restart_reason"] = p.why
         if amplitudes:
             flow = pb.flow(p.parameter)
             amps, pen, contact = period_response(flow, model, p.state, 0.0, res.modes, pb.period_revs, n)
             d["velocity_amplitudes_mm_s_1X_to_5X"], d["max_edge_penetration_mm"] = amps, pen * 1e3
             d.update(contact)
         pts.append(d)
-    bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index} for b in br.bifurcations)
+    bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index,
+                  **({"detail": b.detail} if b.detail else {})} for b in br.bifurcations)
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
 
 

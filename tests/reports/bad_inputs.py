@@ -267,6 +267,10 @@ def _orbit_cases() -> list:
           ("branch --rpm-end missing", ["branch", "paper-table4", "--rpm-start", "9000"], None),
           ("branch --speed-rpm (one speed)", [*br, "--speed-rpm", "10500"], None)]
     c += _out_cases("branch", br, "--plot", ["/proc/ringcontact", "{file}/sub", "{dir}/", ""])
+    c += _num_cases("branch", br, "--turn-back-rpm", NUMBERS_BAD + ["-1", "0", "250rpm"], "rpm")
+    c += [("branch --from-state nosuch", [*br, "--from-state", "/nonexistent/run"], "/nonexistent/run"),
+          ("branch --from-state a file", [*br, "--from-state", "{file}"], None),
+          ("branch --from-state not a run", [*br, "--from-state", "{dir}"], None)]
     for job, base in (("orbit", b), ("branch", br)):
         c += _num_cases(job, base, "--steps-per-rev", ["0", "-1", "1000000000", "abc"], "")
         c += _num_cases(job, base, "--clearance-mm", NUMBERS_BAD + ["0", "-1", "50"], "mm")

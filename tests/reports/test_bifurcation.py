@@ -67,3 +67,21 @@ def test_segments_table_counts_restarts_when_the_segments_carry_them():
     table = segments_table([{**seg, "restarts": {"secant": 1, "transient": 4, "cold": 0}}])
     assert "restarts past switches" in table.splitlines()[0] and "| 1/4/0 |" in table.splitlines()[2]
     assert table.splitlines()[2].count("|") == 10
+
+
+def test_one_run_report_lists_each_restart_with_its_reason_and_discontinuous_bifurcations(tmp_path):
+    """A single branch (no hand-started segments): the report says so and lists every restart (speeds skipped,
+    how shot, why) and each bifurcation with its detail."""
+    from reports.bifurcation import publish
+
+    b = dict(_branch(), rpm_start=1000.0, rpm_end=1400.0, stop="end reached")
+    b["points"][2] = dict(b["points"][2], restarted="secant", skipped_rpm=[1100.0, 1200.0],
+                          restart_reason="3 corrector failures, last: no convergence")
+    b["bifurcations"] = [{"kind": "discontinuous", "speed_rpm": 1250.0, "after_point": 3,
+                          "detail": "period doubling: largest |multiplier| 0.98 -> 1.2, switches per period 4 -> 6"}]
+    publish([b], tmp_path, channel="d.y", commands=["ringcontact branch x"])
+    md = (tmp_path / "study-bifurcation.md").read_text()
+    assert "in one run from its first speed" in md and "segments started" not in md
+    assert "| 1100.0 – 1200.0 | secant | 3 corrector failures, last: no convergence |" in md
+    assert "| discontinuous | 1250.0 | period doubling: largest |multiplier| 0.98 -> 1.2" in md
+    assert "discontinuous (at a switch)" in (tmp_path / "study-bifurcation.svg").read_text()

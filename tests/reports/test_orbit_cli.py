@@ -139,6 +139,44 @@ def test_branch_starts_on_the_orbit_of_an_orbit_out_file_and_its_table_has_ampli
     assert rc == 2 and len(lines) == 1 and "--rpm-start = 1600 rpm" in lines[0] and "1500" in lines[0]
 
 
+def test_branch_starts_from_the_end_state_of_a_simulate_run_and_refuses_bad_runs(damped_jeffcott, tmp_path, capsys):
+    """--from-state DIR: the transient from the last state of a ``simulate --out DIR`` run (phase 0 after whole
+    revolutions) reaches the orbit; the state handed over is the run's last sample."""
+    import argparse
+
+    from reports.cli.orbit import _state_start
+    sim = tmp_path / "sim"
+    rc, _, err = _run(["simulate", "--scene", damped_jeffcott, "--speed-rpm", 1500, "--revolutions", 6,
+                       "--steps-per-rev", 64, "--out", sim], capsys)
+    assert rc == 0, err
+    z = np.load(sim / "simulate.npz")
+    got = _state_start(argparse.Namespace(from_state=sim, from_orbit=None, rpm_start=1500.0), "damped-jeffcott",
+                       z["q"].shape[1])
+    assert np.array_equal(got["start"][0], z["q"][-1]) and np.array_equal(got["start"][1], z["v"][-1])
+    rc, text, err = _run(["branch", damped_jeffcott, "--rpm-start", 1500, "--rpm-end", 1800, "--from-state", sim,
+                          "--steps-per-rev", 64, "--json"], capsys)
+    assert rc == 0, err
+    d = json.loads(text)
+    rc, text, err = _run(["orbit", damped_jeffcott, "--speed-rpm", 1500, "--steps-per-rev", 64, "--json"], capsys)
+    o = json.loads(text)
+    # a damped linear rotor has one orbit per speed: the transient from the run's end state reaches the orbit job's
+    assert d["start"]["converged"] and d["stop"] == "end reached"
+    assert np.allclose(d["start"]["phase0_state"]["q_m_rad"], o["phase0_state"]["q_m_rad"], rtol=1e-7, atol=1e-13)
+    rc, _, err = _run(["simulate", "--scene", damped_jeffcott, "--speed-rpm", 1500, "--revolutions", 2.5,
+                       "--steps-per-rev", 64, "--out", tmp_path / "half"], capsys)
+    assert rc == 0, err
+    (tmp_path / "empty").mkdir()
+    for argv, words in ((["--rpm-start", 1600, "--from-state", sim], ("--rpm-start = 1600 rpm", "1500")),
+                        (["--rpm-start", 1500, "--from-state", tmp_path / "half"], ("2.5 revolutions", "whole")),
+                        (["--rpm-start", 1500, "--from-state", tmp_path / "empty"], ("--from-state", "simulate --out")),
+                        (["--rpm-start", 1500, "--from-state", tmp_path / "nowhere"], ("--from-state", "no such")),
+                        (["--rpm-start", 1500, "--from-state", sim, "--from-orbit", sim / "simulate-summary.json"],
+                         ("--from-state", "not both"))):
+        rc, _, err = _run(["branch", damped_jeffcott, "--rpm-end", 1800, *argv], capsys)
+        lines = [ln for ln in err.splitlines() if ln.strip()]
+        assert rc == 2 and len(lines) == 1 and all(w in lines[0] for w in words), (argv, err)
+
+
 def test_branch_table_marks_restarts_with_the_speeds_skipped_and_bifurcations_between_rows():
     from reports.cli.orbit import _branch_table
     point = {"stable": True, "spectral_radius": 0.9, "leading_multiplier": "complex_pair",

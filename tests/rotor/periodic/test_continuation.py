@@ -180,17 +180,18 @@ def test_smooth_branch_needs_no_restart_and_its_scales_follow_the_orbit(branch):
 
 
 def test_rescaled_jacobian_is_the_one_evaluated_in_the_new_scales():
-    """``_rescale`` transforms the scaled state, tangent and bordered Jacobian to new scales without a new
+    """``rescale`` transforms the scaled state, tangent and bordered Jacobian to new scales without a new
     map: they equal the evaluator's own at the same point in the new scales (to round-off)."""
-    from rotor.periodic.continuation import _Evaluator, _rescale
+    from rotor.periodic.branch_types import Evaluator
+    from rotor.periodic.corrector import rescale
 
     pb = speed_problem(lambda w: jeffcott_system(P, w), N, modes0=(0, 0))
-    ev = _Evaluator(pb, SCALES.copy(), 100.0)
+    ev = Evaluator(pb, SCALES.copy(), 100.0)
     x, lam = np.array([2e-5, 1e-5, 0, 0, -3e-3, 6e-3, 0, 0]), 500.0
     R, J, M = ev(x, lam)
     y = np.concatenate([x / ev.s, [lam / ev.ls]])
     tau = np.ones(9) / 3.0
-    y2, tau2, J2 = _rescale(ev, y, tau, M, J, 10.0 * SCALES)          # the floor forces new scales: 10 × SCALES
+    y2, tau2, J2 = rescale(ev, y, tau, M, J, 10.0 * SCALES)          # the floor forces new scales: 10 × SCALES
     assert np.allclose(ev.s, 10.0 * SCALES)
     assert np.allclose(y2[:-1] * ev.s, x, rtol=1e-14, atol=0) and y2[-1] == y[-1]
     assert np.isclose(np.linalg.norm(tau2), 1.0) and np.allclose(tau2[:-1] * ev.s / (tau2[-1] * ev.ls),
@@ -207,26 +208,95 @@ def _fake(lam, dlam_ds, restarted=False):
 def test_a_fold_is_reported_only_where_the_branch_turns():
     """The parameter components of the tangents change sign between points 2 and 3 in each case; only where
     the parameter also moves along them (up into point 2, down after point 3) is it a fold."""
-    from rotor.periodic.continuation import Bifurcation, _confirmed_folds
+    from rotor.periodic.branch_events import confirmed_folds
+    from rotor.periodic.continuation import Bifurcation
 
     fold = [Bifurcation("fold", 3, 2.5, 1.0)]
     turns = [_fake(0.0, 1), _fake(1.0, 1), _fake(2.0, 0.5), _fake(2.1, -0.5), _fake(1.5, -1)]
-    assert _confirmed_folds(turns, fold) == fold
+    assert confirmed_folds(turns, fold) == fold
     goes_on = [_fake(0.0, 1), _fake(1.0, 1), _fake(2.0, 0.5), _fake(2.1, -0.5), _fake(2.5, 1)]   # a tangent turned
-    assert _confirmed_folds(goes_on, fold) == []
+    assert confirmed_folds(goes_on, fold) == []
     last = turns[:4]                                                    # nothing after: not confirmed
-    assert _confirmed_folds(last, fold) == []
+    assert confirmed_folds(last, fold) == []
     jump = turns[:3] + [_fake(2.1, -0.5, True)] + turns[4:]             # reached by a restart: no tangent to compare
-    assert _confirmed_folds(jump, fold) == []
+    assert confirmed_folds(jump, fold) == []
     other = [Bifurcation("period_doubling", 3, 2.05, -1.0)]
-    assert _confirmed_folds(last, other) == other
+    assert confirmed_folds(last, other) == other
 
 
 def test_fold_estimate_is_the_vertex_of_the_parabola():
     """λ(σ) = 3 − (σ − 0.3)² (scaled, λ_s = 2): dλ/dσ = 0.6 at σ = 0 and −0.2 at σ = 0.4, the vertex at
     σ = 0.3 with λ = 3 · 2 = 6, above both points (λ(0) = 5.82, λ(0.4) = 5.98)."""
-    from rotor.periodic.continuation import _fold_estimate
+    from rotor.periodic.branch_events import fold_estimate
 
     a, b = _fake(2.0 * (3 - 0.09), 0.6), _fake(2.0 * (3 - 0.01), -0.2)
-    got = _fold_estimate(a, b, 0.4, 2.0)
+    got = fold_estimate(a, b, 0.4, 2.0)
     assert abs(got - 6.0) < 1e-12 and got > max(a.parameter, b.parameter)
+
+
+def _with_multipliers(lam, mults, events, restarted=0):
+    """A point at ``lam`` whose monodromy has the multipliers ``mults`` and ``events`` switches per period."""
+    from rotor.periodic.continuation import BranchPoint
+    from rotor.periodic.floquet import floquet
+    return BranchPoint(lam, np.zeros(len(mults)), floquet(np.diag(mults), 0.01), 0, 0.0, 1.0, restarted, events)
+
+
+def test_a_multiplier_crossing_where_the_switches_change_is_a_discontinuous_bifurcation():
+    """Leine & van Campen (2002): where a stick/slip switch appears between two orbits the multipliers jump (a
+    saltation), here −0.5 to −1.6; reported as "discontinuous" with both sides, not as the smooth kind. A crossing
+    between orbits with the same switches keeps its kind."""
+    from rotor.periodic.branch_events import bifurcations_between
+
+    a = _with_multipliers(100.0, [0.3, -0.5], 4)
+    b = _with_multipliers(101.0, [0.3, -1.6], 6, restarted=1)
+    (bif,) = bifurcations_between(None, a, b, 1, None, None, 0.1, None, None)
+    assert bif.kind == "discontinuous" and 100.0 < bif.parameter < 101.0
+    assert "period doubling" in bif.detail and "0.5 -> 1.6" in bif.detail and "4 -> 6" in bif.detail
+    (same,) = bifurcations_between(None, a, _with_multipliers(101.0, [0.3, -1.6], 4, 1), 1, None, None, 0.1, None,
+                                   None)
+    assert same.kind == "period_doubling" and same.detail == ""
+    assert bifurcations_between(None, a, _with_multipliers(101.0, [0.3, 0.5], 6, 1), 1, None, None, 0.1, None,
+                                None) == []      # no crossing: nothing, switches or not
+
+
+def test_the_corrector_halves_a_step_whose_residual_grew():
+    """On ``R(x) = sign(x)|x|^(1/3)`` (a cusp, as a map's derivative at a switch) plain Newton doubles the
+    distance each step, ``x ← −2x``, and diverges; with halving the residual falls and ``ev.failure`` says
+    why the corrector stopped."""
+    from rotor.periodic.continuation import ContinuationOptions
+    from rotor.periodic.corrector import correct
+
+    class Cusp:
+        s, ls, events, failure, seen = np.ones(1), 1.0, 0, "", []
+
+        def __call__(self, x, lam, jacobian=True):
+            r = np.cbrt(x)
+            self.seen.append(float(abs(r[0])))
+            d = 1.0 / (3.0 * np.cbrt(x[0]) ** 2)
+            return r, np.array([[d, 0.0]]), None
+
+    ev = Cusp()
+    got = correct(ev, np.array([1.0, 0.0]), np.array([0.0, 1.0]), ContinuationOptions(max_iter=12))
+    assert got is None and ev.failure.startswith("no convergence in 12 iterations")
+    assert ev.seen[-1] < 0.5 * ev.seen[0]          # plain Newton: 2^(1/3) larger at every step
+
+
+def test_turn_back_follows_the_middle_branch_then_jumps_past_the_fold_as_a_run_up_does():
+    """``turn_back``: past the jump-down fold (726.368 rad/s warped, closed form) the branch follows the unstable
+    middle branch 30 rad/s back (0.3 of λ_s = 100 rad/s), then one restart lands on the lower-right branch just
+    past the fold (the run-up's jump), whose radius is the closed form's there, and goes on to the end."""
+    from rotor.periodic.branch_types import COLD, TRANSIENT
+    pb = speed_problem(lambda w: jeffcott_system(P, w), N, modes0=(0, 0))
+    br = continue_branch(pb, np.zeros(8), 150.0, 900.0, scales=SCALES, lam_scale=100.0,
+                         options=ContinuationOptions(ds=0.1, ds_max=0.4, turn_back=0.3))
+    assert br.stop == "end reached" and br.restarts == 1
+    (k,) = [i for i, p in enumerate(br.points) if p.restarted]
+    jump, before = br.points[k], br.points[k - 1]
+    w_fold = closed_form_folds(P, N)[1][0]
+    assert jump.restarted in (TRANSIENT, COLD) and 0.0 < jump.parameter - w_fold < 1.5         # 1 rad/s past the fold
+    assert w_fold - 40.0 < before.parameter < w_fold - 29.0 and not before.floquet.stable   # the middle branch
+    r = math.hypot(jump.state[0], jump.state[1])
+    # the lower-right branch: below the jump-up fold's radius (7.39 δ0), far from the upper branch (~45 δ0 here)
+    assert r < closed_form_folds(P, N)[0][1] and _curve_distance(jump.parameter, r) < 1e-6
+    assert "turned back at a fold" in jump.why and any("restart (" in f[2] for f in br.failures)
+    assert [b.kind for b in br.bifurcations] == ["fold"] and abs(br.bifurcations[0].parameter / w_fold - 1) < 1e-6

@@ -1,0 +1,133 @@
+"""Restarts past a switch where the pseudo-arclength corrector cannot go (:mod:`rotor.periodic.continuation`):
+shooting at a fixed parameter a little further on, from the secant predictor, from a short transient of the
+last orbit, or from the linear periodic solution.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from contact.errors import ConvergenceError, InputError, OutsideDomainError
+from rotor.dynamics.initial import linear_initial_state
+from rotor.periodic.branch_types import (COLD, COLD_STEP, COLD_TRIES, RESTART_STEP, RESTART_TRANSIENT_REVS, SECANT,
+                                         TRANSIENT)
+from rotor.periodic.period_flow import to_full
+from rotor.periodic.shooting import ShootingOptions, shoot, shoot_from_transient
+
+#: parameter steps (scaled) of the last-resort :func:`bridge` past a stretch no restart passes (with a tenth of
+#: 600–18 000 rpm as the scale: 5 to 870 rpm)
+BRIDGE_STEPS = (3e-3, 1e-2, 3e-2, 0.1, 0.25, 0.5)
+#: parameter step (scaled) past a fold of :func:`jump_past_fold` (with a tenth of 600–18 000 rpm: 17 rpm)
+JUMP_STEP = 1e-2
+
+
+def restart(ev, points, y, tau, opts, continuum: bool, step_hint: float = 0.0):
+    """A point past a switch where the corrector cannot go: shooting (:func:`rotor.periodic.shooting.shoot`,
+    Newton with halving and Levenberg–Marquardt retrials, no arclength or phase row) at the fixed parameter
+    ``λ_k + 2h`` from the secant predictor of the last two points (the tangent at the first point), ``h``
+    the last step's parameter advance (at least :data:`RESTART_STEP` and half ``step_hint``, the parameter
+    advance of the predictor that failed), four times as long after each failure,
+    ``restart_tries`` times, at most ``ds_max`` (scaled parameter); then at ``λ_k + 2h`` a transient from the
+    last orbit before shooting, then from the linear periodic solution at :data:`COLD_TRIES` steps growing ×4
+    (:func:`shot`). In a stuck face's
+    continuum (``continuum``: the last orbit has neutral directions) the transient comes first: the orbit the
+    corrector cannot reach lies where the face, having slipped a little, holds again, which a transient
+    finds and Newton from the secant (at the offset where the face slips) does not. Returns
+    ``(y, J, M, iterations, residual, how, guide)`` or None, ``guide`` the unit parameter direction of travel
+    (for the new tangent)."""
+    x_k, lam_k = y[:-1] * ev.s, y[-1] * ev.ls
+    if len(points) > 1:
+        prev = points[-2]
+        d = np.concatenate([(x_k - prev.state) / ev.s, [(lam_k - prev.parameter) / ev.ls]])
+    else:
+        d = tau.copy()
+    if abs(d[-1]) < 1e-3 * np.linalg.norm(d):       # at a turn: no direction in the parameter to restart along
+        return None
+    d = d / np.linalg.norm(d)
+    h = max(abs(lam_k - points[-2].parameter) / ev.ls if len(points) > 1 else opts.ds * abs(d[-1]), RESTART_STEP,
+            0.5 * step_hint)
+    tries = [(SECANT, min(2.0 * h * 4.0 ** k, opts.ds_max)) for k in range(opts.restart_tries)]
+    cold = [(COLD, min(COLD_STEP * 4.0 ** k, opts.ds_max)) for k in range(COLD_TRIES)]
+    tries = ([(TRANSIENT, 2.0 * h)] + tries if continuum else tries + [(TRANSIENT, 2.0 * h)]) + cold
+    for how, step in tries:
+        y_pred = y + (step / abs(d[-1])) * d
+        got = shot(ev, y_pred, opts, how, y)
+        if got is not None:       # the new tangent points on in the parameter: across a jump the secant need not
+            guide = np.zeros(len(y))
+            guide[-1] = math.copysign(1.0, d[-1])
+            return (*got, guide)
+    return None
+
+
+def bridge(ev, points, y, direction: float, opts):
+    """The last resort where both the corrector (down to ``ds_min``) and :func:`restart` failed: shooting at
+    parameter steps :data:`BRIDGE_STEPS` (scaled) towards ``direction`` (±1), at each from the secant predictor
+    of the last two points (:data:`SECANT`; Newton may land on an unstable orbit, which a transient never
+    reaches) and then from the linear periodic solution (:data:`COLD`). Returns what :func:`restart` returns,
+    or None; the caller reports the speeds skipped."""
+    x_k, lam_k = y[:-1] * ev.s, y[-1] * ev.ls
+    d = np.zeros(len(y))
+    if len(points) > 1:
+        prev = points[-2]
+        d = np.concatenate([(x_k - prev.state) / ev.s, [(lam_k - prev.parameter) / ev.ls]])
+    slope = d[:-1] / d[-1] if d[-1] * direction > 0 else np.zeros(len(y) - 1)   # state change per parameter
+    guide = np.zeros(len(y))
+    guide[-1] = direction
+    for step in BRIDGE_STEPS:
+        for how in (SECANT, COLD):
+            y_pred = y + direction * step * np.concatenate([slope, [1.0]])
+            got = shot(ev, y_pred, opts, how, y)
+            if got is not None:
+                return (*got, guide)
+    return None
+
+
+def jump_past_fold(ev, fold_y, direction: float, opts):
+    """The orbit a run-up jumps to past a fold: at the fold's parameter plus :data:`JUMP_STEP` (scaled) in
+    ``direction``, the transient from the orbit at the fold (``fold_y``, scaled, the farthest point reached),
+    then the linear periodic solution (:func:`shot`); what :func:`restart` returns, or None."""
+    guide = np.zeros(len(fold_y))
+    guide[-1] = direction
+    for step in (JUMP_STEP, 4.0 * JUMP_STEP):
+        y_pred = fold_y.copy()
+        y_pred[-1] += direction * step
+        for how in (TRANSIENT, COLD):
+            got = shot(ev, y_pred, opts, how, fold_y)
+            if got is not None:
+                return (*got, guide)
+    return None
+
+
+def shot(ev, y_pred, opts, how: int, y_last):
+    """The orbit at the parameter of ``y_pred``: ``how`` 1 (:data:`SECANT`) :func:`rotor.periodic.shooting.shoot`
+    from its state; 2 (:data:`TRANSIENT`) :func:`rotor.periodic.shooting.shoot_from_transient` from the last
+    orbit ``y_last`` (rounds of 2, 4, … revolutions, at most :data:`RESTART_TRANSIENT_REVS`); 3 (:data:`COLD`)
+    the same from the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`; 24, 36, …
+    revolutions, at most 4 :data:`RESTART_TRANSIENT_REVS`: the start of a new segment). ``(y, J, M, iterations, residual, how)`` if the orbit's residual
+    with the branch's own start modes is below ``tol``, else None."""
+    pb, lam = ev.pb, y_pred[-1] * ev.ls
+    flow = ev.flow(lam)
+    sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_iter=2 * opts.max_iter, transient_revs=2,
+                            round_growth=2.0, max_transient_revs=RESTART_TRANSIENT_REVS)
+    try:
+        if how == SECANT:
+            sh = shoot(flow, y_pred[:-1] * ev.s, t0_s=0.0, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
+                       modes0=pb.modes0, scales=ev.s, options=sopts)
+        else:
+            if how == TRANSIENT:
+                q, v = to_full(flow, y_last[:-1] * ev.s, 0.0)
+            else:
+                q, v = linear_initial_state(flow.system, 0.0)
+                sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_transient_revs=4 * RESTART_TRANSIENT_REVS)
+            sh = shoot_from_transient(flow, q, v, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
+                                      options=sopts, modes0=pb.modes0)
+        if not sh.converged:
+            return None
+        R, J, M = ev(sh.state, lam)
+    except (OutsideDomainError, ConvergenceError, InputError):
+        return None
+    res = float(np.max(np.abs(R)))
+    return (np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, res, how) \
+        if res < opts.tol else None
+
