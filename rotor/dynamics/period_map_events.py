@@ -1,7 +1,8 @@
 """The monodromy of the period map with friction events located inside the step (``locate_events``).
 
 With :attr:`rotor.dynamics.system.NewmarkOptions.locate_events` the production step loop splits a step at a
-slip reversal or a stick onset (:mod:`rotor.dynamics.friction_events`): the event time moves with the state, so
+slip reversal or a stick onset (:mod:`rotor.dynamics.friction_events`), and at a contact onset or loss
+(:mod:`rotor.dynamics.contact_events`): the event time moves with the state, so
 the map is continuous where the plain step's map jumps when a switch moves by a step. Its derivative needs the
 event time's derivative (the discrete form of the saltation matrix, Leine & van Campen 2002; Aizerman &
 Gantmacher 1958), which the analytic pass of :mod:`rotor.dynamics.period_map_kernels` does not carry.
@@ -25,15 +26,17 @@ Measured against central differences of the located map (scaled monodromy, tests
 test_period_map_events.py): Den Hartog's (1931) oscillator, non-stop (two located reversals per period) and
 stick-slip (stick onsets and releases), agree to 1e-6. **Not yet shown on Table 4 to 1e-6**: at 10 500 rpm (512
 steps per revolution, 60 revolutions from the linear state; two stick onsets and two releases in the period) the
-agreement is 5.2e-6 and 5.5e-6 against central differences at 1e-7 and 1e-8 of each component's range, which
-agree with each other to 3.8e-7 (before the releases were located: 4e-5 to 7e-5, the reference not converging,
-2e-4). Contact onset and loss (an edge penetration crossing zero) are not located inside the step; the steps
-held as slow slips (:mod:`rotor.dynamics.friction_events`) are differenced as event steps.
+agreement is 1.6e-6 and 1.5e-6 against central differences at 1e-7 and 1e-8 of each component's range, which
+agree with each other to 4.6e-7 (before contact onset and loss were located, :mod:`rotor.dynamics.contact_events`,
+four edge crossings in the period: 5.2e-6 and 5.5e-6; before the releases were located: 4e-5 to 7e-5). The steps
+held as slow slips (:mod:`rotor.dynamics.friction_events`) and the steps across an edge crossing are differenced
+as event steps.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from rotor.dynamics.contact_events import edge_crossing
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
@@ -65,6 +68,10 @@ def event_steps(pm, tr) -> list[int]:
             force = np.hypot(tr.face_force[:-1, k, 0], tr.face_force[:-1, k, 1])
             held = (speed > w_reg) & (speed < w_hold) | (speed <= w_reg) & (force >= mu_N[k] * (1 - 1e-9))
             out |= set(np.flatnonzero(held & (modes[:-1, k] == 0)).tolist())
+    if pm.options.locate_events and pm.reduced.support is not None:
+        # contact onset or loss (rotor.dynamics.contact_events): an edge penetration changed sign over the step
+        params = np.asarray(pm.params, dtype=float)
+        out |= {n for n in range(len(tr.u) - 1) if edge_crossing(tr.u[n], tr.u[n + 1], params)}
     return sorted(out)
 
 
