@@ -105,12 +105,14 @@ def _event_fraction(s0, d0, d1, h):
 
 
 @njit(cache=True)
-def _velocity_events(w0, w1, modes0, modes1, released0, P, n_faces, w_min, ev, mu_N):
+def _velocity_events(w0, w1, modes0, modes1, released0, P, n_faces, w_min, ev, mu_N, w_stop):
     """Mark in ``ev`` (2,) the faces slipping at the start of the step, faster than ``w_min`` (m/s; the
     friction regularisation ``w_reg``, below which the slip direction is not defined) and not just
     released (``released0``: they start from rest), whose velocity reversed (``w_n+1 · w_n ≤ 0``) or
     which stuck by its end; returns how many. ``w0``, ``w1``: the condensed velocities ``Bt v`` (NC,) at the
-    start and at the end of the step (m/s, rad/s); a face without friction (``mu_N[k]`` 0, N) has no event."""
+    start and at the end of the step (m/s, rad/s); a face without friction (``mu_N[k]`` 0, N) has no event. A face
+    that stuck by the end is an event from the start speed ``w_stop`` (m/s, below ``w_min``) up: a face creeping to a
+    stop at ~``w_reg`` starts its last step just above it (rotor.dynamics.production_loop.EVENT_SPEED)."""
     count = 0
     for k in range(2):
         ev[k] = False
@@ -118,11 +120,12 @@ def _velocity_events(w0, w1, modes0, modes1, released0, P, n_faces, w_min, ev, m
             continue
         a0 = P[k, 0] @ w0[:4]
         b0 = P[k, 1] @ w0[:4]
-        if a0 * a0 + b0 * b0 <= w_min * w_min:
+        s2 = a0 * a0 + b0 * b0
+        if s2 <= w_stop * w_stop:
             continue
         a1 = P[k, 0] @ w1[:4]
         b1 = P[k, 1] @ w1[:4]
-        if modes1[k] == 1 or a0 * a1 + b0 * b1 <= 0.0:
+        if modes1[k] == 1 or (s2 > w_min * w_min and a0 * a1 + b0 * b1 <= 0.0):
             ev[k] = True
             count += 1
     return count

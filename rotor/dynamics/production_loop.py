@@ -43,6 +43,11 @@ compiled_with(__file__, ["rotor.dynamics.contact_events", "rotor.dynamics.fricti
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
 RELEASE_HOLD = 1000.0   # slow slips (friction_events, "Slow slips") are held below this many w_reg
 RECTILINEAR = 1e-9      # a slow slip is rectilinear where sin² of its velocity-acceleration angle is below this
+# a slip slower than this many w_reg at the step's start has no located stop (reversals: w_reg); not w_reg itself: a face
+# creeping to a stop at ~w_reg (the regularised force's deficit) starts its last step just above w_reg, and that
+# threshold made the located map jump there (Table 4, 8 400 rpm, T/512: start speed 1.007 w_reg, the stick onset
+# step's derivative toggled at 1e-6 perturbations, located monodromy 0.41 from central differences)
+EVENT_SPEED = 1e-3
 
 
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
@@ -355,7 +360,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         if phase == PLAIN:
             if locate:
                 matvec_into(Bt, vn, w_end)          # (wv = Bt v, the step's start, from the step body)
-            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N) > 0:
+            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N,
+                                             EVENT_SPEED * w_reg) > 0:
                 p_pl[:] = pn                                        # the plain result, kept
                 v_pl[:] = vn
                 a_pl[:] = an
