@@ -24,15 +24,15 @@ released in the step before, which the replay starts without): a replay that doe
 
 Measured against central differences of the located map (scaled monodromy, tests/rotor/dynamics/
 test_period_map_events.py): Den Hartog's (1931) oscillator, non-stop (two located reversals per period) and
-stick-slip (stick onsets and releases), agree to 1e-6. On Table 4 at 10 500 rpm (512
-steps per revolution, 60 revolutions from the linear state; two stick onsets and two releases in the period) the
-agreement is 3.6e-6; at 8 400 rpm 3.7e-6, at 12 000 rpm 1.5e-6 (a stick onset, a release and 2 to 6 edge crossings,
-contact onsets or losses, in each period). The reference there is the Richardson extrapolation of central differences of the whole
-map at 1e-7 and 2e-7 of each component's range, which agrees with the one at 5e-8 and 1e-7 to 1.1e-7, 1.9e-7,
-1.1e-7. Before contact onset and loss were located (:mod:`rotor.dynamics.contact_events`) 10 500 rpm was 5.2e-6
-against plain central differences; before a stop from a creep was located whatever its start speed
-(:data:`rotor.dynamics.production_loop.EVENT_SPEED`) 8 400 rpm was 0.41. Not yet 1e-6 on Table 4: with every step
-of the period differenced (no analytic pass) 10 500 rpm is 4.7e-6 off, so the rest is spread over the period, not in
+stick-slip (stick onsets and releases), agree to 1e-6. On Table 4 at 10 500 rpm (512 steps per revolution, 60
+revolutions from the linear state; two stick onsets and two releases in the period) the agreement is 3.6e-6; at
+8 400 rpm 3.7e-6, at 12 000 rpm 1.5e-6 (a stick onset, a release and 2 to 6 edge crossings, contact onsets or losses,
+in each period). The reference there is the Richardson extrapolation of central differences of the whole map at 1e-7
+and 2e-7 of each component's largest magnitude over the period, which agrees with the one at 5e-8 and 1e-7 to
+1.1e-7, 1.9e-7, 1.1e-7. Before contact onset and loss were located (:mod:`rotor.dynamics.contact_events`) 10 500 rpm
+was 5.2e-6 against plain central differences; before a stop from a creep was located whatever its start speed
+(:data:`rotor.dynamics.production_loop.EVENT_SPEED`) 8 400 rpm was 0.41. Not yet 1e-6 on Table 4: with every step of
+the period differenced (no analytic pass) 10 500 rpm is 4.7e-6 off, so the rest is spread over the period, not in
 one event step. The steps held as slow slips (:mod:`rotor.dynamics.friction_events`) and the steps across an edge
 crossing are differenced as event steps.
 """

@@ -37,14 +37,15 @@ from rotor.dynamics.kernels import law_tuple
 from rotor.dynamics.production_kernels import (_load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into,
                                                newton_work)
 
-compiled_with(__file__, ["rotor.dynamics.contact_events", "rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
+compiled_with(__file__, ["rotor.dynamics.contact_events", "rotor.dynamics.friction_events",
+                         "rotor.dynamics.production_kernels",
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
 RELEASE_HOLD = 1000.0   # slow slips (friction_events, "Slow slips") are held below this many w_reg
 RECTILINEAR = 1e-9      # a slow slip is rectilinear where sin² of its velocity-acceleration angle is below this
-# a slip slower than this many w_reg at the step's start has no located stop (reversals: w_reg); not w_reg itself: a face
-# creeping to a stop at ~w_reg (the regularised force's deficit) starts its last step just above w_reg, and that
+# a slip slower than this many w_reg at the step's start has no located stop (reversals: w_reg); not w_reg itself:
+# a face creeping to a stop at ~w_reg (the regularised force's deficit) starts its last step just above w_reg, and that
 # threshold made the located map jump there (Table 4, 8 400 rpm, T/512: start speed 1.007 w_reg, the stick onset
 # step's derivative toggled at 1e-6 perturbations, located monodromy 0.41 from central differences)
 EVENT_SPEED = 1e-3
