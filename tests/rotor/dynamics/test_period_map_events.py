@@ -63,14 +63,16 @@ def test_located_monodromy_equals_central_differences_through_events(F, omega, s
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("rpm", [8400.0, 10500.0])
+@pytest.mark.parametrize("rpm", [8400.0, 10500.0, 12000.0])
 def test_table4_located_monodromy_through_stick_releases_and_contact_onsets(rpm):
     """Dai et al. (2025) Table 4 rotor, 512 steps per revolution, one period from the state after 60 revolutions from
     the linear one: a stick onset, a release and edge crossings (contact onset and loss, located inside the step) in
     the period. Expected: the Richardson extrapolation of central differences of the located map at 1e-7 and 2e-7 of
-    each component's largest magnitude, its convergence checked against the one at 5e-8 and 1e-7 (measured 1.9e-7 and
-    1.1e-7). The located monodromy agrees to 3.7e-6 and 3.6e-6 (the issue asks 1e-6, not reached: asserted at 1e-5;
-    at 8 400 rpm it was 0.41 before a stop from a creep was located from any start speed)."""
+    each component's largest magnitude, its convergence checked against the one at 5e-8 and 1e-7 (measured 1.9e-7,
+    1.1e-7, 1.1e-7). The located monodromy agrees to 1e-6, the issue's bound (measured 9.6e-7, 7.2e-7, 8.8e-8: the
+    margin at 8 400 rpm is small; that speed was 0.41 before a stop from a creep was located from any start speed,
+    3.7e-6 with every event step differenced at 1e-6). Not every Table 4 speed has a smooth map at 1e-7: at 9 600 and
+    11 000 rpm these references themselves differ by O(1) (rotor/dynamics/period_map_events.py)."""
     from rotor.dynamics.build import system_from_model
     from rotor.dynamics.initial import linear_initial_state
     from rotor.dynamics.period_map import reduced_state
@@ -113,4 +115,4 @@ def test_table4_located_monodromy_through_stick_releases_and_contact_onsets(rpm)
     F = {rel: fd(rel) for rel in (2e-7, 1e-7, 5e-8)}
     ref, ref2 = (4 * F[1e-7] - F[2e-7]) / 3, (4 * F[5e-8] - F[1e-7]) / 3
     assert err(ref, ref2) < 5e-7                                 # the reference converged
-    assert err(res.monodromy, ref) < 1e-5
+    assert err(res.monodromy, ref) < 1e-6
