@@ -46,6 +46,14 @@ low-speed stick trial (``w_stick``) is kept only below ``w_reg``: a stop is wher
 a threshold on the step grid made the map jump. After a stop located inside a step the rest of the step ends
 on the consistent acceleration (the sub-step's own velocity at the event, the root of the held step's
 polynomial, is ``O(h³)`` from zero, and the stuck multipliers rang with it).
+The rectilinear test is itself a threshold on the step grid, and a 2D slow slip's acceleration can sweep through
+its velocity's direction: on Table 4 at 11 000 rpm (T/512, one period after 60 revolutions) a face slipping at
+6 w_reg has sin² 5.4e-8 at one step, 2.2e-10 after a 1e-7 perturbation of the period's start, is held there and
+stops; the located map jumps (its central differences at 1e-7 and 5e-8 differ by O(1); at 9 600 rpm too, the cause
+there not checked).
+A stop located from any start speed above ``EVENT_SPEED w_reg`` (rotor.dynamics.production_loop) replaced ``w_reg``
+as that threshold for stops (not for reversals): a face creeping to a stop at ~``w_reg`` starts its last step just
+above it.
 
 Measured on Den Hartog's (1931) stick-slip oscillator: the amplitude error against the closed form falls at
 second order (4.6e-5 … 7.1e-7 at T/400 … T/3200) where it stalled at 3e-4. Switched on by
