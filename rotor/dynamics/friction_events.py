@@ -57,7 +57,7 @@ above it.
 
 Measured on Den Hartog's (1931) stick-slip oscillator: the amplitude error against the closed form falls at
 second order (4.6e-5 … 7.1e-7 at T/400 … T/3200) where it stalled at 3e-4. Switched on by
-``NewmarkOptions.locate_events`` (the default); the tests are in tests/rotor/dynamics/test_friction_events.py.
+``NewmarkOptions.locate_events`` (off by default); the tests are in tests/rotor/dynamics/test_friction_events.py.
 """
 from __future__ import annotations
 

@@ -29,13 +29,14 @@ revolutions from the linear state; a stick onset, a release and 2 to 6 edge cros
 each period): 9.6e-7, 7.2e-7 and 8.8e-8 at 8 400, 10 500 and 12 000 rpm, against the Richardson extrapolation of
 central differences of the whole map at 1e-7 and 2e-7 of each component's largest magnitude over the period, which
 agrees with the one at 5e-8 and 1e-7 to 1.9e-7, 1.1e-7, 1.1e-7. Before contact onset and loss were located
-(:mod:`rotor.dynamics.contact_events`) 10 500 rpm was 5.2e-6 against plain central differences; before a stop from
-a creep was located whatever its start speed (:data:`rotor.dynamics.production_loop.EVENT_SPEED`) 8 400 rpm was
-0.41; with every event step differenced at 1e-6 and extrapolated, 3.7e-6, 3.6e-6, 1.5e-6 (:data:`EVENT_STEP_REL`).
-Not every Table 4 speed has a map smooth at that scale: at 9 600 and 11 000 rpm the references at 1e-7 and 5e-8
+(:mod:`rotor.dynamics.contact_events`) 10 500 rpm was 5.2e-6 against plain central differences; before a stop from a
+creep was located whatever its start speed (:data:`rotor.dynamics.production_loop.EVENT_SPEED`) 8 400 rpm was 0.41;
+with every event step differenced at 1e-6 and extrapolated, 3.7e-6, 3.6e-6, 1.5e-6 (:data:`EVENT_STEP_REL`). Not
+every Table 4 speed has a map smooth at that scale: at 9 600 and 11 000 rpm the references at 1e-7 and 5e-8
 themselves differ by O(1) (at 11 000 rpm the slow-slip hold's rectilinear test, a threshold, decided differently
-after a 1e-7 perturbation: :mod:`rotor.dynamics.friction_events`, "Slow slips"; 9 600 rpm not checked). The steps held as slow slips
-(:mod:`rotor.dynamics.friction_events`) and the steps across an edge crossing are differenced as event steps.
+after a 1e-7 perturbation: :mod:`rotor.dynamics.friction_events`, "Slow slips"; 9 600 rpm not checked). The steps
+held as slow slips (:mod:`rotor.dynamics.friction_events`) and the steps across an edge crossing are differenced as
+event steps.
 """
 from __future__ import annotations
 
