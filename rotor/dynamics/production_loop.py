@@ -2,12 +2,14 @@
 
 One step: predictor, condensed Newton with the active-set loop (:func:`rotor.dynamics.production_kernels.
 _solve_support`, the stick/slip rules of :mod:`rotor.dynamics.constraints`), correction, stick-onset
-re-projection. With ``locate_events`` (the default), a step in which a face's slip velocity reached zero is
+re-projection. With ``locate_events`` (off by default), a step in which a face's slip velocity reached zero is
 redone in three passes of the same step body (:mod:`rotor.dynamics.friction_events`): (1) re-solved with the
 event faces' friction held, which gives the event time; (2) the sub-step up to the event, friction
 held; the friction state is switched at the event; (3) the sub-step from the event to the end. A release is
 redone in passes (2) and (3), its time from the holding force; a slow slip's friction is held over its step
-(friction_events, "Release" and "Slow slips").
+(friction_events, "Release" and "Slow slips"). A step in which an edge penetration of the support changed sign
+(contact onset or loss, :mod:`rotor.dynamics.contact_events`) is redone in passes (2) and (3) at the crossing,
+with no switch at it (the force is continuous there); with ``locate_events`` off none of this runs.
 
 The step body is written once, inside the loop over the steps: called as a function it cost ~12 % of
 the step (measured on the Table 4 rotor: the reference counts of the ~30 arrays it takes, per call).
@@ -28,18 +30,25 @@ from numba import njit
 
 from contact.compiled_cache import compiled_with
 from contact.loose_support import point_force_jacobian
+from rotor.dynamics.contact_events import crossing_fraction, edge_crossing
 from rotor.dynamics.friction_events import (_event_time, _held_friction, _release_fraction, _substep_matrices,
                                             _switch_at_event, _velocity_events)
 from rotor.dynamics.kernels import law_tuple
 from rotor.dynamics.production_kernels import (_load, _mode_update, _reproject, _solve_support, NC, VG, VX, matvec_into,
                                                newton_work)
 
-compiled_with(__file__, ["rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
+compiled_with(__file__, ["rotor.dynamics.contact_events", "rotor.dynamics.friction_events",
+                         "rotor.dynamics.production_kernels",
                          "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
 RELEASE_HOLD = 1000.0   # slow slips (friction_events, "Slow slips") are held below this many w_reg
 RECTILINEAR = 1e-9      # a slow slip is rectilinear where sin² of its velocity-acceleration angle is below this
+# a slip slower than this many w_reg at the step's start has no located stop (reversals: w_reg); not w_reg itself:
+# a face creeping to a stop at ~w_reg (the regularised force's deficit) starts its last step just above w_reg, and that
+# threshold made the located map jump there (Table 4, 8 400 rpm, T/512: start speed 1.007 w_reg, the stick onset
+# step's derivative toggled at 1e-6 perturbations, located monodromy 0.41 from central differences)
+EVENT_SPEED = 1e-3
 
 
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
@@ -113,6 +122,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     rel_fe = np.zeros((2, 2))
     release_event = False
     stuck_at_event = False      # a face stuck at the located event: the rest of the step ends consistent
+    contact_event = False       # an edge penetration crossing zero located in the step (contact_events)
+    u_s = np.empty(NC)
     Ai, Wh, Sh = Ainv, W, S
     h = dt
     h1 = 0.0
@@ -350,7 +361,8 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         if phase == PLAIN:
             if locate:
                 matvec_into(Bt, vn, w_end)          # (wv = Bt v, the step's start, from the step body)
-            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N) > 0:
+            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N,
+                                             EVENT_SPEED * w_reg) > 0:
                 p_pl[:] = pn                                        # the plain result, kept
                 v_pl[:] = vn
                 a_pl[:] = an
@@ -393,6 +405,23 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 vn[:] = v
                 an[:] = a
                 phase = TO_EVENT
+            if locate and phase == PLAIN:
+                # contact onset or loss: an edge penetration that changed sign over the step (contact_events); the
+                # step redone up to the crossing with the start's friction state, the rest of the step follows
+                matvec_into(Bt, p, u_s)
+                if edge_crossing(u_s, u_new, params):
+                    theta = crossing_fraction(u_s, wv, u_new, w_new, dt, params)
+                    if 1e-12 < theta < 1.0 - 1e-12:
+                        modes[:] = modes0
+                        phi_face[:, :] = phi0
+                        just_released[:] = jr0
+                        matvec_into(Bt, a, alpha)
+                        contact_event = True
+                        h1 = theta * dt
+                        Ai, Wh, Sh = _substep_matrices(h1, Mr, Dr, Kr, Bt, beta, gamma)
+                        h = h1
+                        phase = TO_EVENT
+                        continue
         elif phase == HELD:
             theta = _event_time(alpha, ev, e_dir, s0, d0, h, P, hold)
             modes[:] = modes0
@@ -423,9 +452,10 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 phase = TO_EVENT
         if phase == TO_EVENT:
             # the friction state switched at the event, the consistent acceleration, then the rest of the step
-            _load(t0 + (step - 1) * dt + h1, static, orders, cosm, sinm, omega_f, Q)
-            an[:] = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold, mu_N,
-                                  a1, params, w_reg)
+            if not contact_event:
+                _load(t0 + (step - 1) * dt + h1, static, orders, cosm, sinm, omega_f, Q)
+                an[:] = _switch_at_event(pn, vn, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes, phi_face, just_released, hold,
+                                         mu_N, a1, params, w_reg)
             for k in range(2):
                 nrm = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
                 if hold[k] and release_event and modes[k] == 1 and nrm > 0:
@@ -441,6 +471,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     stuck_at_event = True
             hold[:] = False
             release_event = False
+            contact_event = False
             status[4] += 1
             p[:] = pn
             v[:] = vn
