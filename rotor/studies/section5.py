@@ -222,7 +222,7 @@ def contact_pattern(arrays, info) -> dict:
     """How the ring meets the support over a point's recorded revolutions (the last ones of
     :func:`rotor.studies.steady_state.run_point`): ``impacts_per_rev`` (contact onsets, r1 or r2 crossing δ0
     outwards, per revolution; the record of whole revolutions counted as a loop), ``contact_share`` (of the record), ``period_revs`` and the amplitudes (N) of the
-    radial contact force's 1X, 2X, 3X (``force_1x_N`` …; |(Fy, Fz)| of each harmonic, zero without contact).
+    radial contact force's 1X, 2X, 3X (``force_1x_N`` …; the magnitude of each harmonic of (Fy, Fz), zero without contact).
 
     Where the finding on 1X or 3X with δ fails (§5.3.2), these show whether the contact changes its pattern
     between the δ values (a regime switch) and how its force's harmonics move."""
