@@ -51,6 +51,15 @@ RECTILINEAR = 1e-9      # a slow slip is rectilinear where sin² of its velocity
 EVENT_SPEED = 1e-3
 
 
+@njit(cache=True, nogil=True)
+def _faces_from_start(modes, modes0, phi_face, phi0, just_released, jr0):
+    """The end faces' state (modes, face forces, released flags) back to the step's start, before a step is redone
+    up to an event inside it."""
+    modes[:] = modes0
+    phi_face[:, :] = phi0
+    just_released[:] = jr0
+
+
 @njit(cache=True, nogil=True)   # nogil: a run in a thread of its own leaves the main thread to honour Ctrl-C
 def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
               Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
@@ -370,9 +379,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 modes_pl[:] = modes
                 phi_pl[:, :] = phi_face
                 jr_pl[:] = just_released
-                modes[:] = modes0
-                phi_face[:, :] = phi0
-                just_released[:] = jr0
+                _faces_from_start(modes, modes0, phi_face, phi0, just_released, jr0)
                 matvec_into(Bt, a, alpha)
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
@@ -389,9 +396,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     rel_fs[k, 0] = phi_s[k, 0]
                     rel_fs[k, 1] = phi_s[k, 1]
                 theta = _release_fraction(rel_fs, rel_fe, rel_ev, mu_N, hold)
-                modes[:] = modes0
-                phi_face[:, :] = phi0
-                just_released[:] = jr0
+                _faces_from_start(modes, modes0, phi_face, phi0, just_released, jr0)
                 matvec_into(Bt, a, alpha)
                 release_event = True
                 h1 = theta * dt
@@ -412,9 +417,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 if edge_crossing(u_s, u_new, params):
                     theta = crossing_fraction(u_s, wv, u_new, w_new, dt, params)
                     if 1e-12 < theta < 1.0 - 1e-12:
-                        modes[:] = modes0
-                        phi_face[:, :] = phi0
-                        just_released[:] = jr0
+                        _faces_from_start(modes, modes0, phi_face, phi0, just_released, jr0)
                         matvec_into(Bt, a, alpha)
                         contact_event = True
                         h1 = theta * dt
@@ -424,9 +427,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         continue
         elif phase == HELD:
             theta = _event_time(alpha, ev, e_dir, s0, d0, h, P, hold)
-            modes[:] = modes0
-            phi_face[:, :] = phi0
-            just_released[:] = jr0
+            _faces_from_start(modes, modes0, phi_face, phi0, just_released, jr0)
             if theta > 1.0:                     # not reached with the friction held: the plain result stands
                 hold[:] = False
                 pn[:] = p_pl
