@@ -139,7 +139,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     check_positive("revolutions", revolutions, "rev", upper=1e6)
     sc, model, system = point_system(as_scene(scene), speed_rpm, **_overrides(
         clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
-    if int(record_per_rev) != record_per_rev or record_per_rev < 1:
+    if not math.isfinite(record_per_rev) or int(record_per_rev) != record_per_rev or record_per_rev < 1:
         raise InputError(f"simulate: record_per_rev = {record_per_rev}: must be a whole number of samples >= 1")
     if steps_per_rev is None:      # a multiple of record_per_rev; the detector's transient sampling too
         fives = SteadyStateOptions(samples_per_rev=int(record_per_rev)) if record_per_rev >= SAMPLES_FOR_5X else \

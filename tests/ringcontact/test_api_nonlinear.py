@@ -149,5 +149,8 @@ def test_simulate_steady_refuses_a_record_that_cannot_resolve_5x():
     """The detector resolves 1X-5X (rotor.studies.steady_state.SAMPLES_FOR_5X); a plain run has no such need."""
     with pytest.raises(rc.InputError, match="record_per_rev >= 12"):
         rc.simulate("paper-table4", 10500.0, revolutions=3, steady=True, record_per_rev=4)
+    for bad in (float("nan"), -1, 2.5):
+        with pytest.raises(rc.InputError, match="record_per_rev"):
+            rc.simulate("paper-table4", 4500.0, revolutions=2, record_per_rev=bad)
     r = rc.simulate("paper-table4", 4500.0, revolutions=2, record_per_rev=4)     # a plain run may sample coarsely
     assert len(r.t_s) == 9 and r.steady_state is None
