@@ -168,7 +168,7 @@ def _run(args) -> int:
     extra = {}
     if args.steady:
         amp_names = _dof_names(args, model, primary_only=False)
-        tr, dt, n_steps, extra = interrupts.in_thread(_steady_run, args, system, model, T, amp_names,
+        tr, dt, n_steps, extra = interrupts.in_thread(_steady_run, args, system, model, amp_names,
                                                       [model.dof_index(n) for n in amp_names])
     else:      # in a thread: Ctrl-C is honoured at once, not after the compiled loop (measured: 20 s later)
         tr = interrupts.in_thread(run, system, dt, n_steps, q0=system.offset, record_every=rec)
@@ -271,7 +271,7 @@ def _system(args):
     return scene, model, system, info
 
 
-def _steady_run(args, system, model, T: float, names: list[str], idx: list[int]):
+def _steady_run(args, system, model, names: list[str], idx: list[int]):
     """``--steady``: detect the steady state, then integrate the kept whole periods from its end state.
 
     Returns ``(trajectory, dt, n_steps, summary fields)``.
