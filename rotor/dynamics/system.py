@@ -263,12 +263,11 @@ class NewmarkOptions:
     (True: stick onsets tested on, and restarted from, the consistent multipliers and
     acceleration; no low-speed stick trial right after a release; see :mod:`rotor.dynamics.constraints`,
     "Stick onset"; False: the former rule, which chatters at stops with the face force at μN), and
-    ``locate_events`` (production scheme only, off by default: a slip velocity reversal, stick onset or release
-    inside a step is located and the step split there, and a slow slip's friction is Coulomb's, held over the
-    step, :mod:`rotor.dynamics.friction_events`; False: the plain step, switches on step boundaries). Not yet the
-    default: the located monodromy is wrong at some Table 4 orbits (10 680 rpm, a period-5 orbit from a cold
-    start: largest entry 1.9e13 against 8e3 by central differences), contact onset is not located, and the
-    published studies were computed with the plain step."""
+    ``locate_events`` (production scheme only, on by default: a slip velocity reversal, stick onset or release,
+    and an edge's contact onset or loss, inside a step is located and the step split there, and a slow slip's
+    friction is Coulomb's, held over the step, :mod:`rotor.dynamics.friction_events`,
+    :mod:`rotor.dynamics.contact_events`; False: the plain step, switches on step boundaries, as the published
+    studies before the fourth session of 2026-11-27 were computed)."""
 
     beta: float = 0.25
     gamma: float = 0.5
@@ -283,7 +282,7 @@ class NewmarkOptions:
     max_passes: int = 6
     stick_mean_weight: float = 0.5
     consistent_stick_onset: bool = True
-    locate_events: bool = False
+    locate_events: bool = True
 
 
 # ---------------------------------------------------------------------------
