@@ -116,6 +116,11 @@ class PeriodMapResult:
     replay_mismatch : float
         With ``locate_events``: the largest relative difference between an event step replayed for its
         derivative and the recorded step (:mod:`rotor.dynamics.period_map_events`); 0 otherwise.
+    unsmooth_columns : int
+        With ``locate_events``: event-step columns of the monodromy whose central differences did not settle down
+        to a differencing step of 1e-9 of the component's scale (a threshold of the step lies at the recorded
+        state, :func:`rotor.dynamics.period_map_events._step_jacobian`); where it is not 0 the monodromy is not the
+        map's derivative and its multipliers do not decide stability. 0 otherwise.
     """
 
     state: np.ndarray
@@ -127,6 +132,7 @@ class PeriodMapResult:
     unconverged_steps: int
     t: float
     replay_mismatch: float = 0.0
+    unsmooth_columns: int = 0
 
 
 def period_map_setup(system: RotorSystem, dt: float, options: NewmarkOptions | None = None, *,
@@ -215,9 +221,9 @@ def period_map(pm: PeriodMap, state0, t0: float, n_steps: int, *, modes0=None, j
     if pm.n_faces:
         events = int(sum(modes_req[k] != modes_rec[0, k] for k in range(pm.n_faces)))
         events += int(np.count_nonzero(np.diff(modes_rec[:, :pm.n_faces].astype(np.int64), axis=0)))
-    mismatch = 0.0
+    mismatch, unsmooth = 0.0, 0
     if jacobian and pm.options.locate_events:      # event steps differentiated as located (period_map_events)
-        mono, mismatch = located_monodromy(pm, tr, rec_p, rec_v)
+        mono, mismatch, unsmooth = located_monodromy(pm, tr, rec_p, rec_v)
     else:
         mono = _monodromy(pm, tr, rec_p, rec_v) if jacobian else None
     out_tr = None
@@ -227,7 +233,7 @@ def period_map(pm: PeriodMap, state0, t0: float, n_steps: int, *, modes0=None, j
             out_tr = expand(pm.condensed, out_tr)
     return PeriodMapResult(np.concatenate([rec_p[-1], rec_v[-1]]), mono, modes_rec[-1].astype(np.int64),
                            tr.face_force[-1].copy(), out_tr, events, int(tr.unconverged_steps), float(tr.t[-1]),
-                           mismatch)
+                           mismatch, unsmooth)
 
 
 def _monodromy(pm: PeriodMap, tr: Trajectory, rec_p, rec_v) -> np.ndarray:
