@@ -174,7 +174,18 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
     ``"grazing_fold"`` or ``"grazing"`` (its ``multiplier`` the critical one of the first orbit past it), and
     the segments' own bifurcations; ``stop`` is the last segment's. Where the grazing orbit or the first orbit
     past it is not found, the branch goes on by the plain continuation from the last orbit before it (with its
-    restarts, if the options allow them: the restarted points then say what was skipped) and ``stop`` is its."""
+    restarts, if the options allow them: the restarted points then say what was skipped) and ``stop`` is its.
+
+    The segments run on the step-grid map (``problem.locate_events`` None is taken as False; True is kept): the
+    grazing orbit is defined by the largest penetration at a step (:func:`largest_penetration`), and with contact
+    onset located inside the step the maps of the corrector's near-grazing iterates are not smooth at the
+    differencing scale. Measured on the Jeffcott rotor of tests/rotor/periodic/test_grazing.py (conformal law,
+    64 steps per revolution): with located maps the down sweep restarts once just past the grazing fold (the
+    corrector's residuals 7e-3 to 1e-2 over 10 iterations at 371.4 rad/s), and at the grazing orbit the located
+    map's central differences at 1e-6 and 5e-7 differ by 0.48 against 3.8e-4 on the step grid; away from grazing
+    the circular orbits have no crossing and both maps and monodromies agree to 1e-9."""
+    if problem.locate_events is None:
+        problem = replace(problem, locate_events=False)
     opts = options or ContinuationOptions()
     ls = float(lam_scale or abs(lam_end - lam0) / 10.0)
     floor = np.asarray(scales, float)
