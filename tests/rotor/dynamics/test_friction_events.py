@@ -44,7 +44,8 @@ def _extreme(y, v, dt):
 def _amplitude(s, dh, nper, periods, locate):
     """Steady amplitude (m) over the last period of a run from rest, ``nper`` steps per period."""
     dt = dh.T / nper
-    tr = simulate_production(s, dt, periods * nper, check_step=False, options=NewmarkOptions(locate_events=locate))
+    opts = NewmarkOptions() if locate else NewmarkOptions(locate_events=False)    # located: the default options
+    tr = simulate_production(s, dt, periods * nper, check_step=False, options=opts)
     y, v = tr.q[-nper - 1:, 0], tr.v[-nper - 1:, 0]
     return 0.5 * (_extreme(y, v, dt) + _extreme(-y, -v, dt)), tr
 
@@ -86,7 +87,7 @@ def test_undamped_den_hartog_reaches_a_periodic_state(omega):
 
     def period_differences(locate):
         tr = simulate_production(s, dh.T / nper, periods * nper, check_step=False, record_every=nper,
-                                 options=NewmarkOptions(locate_events=locate))
+                                 options=NewmarkOptions() if locate else NewmarkOptions(locate_events=False))
         return np.hypot(np.diff(tr.q[:, 0]), np.diff(tr.v[:, 0]) / omega) / X0   # [i]: period i+1 vs i
 
     located = period_differences(True)
@@ -97,7 +98,7 @@ def test_undamped_den_hartog_reaches_a_periodic_state(omega):
 
 @pytest.mark.parametrize("phase", [0, 2], ids=["t0 = 0", "t0 = 0.4 step"])
 def test_den_hartog_stick_slip_amplitude_converges_at_second_order(phase):
-    """Stick-slip (F/P0 = 0.6, ω = 25 rad/s, ζ = 0.1: a stop of 0.38 of each half period), events located: the
+    """With the default options (events located). Stick-slip (F/P0 = 0.6, ω = 25 rad/s, ζ = 0.1: a stop of 0.38 of each half period), events located: the
     steady amplitude converges at second order in the step against Den Hartog's (1931) exact amplitude
     (dynamics_denhartog.py: closed-form half cycles joined at the stop and the breakaway, no time stepping).
     Measured 4.61e-5, 1.155e-5, 2.878e-6, 7.06e-7 at T/400 … T/3200 (order 2.00, 2.00, 2.03), the same (within 1 %)
@@ -107,6 +108,7 @@ def test_den_hartog_stick_slip_amplitude_converges_at_second_order(phase):
     left to the impulse rule (half a step late); the stuck sub-step after a located stop carrying the velocity
     polynomial's residual into ringing multipliers; the low-speed stick trial (w_stick) a step early. A start at
     0.4 of a step also excited the tilt mode through one face released before the other (5e-3 of X0)."""
+    assert NewmarkOptions().locate_events          # issue 24: Den Hartog with events located by default
     F, omega = 0.6, 25.0
     s = friction_body(F=F, P0=1.0, omega=omega, zeta=0.1)
     dh = DenHartog(s.M[0, 0], s.C[0, 0], s.K[0, 0], F, 1.0, omega)
@@ -117,8 +119,8 @@ def test_den_hartog_stick_slip_amplitude_converges_at_second_order(phase):
     for nper in steps:
         dt = dh.T / nper
         # ζ = 0.1: the transient is e^-63 after 40 periods
-        tr = simulate_production(s, dt, 40 * nper, t0=phase * dt / 5, check_step=False,
-                                 options=NewmarkOptions(locate_events=True))
+        # the default options: events located (NewmarkOptions.locate_events, on by default)
+        tr = simulate_production(s, dt, 40 * nper, t0=phase * dt / 5, check_step=False, options=NewmarkOptions())
         y = tr.q[-nper:, 0]
         errs.append(abs(0.5 * (y.max() - y.min()) - X0) / X0)
         assert np.abs(tr.q[:, 1:]).max() < 1e-12 * X0                  # the motion stays on the forced axis
