@@ -33,8 +33,11 @@ agrees with the one at 5e-8 and 1e-7 to 1.9e-7, 1.1e-7, 1.1e-7. Before contact o
 creep was located whatever its start speed (:data:`rotor.dynamics.production_loop.EVENT_SPEED`) 8 400 rpm was 0.41;
 with every event step differenced at 1e-6 and extrapolated, 3.7e-6, 3.6e-6, 1.5e-6 (:data:`EVENT_STEP_REL`). Not
 every Table 4 speed has a map smooth at that scale: at 9 600 and 11 000 rpm the references at 1e-7 and 5e-8
-themselves differ by O(1) (at 11 000 rpm the slow-slip hold's rectilinear test, a threshold, decided differently
-after a 1e-7 perturbation: :mod:`rotor.dynamics.friction_events`, "Slow slips"; 9 600 rpm not checked). The steps
+themselves differ by O(1) (the slow-slip hold's rectilinear test, a threshold, decided differently after a 1e-7
+perturbation: :mod:`rotor.dynamics.friction_events`, "Slow slips"); the map jumps there by about 1e-7 of the state
+and has no derivative at that scale. The event steps' own differencing then shrinks its step past the threshold
+(:func:`_step_jacobian`), so the monodromy is the derivative of the piece the orbit lies on: at 11 000 rpm its
+largest multiplier 0.9845, where differencing across the threshold had given 1 257. The steps
 held as slow slips (:mod:`rotor.dynamics.friction_events`) and the steps across an edge crossing are differenced as
 event steps.
 """

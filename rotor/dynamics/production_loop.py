@@ -2,7 +2,7 @@
 
 One step: predictor, condensed Newton with the active-set loop (:func:`rotor.dynamics.production_kernels.
 _solve_support`, the stick/slip rules of :mod:`rotor.dynamics.constraints`), correction, stick-onset
-re-projection. With ``locate_events`` (off by default), a step in which a face's slip velocity reached zero is
+re-projection. With ``locate_events`` (on by default), a step in which a face's slip velocity reached zero is
 redone in three passes of the same step body (:mod:`rotor.dynamics.friction_events`): (1) re-solved with the
 event faces' friction held, which gives the event time; (2) the sub-step up to the event, friction
 held; the friction state is switched at the event; (3) the sub-step from the event to the end. A release is

@@ -62,12 +62,16 @@ class MapResult:
     """``state`` (2 n_r,) after the steps, ``monodromy`` (2 n_r, 2 n_r) or None, end-face ``modes``, and
     ``events``: end-face mode changes met (the initial stick test's included). The exact back-end's monodromy
     is the derivative of the map while every switch stays in its step; a perturbation that moves a switch by
-    a step makes the map jump, which no derivative (nor the multipliers) sees (:mod:`rotor.dynamics.period_map`)."""
+    a step makes the map jump, which no derivative (nor the multipliers) sees (:mod:`rotor.dynamics.period_map`).
+    ``unsmooth_columns``: with events located, the monodromy's event-step columns that did not settle under
+    shorter differencing (:attr:`rotor.dynamics.period_map.PeriodMapResult.unsmooth_columns`; where not 0 the
+    monodromy is not the map's derivative)."""
 
     state: np.ndarray
     monodromy: np.ndarray | None
     modes: tuple
     events: int = 0
+    unsmooth_columns: int = 0
 
 
 def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto", locate_events: bool | None = None) -> Flow:
@@ -115,7 +119,7 @@ def advance(flow: Flow, state, t0: float, n_steps: int, modes0=(cons.STICK, cons
         r = period_map(flow.handle, np.asarray(state, float), float(t0), int(n_steps), modes0=tuple(modes0),
                             jacobian=jacobian)
         return MapResult(np.asarray(r.state, float), None if not jacobian else np.asarray(r.monodromy, float),
-                         tuple(int(m) for m in r.modes), int(r.events))
+                         tuple(int(m) for m in r.modes), int(r.events), int(r.unsmooth_columns))
     tr = _run(flow, state, t0, n_steps, modes0, 1)
     end = np.concatenate([flow.T.T @ tr.q[-1], flow.T.T @ tr.v[-1]])
     mono = monodromy_fd(flow, state, t0, n_steps, modes0) if jacobian else None
