@@ -43,6 +43,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotor.dynamics.contact_events import edge_crossing
+from rotor.dynamics.event_replays import replay_step
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
@@ -121,6 +122,19 @@ def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True):
     return np.concatenate([p, v, a])
 
 
+def _replays(pm, starts, modes, phi, t) -> np.ndarray:
+    """The ends (rows) of one located step from each row of ``starts`` (``(K, 3 n_r)``, ``(p, v, a)``) at time ``t``
+    (s), in one compiled call (:func:`rotor.dynamics.event_replays.replay_step`): the same step as
+    :func:`_one_step`'s, without its dispatch per start."""
+    pre, opts = pm.prepared, pm.options
+    return replay_step(np.ascontiguousarray(starts, dtype=float), np.array(modes, dtype=np.int64),
+                       np.array(phi, float), float(t), pm.dt, pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S,
+                       pre.static, pre.orders, pre.cos, pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces,
+                       pre.s_yy, pre.a1, pm.reduced.support is not None, pm.params, opts.beta, opts.gamma, opts.tol,
+                       opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes, float(opts.stick_mean_weight),
+                       bool(opts.consistent_stick_onset), pre.Minv, pre.WM, pre.SM, pre.Mr, True)
+
+
 def _step_jacobian(pm, start, modes, phi, t, scales, rel) -> tuple[np.ndarray, np.ndarray]:
     """``∂(p, v, a)_{n+1}/∂(p, v, a)_n`` (3nr × 3nr) of one located step by central differences, and the
     replayed end state.
@@ -132,22 +146,21 @@ def _step_jacobian(pm, start, modes, phi, t, scales, rel) -> tuple[np.ndarray, n
     10 500 rpm, T/512: ``c h²`` 1.5e-4 of the step's derivative at ``h`` = 1e-6, 3e-7 extrapolated). Elsewhere
     ``d(h)``: a step smooth in its start only over a shorter distance (a threshold decided in it) must not be
     extrapolated across two branches."""
-    nr = pm.nr
-    J = np.empty((3 * nr, 3 * nr))
-    for j in range(3 * nr):
-        h = rel * scales[j]
-        d = []
-        for m in (0.5, 1.0, 2.0):
-            cols = []
-            for sgn in (1.0, -1.0):
-                x = start.copy()
-                x[j] += sgn * m * h
-                cols.append(_one_step(pm, x[:nr], x[nr:2 * nr], x[2 * nr:], modes, phi, t))
-            d.append((cols[0] - cols[1]) / (2.0 * m * h))
-        e1, e2 = np.abs(d[1] - d[0]).max(), np.abs(d[2] - d[1] - 4.0 * (d[1] - d[0])).max()
-        smooth = e2 <= RICHARDSON_RATIO * 4.0 * e1
-        J[:, j] = (4.0 * d[0] - d[1]) / 3.0 if smooth else d[1]
-    return J, _one_step(pm, start[:nr], start[nr:2 * nr], start[2 * nr:], modes, phi, t)
+    n3 = 3 * pm.nr
+    # the starts (rows): per column j, per m in (1/2, 1, 2), +m h then −m h; the unperturbed start last
+    ms, sgns = np.array([0.5, 1.0, 2.0]), np.array([1.0, -1.0])
+    h = rel * np.asarray(scales, float)
+    starts = np.tile(start, (6 * n3 + 1, 1))
+    cols = np.arange(n3)
+    starts[:-1].reshape(n3, 3, 2, n3)[cols, :, :, cols] += sgns[None, None, :] * ms[None, :, None] * h[:, None, None]
+    ends = _replays(pm, starts, modes, phi, t)
+    e = ends[:-1].reshape(n3, 3, 2, n3)
+    d = (e[:, :, 0] - e[:, :, 1]) / (2.0 * ms[None, :] * h[:, None])[:, :, None]     # (column, m, component)
+    e1 = np.abs(d[:, 1] - d[:, 0]).max(axis=1)
+    e2 = np.abs(d[:, 2] - d[:, 1] - 4.0 * (d[:, 1] - d[:, 0])).max(axis=1)
+    smooth = e2 <= RICHARDSON_RATIO * 4.0 * e1
+    J = np.where(smooth[:, None], (4.0 * d[:, 0] - d[:, 1]) / 3.0, d[:, 1]).T
+    return np.ascontiguousarray(J), ends[-1].copy()
 
 
 def located_monodromy(pm, tr, rec_p, rec_v) -> tuple[np.ndarray, float]:
