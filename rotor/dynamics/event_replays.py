@@ -4,9 +4,11 @@ located event step (:func:`rotor.dynamics.period_map_events._step_jacobian`, ``6
 Called from Python (:func:`rotor.dynamics.period_map_events._one_step`), each replay of
 :func:`rotor.dynamics.production_loop.step_loop` also paid numba's dispatch of its ~50 arguments and the allocation
 of its one-step records, more than the step itself. Measured on Table 4 (n_r = 26, 640 steps per revolution, a
-corrector's map at 2 417 rpm with 280 differenced steps, slow slips held, 469 replays each): 3.4 s a located monodromy
-one replay at a time, 2.0 s here (load average 4.5 on 2 cores). Each replay is the same compiled step from the same
-start, so the ends are those of the one-by-one replays (the monodromy bit-identical).
+corrector's map at 2 417 rpm with 280 differenced steps, slow slips held, 469 replays each): 3.3 s a located monodromy
+one replay at a time, 2.07 s here (medians of 3, interleaved in one process, load average 4.6 on 2 cores); the
+branch 2 300 → 2 420 rpm (241 located monodromies) 431 s → 283 s. What is left is the step itself (~25 µs a replay
+of a held slow slip, ~17 µs a step inside a run; about 8 µs of a replay is the step loop's set-up). Each replay is the
+same compiled step from the same start, so the ends are those of the one-by-one replays (the monodromy bit-identical).
 """
 from __future__ import annotations
 
