@@ -46,6 +46,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotor.dynamics.contact_events import edge_crossing
+from rotor.dynamics.event_replays import replay_step
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
@@ -131,6 +132,19 @@ def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True):
     return np.concatenate([p, v, a])
 
 
+def _replays(pm, starts, modes, phi, t) -> np.ndarray:
+    """The ends (rows) of one located step from each row of ``starts`` (``(K, 3 n_r)``, ``(p, v, a)``) at time ``t``
+    (s), in one compiled call (:func:`rotor.dynamics.event_replays.replay_step`): the same step as
+    :func:`_one_step`'s, without its dispatch per start."""
+    pre, opts = pm.prepared, pm.options
+    return replay_step(np.ascontiguousarray(starts, dtype=float), np.array(modes, dtype=np.int64),
+                       np.array(phi, float), float(t), pm.dt, pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S,
+                       pre.static, pre.orders, pre.cos, pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces,
+                       pre.s_yy, pre.a1, pm.reduced.support is not None, pm.params, opts.beta, opts.gamma, opts.tol,
+                       opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes, float(opts.stick_mean_weight),
+                       bool(opts.consistent_stick_onset), pre.Minv, pre.WM, pre.SM, pre.Mr, True)
+
+
 def _step_jacobian(pm, start, modes, phi, t, scales, rel) -> tuple[np.ndarray, np.ndarray, int]:
     """``∂(p, v, a)_{n+1}/∂(p, v, a)_n`` (3nr × 3nr) of one located step by central differences, the
     replayed end state, and how many of its columns are not smooth down to :data:`SHRINK_FLOOR`.
@@ -149,40 +163,44 @@ def _step_jacobian(pm, start, modes, phi, t, scales, rel) -> tuple[np.ndarray, n
     counted as not smooth at :data:`SHRINK_FLOOR`. Measured on Table 4 at 11 000 rpm (T/512, one period after 60
     revolutions): four slow-slip steps differenced across the rectilinear test (``d(h/2)`` vs ``d(h)`` 33 to 1.8e5 of
     their size) had made the monodromy's largest entry 1.0e8 and its largest multiplier 1 257; with their columns
-    shrunk to 1e-6 and 1e-7, 9.5e4 and 0.9845."""
-    nr = pm.nr
-    J = np.empty((3 * nr, 3 * nr))
-    unsmooth = 0
+    shrunk to 1e-6 and 1e-7, 9.5e4 and 0.9845.
 
-    def central(j, h):
-        cols = []
-        for sgn in (1.0, -1.0):
-            x = start.copy()
-            x[j] += sgn * h
-            cols.append(_one_step(pm, x[:nr], x[nr:2 * nr], x[2 * nr:], modes, phi, t))
-        return (cols[0] - cols[1]) / (2.0 * h)
+    All replays of a level go through one compiled call (:func:`_replays`)."""
+    n3 = 3 * pm.nr
+    scales = np.asarray(scales, float)
+    # the starts (rows): per column j, per m in (1/2, 1, 2), +m h then −m h; the unperturbed start last
+    ms, sgns = np.array([0.5, 1.0, 2.0]), np.array([1.0, -1.0])
+    h = rel * scales
+    starts = np.tile(start, (6 * n3 + 1, 1))
+    cols = np.arange(n3)
+    starts[:-1].reshape(n3, 3, 2, n3)[cols, :, :, cols] += sgns[None, None, :] * ms[None, :, None] * h[:, None, None]
+    ends = _replays(pm, starts, modes, phi, t)
+    e = ends[:-1].reshape(n3, 3, 2, n3)
+    d = (e[:, :, 0] - e[:, :, 1]) / (2.0 * ms[None, :] * h[:, None])[:, :, None]     # (column, m, component)
+    e1 = np.abs(d[:, 1] - d[:, 0]).max(axis=1)
+    e2 = np.abs(d[:, 2] - d[:, 1] - 4.0 * (d[:, 1] - d[:, 0])).max(axis=1)
+    smooth = e2 <= RICHARDSON_RATIO * 4.0 * e1
+    J = np.where(smooth[:, None], (4.0 * d[:, 0] - d[:, 1]) / 3.0, d[:, 1]).T
 
-    def disagree(a, b):
-        return np.abs((a - b) / scales).max() > SHRINK_TOL * np.abs(b / scales).max()
+    def disagree(half, full):       # (columns, components) -> (columns,)
+        return (np.abs((half - full) / scales).max(axis=1)
+                > SHRINK_TOL * np.abs(full / scales).max(axis=1))
 
-    for j in range(3 * nr):
-        h = rel * scales[j]
-        d = [central(j, m * h) for m in (0.5, 1.0, 2.0)]
-        e1, e2 = np.abs(d[1] - d[0]).max(), np.abs(d[2] - d[1] - 4.0 * (d[1] - d[0])).max()
-        smooth = e2 <= RICHARDSON_RATIO * 4.0 * e1
-        J[:, j] = (4.0 * d[0] - d[1]) / 3.0 if smooth else d[1]
-        if disagree(d[0], d[1]):
-            r = rel
-            while True:
-                r /= 10.0
-                if r < SHRINK_FLOOR * (1.0 - 1e-9):
-                    unsmooth += 1
-                    break
-                half, full = central(j, 0.5 * r * scales[j]), central(j, r * scales[j])
-                if not disagree(half, full):
-                    J[:, j] = half
-                    break
-    return J, _one_step(pm, start[:nr], start[nr:2 * nr], start[2 * nr:], modes, phi, t), unsmooth
+    todo = np.flatnonzero(disagree(d[:, 0], d[:, 1]))
+    r = rel
+    while todo.size:
+        r /= 10.0
+        if r < SHRINK_FLOOR * (1.0 - 1e-9):
+            break
+        hs = r * scales[todo]
+        st = np.tile(start, (4 * todo.size, 1)).reshape(todo.size, 2, 2, n3)
+        st[np.arange(todo.size), :, :, todo] += sgns[None, None, :] * np.array([0.5, 1.0])[None, :, None] * hs[:, None, None]
+        en = _replays(pm, st.reshape(-1, n3), modes, phi, t).reshape(todo.size, 2, 2, n3)
+        dd = (en[:, :, 0] - en[:, :, 1]) / (2.0 * np.array([0.5, 1.0])[None, :] * hs[:, None])[:, :, None]
+        ok = ~disagree(dd[:, 0], dd[:, 1])
+        J[:, todo[ok]] = dd[ok, 0].T
+        todo = todo[~ok]
+    return np.ascontiguousarray(J), ends[-1].copy(), int(todo.size)
 
 
 def located_monodromy(pm, tr, rec_p, rec_v) -> tuple[np.ndarray, float, int]:

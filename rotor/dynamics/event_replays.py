@@ -1,0 +1,64 @@
+"""One step of the compiled production loop replayed from many starts in one call: the central differences of a
+located event step (:func:`rotor.dynamics.period_map_events._step_jacobian`, ``6 · 3 n_r`` replays a step).
+
+Called from Python (:func:`rotor.dynamics.period_map_events._one_step`), each replay of
+:func:`rotor.dynamics.production_loop.step_loop` also paid numba's dispatch of its ~50 arguments and the allocation
+of its one-step records, more than the step itself. Measured on Table 4 (n_r = 26, 640 steps per revolution, a
+corrector's map at 2 417 rpm with 280 differenced steps, slow slips held, 469 replays each): 3.3 s a located monodromy
+one replay at a time, 2.07 s here (medians of 3, interleaved in one process, load average 4.6 on 2 cores); the
+branch 2 300 → 2 420 rpm (241 located monodromies) 431 s → 283 s. What is left is the step itself (~25 µs a replay
+of a held slow slip, ~17 µs a step inside a run; about 8 µs of a replay is the step loop's set-up). Each replay is the
+same compiled step from the same start, so the ends are those of the one-by-one replays (the monodromy bit-identical).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from contact.compiled_cache import compiled_with
+from rotor.dynamics.production_loop import step_loop
+
+compiled_with(__file__, ["rotor.dynamics.production_loop", "rotor.dynamics.contact_events",
+                         "rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
+                         "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
+
+
+@njit(cache=True)
+def replay_step(starts, modes0, phi0, t, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N,
+                n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
+                stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events):
+    """The ends ``(p, v, a)`` (rows, ``(K, 3 n_r)``) of one step of length ``dt`` (s) at time ``t`` (s) from each
+    row of ``starts`` (``(K, 3 n_r)``: reduced displacement, velocity, acceleration), every one with the face
+    modes ``modes0`` (2,) and face forces ``phi0`` (2, 2; N) at its start; the other arguments are
+    :func:`rotor.dynamics.production_loop.step_loop`'s."""
+    K, n3 = starts.shape
+    nr = n3 // 3
+    ends = np.empty((K, n3))
+    rec_t = np.zeros(2)
+    rec_p = np.zeros((2, nr))
+    rec_v = np.zeros((2, nr))
+    rec_a = np.zeros((2, nr))
+    rec_u = np.zeros((2, 4))
+    rec_w = np.zeros((2, 4))
+    rec_fc = np.zeros((2, 4))
+    rec_fel = np.zeros((2, 4))
+    rec_face = np.zeros((2, 2, 2))
+    rec_modes = np.zeros((2, 2), dtype=np.int8)
+    rec_its = np.zeros(2, dtype=np.int32)
+    rec_passes = np.zeros(2, dtype=np.int32)
+    status = np.zeros(5, dtype=np.int64)
+    for r in range(K):
+        p = starts[r, :nr].copy()
+        v = starts[r, nr:2 * nr].copy()
+        a = starts[r, 2 * nr:].copy()
+        modes = modes0.copy()
+        phi = phi0.copy()
+        status[:] = 0
+        step_loop(p, v, a, modes, phi, t, dt, 1, 1, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P,
+                  mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
+                  max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, rec_t, rec_p,
+                  rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes, status)
+        ends[r, :nr] = p
+        ends[r, nr:2 * nr] = v
+        ends[r, 2 * nr:] = a
+    return ends
