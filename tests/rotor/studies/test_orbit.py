@@ -122,3 +122,27 @@ def test_bad_requests_are_refused_in_one_line():
         branch(SCENE, 10500.0, 10500.0)
     with pytest.raises(InputError, match="rpm_start"):
         branch(SCENE, -1.0, 10500.0)
+
+
+@pytest.mark.slow
+def test_an_unstable_orbit_the_located_transients_miss_is_reached_from_the_step_grid_orbit():
+    """paper-table4 without friction at 12 000 rpm (256 steps per revolution): the located map's transients find no
+    orbit in 2 000 revolutions; the step-grid map's search finds an unstable period-1 orbit and Newton on the
+    located map converges from it (rotor.studies.orbit._from_step_grid_orbit). Expected: the located map maps the
+    orbit onto itself (1e-9 of its scales) and its largest multiplier equals that of central differences of the
+    located map at 1e-7 of the block scales (rotor.periodic.period_flow.monodromy_fd) to 1e-4 (measured 21.05
+    both, agreement 5e-7 of the monodromy)."""
+    import math
+    from rotor.periodic.period_flow import advance, make_flow, monodromy_fd
+    from rotor.studies.steady_state import point_system
+
+    o = orbit("paper-table4", 12000.0, mu=0.0, steps_per_rev=256)
+    assert o.converged and o.period_revs == 1 and not o.stable
+    sh = o.shooting
+    system = point_system("paper-table4", 12000.0, mu=0.0)[2]
+    flow = make_flow(system, 2 * math.pi / (system.omega_rad_s * 256))
+    assert flow.handle.options.locate_events
+    r = advance(flow, sh.state, sh.t0_s, 256, sh.modes, jacobian=False)
+    assert np.abs((r.state - sh.state) / sh.scales).max() < 1e-9
+    fd = np.abs(np.linalg.eigvals(monodromy_fd(flow, sh.state, sh.t0_s, 256, sh.modes, rel_step=1e-7))).max()
+    assert abs(np.abs(o.floquet.multipliers).max() / fd - 1) < 1e-4
