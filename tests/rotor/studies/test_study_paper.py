@@ -29,7 +29,11 @@ CASES = {"base": {}, "notilt": {"tilt_ignored": True}, "c0.03": {"clearance_m": 
 LOC = ("disk1.y", "disk2.y", "s.y")
 _CACHE: dict = {}
 
-#: the mechanisms measured behind the failures (numbers in reports/published/study-findings.md)
+#: the mechanisms measured behind the failures (numbers in reports/published/study-findings.md). MIS3 and MIS1 quote the
+#: run with the plain step (locate_events False); with events located their thresholds are re-checked at the same
+#: speeds by test_misalignment_3x_stops_rising_where_the_contact_saturates and
+#: test_misalignment_1x_moves_where_the_contact_is_not_yet_established, and the periodic speeds left in 9 000-12 000
+#: rpm are in study-findings.md's "Mechanisms measured"
 LAW = ("mechanism, where 2X/3X barely move with δ0: the conformal law's stiffness at the penetrations reached "
        "(median 3.4 µm, deepest 9.0 µm at the high-speed points on the paper's mesh) differs between the three "
        "clearances by 1.6 % and 3.9 % (0.5 % at 1 µm; tests/rotor/studies/test_section5.py); a change against "
@@ -82,8 +86,11 @@ def _check(name, mesh, band, speeds, why=None):
     return pytest.param(name, mesh, band, speeds, marks=marks, id=f"{name}-{mesh}-{band}-{'fails' if why else 'holds'}")
 
 
-#: (finding, mesh, band, speeds[, why it fails]) as measured by the published run (study-findings.md: the
-#: comments are the band verdicts; a band with fewer than two periodic speeds has no verdict and no test)
+#: (finding, mesh, band, speeds[, why it fails]) as measured by the published run (study-findings.md, friction and
+#: contact events located inside the step, the default since the fourth session of 2026-11-27: the comments are the
+#: band verdicts; a band with fewer than two periodic speeds has no verdict and no test). Rules: a band that holds is
+#: asserted at its first and last periodic speed; one that holds in part at its first and last passing speed (two or
+#: more) and, strict xfail, at its first and last failing one.
 CHECKS = [
     # near_support, paper, H1: yes
     _check("near_support", "paper", "H1", (9000, 12000)),
@@ -93,89 +100,82 @@ CHECKS = [
     # tilt, paper, H1: yes
     _check("tilt", "paper", "H1", (9300, 12000)),
     # tilt, paper, H2: n/a (1 periodic; 0 of 9 non-periodic meet it)
-    # tilt, paper, H3: n/a (0 periodic; 1 of 10 non-periodic meet it)
+    # tilt, paper, H3: n/a (0 periodic; 2 of 10 non-periodic meet it)
     # stuck_low, paper, L1: yes
     _check("stuck_low", "paper", "L1", (300, 4500)),
-    # stuck_low, paper, L2: partly (2 of 12)
+    # stuck_low, paper, L2: partly (2 of 14)
     _check("stuck_low", "paper", "L2", (4800, 5100)),
-    _check("stuck_low", "paper", "L2", (5700, 8700), "partly (2 of 12) of the band's periodic speeds; 5700 rpm stuck 0 %, contact 100 %; 8700 rpm stuck 0 %, contact 62 %; " + SLIP),
+    _check("stuck_low", "paper", "L2", (5400, 8700), "partly (2 of 14) of the band's periodic speeds; 5400 rpm stuck 0 %, contact 100 %; 8700 rpm stuck 0 %, contact 62 %; " + SLIP),
     # clearance_low, paper, L1: yes
     _check("clearance_low", "paper", "L1", (600, 4200)),
     # clearance_low, paper, L2: partly (1 of 3)
-    _check("clearance_low", "paper", "L2", (6600, 7800), "partly (1 of 3) of the band's periodic speeds; 6600 rpm largest change 1X 1.7 %, 2X 9.7 %; 7800 rpm largest change 1X 3.1 %, 2X 6.8 %; " + SLIP),
+    _check("clearance_low", "paper", "L2", (6600, 7800), "partly (1 of 3) of the band's periodic speeds; 6600 rpm largest change 1X 1.7 %, 2X 9.8 %; 7800 rpm largest change 1X 3.1 %, 2X 6.8 %; " + SLIP),
     # clearance_2x, paper, H1: partly (1 of 3)
-    _check("clearance_2x", "paper", "H1", (9000, 10800), "partly (1 of 3) of the band's periodic speeds; 9000 rpm 2X disk 2 1.78/1.79/1.8; support 2.09/2.11/2.11 µm; 10800 rpm 2X disk 2 2.01/2.04/2.05; support 2.19/2.22/2.22 µm; " + LAW),
-    # clearance_2x, paper, H2: n/a (1 periodic; 1 of 4 non-periodic meet it)
-    # clearance_2x, paper, H3: n/a (0 periodic; 2 of 5 non-periodic meet it)
+    _check("clearance_2x", "paper", "H1", (9000, 10200), "partly (1 of 3) of the band's periodic speeds; 9000 rpm 2X disk 2 1.78/1.79/1.8; support 2.09/2.11/2.11 µm; 10200 rpm 2X disk 2 1.87/1.89/1.93; support 2.07/2.1/2.15 µm; " + LAW),
+    # clearance_2x, paper, H2: n/a (1 periodic; 0 of 4 non-periodic meet it)
+    # clearance_2x, paper, H3: n/a (0 periodic; 1 of 5 non-periodic meet it)
     # clearance_3x, paper, H1: partly (1 of 3)
-    _check("clearance_3x", "paper", "H1", (9000, 10800), "partly (1 of 3) of the band's periodic speeds; 9000 rpm 3X disk 2 0.21/0.213/0.192; support 0.17/0.169/0.156 µm; 10800 rpm 3X disk 2 0.0304/0.0392/0.0399; support 0.0324/0.0453/0.0586 µm; " + LAW),
+    _check("clearance_3x", "paper", "H1", (9000, 10200), "partly (1 of 3) of the band's periodic speeds; 9000 rpm 3X disk 2 0.21/0.212/0.191; support 0.17/0.169/0.156 µm; 10200 rpm 3X disk 2 0.0353/0.0406/0.0442; support 0.017/0.0245/0.0419 µm; " + LAW),
     # clearance_3x, paper, H2: n/a (1 periodic; 0 of 4 non-periodic meet it)
-    # clearance_3x, paper, H3: n/a (0 periodic; 2 of 5 non-periodic meet it)
+    # clearance_3x, paper, H3: n/a (0 periodic; 0 of 5 non-periodic meet it)
     # misalignment_2x, paper, L1: yes
     _check("misalignment_2x", "paper", "L1", (600, 4200)),
     # misalignment_2x, paper, L2: yes
     _check("misalignment_2x", "paper", "L2", (4800, 8400)),
-    # misalignment_2x, paper, H1: yes
-    _check("misalignment_2x", "paper", "H1", (9000, 12000)),
+    # misalignment_2x, paper, H1: n/a (1 periodic; 5 of 5 non-periodic meet it)
     # misalignment_2x, paper, H2: n/a (0 periodic; 4 of 5 non-periodic meet it)
-    # misalignment_2x, paper, H3: n/a (0 periodic; 5 of 5 non-periodic meet it)
-    # misalignment_3x, paper, H1: partly (1 of 4)
-    _check("misalignment_3x", "paper", "H1", (9000, 10800), "partly (1 of 4) of the band's periodic speeds; 9000 rpm 3X disk 2 0.0816/0.213/0.193; support 0.0768/0.169/0.157 µm; 10800 rpm 3X disk 2 0.0375/0.0392/0.0938; support 0.0558/0.0453/0.126 µm; " + MIS3),
+    # misalignment_2x, paper, H3: n/a (0 periodic; 4 of 5 non-periodic meet it)
+    # misalignment_3x, paper, H1: n/a (1 periodic; 2 of 5 non-periodic meet it)
     # misalignment_3x, paper, H2: n/a (0 periodic; 0 of 5 non-periodic meet it)
-    # misalignment_3x, paper, H3: n/a (0 periodic; 1 of 5 non-periodic meet it)
+    # misalignment_3x, paper, H3: n/a (0 periodic; 0 of 5 non-periodic meet it)
     # misalignment_1x, paper, L1: yes
     _check("misalignment_1x", "paper", "L1", (600, 4200)),
     # misalignment_1x, paper, L2: yes
     _check("misalignment_1x", "paper", "L2", (4800, 8400)),
-    # misalignment_1x, paper, H1: partly (3 of 4)
-    _check("misalignment_1x", "paper", "H1", (9000, 10800)),
-    _check("misalignment_1x", "paper", "H1", (12000,), "partly (3 of 4) of the band's periodic speeds; 12000 rpm 1X change 11.8 / 5.7 / 37.7 %; " + MIS1),
+    # misalignment_1x, paper, H1: n/a (1 periodic; 3 of 5 non-periodic meet it)
     # misalignment_1x, paper, H2: n/a (0 periodic; 0 of 5 non-periodic meet it)
     # misalignment_1x, paper, H3: n/a (0 periodic; 0 of 5 non-periodic meet it)
     # near_support, converged, H1: yes
-    _check("near_support", "converged", "H1", (9000, 11700)),
+    _check("near_support", "converged", "H1", (9000, 11400)),
     # near_support, converged, H2: n/a (0 periodic; 10 of 10 non-periodic meet it)
-    # near_support, converged, H3: n/a (0 periodic; 10 of 10 non-periodic meet it)
+    # near_support, converged, H3: n/a (0 periodic; 9 of 10 non-periodic meet it)
     # tilt, converged, H1: n/a (0 periodic; 10 of 11 non-periodic meet it)
     # tilt, converged, H2: n/a (0 periodic; 0 of 10 non-periodic meet it)
-    # tilt, converged, H3: n/a (0 periodic; 0 of 10 non-periodic meet it)
+    # tilt, converged, H3: n/a (0 periodic; 1 of 10 non-periodic meet it)
     # stuck_low, converged, L1: yes
-    _check("stuck_low", "converged", "L1", (600, 4500)),
-    # stuck_low, converged, L2: partly (2 of 10)
+    _check("stuck_low", "converged", "L1", (1200, 4500)),
+    # stuck_low, converged, L2: partly (2 of 13)
     _check("stuck_low", "converged", "L2", (4800, 5100)),
-    _check("stuck_low", "converged", "L2", (6000, 8700), "partly (2 of 10) of the band's periodic speeds; 6000 rpm stuck 0 %, contact 100 %; 8700 rpm stuck 0 %, contact 63 %; " + SLIP),
+    _check("stuck_low", "converged", "L2", (5700, 8700), "partly (2 of 13) of the band's periodic speeds; 5700 rpm stuck 0 %, contact 100 %; 8700 rpm stuck 0 %, contact 64 %; " + SLIP),
     # clearance_low, converged, L1: yes
-    _check("clearance_low", "converged", "L1", (600, 4200)),
-    # clearance_low, converged, L2: partly (3 of 4)
-    _check("clearance_low", "converged", "L2", (4800, 8400)),
-    _check("clearance_low", "converged", "L2", (6600,), "partly (3 of 4) of the band's periodic speeds; 6600 rpm largest change 1X 0.6 %, 2X 6.4 %; " + SLIP),
-    # clearance_2x, converged, H1: partly (1 of 3)
-    _check("clearance_2x", "converged", "H1", (10800, 11400), "partly (1 of 3) of the band's periodic speeds; 10800 rpm 2X disk 2 2.26/2.25/2.28; support 2.42/2.42/2.46 µm; 11400 rpm 2X disk 2 3.13/3.15/3.2; support 3.21/3.23/3.3 µm; " + LAW),
+    _check("clearance_low", "converged", "L1", (1200, 4200)),
+    # clearance_low, converged, L2: partly (1 of 3)
+    _check("clearance_low", "converged", "L2", (6600, 7800), "partly (1 of 3) of the band's periodic speeds; 6600 rpm largest change 1X 0.6 %, 2X 6.4 %; 7800 rpm largest change 1X 0.7 %, 2X 5.5 %; " + SLIP),
+    # clearance_2x, converged, H1: partly (1 of 5)
+    _check("clearance_2x", "converged", "H1", (9000, 11400), "partly (1 of 5) of the band's periodic speeds; 9000 rpm 2X disk 2 1.66/1.68/1.74; support 1.91/1.93/1.96 µm; 11400 rpm 2X disk 2 3.13/3.15/3.2; support 3.21/3.23/3.3 µm; " + LAW),
     # clearance_2x, converged, H2: n/a (0 periodic; 1 of 5 non-periodic meet it)
     # clearance_2x, converged, H3: n/a (0 periodic; 0 of 5 non-periodic meet it)
-    # clearance_3x, converged, H1: partly (2 of 3)
+    # clearance_3x, converged, H1: partly (2 of 5)
     _check("clearance_3x", "converged", "H1", (10200, 11400)),
-    _check("clearance_3x", "converged", "H1", (10800,), "partly (2 of 3) of the band's periodic speeds; 10800 rpm 3X disk 2 0.0786/0.0871/0.0886; support 0.112/0.124/0.127 µm; " + LAW),
+    _check("clearance_3x", "converged", "H1", (9000, 10800), "partly (2 of 5) of the band's periodic speeds; 9000 rpm 3X disk 2 0.0422/0.0456/0.0617; support 0.0614/0.0657/0.0935 µm; 10800 rpm 3X disk 2 0.0785/0.0871/0.0886; support 0.112/0.124/0.127 µm; " + LAW),
     # clearance_3x, converged, H2: n/a (0 periodic; 0 of 5 non-periodic meet it)
     # clearance_3x, converged, H3: n/a (0 periodic; 0 of 5 non-periodic meet it)
     # misalignment_2x, converged, L1: yes
-    _check("misalignment_2x", "converged", "L1", (600, 4200)),
-    # misalignment_2x, converged, L2: yes
-    _check("misalignment_2x", "converged", "L2", (4800, 8400)),
+    _check("misalignment_2x", "converged", "L1", (1200, 4200)),
+    # misalignment_2x, converged, L2: n/a (1 periodic; 6 of 6 non-periodic meet it)
     # misalignment_2x, converged, H1: yes
     _check("misalignment_2x", "converged", "H1", (9000, 10200)),
-    # misalignment_2x, converged, H2: n/a (0 periodic; 4 of 5 non-periodic meet it)
+    # misalignment_2x, converged, H2: n/a (0 periodic; 3 of 5 non-periodic meet it)
     # misalignment_2x, converged, H3: n/a (0 periodic; 5 of 5 non-periodic meet it)
-    # misalignment_3x, converged, H1: partly (1 of 3)
-    _check("misalignment_3x", "converged", "H1", (9000, 9600), "partly (1 of 3) of the band's periodic speeds; 9000 rpm 3X disk 2 0.0553/0.0461/0.0165; support 0.0665/0.0666/0.0218 µm; 9600 rpm 3X disk 2 0.0147/0.0775/0.0489; support 0.0177/0.109/0.0559 µm; " + MIS3),
+    # misalignment_3x, converged, H1: partly (1 of 2)
+    _check("misalignment_3x", "converged", "H1", (9000,), "partly (1 of 2) of the band's periodic speeds; 9000 rpm 3X disk 2 0.0554/0.0456/0.0164; support 0.0666/0.0657/0.0217 µm; " + MIS3),
     # misalignment_3x, converged, H2: n/a (0 periodic; 1 of 5 non-periodic meet it)
     # misalignment_3x, converged, H3: n/a (0 periodic; 2 of 5 non-periodic meet it)
     # misalignment_1x, converged, L1: yes
-    _check("misalignment_1x", "converged", "L1", (600, 4200)),
-    # misalignment_1x, converged, L2: yes
-    _check("misalignment_1x", "converged", "L2", (4800, 8400)),
-    # misalignment_1x, converged, H1: partly (1 of 3)
-    _check("misalignment_1x", "converged", "H1", (9600, 10200), "partly (1 of 3) of the band's periodic speeds; 9600 rpm 1X change 6.3 / 4.3 / 52.0 %; 10200 rpm 1X change 7.5 / 11.5 / 49.0 %; " + MIS1),
+    _check("misalignment_1x", "converged", "L1", (1200, 4200)),
+    # misalignment_1x, converged, L2: n/a (1 periodic; 5 of 6 non-periodic meet it)
+    # misalignment_1x, converged, H1: partly (1 of 2)
+    _check("misalignment_1x", "converged", "H1", (10200,), "partly (1 of 2) of the band's periodic speeds; 10200 rpm 1X change 7.6 / 11.5 / 49.0 %; " + MIS1),
     # misalignment_1x, converged, H2: n/a (0 periodic; 0 of 5 non-periodic meet it)
     # misalignment_1x, converged, H3: n/a (0 periodic; 0 of 5 non-periodic meet it)
 ]
