@@ -47,6 +47,9 @@ def replay_step(starts, modes0, phi0, t, dt, Ainv, Dr, Kr, Bt, W, S, static, ord
     rec_its = np.zeros(2, dtype=np.int32)
     rec_passes = np.zeros(2, dtype=np.int32)
     status = np.zeros(5, dtype=np.int64)
+    # one step, recorded every step: typed int64 as warm_up's call has them (the literals 1, 1 would be typed
+    # Literal[int] and compile a second signature of step_loop, tests/rotor/dynamics/test_numba_cache.py)
+    one = np.int64(1)
     for r in range(K):
         p = starts[r, :nr].copy()
         v = starts[r, nr:2 * nr].copy()
@@ -54,7 +57,7 @@ def replay_step(starts, modes0, phi0, t, dt, Ainv, Dr, Kr, Bt, W, S, static, ord
         modes = modes0.copy()
         phi = phi0.copy()
         status[:] = 0
-        step_loop(p, v, a, modes, phi, t, dt, 1, 1, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P,
+        step_loop(p, v, a, modes, phi, t, dt, one, one, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P,
                   mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
                   max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, rec_t, rec_p,
                   rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes, status)
