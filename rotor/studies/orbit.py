@@ -229,16 +229,13 @@ def _from_step_grid_orbit(flow: Flow, system, n: int, backend: str, q0, v0, fail
     plain = make_flow(system, flow.dt_s, backend, locate_events=False)
     grid = shoot_from_transient(plain, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options,
                                 period_hint=period_hint)
-    if not grid.converged:
-        return replace(failed, transient_revs=failed.transient_revs + grid.transient_revs,
-                       wall_s=failed.wall_s + grid.wall_s)
-    res = shoot(flow, grid.state, t0_s=grid.t0_s, steps_per_rev=n, period_revs=grid.period_revs, modes0=grid.modes,
-                scales=grid.scales, options=options or ShootingOptions())
-    if not res.converged:
-        return replace(failed, transient_revs=failed.transient_revs + grid.transient_revs,
-                       wall_s=failed.wall_s + grid.wall_s)
-    return replace(res, transient_revs=failed.transient_revs + grid.transient_revs, settled=grid.settled,
-                   wall_s=failed.wall_s + grid.wall_s + res.wall_s)
+    revs, wall = failed.transient_revs + grid.transient_revs, failed.wall_s + grid.wall_s
+    if grid.converged:
+        res = shoot(flow, grid.state, t0_s=grid.t0_s, steps_per_rev=n, period_revs=grid.period_revs,
+                    modes0=grid.modes, scales=grid.scales, options=options or ShootingOptions())
+        if res.converged:
+            return replace(res, transient_revs=revs, settled=grid.settled, wall_s=wall + res.wall_s)
+    return replace(failed, transient_revs=revs, wall_s=wall)
 
 
 @dataclass(frozen=True)
