@@ -9,6 +9,8 @@ one replay at a time, 2.07 s here (medians of 3, interleaved in one process, loa
 branch 2 300 → 2 420 rpm (241 located monodromies) 431 s → 283 s. What is left is the step itself (~25 µs a replay
 of a held slow slip, ~17 µs a step inside a run; about 8 µs of a replay is the step loop's set-up). Each replay is the
 same compiled step from the same start, so the ends are those of the one-by-one replays (the monodromy bit-identical).
+Since then the held slow-slip steps are carried analytically (rotor/dynamics/period_map_events.py, "Held steps,
+carried"): a few split steps a period are differenced here.
 """
 from __future__ import annotations
 
@@ -46,7 +48,7 @@ def replay_step(starts, modes0, phi0, t, dt, Ainv, Dr, Kr, Bt, W, S, static, ord
     rec_modes = np.zeros((2, 2), dtype=np.int8)
     rec_its = np.zeros(2, dtype=np.int32)
     rec_passes = np.zeros(2, dtype=np.int32)
-    status = np.zeros(5, dtype=np.int64)
+    status = np.zeros(7, dtype=np.int64)
     # one step, recorded every step: typed int64 as warm_up's call has them (the literals 1, 1 would be typed
     # Literal[int] and compile a second signature of step_loop, tests/rotor/dynamics/test_numba_cache.py)
     one = np.int64(1)

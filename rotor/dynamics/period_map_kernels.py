@@ -42,6 +42,14 @@ def force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg):
     """``(∂g/∂u, ∂g/∂w)`` (NC × NC each) of the condensed forces at relative displacement ``u``
     and velocity ``w`` (NC,), stuck faces' forces held (they are unknowns of their own)."""
     x, freeze, fdir, g, Gu, phi, uu, ww = _scratch()
+    return _force_jacobians_held(u, w, P, modes, freeze, fdir, mu_N, a1, params, w_reg)
+
+
+@njit(cache=True)
+def _force_jacobians_held(u, w, P, modes, freeze, fdir, mu_N, a1, params, w_reg):
+    """:func:`force_jacobians` with the friction of each slipping face ``k`` with ``freeze[k]`` held at
+    ``fdir[k]`` (N): no derivative of that face's force with respect to ``u`` or ``w``."""
+    x, _, _, g, Gu, phi, uu, ww = _scratch()
     Gw = np.zeros((NC, NC))
     _forces(x, u, w, 1.0, 0.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Gu, phi, uu, ww)
     _forces(x, u, w, 0.0, 1.0, P, modes, freeze, fdir, mu_N, a1, params, w_reg, g, Gw, phi, uu, ww)
@@ -88,13 +96,23 @@ def consistent_acceleration_jacobian(p, v, Bt, MK, MD, WM, SM, P, modes, mu_N, a
 def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt):
     """``∂g/∂y`` (NC × 18) of the converged condensed forces with respect to
     ``y = (α_lin, u_pre, w_pre)`` at the step's end state ``(u, w)`` and ``modes``."""
-    Gu, Gw = force_jacobians(u, w, P, modes, mu_N, a1, params, w_reg)
+    x, freeze, fdir, g, Jg, phi, uu, ww = _scratch()
+    return np.ascontiguousarray(
+        _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2, gdt)[:, :3 * NC])
+
+
+@njit(cache=True)
+def _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2, gdt):
+    """``∂g/∂(y, f)`` (NC × 22) of the converged condensed forces with respect to ``y = (α_lin, u_pre, w_pre)``
+    (columns 0-17) and to the held forces ``f = (f_0, f_1)`` (N, columns 18-21) of the faces marked in ``freeze``
+    (held at ``fdir``; a face not held has zero columns), at the step's end state ``(u, w)`` and ``modes``."""
+    Gu, Gw = _force_jacobians_held(u, w, P, modes, freeze, fdir, mu_N, a1, params, w_reg)
     m = NC   # unknowns: α and two multipliers per stuck face
     for k in range(2):
         if modes[k] == 1:
             m += 2
     MX = NC + 4
-    x, freeze, fdir, g, Jg, phi, uu, ww = _scratch()
+    x, _, _, g, Jg, phi, uu, ww = _scratch()
     alpha_lin = np.zeros(NC)
     R = np.zeros(MX)
     J = np.zeros((MX, MX))
@@ -121,8 +139,20 @@ def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt
                     mRy[j + rr, 2 * NC + c] = -P[k, rr, c] / gdt
             j += 2
     Dx = np.linalg.solve(J[:m, :m], mRy)
+    # the held forces f: g holds P_kᵀ f_k (its first four rows), so R_α = ... − S P_kᵀ f_k
+    mRf = np.zeros((m, 4))
+    for k in range(2):
+        if freeze[k] and modes[k] == 0:
+            for r in range(NC):
+                for rr in range(2):
+                    s = 0.0
+                    for c in range(4):
+                        s += S[r, c] * P[k, rr, c]
+                    mRf[r, 2 * k + rr] = s
+    Dxf = np.linalg.solve(J[:m, :m], mRf)
     # dg = Gu du + Gw dw + Σ_stuck P_kᵀ dφ_k, du = du_pre + βΔt² dα, dw = dw_pre + γΔt dα
-    Dg = np.zeros((NC, 3 * NC))
+    Dgf = np.zeros((NC, 3 * NC + 4))
+    Dg = Dgf[:, :3 * NC]
     for r in range(NC):
         for c in range(NC):
             Dg[r, NC + c] = Gu[r, c]
@@ -139,7 +169,26 @@ def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt
                 for c in range(3 * NC):
                     Dg[r, c] += P[k, 0, r] * Dx[j, c] + P[k, 1, r] * Dx[j + 1, c]
             j += 2
-    return Dg
+    # the held forces' columns: P_kᵀ directly, and through α and the stuck multipliers
+    for k in range(2):
+        if freeze[k] and modes[k] == 0:
+            for r in range(4):
+                Dgf[r, 3 * NC + 2 * k] += P[k, 0, r]
+                Dgf[r, 3 * NC + 2 * k + 1] += P[k, 1, r]
+    for r in range(NC):
+        for c in range(4):
+            s = 0.0
+            for k in range(NC):
+                s += (bdt2 * Gu[r, k] + gdt * Gw[r, k]) * Dxf[k, c]
+            Dgf[r, 3 * NC + c] += s
+    j = NC
+    for k in range(2):
+        if modes[k] == 1:
+            for r in range(4):
+                for c in range(4):
+                    Dgf[r, 3 * NC + c] += P[k, 0, r] * Dxf[j, c] + P[k, 1, r] * Dxf[j + 1, c]
+            j += 2
+    return Dgf
 
 
 @njit(cache=True)
@@ -170,16 +219,24 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, B
         Sa[:, :nr] = -MK
         Sa[:, nr:] = -MD
     carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N, a1,
-          has_support, params, w_reg, onset_projection)
+          has_support, params, w_reg, onset_projection, np.zeros((rec_p.shape[0], 2), dtype=np.int64),
+          np.zeros((rec_p.shape[0], 2, 2)))
     return Spv
 
 
 @njit(cache=True)
 def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N, a1,
-          has_support, params, w_reg, onset_projection):
+          has_support, params, w_reg, onset_projection, rec_held, rec_face):
     """Carry the sensitivities ``Spv = ∂(p, v)/∂x0`` (2nr × ncol) and ``Sa = ∂a/∂x0`` (nr × ncol), given at the
     record's first sample, along its plain steps (in place; arguments as :func:`sensitivity_pass`). The
-    located period map (:mod:`rotor.dynamics.period_map_events`) runs it between its event steps."""
+    located period map (:mod:`rotor.dynamics.period_map_events`) runs it between its event steps.
+
+    ``rec_held`` (N, 2): how each face's friction was held over step ``n`` (the step loop's ``status[5:7]``,
+    :func:`rotor.dynamics.production_loop.step_loop`): 0 not held; 1 a slow slip, Coulomb's force
+    ``f = −μN w/|w|`` along the face's slip velocity ``w = P_k Bt v_n`` at the step's start, differentiated
+    (``∂f/∂w = −μN (I − ŵŵᵀ)/|w|``); 2 a face at rest held at ``μN`` along its start force ``rec_face[n, k]``
+    (N), a constant of the step. Such a step is smooth in its start (the hold is decided from the start alone),
+    so it is carried here, not differenced."""
     nr = rec_p.shape[1]
     n_steps = rec_p.shape[0] - 1
     ncol = Spv.shape[1]
@@ -196,7 +253,51 @@ def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt,
     AKD[:, nr:] = AD
     Y = np.empty((3 * NC, ncol))      # ∂y: α_lin = Bt a_lin, u_pre = Bt p_pre, w_pre = Bt v_pre
     Z = np.empty((NC, ncol))
+    freeze = np.zeros(2, dtype=np.bool_)
+    fdir = np.zeros((2, 2))
+    dF = np.zeros((4, ncol))          # ∂f of the held forces (face 0, face 1)
+    Wv = np.empty((NC, ncol))
     for n in range(n_steps):
+        held = False
+        if has_support:
+            for k in range(2):
+                freeze[k] = rec_held[n, k] != 0
+                held = held or freeze[k]
+        if held:
+            # the held forces and their sensitivity, from the step's start velocity (before Spv moves on)
+            np.dot(Bt, Spv[nr:], Wv)
+            dF[:, :] = 0.0
+            for k in range(2):
+                if rec_held[n, k] == 1:
+                    wy = 0.0
+                    wz = 0.0
+                    for c in range(4):
+                        wb = 0.0
+                        for i in range(nr):
+                            wb += Bt[c, i] * rec_v[n, i]
+                        wy += P[k, 0, c] * wb
+                        wz += P[k, 1, c] * wb
+                    sw = np.sqrt(wy * wy + wz * wz)
+                    ey = wy / sw
+                    ez = wz / sw
+                    fdir[k, 0] = -mu_N[k] * ey
+                    fdir[k, 1] = -mu_N[k] * ez
+                    cf = -mu_N[k] / sw
+                    d00 = cf * (1.0 - ey * ey)
+                    d01 = -cf * ey * ez
+                    d11 = cf * (1.0 - ez * ez)
+                    for c in range(ncol):
+                        dwy = 0.0
+                        dwz = 0.0
+                        for r in range(4):
+                            dwy += P[k, 0, r] * Wv[r, c]
+                            dwz += P[k, 1, r] * Wv[r, c]
+                        dF[2 * k, c] = d00 * dwy + d01 * dwz
+                        dF[2 * k + 1, c] = d01 * dwy + d11 * dwz
+                elif rec_held[n, k] == 2:
+                    fn = np.sqrt(rec_face[n, k, 0] ** 2 + rec_face[n, k, 1] ** 2)
+                    fdir[k, 0] = mu_N[k] * rec_face[n, k, 0] / fn
+                    fdir[k, 1] = mu_N[k] * rec_face[n, k, 1] / fn
         for i in range(nr):
             for c in range(ncol):
                 sa = Sa[i, c]
@@ -208,7 +309,12 @@ def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt,
             modes[1] = rec_modes[n + 1, 1]
             u = Bt @ rec_p[n + 1]
             w = Bt @ rec_v[n + 1]
-            Dg = _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt)
+            if held:
+                Dgf = _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2,
+                                                  gdt)
+                Dg = np.ascontiguousarray(Dgf[:, :3 * NC])
+            else:
+                Dg = _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt)
             np.dot(Bt, Sal, Y[:NC])
             np.dot(Bt, Pre[:nr], Y[NC:2 * NC])
             np.dot(Bt, Pre[nr:], Y[2 * NC:])
@@ -216,6 +322,8 @@ def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt,
                 for c in range(ncol):
                     Y[r, c] = -Y[r, c]
             np.dot(Dg, Y, Z)
+            if held:
+                Z += np.ascontiguousarray(Dgf[:, 3 * NC:]) @ dF
             np.dot(W, Z, Sa)
             for i in range(nr):
                 for c in range(ncol):

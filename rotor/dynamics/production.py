@@ -158,7 +158,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
     p, vp, ap = T.T @ q0, T.T @ v0, T.T @ a0
     rec = _records(system, n_steps // record_every + 1, T.shape[1], t0, p, vp, ap, q0, v0, modes, phi_face)
     params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(N_PARAMS)
-    status = np.zeros(5, dtype=np.int64)
+    status = np.zeros(7, dtype=np.int64)
     try:
         done, wdt_max = step_loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
                                   pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos,
@@ -203,7 +203,7 @@ def warm_up() -> dict:
     f1, f2, f3 = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2, 4))
     i1 = np.zeros(2, dtype=np.int64)
     rec = [np.zeros(1), f2, f2, f2, f2, f2, f2, f2, f3, np.zeros((1, 2), dtype=np.int8),
-           np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32), np.zeros(5, dtype=np.int64)]
+           np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32), np.zeros(7, dtype=np.int64)]
     t0 = time.perf_counter()
     step_loop(f1, f1.copy(), f1.copy(), i1, f2.copy(), 0.0, 1.0, 0, 1, f2, f2, f2, f2, f2, f2, f1, f1, f2, f2, 0.0, f3,
               f1, 0, 0.0, 0.0, True, np.zeros(N_PARAMS), 0.25, 0.5, 1e-10, 1, 0.0, 0.0, 1, 0.0, True, f2, f2, f2, f2, False, *rec)

@@ -70,9 +70,11 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     """The ``n_steps`` steps of :func:`rotor.dynamics.production.simulate_production` on the reduced
     coordinates ``p = Tᵀ q``: predictor, condensed Newton with the active-set loop, correction,
     stick-onset re-projection, friction events located if ``locate_events``, recording every
-    ``record_every`` steps into ``rec_*``. ``p, v, a, modes, phi_face`` are updated in place. ``status``:
+    ``record_every`` steps into ``rec_*``. ``p, v, a, modes, phi_face`` are updated in place. ``status`` (7,):
     [0 ok / 2 non-finite, failing step, least-residual steps, stick-onset re-projections, located friction
-    events]. Returns ``(steps done, largest ω_c Δt)``."""
+    events, and for each face how its force was held in the last step body (0 not held, 1 a slow slip held at
+    Coulomb's force along its start velocity, 2 a face at rest held at its force; friction_events, "Slow slips")].
+    Returns ``(steps done, largest ω_c Δt)``."""
     nr = p.shape[0]
     alpha = Bt @ a
     # the step's vectors, written in place (an array expression or a matvec result is an allocation, and
@@ -182,6 +184,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 # face at rest whose force is at mu_N (just released): that force, held (friction_events, "Slow
                 # slips"). Decided from the step's start alone, so a step replayed from its start is the same step.
                 rel[k] = False
+                held_kind = 0
                 sw2 = w_old[k, 0] ** 2 + w_old[k, 1] ** 2
                 if locate and modes[k] == 0:
                     fn = math.sqrt(phi_face[k, 0] ** 2 + phi_face[k, 1] ** 2)
@@ -198,11 +201,14 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         sw = math.sqrt(sw2)
                         rel_dir[k, 0] = -mu_N[k] * w_old[k, 0] / sw
                         rel_dir[k, 1] = -mu_N[k] * w_old[k, 1] / sw
+                        held_kind = 1
                     elif sw2 <= w_reg * w_reg:
                         if held:
                             rel[k] = True
                             rel_dir[k, 0] = mu_N[k] * phi_face[k, 0] / fn
                             rel_dir[k, 1] = mu_N[k] * phi_face[k, 1] / fn
+                            held_kind = 2
+                status[5 + k] = held_kind
                 # a held face starting from rest: no reversal test (w_old = 0), it slips
                 tried[k] = modes[k] == 1 or (rel[k] and sw2 <= w_reg * w_reg)
                 stuck0[k] = modes[k] == 1
