@@ -130,7 +130,8 @@ def integrator_text(infos, commit: str = "") -> str:
     """One sentence naming the time integrator's options the points were computed with: ``info["integrator"]``
     of the points (rotor.dynamics.system.NewmarkOptions as recorded by rotor/studies/steady_state.py), or, for
     points that predate that record, the options' defaults at the points' commit (``commit``) as this code has
-    them. Says whether slip reversals and stick onsets were located inside the step (``locate_events``)."""
+    them. Says whether slip reversals, stick onsets, releases and contact onsets and losses were located inside the
+    step (``locate_events``)."""
     import dataclasses
 
     from rotor.dynamics.system import NewmarkOptions
@@ -144,5 +145,5 @@ def integrator_text(infos, commit: str = "") -> str:
                                          + (f"; {commit}" if commit else "") + ")")
     return (f"Integrator: the production Newmark scheme (rotor.dynamics.production), NewmarkOptions β {o['beta']:g}, "
             f"γ {o['gamma']:g}, Newton tol {o['tol']:g}, w_reg {o['w_reg']:g} m/s, locate_events "
-            f"{o['locate_events']}{said}: friction events {'located' if o['locate_events'] else 'not located'} "
-            "inside the step.")
+            f"{o['locate_events']}{said}: friction events (slip reversals, stick onsets, releases) and contact onsets "
+            f"and losses {'located' if o['locate_events'] else 'not located'} inside the step.")

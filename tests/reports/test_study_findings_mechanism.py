@@ -56,8 +56,8 @@ def test_the_reports_name_the_integrator_options_the_points_recorded():
 
     on = dataclasses.asdict(dataclasses.replace(NewmarkOptions(), locate_events=True))
     off = dataclasses.asdict(dataclasses.replace(NewmarkOptions(), locate_events=False))
-    assert "locate_events True: friction events located inside" in integrator_text([{"integrator": on}] * 2)
-    assert "locate_events False: friction events not located" in integrator_text([{"integrator": off}])
+    assert "locate_events True: friction events (slip reversals, stick onsets, releases) and contact onsets and losses located inside" in integrator_text([{"integrator": on}] * 2)
+    assert "contact onsets and losses not located inside" in integrator_text([{"integrator": off}])
     assert "different options" in integrator_text([{"integrator": on}, {"integrator": off}])
     assert "predate the record" in integrator_text([{}], "points computed at commit abc") and "abc" in \
         integrator_text([{}], "points computed at commit abc")
