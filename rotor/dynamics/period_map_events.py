@@ -212,11 +212,12 @@ def _step_jacobian(pm, start, modes, phi, t, scales, rel) -> tuple[np.ndarray, n
     return np.ascontiguousarray(J), ends[-1].copy(), int(todo.size)
 
 
-def located_monodromy(pm, tr, rec_p, rec_v) -> tuple[np.ndarray, float, int]:
+def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np.ndarray, float, int]:
     """``∂(p_N, v_N)/∂(p₀, v₀)`` of a located run (every step recorded in ``tr``, reduced ``rec_p``, ``rec_v``),
     the largest relative mismatch of an event step's replay against the record (–), and the number of event-step
     columns not smooth down to :data:`SHRINK_FLOOR` (:func:`_step_jacobian`: the map has no derivative there at the
-    differencing's resolution, and the monodromy is not one)."""
+    differencing's resolution, and the monodromy is not one). ``carry_held`` False differences the held steps too
+    (the earlier route, kept for benchmarks/bench_located_monodromy.py)."""
     pre, opts, nr = pm.prepared, pm.options, pm.nr
     rec_a = tr.a @ pm.T
     modes = np.ascontiguousarray(tr.modes.astype(np.int64))
@@ -244,7 +245,7 @@ def located_monodromy(pm, tr, rec_p, rec_v) -> tuple[np.ndarray, float, int]:
         end, status = _one_step(pm, rec_p[n], rec_v[n], rec_a[n], modes[n], tr.face_force[n], tr.t[n],
                                 with_status=True)
         ref = np.concatenate([rec_p[n + 1], rec_v[n + 1], rec_a[n + 1]])
-        if status[4] == 0 and np.max(np.abs(end - ref) / scales) <= 1e-10:
+        if carry_held and status[4] == 0 and np.max(np.abs(end - ref) / scales) <= 1e-10:
             held[n] = status[5:7]
         else:
             differenced.append(n)
