@@ -67,3 +67,49 @@ def replay_step(starts, modes0, phi0, t, dt, Ainv, Dr, Kr, Bt, W, S, static, ord
         ends[r, nr:2 * nr] = v
         ends[r, 2 * nr:] = a
     return ends
+
+
+@njit(cache=True)
+def replay_steps(starts, modes0, phi0, ts, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N,
+                 n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
+                 stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events):
+    """One step of length ``dt`` (s) from each row of ``starts`` (``(K, 3 n_r)``), each with its own face modes
+    ``modes0[r]`` (2,), face forces ``phi0[r]`` (2, 2; N) and time ``ts[r]`` (s): the ends (``(K, 3 n_r)``) and each
+    step's ``status`` (``(K, 7)``, :func:`rotor.dynamics.production_loop.step_loop`'s). Used to sort a record's
+    candidate event steps (rotor/dynamics/period_map_events.py) in one compiled call; the other arguments are
+    :func:`replay_step`'s."""
+    K, n3 = starts.shape
+    nr = n3 // 3
+    ends = np.empty((K, n3))
+    statuses = np.zeros((K, 7), dtype=np.int64)
+    rec_t = np.zeros(2)
+    rec_p = np.zeros((2, nr))
+    rec_v = np.zeros((2, nr))
+    rec_a = np.zeros((2, nr))
+    rec_u = np.zeros((2, 4))
+    rec_w = np.zeros((2, 4))
+    rec_fc = np.zeros((2, 4))
+    rec_fel = np.zeros((2, 4))
+    rec_face = np.zeros((2, 2, 2))
+    rec_modes = np.zeros((2, 2), dtype=np.int8)
+    rec_its = np.zeros(2, dtype=np.int32)
+    rec_passes = np.zeros(2, dtype=np.int32)
+    status = np.zeros(7, dtype=np.int64)
+    one = np.int64(1)
+    for r in range(K):
+        p = starts[r, :nr].copy()
+        v = starts[r, nr:2 * nr].copy()
+        a = starts[r, 2 * nr:].copy()
+        modes = modes0[r].copy()
+        phi = phi0[r].copy()
+        status[:] = 0
+        step_loop(p, v, a, modes, phi, ts[r], dt, one, one, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm,
+                  omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg,
+                  w_stick, max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, rec_t,
+                  rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
+                  status)
+        ends[r, :nr] = p
+        ends[r, nr:2 * nr] = v
+        ends[r, 2 * nr:] = a
+        statuses[r] = status
+    return ends, statuses

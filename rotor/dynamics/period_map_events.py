@@ -54,7 +54,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotor.dynamics.contact_events import edge_crossing
-from rotor.dynamics.event_replays import replay_step
+from rotor.dynamics.event_replays import replay_step, replay_steps
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
@@ -108,23 +108,51 @@ def event_steps(pm, tr) -> list[int]:
     return sorted(out)
 
 
-def _split_steps(pm, tr, rec_p, rec_v, rec_a, scales) -> list[int]:
-    """The candidate event steps (:func:`event_steps`) that the loop did split: those whose plain replay (events
-    not located) does not reproduce the recorded end. The others are plain steps, differentiated analytically
-    (a central difference of a step where a face nearly sticks or has just stuck is less accurate: measured on
-    Table 4 at 10 500 rpm, 3e-6 and 1e-5 against the analytic pass's 3e-7 at a stick onset and a release)."""
-    out = []
-    for n in event_steps(pm, tr):
-        end = _one_step(pm, rec_p[n], rec_v[n], rec_a[n], tr.modes[n], tr.face_force[n], tr.t[n], locate=False)
-        ref = np.concatenate([rec_p[n + 1], rec_v[n + 1], rec_a[n + 1]])
-        if np.max(np.abs(end - ref) / scales) > 1e-10:
-            out.append(n)
-    return out
+def _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held: bool = True) -> tuple[list[int], np.ndarray]:
+    """The candidate event steps (:func:`event_steps`) to difference, and how each step's friction was held
+    (``(N, 2)``, the step loop's ``status[5:7]``, for :func:`rotor.dynamics.period_map_kernels.carry`).
+
+    A candidate whose plain replay (events not located) reproduces the recorded end is a plain step, differentiated
+    analytically (a central difference of a step where a face nearly sticks or has just stuck is less accurate:
+    measured on Table 4 at 10 500 rpm, 3e-6 and 1e-5 against the analytic pass's 3e-7 at a stick onset and a
+    release). Of the others, a step whose located replay split nothing (``status[4]`` 0) and reproduces the record
+    held a face's friction and is carried too (module docstring, "Held steps, carried"; not with ``carry_held``
+    False); the rest are differenced. The replays of each kind go through one compiled call."""
+    cand = np.array(event_steps(pm, tr), dtype=np.int64)
+    held = np.zeros((len(rec_p), 2), dtype=np.int64)
+    if cand.size == 0:
+        return [], held
+    starts = np.hstack([rec_p[cand], rec_v[cand], rec_a[cand]])
+    ref = np.hstack([rec_p[cand + 1], rec_v[cand + 1], rec_a[cand + 1]])
+    modes = np.ascontiguousarray(tr.modes[cand].astype(np.int64))
+    phi = np.ascontiguousarray(tr.face_force[cand], dtype=float)
+    ts = np.ascontiguousarray(tr.t[cand], dtype=float)
+    ends, _ = _replays_at(pm, starts, modes, phi, ts, False)
+    off = np.max(np.abs(ends - ref) / scales, axis=1) > 1e-10
+    cand, starts, ref, modes, phi, ts = cand[off], starts[off], ref[off], modes[off], phi[off], ts[off]
+    if not carry_held or cand.size == 0:
+        return cand.tolist(), held
+    ends, status = _replays_at(pm, starts, modes, phi, ts, True)
+    pure = (status[:, 4] == 0) & (np.max(np.abs(ends - ref) / scales, axis=1) <= 1e-10)
+    held[cand[pure]] = status[pure, 5:7]
+    return cand[~pure].tolist(), held
 
 
-def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True, with_status: bool = False):
+def _replays_at(pm, starts, modes, phi, ts, locate: bool):
+    """One step from each row of ``starts`` with its own modes, face forces and time, events located (``locate``)
+    or not: the ends and statuses (:func:`rotor.dynamics.event_replays.replay_steps`)."""
+    pre, opts = pm.prepared, pm.options
+    return replay_steps(np.ascontiguousarray(starts, dtype=float), modes, phi, ts, pm.dt, pre.Ainv, pre.Dr, pre.Kr,
+                        pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin, pre.omega_force, pre.P,
+                        pre.limits, pre.n_faces, pre.s_yy, pre.a1, pm.reduced.support is not None, pm.params,
+                        opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
+                        float(opts.stick_mean_weight), bool(opts.consistent_stick_onset), pre.Minv, pre.WM, pre.SM,
+                        pre.Mr, bool(locate))
+
+
+def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True):
     """``(p, v, a)`` after one step of the compiled loop from the given start at time ``t`` (s), friction events
-    located (``locate``) or not; with ``with_status`` also the loop's ``status`` (7,) of that step."""
+    located (``locate``) or not."""
     pre, opts, nr = pm.prepared, pm.options, pm.nr
     p, v, a, modes, phi = p.copy(), v.copy(), a.copy(), np.array(modes, dtype=np.int64), np.array(phi, float)
     rec = dict(t=np.zeros(2), p=np.zeros((2, nr)), v=np.zeros((2, nr)), a=np.zeros((2, nr)), u=np.zeros((2, 4)),
@@ -137,8 +165,7 @@ def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True, with_status: bool
               opts.w_stick, opts.max_passes, float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
               pre.Minv, pre.WM, pre.SM, pre.Mr, bool(locate), rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"],
               rec["fc"], rec["fel"], rec["face"], rec["modes"], rec["its"], rec["passes"], status)
-    end = np.concatenate([p, v, a])
-    return (end, status) if with_status else end
+    return np.concatenate([p, v, a])
 
 
 def _replays(pm, starts, modes, phi, t) -> np.ndarray:
@@ -236,19 +263,10 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
     block = np.repeat([max(float(np.abs(r).max()), 1e-12) for r in (rec_p, rec_v, rec_a)], nr)
     scales = np.maximum(np.concatenate([np.ptp(rec_p, 0), np.ptp(rec_v, 0), np.ptp(rec_a, 0)]), 1e-3 * block)
     n_steps, start, mismatch, unsmooth = len(rec_p) - 1, 0, 0.0, 0
-    # the candidate steps the loop did not split (no event located in them) but held a face's friction: smooth in
-    # their start, carried analytically with the held forces' derivative (carry's rec_held); the others differenced
-    held = np.zeros((n_steps + 1, 2), dtype=np.int64)
+    # the candidate steps the loop did not split but held a face's friction: smooth in their start, carried
+    # analytically with the held forces' derivative (carry's rec_held); the others differenced
+    differenced, held = _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held)
     face = np.ascontiguousarray(tr.face_force, dtype=float)
-    differenced = []
-    for n in _split_steps(pm, tr, rec_p, rec_v, rec_a, scales):
-        end, status = _one_step(pm, rec_p[n], rec_v[n], rec_a[n], modes[n], tr.face_force[n], tr.t[n],
-                                with_status=True)
-        ref = np.concatenate([rec_p[n + 1], rec_v[n + 1], rec_a[n + 1]])
-        if carry_held and status[4] == 0 and np.max(np.abs(end - ref) / scales) <= 1e-10:
-            held[n] = status[5:7]
-        else:
-            differenced.append(n)
     for n in differenced + [n_steps]:
         if n > start:
             carry(np.ascontiguousarray(rec_p[start:n + 1]), np.ascontiguousarray(rec_v[start:n + 1]),

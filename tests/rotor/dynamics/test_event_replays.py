@@ -33,8 +33,21 @@ def test_batched_replays_equal_one_by_one_replays_at_located_events():
     rec_p, rec_v, rec_a = tr.q @ pm.T, tr.v @ pm.T, tr.a @ pm.T
     block = np.repeat([np.abs(x).max() for x in (rec_p, rec_v, rec_a)], nr)   # as located_monodromy's scales
     scales = np.maximum(np.concatenate([np.ptp(rec_p, 0), np.ptp(rec_v, 0), np.ptp(rec_a, 0)]), 1e-3 * block)
-    split = pme._split_steps(pm, tr, rec_p, rec_v, rec_a, scales)
-    assert len(split) >= 2                                  # located events in the period (22 measured)
+    split, held = pme._split_steps(pm, tr, rec_p, rec_v, rec_a, scales)
+    assert len(split) >= 2                                  # located events in the period (4 differenced, measured)
+    assert np.count_nonzero(held.any(axis=1)) >= 2          # held steps, carried (18 measured)
+    # the candidate steps' replays batched with a start, modes, face forces and time each: the one-by-one ones
+    cand = np.array(pme.event_steps(pm, tr))
+    starts = np.hstack([rec_p[cand], rec_v[cand], rec_a[cand]])
+    for locate in (False, True):
+        ends, status = pme._replays_at(pm, starts, tr.modes[cand].astype(np.int64), tr.face_force[cand],
+                                       tr.t[cand].astype(float), locate)
+        for i, n in enumerate(cand):
+            one = pme._one_step(pm, rec_p[n], rec_v[n], rec_a[n], tr.modes[n], tr.face_force[n], tr.t[n], locate)
+            assert np.array_equal(ends[i], one)
+        if locate:
+            assert np.array_equal(status[np.isin(cand, np.flatnonzero(held.any(axis=1))), 4],
+                                  np.zeros(np.count_nonzero(held.any(axis=1)), dtype=np.int64))   # carried: not split
     rng = np.random.default_rng(3)
     for n in split:
         x0 = np.concatenate([rec_p[n], rec_v[n], rec_a[n]])
