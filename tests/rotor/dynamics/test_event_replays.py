@@ -34,7 +34,7 @@ def test_batched_replays_equal_one_by_one_replays_at_located_events():
     block = np.repeat([np.abs(x).max() for x in (rec_p, rec_v, rec_a)], nr)   # as located_monodromy's scales
     scales = np.maximum(np.concatenate([np.ptp(rec_p, 0), np.ptp(rec_v, 0), np.ptp(rec_a, 0)]), 1e-3 * block)
     split, held = pme._split_steps(pm, tr, rec_p, rec_v, rec_a, scales)
-    assert len(split) >= 2                                  # located events in the period (4 differenced, measured)
+    assert len(split) >= 2                                  # located events in the period (differenced; 4 measured)
     assert np.count_nonzero(held.any(axis=1)) >= 2          # held steps, carried (18 measured)
     # the candidate steps' replays batched with a start, modes, face forces and time each: the one-by-one ones
     cand = np.array(pme.event_steps(pm, tr))
