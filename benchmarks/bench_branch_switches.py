@@ -38,10 +38,14 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+
+from contact.threads import set_thread_env  # noqa: E402
+
+set_thread_env(1)     # before numpy loads: one BLAS thread, as `ringcontact branch` has it (reports/cli/__init__.py)
+
+import numpy as np  # noqa: E402
 
 from contact.files import atomic_write_text  # noqa: E402
 

@@ -84,10 +84,28 @@ def main(argv: list[str] | None = None) -> int:
         return _run(job, rest, program)
 
 
+#: jobs whose dense algebra is on matrices of tens to a few hundred rows (the rotor's reduced coordinates): one BLAS
+#: thread. Measured on the shared 2-core machine at load 4: an SVD of 55 × 53 (the continuation's corrector step)
+#: 0.28 ms with one OpenBLAS thread, 104 ms with two; in a Table 4 branch of 20 orbits from 5 740 rpm (2 240 steps per
+#: revolution) the SVDs were 21 s of 87 s.
+ONE_BLAS_THREAD = frozenset({"law", "rotor", "simulate", "orbit", "branch"})
+
+
+def blas_threads(job: str) -> dict:
+    """Set the BLAS/OpenMP thread variables for ``job`` before numpy loads (:mod:`contact.threads`): one thread for the
+    jobs of :data:`ONE_BLAS_THREAD`, a value the user set is kept. Returns the variables (an empty dict for the other
+    jobs, which choose their own: ``fem3d``, the sweeps' workers)."""
+    if job not in ONE_BLAS_THREAD:
+        return {}
+    from contact.threads import set_thread_env
+    return set_thread_env(1)
+
+
 def _run(job: str, rest: list[str], program: bool = False) -> int:
     """Run ``job``'s entry on ``rest``: its exit status, every failure and interruption as one line
     (``program``: this is the ringcontact process, which may end at once after an interruption)."""
     module_name, _, func_name = JOBS[job][0].partition(":")
+    blas_threads(job)
     try:
         entry = getattr(importlib.import_module(module_name), func_name or "main")
         return int(entry(rest) or 0)

@@ -1,4 +1,5 @@
 """The console command lists its jobs and turns suite errors into one clear line and exit code 2."""
+import os
 import sys
 import types
 
@@ -30,3 +31,20 @@ def test_suite_error_escaping_a_job_becomes_exit_code_2(monkeypatch, capsys):
     assert cli.main(["fake"]) == 2
     err = capsys.readouterr().err
     assert err == "ringcontact fake: error: clearance_m = -5e-05 m: must be > 0\n"
+
+
+def test_rotor_jobs_start_with_one_blas_thread(monkeypatch):
+    """The rotor jobs' small dense algebra runs with one BLAS thread (reports/cli/__init__.py, ONE_BLAS_THREAD: a
+    55 × 53 SVD took 104 ms with two OpenBLAS threads on the loaded 2-core machine, 0.28 ms with one); a value the
+    user set is kept, and the FEM and study jobs choose their own."""
+    from contact.threads import THREAD_VARIABLES
+
+    for k in THREAD_VARIABLES:
+        monkeypatch.delenv(k, raising=False)
+    assert cli.blas_threads("branch") == {k: "1" for k in THREAD_VARIABLES}
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")
+    assert cli.blas_threads("orbit")["OPENBLAS_NUM_THREADS"] == "3"
+    for k in THREAD_VARIABLES:
+        monkeypatch.delenv(k, raising=False)
+    assert cli.blas_threads("fem3d") == {} and cli.blas_threads("study") == {}
+    assert all(k not in os.environ for k in THREAD_VARIABLES)
