@@ -25,7 +25,8 @@ past the fold as a run-up does (:func:`rotor.periodic.restarts.jump_past_fold`, 
 ``--max-wall-s`` ends the branch after that long (its stop says so).
 
 Run: ``nice .venv/bin/python benchmarks/bench_branch_switches.py [--max-points 1500] [--verify 12]
-[--locate-events on] [--turn-back-rpm 250] [--max-wall-s S] [--branch-json PATH]``.
+[--locate-events on] [--turn-back-rpm 250] [--max-wall-s S] [--branch-json PATH]``; with ``--from-json`` (and
+``--branch-json PATH``, the same options) the report is written again from the run's files, nothing computed.
 """
 from __future__ import annotations
 
@@ -158,7 +159,46 @@ def stretches(points: list[dict]) -> list[tuple[float, float, bool, int]]:
     return out
 
 
-def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes: list[dict] | None = None) -> str:
+def face_limits_N() -> list[float]:
+    """The end faces' friction limits μN (N) of the scene (they do not depend on the speed)."""
+    from rotor.studies.steady_state import point_system
+
+    sup = point_system(SCENE, RPM_START, tilt_ignored=False)[2].support
+    _, limits, n_faces = sup.faces()
+    return [float(x) for x in limits[:n_faces]]
+
+
+def _state_text(p: dict, mu_n: list[float]) -> str:
+    """A point's switches, contact and stick in a few words."""
+    stuck = [p.get("stick_share_right_face"), p.get("stick_share_left_face")]
+    at_limit = p.get("peak_face_force_N") is not None and mu_n and p["peak_face_force_N"] >= 0.99 * max(mu_n)
+    return (f"{p['switches_per_period']} switches/period, contact {100 * (p.get('contact_share') or 0):.0f} %, "
+            f"faces stuck {100 * (stuck[0] or 0):.0f} / {100 * (stuck[1] or 0):.0f} %"
+            + (f", face force at μN ({p['peak_face_force_N']:.0f} of {max(mu_n):.0f} N)" if at_limit else ""))
+
+
+def restart_context(pts: list[dict], i: int, mu_n: list[float]) -> str:
+    """What the branch did across the restart at point ``i``: the orbits on either side (switches per period,
+    contact, stick, whether a stuck face sits at its friction limit) and the jump of the 1X amplitude at disk 2
+    against the change along the branch just before it; the kind of stall that reads from them."""
+    a, b = pts[i - 1], pts[i]
+    amp = lambda p: (p.get("velocity_amplitudes_mm_s_1X_to_5X") or {}).get("disk2.y", [float("nan")])[0]  # noqa: E731
+    jump = abs(amp(b) - amp(a))
+    usual = abs(amp(a) - amp(pts[i - 2])) if i >= 2 else float("nan")
+    stuck_edge = (a.get("stick_share_right_face") == 1.0 or a.get("stick_share_left_face") == 1.0) and \
+        a.get("peak_face_force_N") is not None and mu_n and a["peak_face_force_N"] >= 0.99 * max(mu_n)
+    kind = ("a face stuck through the period at its friction limit: a faster orbit keeps its stuck offset only until "
+            "the holding force passes μN, then the face slips to a new offset (a switch the corrector's step crossed; "
+            "measured at 5 185 rpm: Newton at fixed speed keeping the offset converged 3.1 rpm on, not 7.1 rpm on)"
+            if stuck_edge else
+            "the switches per period change" if a["switches_per_period"] != b["switches_per_period"] else
+            "no change of switches: the map's kinks within the period (a switch moving across a step)")
+    return (f"{kind}; before: {_state_text(a, mu_n)}; after: {_state_text(b, mu_n)}; 1X at disk 2 "
+            f"{amp(a):.3g} → {amp(b):.3g} mm/s (jump {jump:.2g}, last step {usual:.2g})")
+
+
+def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes: list[dict] | None = None,
+           mu_n: list[float] | None = None) -> str:
     pts = d["points"]
     reached = max((p["speed_rpm"] for p in pts), default=float("nan"))
     lines = ["# Continuation of the Table 4 rotor through stick/slip and contact switches: one branch", "",
@@ -167,8 +207,8 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes:
              + (f" --max-wall-s {args.max_wall_s:g}" if args.max_wall_s else "") + f"` at commit {commit}: one "
              f"`ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f} --turn-back-rpm "
              f"{args.turn_back_rpm:g}` "
-             f"({d['steps_per_rev']} steps per revolution, friction events located inside the step: "
-             f"{d['locate_events']}), in one process. Load average at start "
+             f"({d['steps_per_rev']} steps per revolution, friction events and contact onsets and losses located "
+             f"inside the step: {d['locate_events']}), in one process. Load average at start "
              f"{load[0][0]:.2f}/{load[0][1]:.2f}/{load[0][2]:.2f}, at end {load[1][0]:.2f}/{load[1][1]:.2f}/"
              f"{load[1][2]:.2f} (shared 2-core machine, other jobs running: the wall time is an upper bound).", "",
              "| | |", "|---|---|",
@@ -182,10 +222,13 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes:
     lines += [f"| {a:.1f} | {b:.1f} | {'yes' if st else 'no'} | {k} |" for a, b, st, k in stretches(pts)]
     lines += ["", "## Bifurcations", "", "| kind | speed (rpm) | detail |", "|---|---|---|"]
     lines += [f"| {b['kind']} | {b['speed_rpm']:.1f} | {b.get('detail', '')} |" for b in d["bifurcations"]] or ["| none | | |"]
-    lines += ["", "## Restarts (the speeds each skipped, how its orbit was shot, why the corrector failed)", "",
-              "| skipped (rpm) | shot | why the corrector failed before it |", "|---|---|---|"]
+    mu_n = mu_n or []
+    lines += ["", "## Restarts (the speeds each skipped, how its orbit was shot, why the corrector failed, what the "
+              "orbits on either side show)", "",
+              "| skipped (rpm) | shot | why the corrector failed before it | across the restart |", "|---|---|---|---|"]
     rows = [f"| {p['skipped_rpm'][0]:.1f} – {p['skipped_rpm'][1]:.1f} | {p['restarted']} | "
-            f"{p.get('restart_reason', '')} |" for p in pts if p.get("skipped_rpm")]
+            f"{p.get('restart_reason', '')} | {restart_context(pts, i, mu_n) if i else ''} |"
+            for i, p in enumerate(pts) if p.get("skipped_rpm")]
     lines += rows or ["| none | | |"]
     lines += ["", "## Corrector stalls (every one, how it was passed)", "",
               "| at (rpm) | why | outcome |", "|---|---|---|"]
@@ -220,7 +263,18 @@ def main(argv=None) -> int:
     ap.add_argument("--branch-json", type=Path, default=None)
     ap.add_argument("--turn-back-rpm", type=float, default=250.0)
     ap.add_argument("--max-wall-s", type=float, default=None)
+    ap.add_argument("--from-json", action="store_true",
+                    help="no computing: write the report again from --branch-json and the published .json (the "
+                         "run's commit, load and checks kept)")
     args = ap.parse_args(argv)
+    if args.from_json:
+        d = json.loads(args.branch_json.read_text())
+        slim = json.loads((OUT / "perf-branch-switches.json").read_text())
+        load = slim["load_average"]
+        text = report(d, load, args, slim["commit"], slim["verified"], slim["isolated_checks"], face_limits_N())
+        atomic_write_text(OUT / "perf-branch-switches.md", text)
+        print(text)
+        return 0
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                             text=True).stdout.strip()
     load0 = os.getloadavg()
@@ -238,7 +292,7 @@ def main(argv=None) -> int:
     slim["load_average"] = [list(load0), list(load1)]
     slim["commit"] = commit
     atomic_write_text(OUT / "perf-branch-switches.json", json.dumps(slim, indent=1) + "\n")
-    text = report(d, [load0, load1], args, commit, verified, spikes)
+    text = report(d, [load0, load1], args, commit, verified, spikes, face_limits_N())
     atomic_write_text(OUT / "perf-branch-switches.md", text)
     print(text)
     return 0
