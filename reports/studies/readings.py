@@ -253,7 +253,9 @@ def publish_readings(out, published, *, scene, tasks=None, low_tasks=None, extra
     table = readings_table(points)
     current = scene_reading(load_scene(scene)) or "(none of the readings)"
     published = Path(published)
-    note = readings_note(table, current, POINT_B_RPM, integrator_text([p.info for p in points + low]))
+    # a point beyond the law's domain has no record, hence no integrator options: the others name them
+    note = readings_note(table, current, POINT_B_RPM,
+                         integrator_text([p.info for p in points + low if "outside_law_domain" not in p.info]))
     if low_tasks:
         note += ("\n## Relative displacement below 9 000 rpm, every reading\n\nDai et al. (2025) §5.3.1 (1): \"In the "
                  "low speed range (0~9000 rpm) ... there is no relative displacement between the bearing and "
