@@ -152,8 +152,9 @@ def chosen_reading(table: dict, current: str) -> tuple[str, dict]:
     return (current if current in top else top[0]), counts
 
 
-def readings_note(table: dict, current: str, speed_rpm: float) -> str:
-    """reports/published/section5-readings.md from :func:`readings_table`."""
+def readings_note(table: dict, current: str, speed_rpm: float, integrator: str = "") -> str:
+    """reports/published/section5-readings.md from :func:`readings_table`; ``integrator``: the sentence naming the
+    time integrator's options the points were computed with (:func:`reports.studies.common.integrator_text`)."""
     from rotor.studies.readings import reading
 
     keys = sorted(table, key=lambda k: (k[0] != current, k[0], k[1] is not None, k[1] or 0))
@@ -167,6 +168,7 @@ def readings_note(table: dict, current: str, speed_rpm: float) -> str:
              "Figs. 14–15 (B) or, as a cross-check, of Fig. 13 at point A (4 500 rpm), with the number it is judged on "
              "and the threshold; ✔ holds, ✘ does not. Three numbers are disk 1 / disk 2 / support (y velocity for "
              "spectra). The default is the reading that meets the most rows over both points and meshes.", "",
+             *([integrator, ""] if integrator else []),
              "| reading | placement | m_sp (kg) | L (mm) | m_sp L² vs the 150 mm sleeve | the sentences it rests on |",
              "|---|---|---|---|---|---|"]
     for n in dict.fromkeys(k[0] for k in keys):
@@ -242,19 +244,23 @@ def publish_readings(out, published, *, scene, tasks=None, low_tasks=None, extra
     """section5-readings.md and .csv in ``published`` from the finished ``study readings`` directory ``out``;
     ``extra``: the hand-written reading appended (reports/notes/section5-readings-reading.md)."""
     from contact.files import atomic_write_text
-    from reports.studies.common import load_points
+    from reports.studies.common import integrator_text, load_points
     from rotor.model.scene import load_scene
     from rotor.studies.readings import scene_reading
 
-    table = readings_table(load_points(out, tasks))
+    points = load_points(out, tasks)
+    low = load_points(out, low_tasks) if low_tasks else []
+    table = readings_table(points)
     current = scene_reading(load_scene(scene)) or "(none of the readings)"
     published = Path(published)
-    note = readings_note(table, current, POINT_B_RPM)
+    # a point beyond the law's domain has no record, hence no integrator options: the others name them
+    note = readings_note(table, current, POINT_B_RPM,
+                         integrator_text([p.info for p in points + low if "outside_law_domain" not in p.info]))
     if low_tasks:
         note += ("\n## Relative displacement below 9 000 rpm, every reading\n\nDai et al. (2025) §5.3.1 (1): \"In the "
                  "low speed range (0~9000 rpm) ... there is no relative displacement between the bearing and "
                  "support\". Lowest speed of a 300 rpm sweep where the end faces slip (stuck < 100 % of the "
-                 "record):\n\n" + "\n".join(slip_lines(load_points(out, low_tasks))) + "\n")
+                 "record):\n\n" + "\n".join(slip_lines(low)) + "\n")
     note += "\n" + extra if extra else ""
     return [atomic_write_text(published / "section5-readings.md", note),
             readings_csv(table, published / "section5-readings.csv")]
