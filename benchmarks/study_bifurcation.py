@@ -46,6 +46,9 @@ def main(argv=None) -> int:
     if args.branch_json is not None:
         d = json.loads(args.branch_json.read_text(encoding="utf-8"))
         how = f"drawn from {args.branch_json.name} (benchmarks/bench_branch_switches.py --branch-json)"
+        bench = ROOT / "reports" / "published" / "perf-branch-switches.json"     # the run's own commit, if it wrote it
+        if bench.exists():
+            commit = json.loads(bench.read_text(encoding="utf-8")).get("commit", commit)
     else:
         d = compute(args.max_points)
         load1 = os.getloadavg()
@@ -56,7 +59,8 @@ def main(argv=None) -> int:
                 f"nice .venv/bin/python benchmarks/bench_branch_switches.py --branch-json BRANCH.json && "
                 f"nice .venv/bin/python benchmarks/study_bifurcation.py --branch-json BRANCH.json",
                 f"# = ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f} "
-                f"--max-points {args.max_points} --turn-back-rpm 250 --json (friction events located inside the step)"]
+                f"--max-points {args.max_points} --turn-back-rpm 250 --json (friction events and contact onsets and losses "
+                f"located inside the step)"]
     reading = (ROOT / "reports" / "notes" / "study-bifurcation-reading.md").read_text(encoding="utf-8")
     for f in publish([d], ROOT / "reports" / "published", commands=commands, reading=reading):
         print("wrote", f)
