@@ -33,40 +33,16 @@ def replay_step(starts, modes0, phi0, t, dt, Ainv, Dr, Kr, Bt, W, S, static, ord
     row of ``starts`` (``(K, 3 n_r)``: reduced displacement, velocity, acceleration), every one with the face
     modes ``modes0`` (2,) and face forces ``phi0`` (2, 2; N) at its start; the other arguments are
     :func:`rotor.dynamics.production_loop.step_loop`'s."""
-    K, n3 = starts.shape
-    nr = n3 // 3
-    ends = np.empty((K, n3))
-    rec_t = np.zeros(2)
-    rec_p = np.zeros((2, nr))
-    rec_v = np.zeros((2, nr))
-    rec_a = np.zeros((2, nr))
-    rec_u = np.zeros((2, 4))
-    rec_w = np.zeros((2, 4))
-    rec_fc = np.zeros((2, 4))
-    rec_fel = np.zeros((2, 4))
-    rec_face = np.zeros((2, 2, 2))
-    rec_modes = np.zeros((2, 2), dtype=np.int8)
-    rec_its = np.zeros(2, dtype=np.int32)
-    rec_passes = np.zeros(2, dtype=np.int32)
-    status = np.zeros(7, dtype=np.int64)
-    # one step, recorded every step: typed int64 as warm_up's call has them (the literals 1, 1 would be typed
-    # Literal[int] and compile a second signature of step_loop, tests/rotor/dynamics/test_numba_cache.py)
-    one = np.int64(1)
+    K = starts.shape[0]
+    modes = np.empty((K, 2), dtype=np.int64)
+    phi = np.empty((K, 2, 2))
+    ts = np.full(K, t)
     for r in range(K):
-        p = starts[r, :nr].copy()
-        v = starts[r, nr:2 * nr].copy()
-        a = starts[r, 2 * nr:].copy()
-        modes = modes0.copy()
-        phi = phi0.copy()
-        status[:] = 0
-        step_loop(p, v, a, modes, phi, t, dt, one, one, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P,
-                  mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
-                  max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, rec_t, rec_p,
-                  rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes, status)
-        ends[r, :nr] = p
-        ends[r, nr:2 * nr] = v
-        ends[r, 2 * nr:] = a
-    return ends
+        modes[r] = modes0
+        phi[r] = phi0
+    return replay_steps(starts, modes, phi, ts, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P,
+                        mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
+                        max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events)[0]
 
 
 @njit(cache=True)
