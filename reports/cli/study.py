@@ -126,8 +126,8 @@ def _parser() -> argparse.ArgumentParser:
     mp.add_argument("--points", type=count(1, 2000), default=13, help="speeds (default 13)")
     mp.add_argument("--clearances-mm", default="0.01,0.02,0.05,0.1,0.2", help="comma list (mm)")
     se = sub.add_parser("sensitivity", help="do the paper's Section 5 findings hold for plausible values of the "
-                                            "inputs Table 4 does not give? (slow: 16 min with 1 worker on the shared 2-core "
-                                            "machine, 16 CPU-minutes)")
+                                            "inputs Table 4 does not give? (slow: 16 min with 1 worker on the "
+                                            "shared 2-core machine, 16 CPU-minutes)")
     se.add_argument("--scene", default="paper-table4", help="scene name or TOML path (default paper-table4)")
     se.add_argument("--out", type=out_dir, default="runs/sensitivity", help="result directory (default runs/sensitivity)")
     se.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")
