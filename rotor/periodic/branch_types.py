@@ -24,9 +24,9 @@ NEUTRAL_TOL = 1e-8
 #: shortest parameter step of a restart past a switch (scaled parameter, –)
 RESTART_STEP = 1e-4
 #: how a restarted point was found (``BranchPoint.restarted``; 0: by the corrector)
-SECANT, TRANSIENT, COLD = 1, 2, 3
+SECANT, TRANSIENT, COLD, GRID = 1, 2, 3, 4
 #: the restarts by name
-RESTART_NAMES = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold"}
+RESTART_NAMES = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold", GRID: "step-grid"}
 #: a restart from the linear periodic solution (a new segment's start) is tried this many times, at parameter
 #: steps growing ×4 from ``COLD_STEP`` (scaled parameter; with a tenth of 600–18 000 rpm as the scale: 1.7 to 445 rpm)
 COLD_TRIES, COLD_STEP = 5, 1e-3
@@ -86,7 +86,7 @@ class BranchPoint:
     """One orbit of a branch: ``parameter`` λ, reduced ``state`` at phase 0, ``floquet``, corrector
     ``iterations``, ``residual`` (scaled, –), ``dlam_ds`` (parameter component of the unit tangent), ``restarted``:
     0 reached by the corrector from the point before, else by a restart past a switch (:func:`rotor.periodic.restarts.restart`):
-    :data:`SECANT`, :data:`TRANSIENT` or :data:`COLD`, how its orbit was shot (:func:`rotor.periodic.restarts.shot`);
+    :data:`SECANT`, :data:`TRANSIENT`, :data:`COLD` or :data:`GRID`, how its orbit was shot (:func:`rotor.periodic.restarts.shot`);
     ``events``: end-face mode changes over the period (−1 unknown), ``why``: for a restarted point, why the
     corrector failed before it (the last corrector's failure, :attr:`Evaluator.failure`)."""
 

@@ -67,7 +67,7 @@ import numpy as np
 
 from sweep.progress import report
 from rotor.periodic.branch_events import bifurcations_between, confirmed_folds
-from rotor.periodic.branch_types import (COLD, NEUTRAL_TOL, PARAM_REL_STEP, RESCALE_RATIO, RESTART_NAMES,
+from rotor.periodic.branch_types import (COLD, GRID, NEUTRAL_TOL, PARAM_REL_STEP, RESCALE_RATIO, RESTART_NAMES,
                                          RESTART_STEP, SECANT, TRANSIENT, Bifurcation, Branch, BranchPoint,
                                          ContinuationOptions, Evaluator, Problem, parameter_problem, speed_problem)
 from rotor.periodic.corrector import correct, land, make_point, neutral_rows, rescale, unit_tangent
@@ -75,7 +75,7 @@ from rotor.periodic.period_flow import advance
 from rotor.periodic.restarts import bridge, jump_past_fold, restart
 from rotor.periodic.shooting import ShootingOptions, shoot
 
-__all__ = ["COLD", "NEUTRAL_TOL", "PARAM_REL_STEP", "RESCALE_RATIO", "RESTART_NAMES", "RESTART_STEP", "SECANT", "TRANSIENT",
+__all__ = ["COLD", "GRID", "NEUTRAL_TOL", "PARAM_REL_STEP", "RESCALE_RATIO", "RESTART_NAMES", "RESTART_STEP", "SECANT", "TRANSIENT",
            "Bifurcation", "Branch", "BranchPoint", "ContinuationOptions", "Evaluator", "Problem", "continue_branch",
            "parameter_problem", "speed_problem", "switch_period_doubling"]
 

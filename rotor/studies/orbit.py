@@ -26,7 +26,7 @@ from contact.units import ARCMIN, check_positive
 from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.dynamics.support_record import contact_summary
-from rotor.periodic.continuation import (COLD, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
+from rotor.periodic.continuation import (COLD, GRID, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
                                         speed_problem)
 from rotor.periodic.floquet import FloquetResult
 from rotor.periodic.grazing import continue_through_grazing
@@ -36,7 +36,7 @@ from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, 
 
 ORDERS = (1, 2, 3, 4, 5)
 #: how a branch point past a stick/slip switch was reached (:mod:`rotor.periodic.continuation`); None: by the corrector
-RESTART_KINDS = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold"}
+RESTART_KINDS = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold", GRID: "step-grid"}
 
 
 @dataclass(frozen=True)
