@@ -214,7 +214,7 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes:
              "| | |", "|---|---|",
              f"| orbits | {len(pts)} |", f"| reached | {reached:.1f} rpm |", f"| stop | {d['stop']} |",
              f"| wall | {d['wall_s']:.0f} s |",
-             "| restarts (secant, transient, cold) | " + ", ".join(f"{k} {v}" for k, v in d["restarts"].items()) + " |",
+             "| restarts by kind | " + ", ".join(f"{k} {v}" for k, v in d["restarts"].items()) + " |",
              f"| corrector stalls | {len(d['corrector_failures'])} |",
              f"| stable / unstable orbits | {sum(p['stable'] for p in pts)} / {sum(not p['stable'] for p in pts)} |",
              "", "## Stability along the branch", "",

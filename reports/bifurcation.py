@@ -102,13 +102,14 @@ def segments_table(segments) -> str:
     kind, :mod:`rotor.periodic.continuation`; a column only when the segments carry ``restarts``) and why each
     stopped."""
     restarts = any("restarts" in s for s in segments)
-    extra = (" restarts past switches (secant/transient/cold) |", "---|") if restarts else ("", "")
+    extra = (" restarts past switches (secant/transient/cold/step-grid) |", "---|") if restarts else ("", "")
     lines = ["| start (rpm) | reached (rpm) | target (rpm) | orbits | stable | largest spectral radius | "
              "bifurcations |" + extra[0] + " stopped |", "|---|---|---|---|---|---|---|" + extra[1] + "---|"]
     for s in segments:
         pts = s["points"]
         r = s.get("restarts", {})
-        rtext = f" {r.get('secant', 0)}/{r.get('transient', 0)}/{r.get('cold', 0)} |" if restarts else ""
+        rtext = (f" {r.get('secant', 0)}/{r.get('transient', 0)}/{r.get('cold', 0)}/{r.get('step-grid', 0)} |"
+                 if restarts else "")
         if not pts:
             lines.append(f"| {s['rpm_start']:.0f} | – | {s['rpm_end']:.0f} | 0 | – | – | – |{rtext} {s['stop']} |")
             continue

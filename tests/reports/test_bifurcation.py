@@ -64,8 +64,8 @@ def test_segments_table_counts_restarts_when_the_segments_carry_them():
                       {"speed_rpm": 650.0, "stable": True, "spectral_radius": 0.8}]}
     plain = segments_table([seg])
     assert "restarts" not in plain and plain.splitlines()[2].count("|") == 9
-    table = segments_table([{**seg, "restarts": {"secant": 1, "transient": 4, "cold": 0}}])
-    assert "restarts past switches" in table.splitlines()[0] and "| 1/4/0 |" in table.splitlines()[2]
+    table = segments_table([{**seg, "restarts": {"secant": 1, "transient": 4, "cold": 0, "step-grid": 2}}])
+    assert "restarts past switches" in table.splitlines()[0] and "| 1/4/0/2 |" in table.splitlines()[2]
     assert table.splitlines()[2].count("|") == 10
 
 

@@ -109,7 +109,7 @@ def test_branch_downwards_is_a_run_down_to_rpm_end(damped_jeffcott, capsys):
     assert d["stop"] == "end reached" and rpm[0] == pytest.approx(3000.0) and rpm[-1] == pytest.approx(1500.0, rel=1e-12)
     assert np.all(np.diff(rpm) < 0)
     # a frictionless ring: a smooth map, every point reached by the corrector, none by a restart past a switch
-    assert d["restarts"] == {"secant": 0, "transient": 0, "cold": 0}
+    assert d["restarts"] == {"secant": 0, "transient": 0, "cold": 0, "step-grid": 0}
     assert all(p["restarted"] is None for p in d["points"])
 
 
