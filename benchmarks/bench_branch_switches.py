@@ -185,14 +185,18 @@ def restart_context(pts: list[dict], i: int, mu_n: list[float]) -> str:
     amp = lambda p: (p.get("velocity_amplitudes_mm_s_1X_to_5X") or {}).get("disk2.y", [float("nan")])[0]  # noqa: E731
     jump = abs(amp(b) - amp(a))
     usual = abs(amp(a) - amp(pts[i - 2])) if i >= 2 else float("nan")
-    stuck_edge = (a.get("stick_share_right_face") == 1.0 or a.get("stick_share_left_face") == 1.0) and \
-        a.get("peak_face_force_N") is not None and mu_n and a["peak_face_force_N"] >= 0.99 * max(mu_n)
-    kind = ("a face stuck through the period at its friction limit: a faster orbit keeps its stuck offset only until "
-            "the holding force passes μN, then the face slips to a new offset (a switch the corrector's step crossed; "
-            "measured at 5 185 rpm: Newton at fixed speed keeping the offset converged 3.1 rpm on, not 7.1 rpm on)"
-            if stuck_edge else
+    stuck = a.get("stick_share_right_face") == 1.0 and a.get("stick_share_left_face") == 1.0 and \
+        a["switches_per_period"] == 0
+    at_limit = a.get("peak_face_force_N") is not None and mu_n and a["peak_face_force_N"] >= 0.99 * max(mu_n)
+    kind = ("both faces stuck through the period (a continuum of orbits), one at its friction limit: a faster orbit "
+            "keeps its stuck offset only until the holding force passes μN, then the face slips to a new offset "
+            "(measured at 5 185 rpm: Newton at fixed speed keeping the offset converged 3.1 rpm on, not 7.1 rpm on)"
+            if stuck and at_limit else
+            "both faces stuck through the period (a continuum of orbits; at 5 150-5 190 rpm the corrector's iterates "
+            "were measured to make a face slip)" if stuck else
             "the switches per period change" if a["switches_per_period"] != b["switches_per_period"] else
-            "no change of switches: the map's kinks within the period (a switch moving across a step)")
+            "no change of switches per period: the corrector stalled on the map's kinks (a switch moving across a "
+            "step)")
     return (f"{kind}; before: {_state_text(a, mu_n)}; after: {_state_text(b, mu_n)}; 1X at disk 2 "
             f"{amp(a):.3g} → {amp(b):.3g} mm/s (jump {jump:.2g}, last step {usual:.2g})")
 
