@@ -1,5 +1,5 @@
-"""One step of the compiled production loop replayed from many starts in one call: the central differences of a
-located event step (:func:`rotor.dynamics.period_map_events._step_jacobian`, ``6 · 3 n_r`` replays a step).
+"""Steps of the compiled production loop replayed from many starts in one call (:func:`replay_steps`): the central
+differences of a located event step (:func:`rotor.dynamics.period_map_events._step_jacobian`, ``6 · 3 n_r`` replays a step).
 
 Called from Python (:func:`rotor.dynamics.period_map_events._one_step`), each replay of
 :func:`rotor.dynamics.production_loop.step_loop` also paid numba's dispatch of its ~50 arguments and the allocation
@@ -26,34 +26,14 @@ compiled_with(__file__, ["rotor.dynamics.production_loop", "rotor.dynamics.conta
 
 
 @njit(cache=True)
-def replay_step(starts, modes0, phi0, t, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N,
-                n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
-                stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events):
-    """The ends ``(p, v, a)`` (rows, ``(K, 3 n_r)``) of one step of length ``dt`` (s) at time ``t`` (s) from each
-    row of ``starts`` (``(K, 3 n_r)``: reduced displacement, velocity, acceleration), every one with the face
-    modes ``modes0`` (2,) and face forces ``phi0`` (2, 2; N) at its start; the other arguments are
-    :func:`rotor.dynamics.production_loop.step_loop`'s."""
-    K = starts.shape[0]
-    modes = np.empty((K, 2), dtype=np.int64)
-    phi = np.empty((K, 2, 2))
-    ts = np.full(K, t)
-    for r in range(K):
-        modes[r] = modes0
-        phi[r] = phi0
-    return replay_steps(starts, modes, phi, ts, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P,
-                        mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick,
-                        max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events)[0]
-
-
-@njit(cache=True)
 def replay_steps(starts, modes0, phi0, ts, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N,
                  n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
                  stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events):
     """One step of length ``dt`` (s) from each row of ``starts`` (``(K, 3 n_r)``), each with its own face modes
     ``modes0[r]`` (2,), face forces ``phi0[r]`` (2, 2; N) and time ``ts[r]`` (s): the ends (``(K, 3 n_r)``) and each
-    step's ``status`` (``(K, 7)``, :func:`rotor.dynamics.production_loop.step_loop`'s). Used to sort a record's
-    candidate event steps (rotor/dynamics/period_map_events.py) in one compiled call; the other arguments are
-    :func:`replay_step`'s."""
+    step's ``status`` (``(K, 7)``, :func:`rotor.dynamics.production_loop.step_loop`'s): a record's candidate event
+    steps, or one step's central differences (rotor/dynamics/period_map_events.py), in one compiled call; the other
+    arguments are :func:`rotor.dynamics.production_loop.step_loop`'s."""
     K, n3 = starts.shape
     nr = n3 // 3
     ends = np.empty((K, n3))

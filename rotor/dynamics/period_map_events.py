@@ -54,7 +54,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotor.dynamics.contact_events import edge_crossing
-from rotor.dynamics.event_replays import replay_step, replay_steps
+from rotor.dynamics.event_replays import replay_steps
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
@@ -169,15 +169,11 @@ def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True):
 
 def _replays(pm, starts, modes, phi, t) -> np.ndarray:
     """The ends (rows) of one located step from each row of ``starts`` (``(K, 3 n_r)``, ``(p, v, a)``) at time ``t``
-    (s), in one compiled call (:func:`rotor.dynamics.event_replays.replay_step`): the same step as
+    (s), all with the face ``modes`` and forces ``phi``, in one compiled call (:func:`_replays_at`): the same step as
     :func:`_one_step`'s, without its dispatch per start."""
-    pre, opts = pm.prepared, pm.options
-    return replay_step(np.ascontiguousarray(starts, dtype=float), np.array(modes, dtype=np.int64),
-                       np.array(phi, float), float(t), pm.dt, pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S,
-                       pre.static, pre.orders, pre.cos, pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces,
-                       pre.s_yy, pre.a1, pm.reduced.support is not None, pm.params, opts.beta, opts.gamma, opts.tol,
-                       opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes, float(opts.stick_mean_weight),
-                       bool(opts.consistent_stick_onset), pre.Minv, pre.WM, pre.SM, pre.Mr, True)
+    k = len(starts)
+    return _replays_at(pm, starts, np.tile(np.asarray(modes, dtype=np.int64), (k, 1)),
+                       np.tile(np.asarray(phi, dtype=float), (k, 1, 1)), np.full(k, float(t)), True)[0]
 
 
 def _step_jacobian(pm, start, modes, phi, t, scales, rel) -> tuple[np.ndarray, np.ndarray, int]:

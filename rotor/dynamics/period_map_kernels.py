@@ -93,15 +93,6 @@ def consistent_acceleration_jacobian(p, v, Bt, MK, MD, WM, SM, P, modes, mu_N, a
 
 
 @njit(cache=True)
-def _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt):
-    """``∂g/∂y`` (NC × 18) of the converged condensed forces with respect to
-    ``y = (α_lin, u_pre, w_pre)`` at the step's end state ``(u, w)`` and ``modes``."""
-    x, freeze, fdir, g, Jg, phi, uu, ww = _scratch()
-    return np.ascontiguousarray(
-        _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2, gdt)[:, :3 * NC])
-
-
-@njit(cache=True)
 def _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2, gdt):
     """``∂g/∂(y, f)`` (NC × 22) of the converged condensed forces with respect to ``y = (α_lin, u_pre, w_pre)``
     (columns 0-17) and to the held forces ``f = (f_0, f_1)`` (N, columns 18-21) of the faces marked in ``freeze``
@@ -139,17 +130,6 @@ def _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, param
                     mRy[j + rr, 2 * NC + c] = -P[k, rr, c] / gdt
             j += 2
     Dx = np.linalg.solve(J[:m, :m], mRy)
-    # the held forces f: g holds P_kᵀ f_k (its first four rows), so R_α = ... − S P_kᵀ f_k
-    mRf = np.zeros((m, 4))
-    for k in range(2):
-        if freeze[k] and modes[k] == 0:
-            for r in range(NC):
-                for rr in range(2):
-                    s = 0.0
-                    for c in range(4):
-                        s += S[r, c] * P[k, rr, c]
-                    mRf[r, 2 * k + rr] = s
-    Dxf = np.linalg.solve(J[:m, :m], mRf)
     # dg = Gu du + Gw dw + Σ_stuck P_kᵀ dφ_k, du = du_pre + βΔt² dα, dw = dw_pre + γΔt dα
     Dgf = np.zeros((NC, 3 * NC + 4))
     Dg = Dgf[:, :3 * NC]
@@ -169,6 +149,22 @@ def _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, param
                 for c in range(3 * NC):
                     Dg[r, c] += P[k, 0, r] * Dx[j, c] + P[k, 1, r] * Dx[j + 1, c]
             j += 2
+    held = False
+    for k in range(2):
+        held = held or (freeze[k] and modes[k] == 0)
+    if not held:          # a plain step (every step of the plain map): no held-force columns to solve for
+        return Dgf
+    # the held forces f: g holds P_kᵀ f_k (its first four rows), so R_α = ... − S P_kᵀ f_k
+    mRf = np.zeros((m, 4))
+    for k in range(2):
+        if freeze[k] and modes[k] == 0:
+            for r in range(NC):
+                for rr in range(2):
+                    s = 0.0
+                    for c in range(4):
+                        s += S[r, c] * P[k, rr, c]
+                    mRf[r, 2 * k + rr] = s
+    Dxf = np.linalg.solve(J[:m, :m], mRf)
     # the held forces' columns: P_kᵀ directly, and through α and the stuck multipliers
     for k in range(2):
         if freeze[k] and modes[k] == 0:
@@ -309,12 +305,8 @@ def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt,
             modes[1] = rec_modes[n + 1, 1]
             u = Bt @ rec_p[n + 1]
             w = Bt @ rec_v[n + 1]
-            if held:
-                Dgf = _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2,
-                                                  gdt)
-                Dg = np.ascontiguousarray(Dgf[:, :3 * NC])
-            else:
-                Dg = _step_support_jacobian(u, w, S, P, modes, mu_N, a1, params, w_reg, bdt2, gdt)
+            Dgf = _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2, gdt)
+            Dg = np.ascontiguousarray(Dgf[:, :3 * NC])
             np.dot(Bt, Sal, Y[:NC])
             np.dot(Bt, Pre[:nr], Y[NC:2 * NC])
             np.dot(Bt, Pre[nr:], Y[2 * NC:])
