@@ -272,8 +272,13 @@ def main(argv=None) -> int:
                          "run's commit, load and checks kept)")
     args = ap.parse_args(argv)
     if args.from_json:
-        d = json.loads(args.branch_json.read_text())
-        slim = json.loads((OUT / "perf-branch-switches.json").read_text())
+        try:
+            d = json.loads(args.branch_json.read_text())
+            slim = json.loads((OUT / "perf-branch-switches.json").read_text())
+        except (AttributeError, OSError, ValueError) as e:   # no --branch-json, a missing or damaged file
+            print(f"bench_branch_switches: --from-json needs --branch-json PATH of a run and its "
+                  f"{OUT / 'perf-branch-switches.json'}: {type(e).__name__}: {e}", file=sys.stderr)
+            return 2
         load = slim["load_average"]
         text = report(d, load, args, slim["commit"], slim["verified"], slim["isolated_checks"], face_limits_N())
         atomic_write_text(OUT / "perf-branch-switches.md", text)
