@@ -93,11 +93,12 @@ def verify(res, n_verify: int, locate_events: bool | None) -> list[dict]:
     from rotor.studies.steady_state import point_system
 
     pts = res.branch.points
-    n, modes, floor = res.start.steps_per_rev, res.start.shooting.modes, res.start.shooting.scales
+    n, floor = res.start.steps_per_rev, res.start.shooting.scales
     steps = n * res.branch.period_revs
     rows = []
     for i in sorted(set(np.linspace(0, len(pts) - 1, min(n_verify, len(pts))).round().astype(int))):
         p = pts[i]
+        modes = p.modes or res.start.shooting.modes       # the end-face modes its map starts from
         flow = make_flow(point_system(SCENE, p.parameter * TO_RPM, tilt_ignored=False)[2],
                          2.0 * math.pi / (p.parameter * n), locate_events=locate_events)
         pv, vv, _ = record_reduced(flow, p.state, 0.0, steps, modes, max(1, steps // 256))
@@ -123,13 +124,14 @@ def isolated_checks(res, locate_events: bool | None, rel_steps=(1e-6, 1e-7), cap
     from rotor.studies.steady_state import point_system
 
     pts = res.branch.points
-    n, modes = res.start.steps_per_rev, res.start.shooting.modes
+    n = res.start.steps_per_rev
     steps = n * res.branch.period_revs
     idx = [i for i in range(1, len(pts) - 1)
            if pts[i].floquet.stable != pts[i - 1].floquet.stable and pts[i].floquet.stable != pts[i + 1].floquet.stable]
     rows = []
     for i in idx[:cap]:
         p = pts[i]
+        modes = p.modes or res.start.shooting.modes
         system = point_system(SCENE, p.parameter * TO_RPM, tilt_ignored=False)[2]
         dt = 2.0 * math.pi / (p.parameter * n)
         r = advance(make_flow(system, dt, locate_events=locate_events), p.state, 0.0, steps, modes)

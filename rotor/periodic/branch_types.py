@@ -88,7 +88,8 @@ class BranchPoint:
     0 reached by the corrector from the point before, else by a restart past a switch (:func:`rotor.periodic.restarts.restart`):
     :data:`SECANT`, :data:`TRANSIENT`, :data:`COLD` or :data:`GRID`, how its orbit was shot (:func:`rotor.periodic.restarts.shot`);
     ``events``: end-face mode changes over the period (−1 unknown), ``why``: for a restarted point, why the
-    corrector failed before it (the last corrector's failure, :attr:`Evaluator.failure`)."""
+    corrector failed before it (the last corrector's failure, :attr:`Evaluator.failure`); ``modes``: the end-face
+    modes at phase 0 its period map starts from (:attr:`Evaluator.modes0` when it was found; None: the problem's)."""
 
     parameter: float
     state: np.ndarray
@@ -99,6 +100,12 @@ class BranchPoint:
     restarted: int = 0
     events: int = -1
     why: str = ""
+    modes: tuple | None = None
+
+
+def start_modes(problem: Problem, point: BranchPoint) -> tuple:
+    """The end-face modes at phase 0 that ``point``'s period map starts from: its own, else the problem's."""
+    return tuple(problem.modes0 if point.modes is None else point.modes)
 
 
 @dataclass(frozen=True)
@@ -175,10 +182,14 @@ class ContinuationOptions:
 class Evaluator:
     """``R``, ``M`` and ``∂R/∂λ`` at (x, λ) in scaled variables, with the flow cached per λ. ``events``: the
     end-face mode changes of the last map evaluated with its Jacobian; ``failure``: why the last corrector
-    failed (set by :func:`rotor.periodic.corrector.correct`)."""
+    failed (set by :func:`rotor.periodic.corrector.correct`); ``modes0``: the end-face modes at phase 0 the maps
+    start from, the problem's until a restart lands on an orbit that starts in other modes
+    (:func:`rotor.periodic.restarts.shot`: a stuck face's orbit and a slipping face's are fixed points of
+    different maps)."""
 
     def __init__(self, problem: Problem, scales: np.ndarray, lam_scale: float):
         self.pb, self.s, self.ls = problem, scales, lam_scale
+        self.modes0 = tuple(problem.modes0)
         self._flows: dict = {}
         self.events, self.failure = -1, ""
 
@@ -190,14 +201,14 @@ class Evaluator:
         return self._flows[lam]
 
     def __call__(self, x, lam, jacobian=True):
-        r = advance(self.flow(lam), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=jacobian)
+        r = advance(self.flow(lam), x, 0.0, self.pb.n_steps, self.modes0, jacobian=jacobian)
         R = (r.state - x) / self.s
         if not jacobian:
             return R, None, None
         self.events = int(r.events)
         h = PARAM_REL_STEP * max(abs(lam), 1e-12)
-        Rp = advance(self.flow(lam + h), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=False).state
-        Rm = advance(self.flow(lam - h), x, 0.0, self.pb.n_steps, self.pb.modes0, jacobian=False).state
+        Rp = advance(self.flow(lam + h), x, 0.0, self.pb.n_steps, self.modes0, jacobian=False).state
+        Rm = advance(self.flow(lam - h), x, 0.0, self.pb.n_steps, self.modes0, jacobian=False).state
         Rl = (Rp - Rm) / (2.0 * h) / self.s * self.ls
         J = np.hstack([(r.monodromy - np.eye(len(x))) * (self.s[None, :] / self.s[:, None]), Rl[:, None]])
         return R, J, r.monodromy

@@ -69,7 +69,8 @@ from sweep.progress import report
 from rotor.periodic.branch_events import bifurcations_between, confirmed_folds
 from rotor.periodic.branch_types import (COLD, GRID, NEUTRAL_TOL, PARAM_REL_STEP, RESCALE_RATIO, RESTART_NAMES,
                                          RESTART_STEP, SECANT, TRANSIENT, Bifurcation, Branch, BranchPoint,
-                                         ContinuationOptions, Evaluator, Problem, parameter_problem, speed_problem)
+                                         ContinuationOptions, Evaluator, Problem, parameter_problem, speed_problem,
+                                         start_modes)
 from rotor.periodic.corrector import correct, land, make_point, neutral_rows, rescale, unit_tangent
 from rotor.periodic.period_flow import advance
 from rotor.periodic.restarts import bridge, jump_past_fold, restart
@@ -77,7 +78,7 @@ from rotor.periodic.shooting import ShootingOptions, shoot
 
 __all__ = ["COLD", "GRID", "NEUTRAL_TOL", "PARAM_REL_STEP", "RESCALE_RATIO", "RESTART_NAMES", "RESTART_STEP", "SECANT", "TRANSIENT",
            "Bifurcation", "Branch", "BranchPoint", "ContinuationOptions", "Evaluator", "Problem", "continue_branch",
-           "parameter_problem", "speed_problem", "switch_period_doubling"]
+           "parameter_problem", "speed_problem", "start_modes", "switch_period_doubling"]
 
 
 def _start(problem, ev, state0, lam0, lam_end, opts, tangent0):
@@ -253,7 +254,7 @@ def switch_period_doubling(problem: Problem, branch: Branch, bif: Bifurcation, l
             sec /= np.linalg.norm(sec)
             t0 = t0 - (t0 @ sec) * sec
     t0 /= np.linalg.norm(t0)
-    doubled = replace(problem, period_revs=2 * problem.period_revs)
+    doubled = replace(problem, period_revs=2 * problem.period_revs, modes0=start_modes(problem, pt))
     # no restarts by shooting on the doubled branch: every orbit of the old branch solves the doubled problem
     # too, and a shot from near the switch lands back on it (measured on Table 4 at 10 628 rpm)
     opts = replace(options or ContinuationOptions(), pass_switches=False)
@@ -262,5 +263,5 @@ def switch_period_doubling(problem: Problem, branch: Branch, bif: Bifurcation, l
 
 
 def _monodromy_at(problem: Problem, pt: BranchPoint) -> np.ndarray:
-    return advance(problem.flow(pt.parameter), pt.state, 0.0, problem.n_steps, problem.modes0).monodromy
+    return advance(problem.flow(pt.parameter), pt.state, 0.0, problem.n_steps, start_modes(problem, pt)).monodromy
 

@@ -82,7 +82,7 @@ def make_point(ev, y, J, M, it, res, tau, opts, restarted: int = 0, why: str = "
     lam = y[-1] * ev.ls
     period = ev.pb.n_steps * ev.flow(lam).dt_s
     return BranchPoint(float(lam), y[:-1] * ev.s, floquet(M, period, tol=opts.multiplier_tol), it, res,
-                       float(tau[-1]), restarted, ev.events, why)
+                       float(tau[-1]), restarted, ev.events, why, tuple(ev.modes0))
 
 
 
@@ -99,7 +99,7 @@ def rescale(ev, y, tau, M, J, floor):
     ``floor``) when they differ by more than :data:`RESCALE_RATIO`: returns ``(y, tau, J)`` in the new
     scaled variables (``J`` transformed, not recomputed) and sets ``ev.s``."""
     x, lam = y[:-1] * ev.s, y[-1] * ev.ls
-    p, v, _ = record_reduced(ev.flow(lam), x, 0.0, ev.pb.n_steps, ev.pb.modes0, max(1, ev.pb.n_steps // 256))
+    p, v, _ = record_reduced(ev.flow(lam), x, 0.0, ev.pb.n_steps, ev.modes0, max(1, ev.pb.n_steps // 256))
     new = np.maximum(orbit_scales(ev.flow(lam), p, v), floor)
     ratio = new / ev.s
     if max(ratio.max(), 1.0 / ratio.min()) <= RESCALE_RATIO:

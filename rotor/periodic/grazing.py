@@ -34,7 +34,7 @@ import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.dynamics.constraints import edge_offsets
-from rotor.periodic.branch_types import Bifurcation, Branch, ContinuationOptions, Evaluator, Problem
+from rotor.periodic.branch_types import Bifurcation, Branch, ContinuationOptions, Evaluator, Problem, start_modes
 from rotor.periodic.continuation import continue_branch
 from rotor.periodic.corrector import make_point, neutral_rows, unit_tangent
 from rotor.periodic.period_flow import Flow, record
@@ -85,7 +85,7 @@ def contact_watch(ev: Evaluator, y) -> float:
     δ0 (–) of the period from the scaled ``y = (x/s, λ/λ_s)``; positive in contact."""
     lam = float(y[-1] * ev.ls)
     try:
-        return largest_penetration(ev.flow(lam), y[:-1] * ev.s, ev.pb.n_steps, ev.pb.modes0)[0]
+        return largest_penetration(ev.flow(lam), y[:-1] * ev.s, ev.pb.n_steps, ev.modes0)[0]
     except (OutsideDomainError, ConvergenceError, InputError):
         return math.inf     # a predictor the scheme cannot step is deep in contact
 
@@ -93,7 +93,7 @@ def contact_watch(ev: Evaluator, y) -> float:
 def _penetration_at(ev: Evaluator, y, n: int) -> float:
     """Edge penetration over δ0 (–) at step ``n`` of the period from the scaled ``y``."""
     flow = ev.flow(float(y[-1] * ev.ls))
-    tr = record(flow, y[:-1] * ev.s, 0.0, max(n, 1), ev.pb.modes0, 1)
+    tr = record(flow, y[:-1] * ev.s, 0.0, max(n, 1), ev.modes0, 1)
     return float(penetrations(flow, tr.u[n:n + 1])[0] / flow.system.support.law.clearance_m)
 
 
@@ -144,7 +144,7 @@ def _cross(problem: Problem, last, floor, ls: float, opts: ContinuationOptions):
     tangent)`` or None."""
     ev = Evaluator(problem, floor.copy(), ls)
     y = np.concatenate([last.state / floor, [last.parameter / ls]])
-    g_last, n = largest_penetration(ev.flow(last.parameter), last.state, problem.n_steps, problem.modes0)
+    g_last, n = largest_penetration(ev.flow(last.parameter), last.state, problem.n_steps, start_modes(problem, last))
     got = None
     for frac in LEVEL_FRACTIONS:        # towards the grazing orbit through orbits of the side the branch is on
         got = solve_on_level(ev, y, frac * g_last, n, opts)

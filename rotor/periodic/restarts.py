@@ -116,7 +116,16 @@ def shot(ev, y_pred, opts, how: int, y_last):
     orbit ``y_last`` (rounds of 2, 4, … revolutions, at most :data:`RESTART_TRANSIENT_REVS`); 3 (:data:`COLD`)
     the same from the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`; 24, 36, …
     revolutions, at most 4 :data:`RESTART_TRANSIENT_REVS`: the start of a new segment). ``(y, J, M, iterations, residual, how)`` if the orbit's residual
-    with the branch's own start modes is below ``tol``, else None."""
+    in the branch's scales, mapped from the end-face modes the orbit itself has at phase 0, is below ``tol``; then
+    ``ev.modes0`` holds those modes (the branch goes on with them); else None, ``ev.modes0`` unchanged.
+
+    The modes matter: a stuck face's orbit and a slipping face's are fixed points of different maps (a map that
+    starts a slipping face stuck holds it for a step). Measured on Table 4 past the 16 930 rpm fold (2 240 steps per
+    revolution, events located): the cold search at 16 947.2 rpm converges on an orbit with both faces slipping
+    throughout (residual 2e-13 in its own scales), which the branch's map from its start modes (both stuck)
+    misses by 0.24 of the orbit's scale; from its own modes it closes to 1e-13. An orbit found by a transient or on
+    the step grid is closed again by Newton in the branch's scales (which may be far below the orbit's own: 1/680
+    to 1/30 000 of them with the 600 rpm start's scales there) before that check."""
     pb, lam = ev.pb, y_pred[-1] * ev.ls
     flow = ev.flow(lam)
     sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_iter=2 * opts.max_iter, transient_revs=2,
@@ -124,7 +133,8 @@ def shot(ev, y_pred, opts, how: int, y_last):
     try:
         if how == SECANT:
             sh = shoot(flow, y_pred[:-1] * ev.s, t0_s=0.0, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
-                       modes0=pb.modes0, scales=ev.s, options=sopts)
+                       modes0=ev.modes0, scales=ev.s, options=sopts)
+            own = ev.modes0
         elif how == GRID:
             # the step-grid map's orbit (events on step boundaries) from the linear periodic solution's transients,
             # then Newton on the branch's own map from it (the two differ by the scheme's O(h²))
@@ -136,20 +146,44 @@ def shot(ev, y_pred, opts, how: int, y_last):
                 return None
             sh = shoot(flow, grid.state, t0_s=0.0, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
                        modes0=grid.modes, scales=np.maximum(grid.scales, ev.s), options=sopts)
+            own = grid.modes
         else:
             if how == TRANSIENT:
                 q, v = to_full(flow, y_last[:-1] * ev.s, 0.0)
+                start = ev.modes0
             else:
                 q, v = linear_initial_state(flow.system, 0.0)
                 sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_transient_revs=4 * RESTART_TRANSIENT_REVS)
+                start = pb.modes0
             sh = shoot_from_transient(flow, q, v, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
-                                      options=sopts, modes0=pb.modes0)
+                                      options=sopts, modes0=start)
+            own = sh.modes        # where the transient ended: the modes at phase 0 of the orbit Newton closed
+        if sh.converged and how != SECANT:      # closed in the orbit's own scales: Newton again in the branch's
+            sh = shoot(flow, sh.state, t0_s=0.0, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
+                       modes0=own, scales=ev.s, options=sopts)
         if not sh.converged:
             return None
-        R, J, M = ev(sh.state, lam)
     except (OutsideDomainError, ConvergenceError, InputError):
         return None
+    got = _on_own_modes(ev, sh.state, lam, own, opts.tol)
+    if got is None:
+        return None
+    J, M, res = got
+    return np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, res, how
+
+
+def _on_own_modes(ev, state, lam: float, modes, tol: float):
+    """``(J, M, residual)`` of the branch's map at ``(state, lam)`` started from the end-face ``modes``, which
+    ``ev.modes0`` then holds, if its residual (branch's scales) is below ``tol``; else None, ``ev.modes0`` kept."""
+    kept, ev.modes0 = ev.modes0, tuple(int(m) for m in modes)
+    try:
+        R, J, M = ev(state, lam)
+    except (OutsideDomainError, ConvergenceError, InputError):
+        ev.modes0 = kept
+        return None
     res = float(np.max(np.abs(R)))
-    return (np.concatenate([sh.state / ev.s, [y_pred[-1]]]), J, M, sh.newton_iterations, res, how) \
-        if res < opts.tol else None
+    if not res < tol:
+        ev.modes0 = kept
+        return None
+    return J, M, res
 

@@ -27,7 +27,7 @@ from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.dynamics.support_record import contact_summary
 from rotor.periodic.continuation import (COLD, GRID, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
-                                        speed_problem)
+                                        speed_problem, start_modes)
 from rotor.periodic.floquet import FloquetResult
 from rotor.periodic.grazing import continue_through_grazing
 from rotor.periodic.period_flow import Flow, make_flow, record, to_full
@@ -325,7 +325,7 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
             d["restart_reason"] = p.why
         if amplitudes:
             flow = pb.flow(p.parameter)
-            amps, pen, contact = period_response(flow, model, p.state, 0.0, res.modes, pb.period_revs, n)
+            amps, pen, contact = period_response(flow, model, p.state, 0.0, start_modes(pb, p), pb.period_revs, n)
             d["velocity_amplitudes_mm_s_1X_to_5X"], d["max_edge_penetration_mm"] = amps, pen * 1e3
             d.update(contact)
         pts.append(d)
