@@ -179,6 +179,13 @@ def _state_text(p: dict, mu_n: list[float]) -> str:
             + (f", face force at μN ({p['peak_face_force_N']:.0f} of {max(mu_n):.0f} N)" if at_limit else ""))
 
 
+def _phase0(p: dict) -> str:
+    """The end faces' modes at phase 0 that the orbit's period map starts from, in words (run files made before
+    the branch recorded them: the start's)."""
+    return ", ".join(f"{face} {'stuck' if p.get(f'stuck_at_phase_0_{face}_face', True) else 'slipping'}"
+                     for face in ("right", "left"))
+
+
 def restart_context(pts: list[dict], i: int, mu_n: list[float]) -> str:
     """What the branch did across the restart at point ``i``: the orbits on either side (switches per period,
     contact, stick, whether a stuck face sits at its friction limit) and the jump of the 1X amplitude at disk 2
@@ -190,7 +197,10 @@ def restart_context(pts: list[dict], i: int, mu_n: list[float]) -> str:
     stuck = a.get("stick_share_right_face") == 1.0 and a.get("stick_share_left_face") == 1.0 and \
         a["switches_per_period"] == 0
     at_limit = a.get("peak_face_force_N") is not None and mu_n and a["peak_face_force_N"] >= 0.99 * max(mu_n)
-    kind = ("both faces stuck through the period (a continuum of orbits), one at its friction limit: a faster orbit "
+    moded = _phase0(a) != _phase0(b)
+    kind = (f"the end faces' modes at phase 0 change ({_phase0(a)} → {_phase0(b)}): the orbit after is a fixed point of "
+            "the map started from other modes, which the corrector (modes kept) cannot reach" if moded else
+            "both faces stuck through the period (a continuum of orbits), one at its friction limit: a faster orbit "
             "keeps its stuck offset only until the holding force passes μN, then the face slips to a new offset "
             "(measured at 5 185 rpm: Newton at fixed speed keeping the offset converged 3.1 rpm on, not 7.1 rpm on)"
             if stuck and at_limit else

@@ -23,7 +23,7 @@ import numpy as np
 from contact.errors import InputError
 from contact import plausible
 from contact.units import ARCMIN, check_positive
-from rotor.dynamics.constraints import edge_offsets
+from rotor.dynamics.constraints import STICK, edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.dynamics.support_record import contact_summary
 from rotor.periodic.continuation import (COLD, GRID, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
@@ -319,7 +319,9 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
              "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted)),
-             "switches_per_period": int(p.events)}
+             "switches_per_period": int(p.events),
+             # the end-face modes its period map starts from (a restart may land on an orbit with other modes there)
+             **{f"stuck_at_phase_0_{face}_face": bool(m == STICK) for face, m in zip(("right", "left"), start_modes(pb, p))}}
         if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it, and why
             d["skipped_rpm"] = [pts[-1]["speed_rpm"], d["speed_rpm"]]
             d["restart_reason"] = p.why
