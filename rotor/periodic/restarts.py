@@ -92,11 +92,11 @@ def jump_past_fold(ev, fold_y, direction: float, opts):
     Measured on Table 4 (2 240 steps per revolution, events located): the branch from 600 rpm folds at 16 930 rpm
     and no transient of the located map past it settles on a period-1 orbit, while the step-grid search with Newton
     on the located map (as :func:`rotor.studies.orbit.orbit` falls back on it) finds unstable ones at 16 950 and
-    17 500 rpm (largest multipliers 1.83 and 1.54). In the branch run itself (benchmarks/bench_branch_switches.py at
-    commit 3291749) this jump found no orbit at 16 947 or 16 999 rpm either, and the branch stopped at that fold. The
-    cold try's own search does converge at 16 947.2 rpm (measured afterwards: 248 transient revolutions, residual
-    2.1e-10 in the orbit's own scales, with the branch's start modes), so the orbit is lost after it, in the check of
-    its residual in the branch's scales against ``tol`` (1e-9) in :func:`shot`: likely, not confirmed."""
+    17 500 rpm (largest multipliers 1.83 and 1.54). In the branch run at commit 3291749
+    (benchmarks/bench_branch_switches.py) this jump found no orbit at 16 947 or 16 999 rpm, and the branch stopped at
+    that fold: the cold try's search did converge at 16 947.2 rpm (residual 2e-13 in the orbit's own scales), on an
+    orbit with both faces slipping at phase 0, which :func:`shot` then mapped from the branch's start modes (both
+    stuck), missing it by 0.24 of its scale. :func:`shot` now maps each orbit from its own modes."""
     guide = np.zeros(len(fold_y))
     guide[-1] = direction
     for step in (JUMP_STEP, 4.0 * JUMP_STEP):
