@@ -169,6 +169,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         if (pt.parameter - lam_end) * direction > 0 and (landed := land(ev, y_prev, y, lam_end, opts, phase)):
             y, J, M, it, res = landed        # the last orbit at lam_end itself, not beyond it
             pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
+            bifs = [b for b in bifs if b.index < len(points) or (b.parameter - lam_end) * direction <= 0]
         points.append(pt)
         far = pt if (pt.parameter - far.parameter) * direction > 0 else far
         report("branch_point", points=len(points), max_points=opts.max_points, parameter=pt.parameter, start=lam0,
