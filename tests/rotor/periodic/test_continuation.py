@@ -234,6 +234,18 @@ def test_a_fold_is_reported_only_where_the_branch_turns():
     assert confirmed_folds(last, other) == other
 
 
+def test_a_crossing_beyond_the_end_between_the_last_orbit_and_the_one_landed_back_from_is_dropped():
+    """The branch steps from 990 to 1 010 past ``lam_end`` = 1 000 and lands back at 1 000 (point 7): a crossing of
+    that step at 1 005 is beyond the end, one at 995 is not; crossings at earlier points stay wherever they lie, and
+    a branch run downwards drops those below its end."""
+    from rotor.periodic.continuation import Bifurcation, before_end
+
+    at = lambda lam, index=7: Bifurcation("neimark_sacker", index, lam, 1j)     # noqa: E731
+    assert before_end([at(980.0, 6), at(995.0), at(1005.0)], 7, 1000.0, 1.0) == [at(980.0, 6), at(995.0)]
+    assert before_end([at(1005.0, 6)], 7, 1000.0, 1.0) == [at(1005.0, 6)]
+    assert before_end([at(995.0), at(1005.0)], 7, 1000.0, -1.0) == [at(1005.0)]
+
+
 def test_fold_estimate_is_the_vertex_of_the_parabola():
     """λ(σ) = 3 − (σ − 0.3)² (scaled, λ_s = 2): dλ/dσ = 0.6 at σ = 0 and −0.2 at σ = 0.4, the vertex at
     σ = 0.3 with λ = 3 · 2 = 6, above both points (λ(0) = 5.82, λ(0.4) = 5.98)."""
