@@ -47,10 +47,8 @@ def refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, o
     """Parameter of a bifurcation between ``a`` (at ``y0``, tangent ``tau0``) and ``b`` (a step ``ds`` on):
     regula falsi (Illinois) on the arclength ``σ`` in ``[0, ds]``, each trial corrected on the hyperplane
     ``τ0·(y − y0 − σ τ0) = 0``, until the bracket is below 10⁻⁶ ds; if a corrector fails, linear interpolation
-    (a fold: :func:`fold_estimate`, the turning point itself lies beyond both points). A trial the corrector moved
-    farther than ``ds`` (scaled) from its predictor counts as failed: it landed on another stretch of the branch
-    (measured on Table 4, unstable orbits at 17 452-17 512 rpm: a Neimark-Sacker crossing between them was placed at
-    17 781 rpm)."""
+    (a fold: :func:`fold_estimate`, the turning point itself lies beyond both points). A trial that landed on another
+    stretch of the branch counts as failed (:func:`_elsewhere`)."""
     lo, hi, flo, fhi = 0.0, ds, test_quantity(kind, a), test_quantity(kind, b)
     lam = b.parameter
     side = 0
@@ -59,7 +57,7 @@ def refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, o
             break
         sig = lo - flo * (hi - lo) / (fhi - flo)
         got = correct(ev, y0 + sig * tau0, tau0, opts, phase, y0)
-        if got is not None and np.linalg.norm(got[0] - (y0 + sig * tau0)) > ds:
+        if got is not None and _elsewhere(got[0], y0 + sig * tau0, ds, kind, a, b, ev.ls):
             got = None                    # corrected onto another stretch of the branch: as if it had failed
         if got is None:
             if kind == "fold":
@@ -79,6 +77,18 @@ def refine(ev, y0, tau0, ds: float, kind: str, a: BranchPoint, b: BranchPoint, o
         if hi - lo < 1e-6 * ds:
             break
     return float(lam)
+
+
+def _elsewhere(y, y_pred, ds: float, kind: str, a: BranchPoint, b: BranchPoint, lam_scale: float) -> bool:
+    """Whether a refinement trial corrected to ``y`` (scaled) from ``y_pred`` landed on another stretch of the branch:
+    farther than ``ds`` from its predictor, or (a crossing, not a fold, which may lie beyond both points) with its
+    parameter outside ``a``–``b`` by more than their distance. Measured on Table 4 (run at commit 9feddee, unstable
+    orbits): crossings of 17 452-17 512 and 15 850-15 913 rpm placed at 17 781 and 16 073 rpm."""
+    if np.linalg.norm(y - y_pred) > ds:
+        return True
+    lo, hi = sorted((a.parameter, b.parameter))
+    lam = y[-1] * lam_scale
+    return kind != "fold" and not lo - (hi - lo) <= lam <= hi + (hi - lo)
 
 
 def bifurcations_between(ev, prev: BranchPoint, new: BranchPoint, index: int, y0, tau0, ds, opts, phase) -> list:

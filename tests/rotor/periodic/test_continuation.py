@@ -246,6 +246,21 @@ def test_a_crossing_beyond_the_end_between_the_last_orbit_and_the_one_landed_bac
     assert before_end([at(995.0), at(1005.0)], 7, 1000.0, -1.0) == [at(1005.0)]
 
 
+def test_a_refinement_trial_on_another_stretch_of_the_branch_is_told():
+    """Table 4 run at commit 9feddee: a crossing between orbits at 15 850 and 15 913 rpm was placed at 16 073 rpm, on
+    a later stretch of the branch. Such a trial (parameter outside the two points by more than their distance, or
+    farther than ``ds`` from its predictor) is told; one inside is not, nor a fold beyond both points."""
+    from rotor.periodic.branch_events import _elsewhere
+
+    a, b = _fake(15850.0, 1.0), _fake(15913.0, 1.0)
+    at = lambda rpm, x=0.0: np.array([x, rpm / 10.0])      # noqa: E731  (scaled, parameter scale 10 rpm)
+    pred = at(15880.0)
+    assert not _elsewhere(at(15890.0), pred, 1e4, "neimark_sacker", a, b, 10.0)
+    assert _elsewhere(at(16073.0), pred, 1e4, "period_doubling", a, b, 10.0)
+    assert not _elsewhere(at(16073.0), pred, 1e4, "fold", a, b, 10.0)
+    assert _elsewhere(at(15890.0, x=2.0), pred, 1.5, "neimark_sacker", a, b, 10.0)
+
+
 def test_fold_estimate_is_the_vertex_of_the_parabola():
     """λ(σ) = 3 − (σ − 0.3)² (scaled, λ_s = 2): dλ/dσ = 0.6 at σ = 0 and −0.2 at σ = 0.4, the vertex at
     σ = 0.3 with λ = 3 · 2 = 6, above both points (λ(0) = 5.82, λ(0.4) = 5.98)."""
