@@ -198,7 +198,10 @@ def restart_context(pts: list[dict], i: int, mu_n: list[float]) -> str:
         a["switches_per_period"] == 0
     at_limit = a.get("peak_face_force_N") is not None and mu_n and a["peak_face_force_N"] >= 0.99 * max(mu_n)
     moded = _phase0(a) != _phase0(b)
-    kind = (f"the end faces' modes at phase 0 change ({_phase0(a)} → {_phase0(b)}): the orbit after is a fixed point of "
+    kind = ("the jump past a fold a run-up makes: the branch followed the returning branch back from the fold by "
+            "--turn-back-rpm, then a transient of the fold's orbit (rotor.periodic.restarts.jump_past_fold)"
+            if "turned back at a fold" in b.get("restart_reason", "") else
+            f"the end faces' modes at phase 0 change ({_phase0(a)} → {_phase0(b)}): the orbit after is a fixed point of "
             "the map started from other modes, which the corrector (modes kept) cannot reach" if moded else
             "both faces stuck through the period (a continuum of orbits), one at its friction limit: a faster orbit "
             "keeps its stuck offset only until the holding force passes μN, then the face slips to a new offset "
