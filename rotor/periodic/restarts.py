@@ -89,14 +89,13 @@ def jump_past_fold(ev, fold_y, direction: float, opts):
     then the linear periodic solution, then the step-grid map's orbit (:data:`GRID`: an unstable orbit, which no
     transient of the branch's map reaches; :func:`shot`); what :func:`restart` returns, or None.
 
-    Measured on Table 4 (2 240 steps per revolution, events located): the branch from 600 rpm folds at 16 930 rpm
-    and no transient of the located map past it settles on a period-1 orbit, while the step-grid search with Newton
-    on the located map (as :func:`rotor.studies.orbit.orbit` falls back on it) finds unstable ones at 16 950 and
-    17 500 rpm (largest multipliers 1.83 and 1.54). In the branch run at commit 3291749
-    (benchmarks/bench_branch_switches.py) this jump found no orbit at 16 947 or 16 999 rpm, and the branch stopped at
-    that fold: the cold try's search did converge at 16 947.2 rpm (residual 2e-13 in the orbit's own scales), on an
-    orbit with both faces slipping at phase 0, which :func:`shot` then mapped from the branch's start modes (both
-    stuck), missing it by 0.24 of its scale. :func:`shot` now maps each orbit from its own modes."""
+    Measured on Table 4 (2 240 steps per revolution, events located, benchmarks/bench_branch_switches.py): the
+    branch from 600 rpm folds at 16 930 rpm. At commit 3291749 this jump found no orbit at 16 947 or 16 999 rpm and
+    the branch stopped there: the cold try's search did converge at 16 947.2 rpm (residual 2e-13 in the orbit's own
+    scales), on an orbit with both faces slipping at phase 0, which :func:`shot` then mapped from the branch's start
+    modes (both stuck), missing it by 0.24 of its scale. With each orbit mapped from its own modes (commit
+    c245803), the transient of the fold's orbit lands at 16 947.2 rpm (unstable, largest |multiplier| 1.83) and the
+    branch goes on to 18 000 rpm."""
     guide = np.zeros(len(fold_y))
     guide[-1] = direction
     for step in (JUMP_STEP, 4.0 * JUMP_STEP):
