@@ -94,7 +94,7 @@ def jump_past_fold(ev, fold_y, direction: float, opts):
     the branch stopped there: the cold try's search did converge at 16 947.2 rpm (residual 2e-13 in the orbit's own
     scales), on an orbit with both faces slipping at phase 0, which :func:`shot` then mapped from the branch's start
     modes (both stuck), missing it by 0.24 of its scale. With each orbit mapped from its own modes (commit
-    c245803), the transient of the fold's orbit lands at 16 947.2 rpm (unstable, largest |multiplier| 1.83) and the
+    c245803), the transient of the fold's orbit lands at 16 947.2 rpm (unstable, spectral radius 1.83) and the
     branch goes on to 18 000 rpm."""
     guide = np.zeros(len(fold_y))
     guide[-1] = direction
