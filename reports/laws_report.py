@@ -23,6 +23,7 @@ import numpy as np
 from contact import laws, tilt
 from contact.files import atomic_write_bytes, atomic_write_text
 from contact.units import ARCMIN, MM
+from reports.digits import DIGITS, rounded
 
 # Dai et al. (2025) Table 1 (identical ring and support materials).
 TABLE1 = dict(clearance_m=0.05e-3, width_m=30e-3, bearing_E_Pa=204e9, bearing_nu=0.3,
@@ -96,7 +97,7 @@ def write_csv(rows: list[dict]) -> str:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(CSV_COLUMNS)
     for r in rows:
-        w.writerow([_fmt(r[c], ".10g") for c in CSV_COLUMNS])
+        w.writerow([_fmt(r[c], f".{DIGITS}g") for c in CSV_COLUMNS])
     return buf.getvalue()
 
 
@@ -180,7 +181,7 @@ def make_figure(rows: list[dict]):
               "pereira": ("C2", "Pereira et al. 2015 (Eq. 28)")}
     for name, fn in laws.LAWS.items():
         r = fn(pen_m, **TABLE1)
-        f = np.where(r.in_domain, r.force_N, np.nan)
+        f = rounded(np.where(r.in_domain, r.force_N, np.nan))
         ax.plot(pen_mm, f / 1e3, color=styles[name][0], label=styles[name][1])
     jmax = 4 * TABLE1["clearance_m"] / math.e ** 2 / MM
     ax.axvline(jmax, color="C1", ls=":", lw=1)
@@ -192,9 +193,9 @@ def make_figure(rows: list[dict]):
     ax.set_title("Straight ring, Table 1 parameters")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
-    ax2.plot(pen_mm, laws.conformal_force(pen_m, **TABLE1).force_N / 1e3, color="C0", label="0′ (line contact)")
+    ax2.plot(pen_mm, rounded(laws.conformal_force(pen_m, **TABLE1).force_N) / 1e3, color="C0", label="0′ (line contact)")
     for k, (t, f) in enumerate(tilted_curves(pen_mm).items()):
-        ax2.plot(pen_mm, f / 1e3, color=f"C{k + 3}", ls="--", label=f"{t:g}′")
+        ax2.plot(pen_mm, rounded(f) / 1e3, color=f"C{k + 3}", ls="--", label=f"{t:g}′")
     ax2.set_xlabel("centre penetration Δr (mm)")
     ax2.set_ylabel("contact force (kN)")
     ax2.set_title("Tilted ring, conformal law (Eqs. 8–19)")

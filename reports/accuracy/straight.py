@@ -13,6 +13,7 @@ from contact import laws
 from contact.dataset import ReferenceDataset
 from contact.units import MM
 from reports.accuracy.common import LAW_LABELS, PAPER_TABLE2_PCT, PENETRATIONS_MM
+from reports.digits import cell, pct, rounded, rounded_pct
 
 
 def _law_kwargs(geo: cal.SceneGeometry) -> dict:
@@ -136,9 +137,9 @@ def table2_csv(tables: list[dict]) -> str:
             paper = PAPER_TABLE2_PCT.get(key, (None,) * len(PENETRATIONS_MM))
             for j, p_mm in enumerate(PENETRATIONS_MM):
                 f = t["forces"][key][j]
-                w.writerow([t["scene"], key, f"{p_mm:g}", f"{fem[j]:.10g}", f"{err[j]:.4g}",
-                            "" if not np.isfinite(f) else f"{f:.10g}",
-                            "" if not np.isfinite(t["pct"][key][j]) else f"{t['pct'][key][j]:.6f}",
+                w.writerow([t["scene"], key, f"{p_mm:g}", cell(fem[j]), f"{err[j]:.4g}",
+                            "" if not np.isfinite(f) else cell(f),
+                            "" if not np.isfinite(t["pct"][key][j]) else pct(t["pct"][key][j]),
                             "" if paper[j] is None else f"{paper[j]:.2f}"])
     return buf.getvalue()
 
@@ -162,6 +163,7 @@ def make_figure(tables: list[dict]):
         pen_mm = np.linspace(0.0005, 0.05, 200)
         curves = law_forces(geo, pen_mm * MM)
         curves["calibrated-fit"] = t["law"].force(pen_mm * MM).force_N
+        curves = {key: rounded(v) for key, v in curves.items()}          # drawn as published (reports/digits.py)
         fem_pen = t["penetration_m"] / MM
         fem_f = t["force_fem_N"]
         for key, (c, ls) in styles.items():
@@ -175,7 +177,7 @@ def make_figure(tables: list[dict]):
         if k == 0:
             ax.legend(fontsize=7, loc="lower right")
         # middle: each analytic law as a ratio to the FEM (log axis: 2 and 1/2 equally far from 1)
-        fem_laws = law_forces(geo, t["penetration_m"])
+        fem_laws = {key: rounded(v) for key, v in law_forces(geo, t["penetration_m"]).items()}
         for key, (c, ls) in styles.items():
             if key != "calibrated-fit":
                 ax2.plot(fem_pen, fem_laws[key] / fem_f, color=c, ls=ls, marker=".", lw=1.2, label=LAW_LABELS[key])
@@ -186,9 +188,9 @@ def make_figure(tables: list[dict]):
         ax2.set_ylabel("P_law / P_FEM (analytic laws)")
         ax2.grid(alpha=0.3, which="both")
         # bottom: the calibrated law's difference in %, fitted and held out, against the FEM's own error band
-        fit = t["law"].force(t["penetration_m"]).force_N
-        ax3.plot(fem_pen, 100 * (fit - fem_f) / fem_f, color="C3", marker=".", lw=1.2, label="calibrated, fit on all")
-        ax3.plot(fem_pen, 100 * t["chosen"].holdout_rel_err, color="C3", ls="none", marker="o", mfc="none",
+        fit = rounded(t["law"].force(t["penetration_m"]).force_N)
+        ax3.plot(fem_pen, rounded_pct(100 * (fit - fem_f) / fem_f), color="C3", marker=".", lw=1.2, label="calibrated, fit on all")
+        ax3.plot(fem_pen, rounded_pct(100 * t["chosen"].holdout_rel_err), color="C3", ls="none", marker="o", mfc="none",
                  label="calibrated, held out")
         ax3.fill_between(fem_pen, -100 * t["fem_error_rel"], 100 * t["fem_error_rel"], color="k", alpha=0.25,
                          label="FEM error band")

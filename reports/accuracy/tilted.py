@@ -15,6 +15,7 @@ from contact.loose_support import loose_support_force
 from contact.package_data import entries, location, shipped_name
 from contact.units import ARCMIN, MM
 from reports.accuracy.common import PAPER_TABLE3_PCT, PENETRATIONS_MM
+from reports.digits import cell, rounded
 
 
 T3_METHODS = {
@@ -199,7 +200,7 @@ def table3_csv(rows: list[dict]) -> str:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(T3_CSV_COLUMNS)
     for r in rows:
-        w.writerow(["" if r.get(c) is None else (f"{r[c]:.10g}" if isinstance(r[c], float) else r[c]) for c in T3_CSV_COLUMNS])
+        w.writerow(["" if r.get(c) is None else (cell(r[c]) if isinstance(r[c], float) else r[c]) for c in T3_CSV_COLUMNS])
     return buf.getvalue()
 
 
@@ -218,7 +219,7 @@ def make_figure_3d(t3: dict):
         ax.errorbar(x, F / 1e3, yerr=np.array([r["force_error_rel"] for r in rr]) * F / 1e3, fmt="ks", ms=4, capsize=3,
                     label="3D FEM (Richardson error bar)")
         for k, (key, label) in enumerate(T3_METHODS.items()):
-            ax.plot(x, np.array([r[key + "_N"] for r in rr]) / 1e3, marker="o", ms=3, color=f"C{k}", label=label)
+            ax.plot(x, rounded([r[key + "_N"] for r in rr]) / 1e3, marker="o", ms=3, color=f"C{k}", label=label)
         ax.set_title(f"tilt {tl:g}′")
         ax.set_xlabel("centre penetration Δr (mm)")
         ax.set_ylabel("contact force (kN)")
