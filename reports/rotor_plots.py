@@ -95,7 +95,7 @@ def _signed_shape(model: RotorModel, shapes, j: int) -> tuple[np.ndarray, np.nda
         return shapes[model.dof_index(key), j] if key in model.dof_names else 0.0
 
     Y, Z, TY, TZ = (np.array([dof(n, d) for n in names]) for d in ("y", "z", "θy", "θz"))
-    k = int(np.argmax(np.abs(Y) ** 2 + np.abs(Z) ** 2))
+    k = _first_largest(np.abs(Y) ** 2 + np.abs(Z) ** 2)
     # phase that puts node k at the major axis of its ellipse: maximise |Re(e^{iφ}(Y_k, Z_k))|
     phi = -0.5 * np.angle(Y[k] ** 2 + Z[k] ** 2)
     u = np.array([np.real(np.exp(1j * phi) * Y[k]), np.real(np.exp(1j * phi) * Z[k])])
@@ -103,8 +103,18 @@ def _signed_shape(model: RotorModel, shapes, j: int) -> tuple[np.ndarray, np.nda
     rot = np.exp(1j * phi)
     w = np.real(rot * (u[0] * Y + u[1] * Z))
     slope = np.real(rot * (u[0] * TZ - u[1] * TY))          # θz = dy/dx, θy = −dz/dx
-    scale = w[int(np.argmax(np.abs(w)))] or 1.0
+    scale = w[_first_largest(np.abs(w))] or 1.0
     return model.node_x_m, w / scale, slope / scale, u
+
+
+def _first_largest(values: np.ndarray, rel: float = 1e-6) -> int:
+    """Index of the first node (in the model's node order) whose value is within ``rel`` of the largest.
+
+    The sign convention of a drawn mode: +1 at its largest deflection, and where several nodes tie (the two
+    equal extrema of sin(2πx/L) on a pinned beam) at the first of them. ``np.argmax`` alone picks between tied
+    extrema by round-off, so the drawn sign would depend on the machine."""
+    v = np.asarray(values, float)
+    return int(np.flatnonzero(v >= (1.0 - rel) * v.max())[0]) if v.size and v.max() > 0 else 0
 
 
 def _hermite(x0, x1, w0, w1, s0, s1, n: int = 12):
