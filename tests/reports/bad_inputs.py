@@ -619,11 +619,27 @@ def _child(argv: list[str], out_dir: Path, cwd: Path | None) -> None:
     os._exit(0)
 
 
+#: a child that does not end within this many times its CPU allowance of wall time, computing or not, hangs
+WALL_FACTOR = 10.0
+
+
+def _cpu_s(pid: int) -> float:
+    """CPU seconds (user + system) of process ``pid`` so far; 0 when it is gone."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return 0.0
+    f = text[text.rindex(")") + 2:].split()
+    return (int(f[11]) + int(f[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def run_case(argv: list[str], out_dir: Path, timeout_s: float = 10.0, cwd: Path | None = None) -> dict:
     """Run ``ringcontact ARGV`` in a forked child (warm, 4 GiB address-space cap, own process group).
 
     Returns ``rc``, ``outcome`` ('exit', 'traceback' or 'hang': killed with its workers after
-    ``timeout_s``), ``stdout``, ``stderr`` and ``wall_s``.
+    ``timeout_s`` of the child's own CPU time, or ``WALL_FACTOR`` times that of wall time when it sits idle),
+    ``stdout``, ``stderr`` and ``wall_s``. CPU time, not wall time: on a shared machine at load 5-9 a case
+    that takes 1 s idle takes several seconds of wall time, and would be called a hang.
     """
     out_dir.mkdir(parents=True, exist_ok=True)
     sys.stdout.flush()
@@ -637,7 +653,7 @@ def run_case(argv: list[str], out_dir: Path, timeout_s: float = 10.0, cwd: Path 
         done, status = os.waitpid(pid, os.WNOHANG)
         if done:
             break
-        if time.perf_counter() - t0 > timeout_s:
+        if _cpu_s(pid) > timeout_s or time.perf_counter() - t0 > WALL_FACTOR * timeout_s:
             try:
                 os.killpg(pid, signal.SIGKILL)
             except OSError:

@@ -101,7 +101,7 @@ def _interrupt(proc, sig) -> None:
         proc.send_signal(sig)             # kill PID
 
 
-def _finish(proc, tmp: Path, timeout_s: float = 60.0) -> tuple[int, list[str]]:
+def _finish(proc, tmp: Path, timeout_s: float = 180.0) -> tuple[int, list[str]]:
     try:
         rc = proc.wait(timeout_s)
     finally:
@@ -186,8 +186,13 @@ CASES = {
 }
 #: a line a long job prints before it starts (reports/cli/_budget.py): not part of the interruption
 ANNOUNCED = re.compile(r"^ringcontact [a-z -]+: estimated .* of computing .*; starting$")
-#: the longest an interrupted job may take to end after the signal (s)
-EXIT_WITHIN_S = 10.0
+#: the longest an interrupted job may take to end after the signal (s): a ceiling, not a speed claim. Measured
+#: 0.9-4 s on an idle machine; a job that waited for its computation instead (the earlier 20.6 s of a compiled
+#: call) takes minutes at load 4-9, so 60 s still tells the two apart on a shared machine
+EXIT_WITHIN_S = 60.0
+#: the longest the test waits for a job to show it is working (its own progress: CPU seconds, a status file,
+#: its pool's workers). Not an assertion on speed: at load 5-9 a cascade's pool took over 60 s to start
+READY_WITHIN_S = 1200.0
 
 
 @pytest.mark.parametrize("argv, ready, sig", list(CASES.values()), ids=list(CASES))
@@ -197,7 +202,7 @@ def test_an_interrupted_job_ends_with_one_line_its_status_and_nothing_left(argv,
     proc = _start(argv, tmp_path, cache)
     sent = None
     try:
-        _wait_until(proc, lambda: ready(proc, tmp_path), 60, f"{case} to be working")
+        _wait_until(proc, lambda: ready(proc, tmp_path), READY_WITHIN_S, f"{case} to be working")
         _interrupt(proc, sig)
         sent = time.monotonic()
     finally:
