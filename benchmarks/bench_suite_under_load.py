@@ -52,11 +52,16 @@ def one_run(clone: Path, hogs: int, log: Path) -> dict:
             p.wait()
     text = log.read_text(errors="replace")
     summary = [ln for ln in text.splitlines() if re.search(r"\d+ (passed|failed)", ln) and " in " in ln]
-    slow = re.search(r"slowest 15 durations =+\n(.*?)\n\n", text, re.S)
+    after = text.split("slowest 15 durations", 1)[1].splitlines()[1:] if "slowest 15 durations" in text else []
+    slowest = []
+    for ln in after:
+        if not ln.strip() or ln.startswith(("=", "(")):
+            break
+        slowest.append(ln)
     failed = [ln for ln in text.splitlines() if ln.startswith(("FAILED", "ERROR"))]
     return {"rc": rc, "wall_s": wall, "summary": summary[-1].strip("= ") if summary else "(no summary)",
             "load_mean": sum(loads) / max(len(loads), 1), "load_max": max(loads, default=float("nan")),
-            "slowest": slow.group(1).splitlines() if slow else [], "failed": failed}
+            "slowest": slowest, "failed": failed}
 
 
 def main(argv=None) -> int:
