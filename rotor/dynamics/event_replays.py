@@ -26,12 +26,14 @@ compiled_with(__file__, ["rotor.dynamics.production_loop", "rotor.dynamics.conta
 
 
 @njit(cache=True)
-def replay_steps(starts, modes0, phi0, ts, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N,
+def replay_steps(starts, modes0, phi0, ts, n_steps, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N,
                  n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
                  stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events):
-    """One step of length ``dt`` (s) from each row of ``starts`` (``(K, 3 n_r)``), each with its own face modes
+    """``n_steps`` steps of length ``dt`` (s) (one call of the loop, its memory between those steps kept: a
+    block of steps whose face forces carry over, rotor/dynamics/period_map_events.py "Blocks") from each row of
+    ``starts`` (``(K, 3 n_r)``), each with its own face modes
     ``modes0[r]`` (2,), face forces ``phi0[r]`` (2, 2; N) and time ``ts[r]`` (s): the ends (``(K, 3 n_r)``) and each
-    step's ``status`` (``(K, 7)``, :func:`rotor.dynamics.production_loop.step_loop`'s): a record's candidate event
+    replay's ``status`` (``(K, 7)``, :func:`rotor.dynamics.production_loop.step_loop`'s): a record's candidate event
     steps, or one step's central differences (rotor/dynamics/period_map_events.py), in one compiled call; the other
     arguments are :func:`rotor.dynamics.production_loop.step_loop`'s."""
     K, n3 = starts.shape
@@ -52,6 +54,7 @@ def replay_steps(starts, modes0, phi0, ts, dt, Ainv, Dr, Kr, Bt, W, S, static, o
     rec_passes = np.zeros(2, dtype=np.int32)
     status = np.zeros(7, dtype=np.int64)
     one = np.int64(1)
+    k = np.int64(n_steps)
     for r in range(K):
         p = starts[r, :nr].copy()
         v = starts[r, nr:2 * nr].copy()
@@ -59,7 +62,7 @@ def replay_steps(starts, modes0, phi0, ts, dt, Ainv, Dr, Kr, Bt, W, S, static, o
         modes = modes0[r].copy()
         phi = phi0[r].copy()
         status[:] = 0
-        step_loop(p, v, a, modes, phi, ts[r], dt, one, one, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm,
+        step_loop(p, v, a, modes, phi, ts[r], dt, k, k, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm,
                   omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg,
                   w_stick, max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, rec_t,
                   rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,

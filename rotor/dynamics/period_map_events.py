@@ -11,33 +11,32 @@ Gantmacher 1958), which the analytic pass of :mod:`rotor.dynamics.period_map_ker
 
 * plain steps, the analytic pass (:func:`rotor.dynamics.period_map_kernels.carry`), exact as for the plain map;
 * each *event step* (a step in which a face changed mode or a slipping face's velocity turned by more than a
-  right angle: every step the loop may have split, and a few more), the derivative of that one step with
-  respect to its start ``(p, v, a)``, by central differences of the compiled step itself (a located step is
-  smooth in its start while the event stays inside it: the event time is the root of a polynomial whose
-  coefficients are smooth), composed with the carried sensitivities.
+  right angle: every step the loop may have split, and a few more), the derivative of that step with respect to
+  its start ``(p, v, a)``, by central differences of the compiled step itself on a ladder of steps
+  (:func:`_step_jacobian`; a located step is smooth in its start while the event stays inside it: the event time
+  is the root of a polynomial whose coefficients are smooth), composed with the carried sensitivities;
+* *blocks*: a step that holds a face at rest at ``μN`` along its start force takes that force's direction from
+  the step before, the loop's memory outside ``(p, v, a)``; it is differenced together with the step that set the
+  force, one block replayed from that step's start (:func:`blocks`). Measured at the 9 000 rpm orbit of Table 4
+  (T/256, production options): the held step carried with its start force fixed put the monodromy 5.3e-2 from
+  central differences of the whole map; 2e-6 with the block.
 
-So the event-time derivative enters through the differenced step, a few steps per period; the rest is the
+So the event-time derivative enters through the differenced steps, a few steps per period; the rest is the
 analytic pass. Each event step is replayed from its recorded start and must reproduce the recorded end (the
 loop's only memory between steps besides ``(p, v, a)``, the modes and the face forces is whether a face was
 released in the step before, which the replay starts without): a replay that does not is reported through
 ``replay_mismatch`` in the result so that a caller can tell.
 
 Measured against central differences of the located map (scaled monodromy, tests/rotor/dynamics/
-test_period_map_events.py): Den Hartog's (1931) oscillator, non-stop (two located reversals per period) and
-stick-slip (stick onsets and releases), agree to 1e-6. Table 4 (512 steps per revolution, one period after 60
-revolutions from the linear state; a stick onset, a release and 2 to 6 edge crossings, contact onsets or losses, in
-each period): 9.6e-7, 7.2e-7 and 8.8e-8 at 8 400, 10 500 and 12 000 rpm, against the Richardson extrapolation of
-central differences of the whole map at 1e-7 and 2e-7 of each component's largest magnitude over the period, which
-agrees with the one at 5e-8 and 1e-7 to 1.9e-7, 1.1e-7, 1.1e-7. Before contact onset and loss were located
-(:mod:`rotor.dynamics.contact_events`) 10 500 rpm was 5.2e-6 against plain central differences; before a stop from a
-creep was located whatever its start speed (:data:`rotor.dynamics.production_loop.EVENT_SPEED`) 8 400 rpm was 0.41;
-with every event step differenced at 1e-6 and extrapolated, 3.7e-6, 3.6e-6, 1.5e-6 (:data:`EVENT_STEP_REL`). Not
-every Table 4 speed has a map smooth at that scale: at 9 600 and 11 000 rpm the references at 1e-7 and 5e-8
-themselves differ by O(1) (the slow-slip hold's rectilinear test, a threshold, decided differently after a 1e-7
-perturbation: :mod:`rotor.dynamics.friction_events`, "Slow slips"); the map jumps there by about 1e-7 of the state
-and has no derivative at that scale. The event steps' own differencing then shrinks its step past the threshold
-(:func:`_step_jacobian`), so the monodromy is the derivative of the piece the orbit lies on: at 11 000 rpm its
-largest multiplier 0.9845, where differencing across the threshold had given 1 257.
+test_period_map_events.py and test_monodromy_random_speeds.py; reports/published/perf-located-monodromy.md and
+perf-monodromy-random.md for the current figures): Den Hartog's (1931) oscillator, non-stop and stick-slip, agree
+to 1e-6. On Table 4 the differenced steps limit the agreement to about 1e-7 to 2e-6: a stick onset after a slow
+creep has a large curvature in its start, and the slow-slip hold's thresholds (:mod:`rotor.dynamics.
+friction_events`, "Slow slips") lie within 1e-6 of some starts. Not every Table 4 state has a map smooth at the
+reference's scale: at 9 600 and 11 000 rpm, and at 7 of 10 random speeds of a transient state after 60 revolutions
+(T/512), central differences at 1e-7 and 5e-8 themselves differ by O(1) (a threshold decided differently after a
+1e-7 perturbation): the map jumps there by about 1e-7 of the state and has no derivative at that scale; the
+monodromy is then the derivative of the smooth piece the orbit lies on, as far as the ladder resolves it.
 
 **Held steps, carried.** Most candidate steps are not split at all: a slow slip whose friction the loop holds at
 Coulomb's force along the start velocity, or a face at rest held at ``μN`` (:mod:`rotor.dynamics.friction_events`,
@@ -45,7 +44,7 @@ Coulomb's force along the start velocity, or a face at rest held at ``μN`` (:mo
 each candidate once; where no event was located in it (the loop's ``status[4]``) and it reproduces the record, it is
 carried analytically (:func:`rotor.dynamics.period_map_kernels.carry` with the held forces and the slow slip's
 ``∂f/∂w = −μN (I − ŵŵᵀ)/|w|``), and only the split steps and the edge crossings are differenced. Measured on Table 4
-(T/512, the three speeds above, same references): 9.9e-7, 2.2e-7, 5.5e-8 (differenced: 9.6e-7, 7.2e-7, 8.8e-8), 8 of
+(T/512, 8 400 / 10 500 / 12 000 rpm, before the blocks and the ladder, same references): 9.9e-7, 2.2e-7, 5.5e-8 (differenced: 9.6e-7, 7.2e-7, 8.8e-8), 8 of
 402 candidate steps differenced at 8 400 rpm, and the located map with its monodromy in 0.19 s instead of 1.1-1.5 s
 (medians of 3, load 1). At 11 000 rpm the largest multiplier is then 0.98447 (0.98450 differenced with shrinking).
 """
@@ -58,26 +57,21 @@ from rotor.dynamics.event_replays import replay_steps
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
-#: central-difference step of an event step's derivative, relative to each component's range over the run, and the
-#: shorter one of a step in which a face changed mode (its stick test and held-slip decisions are thresholds, so it is
-#: smooth in its start over a shorter distance). Richardson-extrapolated (:func:`_step_jacobian`), so the steps are as
-#: long as that smoothness allows: the round-off of the differenced step's Newton solves grows as the step shrinks.
-#: Measured on Table 4 (T/512; located monodromy against the extrapolated central differences of the whole map,
-#: tests/rotor/dynamics/test_period_map_events.py): 1e-6 for every event step 3.7e-6 / 3.6e-6 / 1.5e-6 at 8 400 /
-#: 10 500 / 12 000 rpm; 3e-6 for every one 1.1e-6 / 1.1e-6 / 4.3e-7; 1e-5 for every one 8.2e-5 at 8 400 rpm (a switch
-#: step differenced across its threshold); 1e-5 and 3e-6 for the switch steps 9.6e-7 / 7.2e-7 / 8.8e-8.
-EVENT_STEP_REL = 1e-5
-SWITCH_STEP_REL = 3e-6
-#: an event step's column is extrapolated (Richardson) where its three central differences change in the ratio
-#: 1 : 4 to this fraction (:func:`_step_jacobian`)
-RICHARDSON_RATIO = 0.25
-#: a column whose central differences at ``h/2`` and ``h`` differ by more than this fraction of their size is not
-#: smooth at that scale (a threshold of the step, e.g. the slow-slip hold's rectilinear test, decided differently
-#: within ``h`` of the recorded start): it is differenced again at ``h/10``, ``h/100``, ... down to
-#: :data:`SHRINK_FLOOR` (:func:`_step_jacobian`)
+#: the differencing steps of an event block's derivative (:func:`_step_jacobian`), relative to each component's scale:
+#: a ladder from 1.28e-4 down by factors of 2 to 1.25e-7. Each column's derivative is taken where two successive
+#: levels agree best. A fixed step fails on speeds nobody tuned it on: a stick onset after a slow creep has a
+#: large curvature (its central difference at 1e-5 off by 4e-5 of the step's derivative at 9 000 rpm) and a
+#: threshold of the step (the slow-slip hold's rectilinear test, a stick trial) can lie within 1e-6 of the
+#: recorded start (columns not smooth at 1e-6 at 9 000 rpm), while at 16 767 rpm a release block needed 1e-6
+#: (at 3e-6 the located monodromy was 1.9e-3 from central differences of the whole map; 3e-7 with the ladder).
+#: Chosen on five states (Table 4, T/512 after 60 revolutions at 8 400, 10 500, 12 000 and 16 767 rpm; the 9 000 rpm
+#: orbit, T/256): 1.9e-7, 5.3e-8, 5.1e-8, 3.0e-7, 4.3e-7; ladders starting at 3.2e-5 and 6.4e-5 reached 2.6e-6 and
+#: 1.0e-6 at 9 000 rpm. Checked on speeds drawn at random (tests/rotor/dynamics/test_monodromy_random_speeds.py,
+#: benchmarks/bench_monodromy_random.py).
+LADDER = tuple(1.28e-4 * 0.5 ** k for k in range(11))
+#: a column whose best two successive levels still differ by more than this fraction of its size is not smooth at
+#: any level of the ladder (a threshold of the step within the smallest step of its start): counted and reported
 SHRINK_TOL = 1e-2
-#: the shortest differencing step of a column, relative to its component's scale (round-off below it)
-SHRINK_FLOOR = 1e-9
 
 
 def event_steps(pm, tr) -> list[int]:
@@ -137,11 +131,11 @@ def _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held: bool = True) -
     return cand[~pure].tolist(), held
 
 
-def _replays_at(pm, starts, modes, phi, ts, locate: bool):
-    """One step from each row of ``starts`` with its own modes, face forces and time, events located (``locate``)
-    or not: the ends and statuses (:func:`rotor.dynamics.event_replays.replay_steps`)."""
+def _replays_at(pm, starts, modes, phi, ts, locate: bool, n_steps: int = 1):
+    """``n_steps`` steps (one block) from each row of ``starts`` with its own modes, face forces and time, events
+    located (``locate``) or not: the ends and statuses (:func:`rotor.dynamics.event_replays.replay_steps`)."""
     pre, opts = pm.prepared, pm.options
-    return replay_steps(np.ascontiguousarray(starts, dtype=float), modes, phi, ts, pm.dt, pre.Ainv, pre.Dr, pre.Kr,
+    return replay_steps(np.ascontiguousarray(starts, dtype=float), modes, phi, ts, int(n_steps), pm.dt, pre.Ainv, pre.Dr, pre.Kr,
                         pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin, pre.omega_force, pre.P,
                         pre.limits, pre.n_faces, pre.s_yy, pre.a1, pm.reduced.support is not None, pm.params,
                         opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
@@ -167,78 +161,57 @@ def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True):
     return np.concatenate([p, v, a])
 
 
-def _replays(pm, starts, modes, phi, t) -> np.ndarray:
-    """The ends (rows) of one located step from each row of ``starts`` (``(K, 3 n_r)``, ``(p, v, a)``) at time ``t``
-    (s), all with the face ``modes`` and forces ``phi``, in one compiled call (:func:`_replays_at`): the same step as
-    :func:`_one_step`'s, without its dispatch per start."""
+def _replays(pm, starts, modes, phi, t, n_steps: int = 1) -> np.ndarray:
+    """The ends (rows) of ``n_steps`` located steps (one block) from each row of ``starts`` (``(K, 3 n_r)``,
+    ``(p, v, a)``) at time ``t`` (s), all with the face ``modes`` and forces ``phi``, in one compiled call
+    (:func:`_replays_at`): the same step as :func:`_one_step`'s, without its dispatch per start."""
     k = len(starts)
     return _replays_at(pm, starts, np.tile(np.asarray(modes, dtype=np.int64), (k, 1)),
-                       np.tile(np.asarray(phi, dtype=float), (k, 1, 1)), np.full(k, float(t)), True)[0]
+                       np.tile(np.asarray(phi, dtype=float), (k, 1, 1)), np.full(k, float(t)), True, n_steps)[0]
 
 
-def _step_jacobian(pm, start, modes, phi, t, scales, rel) -> tuple[np.ndarray, np.ndarray, int]:
-    """``∂(p, v, a)_{n+1}/∂(p, v, a)_n`` (3nr × 3nr) of one located step by central differences, the
-    replayed end state, and how many of its columns are not smooth down to :data:`SHRINK_FLOOR`.
+def _step_jacobian(pm, start, modes, phi, t, scales, n_steps: int = 1) -> tuple[np.ndarray, np.ndarray, int]:
+    """``∂(p, v, a)_{n+k}/∂(p, v, a)_n`` (3nr × 3nr) of ``k = n_steps`` located steps (one step, or a block whose
+    face forces carry over: :func:`blocks`) by central differences, the replayed end state, and how many of its
+    columns are not smooth at any level of :data:`LADDER`.
 
-    Each column is differenced at ``h/2``, ``h`` and ``2h`` (``h`` = ``rel`` of the component's scale).
-    Where the three behave as a smooth function's (the changes ``d(h) − d(h/2)`` and ``d(2h) − d(h)`` in the ratio
-    1 : 4 of the central difference's ``c h²`` error, to ``RICHARDSON_RATIO``) the column is extrapolated to zero
-    step (Richardson, ``(4 d(h/2) − d(h))/3``): a stick onset after a slow creep has a large curvature (Table 4,
-    10 500 rpm, T/512: ``c h²`` 1.5e-4 of the step's derivative at ``h`` = 1e-6, 3e-7 extrapolated). Elsewhere
-    ``d(h)``: a step smooth in its start only over a shorter distance (a threshold decided in it) must not be
-    extrapolated across two branches.
-
-    Where ``d(h/2)`` and ``d(h)`` differ by more than :data:`SHRINK_TOL` of their size, a threshold of the step lies
-    within ``h`` of its start, and ``d(h)`` is a jump over ``h``, not a derivative: the column is differenced again
-    at ``h/10``, ``h/100``, ... until two agree (the derivative of the smooth piece the recorded start lies on), or
-    counted as not smooth at :data:`SHRINK_FLOOR`. Measured on Table 4 at 11 000 rpm (T/512, one period after 60
-    revolutions): four slow-slip steps differenced across the rectilinear test (``d(h/2)`` vs ``d(h)`` 33 to 1.8e5 of
-    their size) had made the monodromy's largest entry 1.0e8 and its largest multiplier 1 257; with their columns
-    shrunk to 1e-6 and 1e-7, 9.5e4 and 0.9845.
-
-    All replays of a level go through one compiled call (:func:`_replays`)."""
+    Each column is differenced at every level ``h`` of :data:`LADDER` (relative to its component's scale); the
+    central differences of successive levels are Richardson-extrapolated (their ``c h²`` error removed), and the
+    column takes the extrapolation of the pair of successive levels that agrees best with the next one (scaled
+    by the components' scales): long enough steps where round-off and the Newton solves' tolerance would
+    dominate a short one, short enough where the step's curvature (a stick onset after a slow creep) or a
+    threshold decided within ``h`` of the start (the slow-slip hold's rectilinear test) spoils a long one.
+    A column whose best agreement is still worse than :data:`SHRINK_TOL` of its size is counted as not smooth.
+    All replays go through one compiled call (:func:`_replays`)."""
     n3 = 3 * pm.nr
     scales = np.asarray(scales, float)
-    # the starts (rows): per column j, per m in (1/2, 1, 2), +m h then −m h; the unperturbed start last
-    ms, sgns = np.array([0.5, 1.0, 2.0]), np.array([1.0, -1.0])
-    h = rel * scales
-    starts = np.tile(start, (6 * n3 + 1, 1))
+    hs = np.array(LADDER)
+    L = hs.size
+    # the starts (rows): per level, per column, +h then −h; the unperturbed start last
+    starts = np.tile(start, (2 * L * n3 + 1, 1))
     cols = np.arange(n3)
-    starts[:-1].reshape(n3, 3, 2, n3)[cols, :, :, cols] += sgns[None, None, :] * ms[None, :, None] * h[:, None, None]
-    ends = _replays(pm, starts, modes, phi, t)
-    e = ends[:-1].reshape(n3, 3, 2, n3)
-    d = (e[:, :, 0] - e[:, :, 1]) / (2.0 * ms[None, :] * h[:, None])[:, :, None]     # (column, m, component)
-    e1 = np.abs(d[:, 1] - d[:, 0]).max(axis=1)
-    e2 = np.abs(d[:, 2] - d[:, 1] - 4.0 * (d[:, 1] - d[:, 0])).max(axis=1)
-    smooth = e2 <= RICHARDSON_RATIO * 4.0 * e1
-    J = np.where(smooth[:, None], (4.0 * d[:, 0] - d[:, 1]) / 3.0, d[:, 1]).T
-
-    def disagree(half, full):       # (columns, components) -> (columns,)
-        return (np.abs((half - full) / scales).max(axis=1)
-                > SHRINK_TOL * np.abs(full / scales).max(axis=1))
-
-    todo = np.flatnonzero(disagree(d[:, 0], d[:, 1]))
-    r = rel
-    while todo.size:
-        r /= 10.0
-        if r < SHRINK_FLOOR * (1.0 - 1e-9):
-            break
-        hs = r * scales[todo]
-        st = np.tile(start, (4 * todo.size, 1)).reshape(todo.size, 2, 2, n3)
-        st[np.arange(todo.size), :, :, todo] += sgns[None, None, :] * np.array([0.5, 1.0])[None, :, None] * hs[:, None, None]
-        en = _replays(pm, st.reshape(-1, n3), modes, phi, t).reshape(todo.size, 2, 2, n3)
-        dd = (en[:, :, 0] - en[:, :, 1]) / (2.0 * np.array([0.5, 1.0])[None, :] * hs[:, None])[:, :, None]
-        ok = ~disagree(dd[:, 0], dd[:, 1])
-        J[:, todo[ok]] = dd[ok, 0].T
-        todo = todo[~ok]
-    return np.ascontiguousarray(J), ends[-1].copy(), int(todo.size)
+    pert = starts[:-1].reshape(L, n3, 2, n3)
+    for li in range(L):
+        pert[li, cols, 0, cols] += hs[li] * scales
+        pert[li, cols, 1, cols] -= hs[li] * scales
+    ends = _replays(pm, starts, modes, phi, t, n_steps)
+    e = ends[:-1].reshape(L, n3, 2, n3)
+    d = (e[:, :, 0] - e[:, :, 1]) / (2.0 * hs[:, None, None] * scales[None, :, None])    # (level, column, component)
+    q = (hs[:-1] / hs[1:]) ** 2
+    rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)             # (pair, column, component)
+    gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)        # (pair, column)
+    best = np.argmin(gap, axis=0)
+    J = rich[best + 1, cols].T
+    size = np.abs(J / scales[:, None]).max(axis=0)
+    unsmooth = int(np.count_nonzero(gap[best, cols] > SHRINK_TOL * np.maximum(size, 1e-300)))
+    return np.ascontiguousarray(J), ends[-1].copy(), unsmooth
 
 
 def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np.ndarray, float, int]:
     """``∂(p_N, v_N)/∂(p₀, v₀)`` of a located run (every step recorded in ``tr``, reduced ``rec_p``, ``rec_v``),
     the largest relative mismatch of an event step's replay against the record (–), and the number of event-step
-    columns not smooth down to :data:`SHRINK_FLOOR` (:func:`_step_jacobian`: the map has no derivative there at the
-    differencing's resolution, and the monodromy is not one). ``carry_held`` False differences the held steps too
+    columns not smooth at any level of :data:`LADDER` (:func:`_step_jacobian`: the map has no derivative there at
+    the differencing's resolution, and the monodromy is not one). ``carry_held`` False differences the held steps too
     (the earlier route, kept for benchmarks/bench_located_monodromy.py)."""
     pre, opts, nr = pm.prepared, pm.options, pm.nr
     rec_a = tr.a @ pm.T
@@ -262,20 +235,49 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
     # analytically with the held forces' derivative (carry's rec_held); the others differenced
     differenced, held = _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held)
     face = np.ascontiguousarray(tr.face_force, dtype=float)
-    for n in differenced + [n_steps]:
-        if n > start:
-            carry(np.ascontiguousarray(rec_p[start:n + 1]), np.ascontiguousarray(rec_v[start:n + 1]),
-                  np.ascontiguousarray(modes[start:n + 1]), Spv, Sa, *args, np.ascontiguousarray(held[start:n + 1]),
-                  face[start:n + 1])
-        if n == n_steps:
+    for first, last in blocks(differenced, held) + [(n_steps, n_steps)]:
+        if first > start:
+            carry(np.ascontiguousarray(rec_p[start:first + 1]), np.ascontiguousarray(rec_v[start:first + 1]),
+                  np.ascontiguousarray(modes[start:first + 1]), Spv, Sa, *args,
+                  np.ascontiguousarray(held[start:first + 1]), face[start:first + 1])
+        if first == n_steps:
             break
-        x0 = np.concatenate([rec_p[n], rec_v[n], rec_a[n]])
-        rel = SWITCH_STEP_REL if np.any(modes[n] != modes[n + 1]) else EVENT_STEP_REL
-        J, end, bad = _step_jacobian(pm, x0, modes[n], tr.face_force[n], tr.t[n], scales, rel)
+        x0 = np.concatenate([rec_p[first], rec_v[first], rec_a[first]])
+        J, end, bad = _step_jacobian(pm, x0, modes[first], tr.face_force[first], tr.t[first], scales, last + 1 - first)
         unsmooth += bad
-        ref = np.concatenate([rec_p[n + 1], rec_v[n + 1], rec_a[n + 1]])
+        ref = np.concatenate([rec_p[last + 1], rec_v[last + 1], rec_a[last + 1]])
         mismatch = max(mismatch, float(np.max(np.abs(end - ref) / scales)))
         S = J @ np.vstack([Spv, Sa])
         Spv, Sa = np.ascontiguousarray(S[:2 * nr]), np.ascontiguousarray(S[2 * nr:])
-        start = n + 1
+        start = last + 1
     return Spv, mismatch, unsmooth
+
+
+def blocks(differenced: list[int], held: np.ndarray) -> list[tuple[int, int]]:
+    """The steps to difference, as blocks ``(first, last)`` of consecutive steps replayed in one call.
+
+    A step that holds a face at rest at ``μN`` along its start force (``held`` 2: the step loop's ``status[5:7]``,
+    rotor/dynamics/friction_events.py "Slow slips") takes that force's direction from the step before: the face
+    force is the loop's memory between steps, outside ``(p, v, a)``, and a derivative of the step in ``(p, v, a)``
+    alone (:func:`_step_jacobian` with the recorded force, or :func:`rotor.dynamics.period_map_kernels.carry`, which
+    holds it constant) misses how that direction moves with the start. Such a run of steps is differenced together
+    with the step that set the force (a release, or a stuck step whose multiplier it is), one block from that
+    step's start. Measured on Table 4 at the 9 000 rpm orbit (T/256, production options): a release at step 166
+    and a held step 167, whose end moves 6e4 of its scale per unit change of the held force's direction; the
+    located monodromy 5.3e-2 from central differences of the whole map with the held step carried, 7.7e-6 with
+    the two differenced as one block. Blocks that touch or overlap merge; every other differenced step is a block
+    of its own."""
+    marks = set(differenced)
+    for n in np.flatnonzero(np.any(held == 2, axis=1)).tolist():
+        marks.add(n)
+        marks.add(n - 1)                    # the step that set the force the held step starts from
+    out: list[list[int]] = []
+    chained = {n for n in np.flatnonzero(np.any(held == 2, axis=1)).tolist()}
+    for n in sorted(m for m in marks if m >= 0):
+        if out and n == out[-1][1] + 1 and n in chained:
+            out[-1][1] = n                   # a held step joins the block of the step before it
+        elif out and n <= out[-1][1]:
+            continue
+        else:
+            out.append([n, n])
+    return [(a, b) for a, b in out]

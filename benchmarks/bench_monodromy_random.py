@@ -1,0 +1,127 @@
+"""The located monodromy at periodic orbits of speeds nobody chose: seeded random speeds, central differences of
+the same map as the reference.
+
+Writes ``reports/published/perf-monodromy-random.md`` (+ ``.json``). For each of ``--speeds`` speeds drawn
+uniformly over ``--rpm-min`` .. ``--rpm-max`` (seed printed, a new one each run unless ``--seed`` is given):
+
+1. the periodic orbit as ``ringcontact orbit`` finds it (:func:`rotor.studies.orbit.orbit`, production options,
+   the scene's default steps per revolution, events located);
+2. the monodromy of its period map (:func:`rotor.dynamics.period_map.period_map`, the located monodromy of
+   rotor/dynamics/period_map_events.py);
+3. the reference: central differences of the same map, every state component perturbed by ``h`` of its largest
+   magnitude over the period, Richardson-extrapolated from ``h`` = 1e-7 and 2e-7; its convergence from the one at
+   5e-8 and 1e-7 (a map not smooth at that scale shows here, and the row says so).
+
+Error: the largest entry of the scaled difference over the largest scaled entry of the reference (the norm of
+tests/rotor/dynamics/test_period_map_events.py). Run: ``nice .venv/bin/python benchmarks/bench_monodromy_random.py
+[--scene paper-table4 --speeds 20 --seed N]`` (about 30-60 s a speed).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from contact.files import atomic_write_text  # noqa: E402
+from rotor.dynamics.monodromy_check import central_differences, scaled_error, state_scales  # noqa: E402
+from rotor.dynamics.period_map import period_map  # noqa: E402
+from rotor.studies.orbit import orbit  # noqa: E402
+
+OUT = ROOT / "reports" / "published"
+#: the bound the issue sets on the located monodromy against central differences of its map
+BOUND = 1e-6
+
+
+def monodromy_error(flow, sh) -> dict:
+    """The orbit's located monodromy against central differences of its own map (module docstring)."""
+    pm = flow.handle
+    n = sh.period_revs * sh.steps_per_rev
+    r = period_map(pm, sh.state, sh.t0_s, n, modes0=sh.modes, record_every=1)
+    s = state_scales(pm, r.trajectory)
+    ref, check = central_differences(pm, sh.state, sh.t0_s, n, sh.modes, s)
+    return {"error": scaled_error(r.monodromy, ref, s), "reference_convergence": scaled_error(ref, check, s),
+            "largest_multiplier": float(np.abs(np.linalg.eigvals(r.monodromy)).max()),
+            "largest_multiplier_reference": float(np.abs(np.linalg.eigvals(ref)).max()),
+            "unsmooth_columns": int(r.unsmooth_columns), "replay_mismatch": float(r.replay_mismatch)}
+
+
+def one_speed(scene: str, rpm: float) -> dict:
+    from rotor.periodic.period_flow import make_flow
+    t0 = time.perf_counter()
+    res = orbit(scene, rpm)
+    sh = res.shooting
+    row = {"speed_rpm": rpm, "converged": bool(sh.converged), "period_revs": sh.period_revs,
+           "steps_per_rev": sh.steps_per_rev, "orbit_s": time.perf_counter() - t0}
+    if sh.converged:
+        from rotor.studies.steady_state import point_system
+        _, _, system = point_system(scene, rpm)
+        flow = make_flow(system, sh.period_s / (sh.period_revs * sh.steps_per_rev))
+        row.update(monodromy_error(flow, sh))
+    return row
+
+
+def report(scene, seed, rows, load0, load1, commit) -> str:
+    ok = [r for r in rows if r.get("error") is not None]
+    within = sum(r["error"] <= BOUND for r in ok)
+    lines = ["# The located monodromy at random speeds", "",
+             f"`benchmarks/bench_monodromy_random.py` at commit {commit}, scene `{scene}`, seed **{seed}** "
+             f"({len(rows)} speeds drawn uniformly). Orbit as `ringcontact orbit` finds it; error of its located "
+             "monodromy against the Richardson extrapolation of central differences of the same map at 1e-7 and "
+             "2e-7 of each component's largest magnitude; the reference's own convergence against the one at 5e-8 "
+             f"and 1e-7. Load average {load0[0]:.2f} at start, {load1[0]:.2f} at end; {platform.machine()}, Python "
+             f"{platform.python_version()}.", "",
+             f"Within {BOUND:g}: **{within} of {len(ok)}** orbits found ({len(rows) - len(ok)} speeds with no orbit).",
+             "", "| speed (rpm) | period (rev) | steps/rev | error | reference convergence | largest multiplier "
+             "(monodromy / reference) | unsmooth columns |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if r.get("error") is None:
+            lines.append(f"| {r['speed_rpm']:.1f} | no orbit | | | | | |")
+        else:
+            lines.append(f"| {r['speed_rpm']:.1f} | {r['period_revs']} | {r['steps_per_rev']} | {r['error']:.1e} | "
+                         f"{r['reference_convergence']:.1e} | {r['largest_multiplier']:.6f} / "
+                         f"{r['largest_multiplier_reference']:.6f} | {r['unsmooth_columns']} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scene", default="paper-table4")
+    ap.add_argument("--speeds", type=int, default=20)
+    ap.add_argument("--rpm-min", type=float, default=6000.0)
+    ap.add_argument("--rpm-max", type=float, default=18000.0)
+    ap.add_argument("--seed", type=int, default=None)
+    ap.add_argument("--out", type=Path, default=OUT / "perf-monodromy-random.md")
+    a = ap.parse_args(argv)
+    seed = a.seed if a.seed is not None else int.from_bytes(os.urandom(4), "little")
+    print(f"seed {seed}", flush=True)
+    speeds = np.random.default_rng(seed).uniform(a.rpm_min, a.rpm_max, a.speeds).round(1)
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+                            text=True).stdout.strip()
+    load0 = os.getloadavg()
+    rows = []
+    for rpm in speeds:
+        rows.append(one_speed(a.scene, float(rpm)))
+        r = rows[-1]
+        print(f"{rpm:8.1f} rpm: " + (f"error {r['error']:.1e} (reference {r['reference_convergence']:.1e}), "
+                                      f"|mu| {r['largest_multiplier']:.5f}" if r.get("error") is not None
+                                      else "no orbit"), flush=True)
+    text = report(a.scene, seed, rows, load0, os.getloadavg(), commit)
+    atomic_write_text(a.out, text)
+    atomic_write_text(a.out.with_suffix(".json"), json.dumps({"seed": seed, "scene": a.scene, "rows": rows},
+                                                               indent=1) + "\n")
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
