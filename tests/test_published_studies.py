@@ -1,0 +1,214 @@
+"""Section 5 study reports (reports/published/study-*.md, section5-readings.md, perf-branch-switches.md) in the
+default run.
+
+The studies take minutes to hours whole (``-m slow`` runs the cascade, the per-band findings and the sensitivity
+base point). Here, in seconds: the paper's points A and B (4 500 and 10 500 rpm) recomputed on both meshes with
+the studies' own settings, which must give the published ``study-point.md`` byte for byte, the published rows of
+``study-findings.md`` and two of the 61 rows of ``study-cascade.csv``. Statements that summarise a committed table
+(the cascade's 1X share, the map's counts, the sensitivity study's trend counts, the branch's orbit counts) are
+recomputed from that table here: these guard the text against its data, the data itself being guarded by the
+slow studies or, for the branch (a 40-minute run), by the run's own verification. Each test names the published
+values it guards; the registry of claims is tests/claims.py.
+"""
+from __future__ import annotations
+
+import csv
+import json
+from collections import Counter
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PUBLISHED = ROOT / "reports" / "published"
+#: the studies' settings (reports/cli/study.py: _options with the published --max-revs 1500)
+OPTIONS = {"steps_per_rev": 256, "max_revs": 1500}
+POINT_A_B_RPM = (4500.0, 10500.0)
+LOCATIONS = ("disk1", "disk2", "support")
+
+
+def _md(name: str) -> str:
+    return (PUBLISHED / name).read_text(encoding="utf-8")
+
+
+def _csv(name: str) -> list[dict]:
+    with open(PUBLISHED / name, newline="", encoding="utf-8") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _points(elements: int | None) -> list:
+    """Points A and B of paper-table4 as ``study point`` computes them, in the form the report builders read."""
+    from rotor.studies.steady_state import run_point
+
+    out = []
+    for rpm in POINT_A_B_RPM:
+        arrays, info = run_point("paper-table4", rpm, options=OPTIONS, elements_per_segment=elements)
+        out.append(SimpleNamespace(params={"speed_rpm": rpm}, info=info, arrays=arrays))
+    return out
+
+
+@pytest.fixture(scope="module")
+def paper_points():
+    return _points(None)
+
+
+def test_study_point_report_is_what_points_a_and_b_give_now(paper_points):
+    """study-point.md whole: at 4 500 rpm stick, 0 % contact, 2X/1X 4.60e-03 at disk 1 and 1.01e-01 at the support
+    (22.0× larger), max r/δ0 0.443; at 10 500 rpm impact, the ring on the bore 56 % of the time, 2X/1X 1.89e-02 /
+    6.11e-01, (3X+4X+5X)/1X 7.79e-03 / 6.18e-02 / 8.01e-02, max r/δ0 1.015 (reports.studies.point.point_note)."""
+    from reports.studies.point import point_note
+
+    assert point_note(paper_points) == _md("study-point.md")
+
+
+def test_cascade_rows_at_points_a_and_b_are_the_recomputed_points(paper_points):
+    """study-cascade.csv (the Fig. 12 cascade, 61 speeds; whole it is
+    tests/rotor/studies/test_study_slow.py::test_figure12_cascade_61_speeds_two_processes, slow): its 4 500 and
+    10 500 rpm rows are these points, 1X–5X velocity amplitudes to the CSV's six digits, the same regime,
+    contact fraction and transient length."""
+    rows = {float(r["speed_rpm"]): r for r in _csv("study-cascade.csv")}
+    for p in paper_points:
+        r = rows[p.params["speed_rpm"]]
+        assert r["regime"] == p.info["label"] and int(r["transient_revs"]) == p.info["transient_revs"]
+        assert float(r["contact_fraction"]) == pytest.approx(p.info["contact_fraction"], rel=1e-5, abs=1e-12)
+        ch = list(p.arrays["channels"])
+        for loc, name in zip(LOCATIONS, ("disk1.y", "disk2.y", "s.y")):
+            amp = np.abs(p.arrays["harm_v"])[:5, ch.index(name)] * 1e3
+            got = [float(r[f"{loc}_v{h}X_mm_s"]) for h in range(1, 6)]
+            assert got == pytest.approx(amp, rel=1e-5), (p.params["speed_rpm"], loc)
+
+
+def _findings_rows(tag: str, points) -> None:
+    from reports.studies.findings import point_a
+    from reports.studies.mesh import _point_rows
+
+    md = _md("study-findings.md")
+    for row in _point_rows(tag, points):
+        assert row in md, row
+    text, verdict = point_a(points)
+    assert f"{verdict}: {text}." in md
+
+
+def test_findings_points_a_and_b_on_the_paper_mesh(paper_points):
+    """study-findings.md, the paper's mesh: "Point A (Fig. 13, 4 500 rpm), paper's mesh: yes: 2X/1X disk 1 0.005,
+    disk 2 0.040, support 0.101; end faces stuck 100 % of the time (stick, max r/δ0 0.443, periodic after 266
+    revolutions)" and the rows "| paper | 4500 | stick (0 % contact, 100 % stuck) |", "| paper | 10500 | impact (56 %
+    contact, 0 % stuck) |" with their 1X / 2X / Σ3X–5X velocities (reports.studies.findings, reports.studies.mesh)."""
+    _findings_rows("paper", paper_points)
+
+
+def test_findings_points_a_and_b_on_the_converged_mesh():
+    """study-findings.md, 2 elements per segment: point A "yes: 2X/1X disk 1 0.005, disk 2 0.038, support 0.101 …
+    periodic after 589 revolutions" and "| 2/segment | 10500 | impact (46 % contact, 0 % stuck) |" (the support's 1X
+    24.1 mm/s against 7.71 on the paper's mesh)."""
+    _findings_rows("2/segment", _points(2))
+
+
+def test_cascade_statements_follow_from_its_committed_csv():
+    """study-cascade.md against study-cascade.csv (what ``study publish`` wrote beside it): "1X is 79.2 % (median
+    over speeds and locations) of the 1X–5X sum; lowest 25.0 %", the regime bands "0–5100 rpm stick; 5400–6000 rpm
+    contact; 6300–18000 rpm impact" and the 20 speeds without a periodic steady state (reports/studies/cascade.py's
+    formulas on the table's values)."""
+    rows = _csv("study-cascade.csv")
+    rpm = np.array([float(r["speed_rpm"]) for r in rows])
+    V = np.array([[[float(r[f"{loc}_v{h}X_mm_s"]) for h in range(1, 6)] for loc in LOCATIONS] for r in rows])
+    share = (V[:, :, 0] / np.maximum(V.sum(axis=2), 1e-30))[rpm > 0]
+    md = _md("study-cascade.md")
+    assert (f"1X is {100 * np.median(share):.1f} % (median over speeds and locations) of the 1X–5X sum; lowest "
+            f"{100 * share.min():.1f} %") in md
+    bands: list = []
+    for r, lab in zip(rpm, (r["regime"] for r in rows)):
+        if bands and bands[-1][0] == lab:
+            bands[-1][2] = r
+        else:
+            bands.append([lab, r, r])
+    assert "**Loose-support regime by speed:** " + "; ".join(f"{a:.0f}–{b:.0f} rpm {lab}" for lab, a, b in bands) in md
+    open_ = [f"{r:.0f}" for r, row in zip(rpm, rows) if row["converged"] != "1"]
+    assert "harmonics): " + ", ".join(open_) + " rpm." in md and len(open_) == 20
+
+
+def test_study_map_counts_follow_from_its_committed_csv():
+    """study-map.md: "Counts: beyond law 2, contact 9, impact 43, stick 11 of 65 points; 27 without a periodic steady
+    state", from study-map.csv (reports/studies/regime_map.py's count on the table's regimes)."""
+    rows = _csv("study-map.csv")
+    c = Counter(r["regime"] for r in rows)
+    line = ("Counts: " + ", ".join(f"{k} {v}" for k, v in sorted(c.items())) + f" of {len(rows)} points; "
+            f"{sum(r['converged'] != '1' for r in rows)} without a periodic steady state.")
+    assert line in _md("study-map.md")
+
+
+def test_sensitivity_trend_counts_follow_from_the_committed_points():
+    """study-sensitivity.md: the trend table by speed and "2X fell with δ0 in 18/67 and 3X in 16/67; 2X rose with δ
+    in 65/66 and 3X in 29/66; Σ3X–5X was ≥ 30 % lower without tilt in 58/66", recomputed by reports/sensitivity.py
+    from study-sensitivity-points.csv (the points themselves: the slow
+    tests/rotor/studies/test_study_sensitivity.py::test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers)."""
+    from reports import sensitivity as rep
+    from reports.sensitivity_figure import tables_from_points_csv
+
+    tabs, _ = tables_from_points_csv(PUBLISHED / "study-sensitivity-points.csv")
+    table, tot = rep._trends(tabs)
+    md = _md("study-sensitivity.md")
+    assert table in md
+    assert (f"2X fell with δ0 in {tot['c2'][0]}/{tot['c2'][1]} and 3X in {tot['c3'][0]}/{tot['c3'][1]}; 2X rose with δ "
+            f"in {tot['m2'][0]}/{tot['m2'][1]} and 3X in {tot['m3'][0]}/{tot['m3'][1]}; Σ3X–5X was ≥ 30 % lower without "
+            f"tilt in {tot['t'][0]}/{tot['t'][1]}.") in md
+
+
+def _spaced(n: float) -> str:
+    """An integer with a space between thousands, as the hand-written readings write them ("1 202")."""
+    return f"{n:,.0f}".replace(",", " ")
+
+
+def test_branch_reports_agree_with_the_published_branch_data():
+    """perf-branch-switches.md and study-bifurcation.md against the run's published data (perf-branch-switches.json,
+    study-bifurcation.json; the run itself takes 40 minutes and verifies sampled orbits by independent shooting):
+    "| orbits | 1202 |", "| stable / unstable orbits | 1007 / 195 |", "| corrector stalls | 212 |", the restarts by
+    kind; the reading's "It reached 18 000 rpm (1 202 orbits, 2 282 s", "Restarts: 68" and "peaks at 149 mm/s at
+    4 258 rpm"; both files from the same orbits."""
+    bench = json.loads((PUBLISHED / "perf-branch-switches.json").read_text(encoding="utf-8"))
+    (seg,) = json.loads((PUBLISHED / "study-bifurcation.json").read_text(encoding="utf-8"))
+    pts = seg["points"]
+    assert [p["speed_rpm"] for p in pts] == bench["speeds_rpm"] and [p["stable"] for p in pts] == bench["stable"]
+    stable = sum(bench["stable"])
+    perf = _md("perf-branch-switches.md")
+    for row in (f"| orbits | {len(pts)} |", f"| reached | {max(bench['speeds_rpm']):.1f} rpm |",
+                f"| stop | {bench['stop']} |", f"| wall | {bench['wall_s']:.0f} s |",
+                "| restarts by kind | " + ", ".join(f"{k} {v}" for k, v in bench["restarts"].items()) + " |",
+                f"| corrector stalls | {len(bench['corrector_failures'])} |",
+                f"| stable / unstable orbits | {stable} / {len(pts) - stable} |"):
+        assert row in perf, row
+    assert all(v["residual"] < 1e-8 and v["shoot_converged"] for v in bench["verified"])
+    reading = _md("study-bifurcation.md")
+    assert (f"It reached {_spaced(max(p['speed_rpm'] for p in pts))} rpm ({_spaced(len(pts))} orbits, "
+            f"{_spaced(seg['wall_s'])} s") in reading and seg["stop"] == "end reached"
+    assert f"**Restarts: {sum(seg['restarts'].values())}, each reported" in reading
+    assert sum(p["restarted"] is not None for p in pts) == sum(seg["restarts"].values())
+    peak = max(pts, key=lambda p: p["velocity_amplitudes_mm_s_1X_to_5X_disk1.y"][0])
+    assert (f"peaks at {peak['velocity_amplitudes_mm_s_1X_to_5X_disk1.y'][0]:.0f} mm/s at "
+            f"{_spaced(peak['speed_rpm'])} rpm") in reading
+
+
+#: study-testrig.md's settings (reports/cli/study.py: _testrig): (speed rpm, clearance mm, misalignment mm)
+TESTRIG_CASES = ((3600.0, 0.01, 1.0), (3600.0, 0.05, 1.0), (3600.0, 0.05, 3.0),
+                 (5500.0, 0.01, 1.0), (5500.0, 0.05, 1.0), (5500.0, 0.05, 3.0))
+
+
+@pytest.mark.slow
+def test_testrig_points_reproduce_the_published_table():
+    """study-testrig.md: the six steady states of the Table 5 rig (3 600 and 5 500 rpm; clearance 0.01 / 0.05 mm at
+    δ = 1 mm, δ = 3 mm at 0.05 mm), each stick with 0 % contact, and the sums of 2X–5X at disk 2 and the support
+    ("| 3600 | 0.01 | 1 | stick | 0 | 1.684 | 0.4701 |", "3 vs 1 mm gives 4.3 vs 1.68 mm/s at disk 2") to their
+    four printed digits. About 10 s a point on the shared machine: slow."""
+    from rotor.studies.steady_state import run_point
+
+    md = _md("study-testrig.md")
+    for rpm, c_mm, d_mm in TESTRIG_CASES:
+        arrays, info = run_point("paper-table5-testrig", rpm, options=OPTIONS, clearance_m=c_mm * 1e-3,
+                                 misalignment_m=d_mm * 1e-3)
+        ch = list(arrays["channels"])
+        s = [np.abs(arrays["harm_v"])[1:5, ch.index(name)].sum() * 1e3 for name in ("disk2.y", "s.y")]
+        row = f"| {rpm:.0f} | {c_mm:g} | {d_mm:g} | {info['label']} | {100 * info['contact_fraction']:.0f} | " \
+              f"{s[0]:.4g} | {s[1]:.4g} |"
+        assert row in md, row
