@@ -1,0 +1,463 @@
+"""The published claims and the test that guards each: plain data, checked by tests/test_claims.py and listed in
+reports/published/claims.md by benchmarks/list_claims.py.
+
+:data:`CLAIMS`: one entry per claimed number. ``report`` is the file (relative to the repository root),
+``claim`` a short quote of the number with its context exactly as the file has it (the check fails when the
+report changes, so the registry follows it), ``test`` the pytest node id of the test that recomputes or checks
+it (parametrized ids dropped) and ``tier`` ``"default"`` (run by ``python3 dev.py test``) or ``"slow"``
+(``-m slow`` only).
+
+:data:`NOT_CLAIMS`: Markdown reports of reports/published/ with no registered claim, each with the reason.
+
+:data:`UNGUARDED`: numbers a report or README.md still states that no test guards, each with the reason (a stale
+number or a wall time no test may assert); each must still be in its file, so fixing one removes its entry.
+"""
+from __future__ import annotations
+
+CLAIMS = (
+    # README.md: its numbers against the reports they come from (tests/test_readme_numbers.py) or recomputed
+    dict(report="README.md",
+         claim="the conformal and Pereira laws reproduce the paper's Table 2 percentages to 0.01 points",
+         test="tests/test_readme_numbers.py::test_table2_agreement_is_the_laws_report_s", tier="default"),
+    dict(report="README.md", claim="(clamped 10 mm rings are 4–10× stiffer)",
+         test="tests/test_published_fem.py::test_paper_implied_loads_and_the_clamped_rings_stiffness_ratio",
+         tier="default"),
+    dict(report="README.md", claim="with the calibrated laws (held-out error ≤ 0.7 %)",
+         test="tests/test_readme_numbers.py::test_held_out_error_bound_is_the_accuracy_report_s", tier="default"),
+    dict(report="README.md", claim="the Table 1 file through the same job reproduces the committed datasets and calibrations exactly",
+         test="tests/reports/test_bearing_job.py::test_table1_through_the_job_reproduces_the_committed_data",
+         tier="slow"),
+    dict(report="README.md", claim="(2X/1X 0.015 / 0.16 / 0.34 at disk 1 / disk 2 / support)",
+         test="tests/test_readme_numbers.py::test_misalignment_ratios_are_the_rotor_misalignment_report_s",
+         tier="default"),
+    dict(report="README.md", claim="the former opposed pair on the locked joint cancels (4.6e-3 at the support)",
+         test="tests/test_readme_numbers.py::test_misalignment_ratios_are_the_rotor_misalignment_report_s",
+         tier="default"),
+    dict(report="README.md",
+         claim="puts the third forward critical speed at 9 608 rpm, +9.9 % on the converged 8 744 rpm; two elements per segment are within 0.63 %",
+         test="tests/test_readme_numbers.py::test_critical_speed_mesh_numbers_are_the_rotor_mesh_report_s",
+         tier="default"),
+    dict(report="README.md", claim="2 converge the critical speeds to 1 %",
+         test="tests/test_readme_numbers.py::test_critical_speed_mesh_numbers_are_the_rotor_mesh_report_s",
+         tier="default"),
+    dict(report="README.md", claim="a Table 4 cascade point takes a median 1.4 s",
+         test="tests/test_readme_numbers.py::test_sweep_cost_follows_from_the_cascade_and_dask_reports",
+         tier="default"),
+    dict(report="README.md", claim="about 2 600 points per core-hour",
+         test="tests/test_readme_numbers.py::test_sweep_cost_follows_from_the_cascade_and_dask_reports",
+         tier="default"),
+    dict(report="README.md", claim="measures dask at the local pool's throughput once workers are warm (0.999×)",
+         test="tests/test_readme_numbers.py::test_sweep_cost_follows_from_the_cascade_and_dask_reports",
+         tier="default"),
+    dict(report="README.md", claim="about 39 core-hours",
+         test="tests/test_readme_numbers.py::test_sweep_cost_follows_from_the_cascade_and_dask_reports",
+         tier="default"),
+    dict(report="README.md",
+         claim="over about 67 colliding variant–speed pairs 2X rises with δ in 65 of 66, ignoring the tilt lowers 3X–5X by ≥ 30 % in 58 of 66, 3X rises with δ in 29 of 66 and the clearance trend holds in 16–18 of 67",
+         test="tests/test_readme_numbers.py::test_sensitivity_counts_are_the_sensitivity_report_s", tier="default"),
+    dict(report="README.md", claim="(16 min with 1 worker, resumable)",
+         test="tests/test_readme_numbers.py::test_sensitivity_counts_are_the_sensitivity_report_s", tier="default"),
+
+    # laws-vs-paper.md (demo report: rebuilt byte for byte)
+    dict(report="reports/published/laws-vs-paper.md",
+         claim="largest difference 0.009 points (tolerance ±0.05 points) — **met**",
+         test="tests/reports/test_demo_reproducible.py::test_the_demo_rebuilds_the_committed_reports_byte_for_byte",
+         tier="default"),
+    dict(report="reports/published/laws-vs-paper.md",
+         claim="Johnson's law has a solution only up to Δr = 4δ0/e² = 0.0271 mm",
+         test="tests/contact/test_contact_laws.py::test_johnson_domain_matches_table2_blanks", tier="default"),
+    dict(report="reports/published/laws-vs-paper.md", claim="| 0.01 | 33.56 | 0.3015 | 50 272 | 33 644 | 31 145 |",
+         test="tests/contact/test_contact_laws.py::test_conformal_reproduces_reconstructed_loads", tier="default"),
+    dict(report="reports/published/laws-vs-paper.md", claim="(differences -3.67, -0.38 points)",
+         test="tests/reports/test_demo_reproducible.py::test_the_demo_rebuilds_the_committed_reports_byte_for_byte",
+         tier="default"),
+
+    # accuracy-table2.md (demo report)
+    dict(report="reports/published/accuracy-table2.md",
+         claim="`clamped` (clamped-foundation): 0.01 mm: 0.096 % < 12.01 %",
+         test="tests/reports/test_accuracy_report.py::test_committed_held_out_cells_and_must_show_lines",
+         tier="default"),
+    dict(report="reports/published/accuracy-table2.md", claim="Overall: **met** for the 2D (Table 2) points",
+         test="tests/reports/test_accuracy_report.py::test_committed_held_out_cells_and_must_show_lines",
+         tier="default"),
+    dict(report="reports/published/accuracy-table2.md",
+         claim="largest held-out error 0.06 % over 15 of the paper's 15 cells",
+         test="tests/reports/test_accuracy_report.py::test_committed_report_is_what_the_builder_writes_now",
+         tier="default"),
+    dict(report="reports/published/accuracy-table2.md", claim="held-out RMS 0.314 %, max 0.722 % over the whole range",
+         test="tests/reports/test_accuracy_report.py::test_committed_report_is_what_the_builder_writes_now",
+         tier="default"),
+    dict(report="reports/published/accuracy-table2.md",
+         claim="The fitted foundation modulus is 0.9988 × M/(h_b + h_s) = 1.373e+13 Pa/m",
+         test="tests/contact/test_calibration.py::test_clamped_foundation_modulus_is_the_constrained_modulus_over_ring_thickness",
+         tier="default"),
+
+    # bearing-table1-reproduction.md
+    dict(report="reports/published/bearing-table1-reproduction.md",
+         claim="| 2D force, scene clamped | 12 | 0.00e+00 | 4.53e-04 | 0 |",
+         test="tests/test_published_fem.py::test_table1_ring_file_reproduces_a_committed_2d_point", tier="default"),
+    dict(report="reports/published/bearing-table1-reproduction.md", claim="| 3D force | 30 | 1.18e-14 | 6.47e-03 | 0 |",
+         test="tests/reports/test_bearing_job.py::test_table1_through_the_job_reproduces_the_committed_data",
+         tier="slow"),
+    dict(report="reports/published/bearing-table1-reproduction.md",
+         claim="| `clamped-foundation` | foundation / foundation | foundation_modulus_Pa_per_m | 1.37149162209e+13 | 1.37149162209e+13 | 0.0e+00 |",
+         test="tests/contact/test_calibration.py::test_stored_calibrations_match_a_refit_of_the_committed_dataset",
+         tier="default"),
+
+    # bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md
+    dict(report="reports/published/bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md",
+         claim="Checks: holdout_max_rel_2d 0.895 %; fem2d_error_max_rel 0.074 %; holdout_max_rel_3d_zero_tilt 0.997 %",
+         test="tests/test_published_fem.py::test_steel_in_aluminium_law_refits_from_its_committed_fem", tier="default"),
+    dict(report="reports/published/bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md",
+         claim="foundation_modulus_Pa_per_m = 3.89956e+12 ± 7.8e+09 Pa/m",
+         test="tests/test_published_fem.py::test_steel_in_aluminium_law_refits_from_its_committed_fem", tier="default"),
+
+    # perf-bearing.md (the stage times are wall times; the law's checks are recomputed)
+    dict(report="reports/published/perf-bearing.md",
+         claim="Law of the tilted run: `steel-in-aluminium-3d-foundation` (foundation); checks: holdout_max_rel_2d 0.895 %",
+         test="tests/test_published_fem.py::test_steel_in_aluminium_law_refits_from_its_committed_fem", tier="default"),
+
+    # fem-verification-dissimilar.md
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="| shrink fit, plane strain | 1.44915e+08 | 1.44916e+08 | 31829.2 | 895.019 | +6.18e-06 | yes |",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_shrink_fit_interface_pressure_within_its_error_estimate",
+         tier="default"),
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="Deviation ratio per halving of h/R: 2.50, 3.57 (≥ 1: falls at every halving: yes)",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_thin_rings_tend_to_the_winkler_foundation_law",
+         tier="default"),
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="| Winkler, h/R = 0.2, penetration_m 3e-05, half_angle_deg 58.6524 | 313132 | 313708 | 8.99922 | 576.222 | +1.84e-03 | limit |",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_thin_rings_at_a_wide_arc_are_within_two_per_mille_of_winkler",
+         tier="slow"),
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="| Persson, plate 20, penetration_m 1.2e-05, half_angle_deg 21.0799 | 11105.8 | 11102.3 | 8.5026 | -3.57435 | -3.22e-04 | yes |",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_persson_dissimilar_load_vs_measured_angle_follows_the_law_with_alpha",
+         tier="default"),
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="ratio 10 +1.36%, ratio 20 +0.39%, ratio 40 +0.11%, ratio 80 +0.14%",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_steel_in_aluminium_needs_the_beta_term",
+         tier="default"),
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="| 2D scaling x2, plane strain, penetration_m 1e-05 | 212076 | 212066 | 48.1241 | -10.2913 | -4.85e-05 | yes |",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_doubling_every_length_quadruples_the_2d_force",
+         tier="default"),
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="| 3D scaling x2, force, penetration_m 1e-05 | 178735 | 178735 | 1328.12 | 0 | +0.00e+00 | yes |",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_3d_scaling_on_the_reference_levels_within_stated_errors",
+         tier="slow"),
+    dict(report="reports/published/fem-verification-dissimilar.md",
+         claim="| 3D fixed ends vs 2D plane strain, penetration_m 1e-05 | 53019.1 | 53012.6 | 46.3916 | -6.51499 | -1.23e-04 | yes |",
+         test="tests/fem_reference/test_dissimilar_verification.py::test_3d_fixed_ends_equal_2d_plane_strain_on_reference_levels",
+         tier="slow"),
+
+    # fem2d-benchmark.md (its times are wall times)
+    dict(report="reports/published/fem2d-benchmark.md",
+         claim="**36/36** points with estimated force error ≤ 0.1 % (largest 8.5e-04)",
+         test="tests/fem_reference/plane/test_fem_dataset.py::test_committed_dataset_is_complete", tier="default"),
+
+    # fem2d-paper-setup.md
+    dict(report="reports/published/fem2d-paper-setup.md", claim="(paper: 6.77; the closed-form conformal law: 5.70)",
+         test="tests/test_published_fem.py::test_paper_implied_loads_and_the_clamped_rings_stiffness_ratio",
+         tier="default"),
+    dict(report="reports/published/fem2d-paper-setup.md",
+         claim="Kinematically driven rings (rigid inner surface, support clamped) are 4–10× too stiff",
+         test="tests/test_published_fem.py::test_paper_implied_loads_and_the_clamped_rings_stiffness_ratio",
+         tier="default"),
+    dict(report="reports/published/fem2d-paper-setup.md",
+         claim="0 of 20 come within 5 % of the paper at all five points",
+         test="tests/test_published_fem.py::test_paper_implied_loads_and_the_clamped_rings_stiffness_ratio",
+         tier="default"),
+
+    # fem2d-reference.md
+    dict(report="reports/published/fem2d-reference.md",
+         claim="Largest estimated force error 8.5e-04 (12/12 points ≤ 0.1 %)",
+         test="tests/test_published_fem.py::test_fem2d_reference_tables_are_what_the_builder_writes", tier="default"),
+    dict(report="reports/published/fem2d-reference.md",
+         claim="Within 10°–70°: largest |FE/law − 1| = 0.67% over 9 points",
+         test="tests/fem_reference/plane/test_fem_solver.py::test_persson_load_vs_measured_angle_within_one_percent",
+         tier="default"),
+    dict(report="reports/published/fem2d-reference.md", claim="| P2 | strain | 2 | 3.60711 | 3.60712 | -3.5e-06 |",
+         test="tests/test_published_fem.py::test_lame_ring_p2_within_the_published_error", tier="default"),
+    dict(report="reports/published/fem2d-reference.md",
+         claim="Δr = 0.01 mm: compliance Δr/F vs ln(R_o/R_b): slope 0.0546 µm/kN per unit ln, R² = 0.9959.",
+         test="tests/fem_reference/plane/test_fem_solver.py::test_persson_load_vs_penetration_falls_as_the_plate_grows",
+         tier="default"),
+
+    # fem3d-perf.md (its times are wall times)
+    dict(report="reports/published/fem3d-perf.md",
+         claim="Committed value of this point (`fem3d-reference.json`, levels Q0, Q1, Q2): 1193.37 kN, -2.1005 kN·m",
+         test="tests/test_published_fem.py::test_fem3d_perf_point_is_the_committed_one", tier="default"),
+
+    # fem3d-reference.md
+    dict(report="reports/published/fem3d-reference.md",
+         claim="Largest stated error: force 1.51 %, moment 0.61 % (acceptance: 2 %)",
+         test="tests/test_published_fem.py::test_fem3d_reference_point_table_is_what_the_builder_writes",
+         tier="default"),
+    dict(report="reports/published/fem3d-reference.md",
+         claim="At the 15 Table 3 points (0.5′, 1′, 2′ × 0.01–0.05 mm): force 0.23 % (must show ≤ 0.3 %), moment 0.44 % (must show ≤ 0.5 %)",
+         test="tests/fem_reference/solid/test_fem3d_dataset.py::test_table3_points_meet_the_stated_accuracy",
+         tier="default"),
+    dict(report="reports/published/fem3d-reference.md",
+         claim="Every stated error bounds the difference to the finer check level: **yes**",
+         test="tests/fem_reference/solid/test_fem3d_dataset.py::test_stated_errors_bound_the_finer_solve",
+         tier="default"),
+    dict(report="reports/published/fem3d-reference.md", claim="Largest moment difference: 0.59 % (must show: within 1 %).",
+         test="tests/fem_reference/solid/test_fem3d_solver.py::test_tilted_moments_agree_with_the_hexahedral_model",
+         tier="slow"),
+    dict(report="reports/published/fem3d-reference.md", claim="about 12 % below plane strain",
+         test="tests/fem_reference/solid/test_fem3d_solver.py::test_free_ends_between_plane_stress_and_plane_strain",
+         tier="default"),
+
+    # perf-branch-switches.md (a 40-minute run: its summary against its published data)
+    dict(report="reports/published/perf-branch-switches.md", claim="| orbits | 1202 |",
+         test="tests/test_published_studies.py::test_branch_reports_agree_with_the_published_branch_data",
+         tier="default"),
+    dict(report="reports/published/perf-branch-switches.md", claim="| stable / unstable orbits | 1007 / 195 |",
+         test="tests/test_published_studies.py::test_branch_reports_agree_with_the_published_branch_data",
+         tier="default"),
+
+    # perf-friction-events.md
+    dict(report="reports/published/perf-friction-events.md",
+         claim="| non-stop | 0.1 | 50 | 800 | 3.78e-04 | 9.85e-06 | 2.03 |",
+         test="tests/rotor/dynamics/test_friction_events.py::test_den_hartog_non_stop_amplitude_converges_at_second_order",
+         tier="default"),
+    dict(report="reports/published/perf-friction-events.md",
+         claim="| stick-slip | 0.1 | 25 | 3200 | 3.35e-04 | 7.06e-07 | 2.03 |",
+         test="tests/rotor/dynamics/test_friction_events.py::test_den_hartog_stick_slip_amplitude_converges_at_second_order",
+         tier="default"),
+    dict(report="reports/published/perf-friction-events.md", claim="| 50 | 100 | 6.7436e-04 | 2.77e-05 | 2.90e-16 |",
+         test="tests/rotor/dynamics/test_friction_events.py::test_undamped_den_hartog_reaches_a_periodic_state",
+         tier="default"),
+
+    # perf-grazing.md
+    dict(report="reports/published/perf-grazing.md",
+         claim="Closed form (warped): grazing 279.570680 rad/s, grazing fold 374.300780 rad/s, fold 445.873221 rad/s.",
+         test="tests/rotor/periodic/test_grazing.py::test_grazings_and_fold_match_the_warped_closed_form",
+         tier="default"),
+    dict(report="reports/published/perf-grazing.md", claim="| down | plain | step below ds_min | 16 | 0 |",
+         test="tests/rotor/periodic/test_grazing.py::test_plain_continuation_stops_at_the_grazing_fold", tier="default"),
+    dict(report="reports/published/perf-grazing.md", claim="| down | grazing | end reached | 63 | 0 | 200.0000 |",
+         test="tests/rotor/periodic/test_grazing.py::test_both_sweeps_pass_every_corner_without_restart", tier="default"),
+    dict(report="reports/published/perf-grazing.md",
+         claim="grazing_fold 374.300780 (2.9e-11); fold 445.873216 (1.3e-08); grazing 279.570680 (1.5e-10) | 7.5e-10 |",
+         test="tests/rotor/periodic/test_grazing.py::test_whole_curve_within_1e_6_of_the_warped_closed_form",
+         tier="default"),
+
+    # perf-integrators.md
+    dict(report="reports/published/perf-integrators.md",
+         claim="max over time of ‖q_ref − q_prod‖₂ / max ‖q_prod − Δq_m‖₂ = **8.29e-07**",
+         test="tests/rotor/dynamics/test_dynamics_constraints.py::test_paper_and_production_scheme_agree",
+         tier="default"),
+    dict(report="reports/published/perf-integrators.md",
+         claim="| clearance 0.001 mm | q = 0 | 0 / 0 | 2 / 87 | 0 / 0 | 1 / 86 |",
+         test="tests/rotor/dynamics/test_dynamics_constraints.py::test_the_two_fixes_are_what_remove_chatter_and_stalls",
+         tier="default"),
+
+    # perf-law-vs-fem.md
+    dict(report="reports/published/perf-law-vs-fem.md", claim="at a maximum error of 0.27 % (fine FEM: 0.0034 %)",
+         test="tests/docs/test_gallery.py::test_calibrated_law", tier="default"),
+
+    # perf-located-monodromy.md (being reworked elsewhere: registered as asked)
+    dict(report="reports/published/perf-located-monodromy.md", claim="| 0.980533 / 0.980533 |",
+         test="tests/rotor/dynamics/test_period_map_events.py::test_table4_located_monodromy_through_stick_releases_and_contact_onsets",
+         tier="slow"),
+
+    # perf-period-map.md
+    dict(report="reports/published/perf-period-map.md",
+         claim="differs from the exact one by 1.2e-06 of its largest entry in those scaled coordinates, through the revolution's 4 stick/slip switches",
+         test="tests/rotor/dynamics/test_period_map.py::test_table4_monodromy_through_stick_slip_switches_equals_finite_differences",
+         tier="default"),
+
+    # perf-richardson.md
+    dict(report="reports/published/perf-richardson.md",
+         claim="with 128 then 256 steps it is within 1e-6 everywhere on the curve, folds included",
+         test="tests/rotor/periodic/test_richardson.py::test_extrapolated_orbits_within_1e_6_of_the_continuous_time_closed_form",
+         tier="default"),
+
+    # perf-shooting.md
+    dict(report="reports/published/perf-shooting.md",
+         claim="**1X–5X within 1e-4 of the transient: holds** (2.3e-05; from the transient's end state 2.3e-05)",
+         test="tests/rotor/studies/test_orbit.py::test_shooting_from_the_transient_state_reproduces_its_harmonics",
+         tier="default"),
+    dict(report="reports/published/perf-shooting.md",
+         claim="2 neutral multipliers (a face stuck through the orbit: a continuum of orbits",
+         test="tests/rotor/studies/test_orbit.py::test_a_stuck_face_makes_a_continuum_and_the_cold_orbit_is_the_transients_member",
+         tier="default"),
+
+    # rotor-mesh.md
+    dict(report="reports/published/rotor-mesh.md",
+         claim="puts the third forward critical speed at 9608 rpm, +9.9 % from the converged 8744 rpm",
+         test="tests/test_published_rotor.py::test_paper_mesh_puts_the_third_critical_speed_ten_percent_high",
+         tier="default"),
+    dict(report="reports/published/rotor-mesh.md",
+         claim="2 elements per segment bring every critical speed within 1 % (0.63 % worst)",
+         test="tests/test_published_rotor.py::test_paper_mesh_puts_the_third_critical_speed_ten_percent_high",
+         tier="default"),
+    dict(report="reports/published/rotor-mesh.md", claim="(16 elements: all four modes within 0.1 %)",
+         test="tests/rotor/linear/test_rotor_closed_forms.py::test_pinned_pinned_euler_bernoulli_first_four_modes",
+         tier="default"),
+    dict(report="reports/published/rotor-mesh.md", claim="48 elements bring mode 4 within 0.1 %",
+         test="tests/rotor/linear/test_rotor_closed_forms.py::test_pinned_pinned_timoshenko_first_four_modes",
+         tier="default"),
+
+    # rotor-misalignment.md
+    dict(report="reports/published/rotor-misalignment.md",
+         claim="| 2F on the joint, to ground through the bearings (like an unbalance force) | 0.0152 | 0.1621 | 0.3368 |",
+         test="tests/test_published_rotor.py::test_rotor_misalignment_report_is_what_the_builder_writes_now",
+         tier="default"),
+    dict(report="reports/published/rotor-misalignment.md",
+         claim="only the moment pair acts (on the angular spring) | 0.0046 | 0.0404 | 0.1020 |",
+         test="tests/test_published_rotor.py::test_rotor_misalignment_report_is_what_the_builder_writes_now",
+         tier="default"),
+
+    # rotor-table4.md
+    dict(report="reports/published/rotor-table4.md", claim="| 1 | 40.54 | 2433 |",
+         test="tests/test_published_rotor.py::test_rotor_table4_report_is_what_the_builder_writes_now", tier="default"),
+    dict(report="reports/published/rotor-table4.md", claim="| 1X | 9608 | 160.14 | forward |",
+         test="tests/test_published_rotor.py::test_rotor_table4_report_is_what_the_builder_writes_now", tier="default"),
+    dict(report="reports/published/rotor-table4.md", claim="2441 rpm (disk1 0%, disk2 52%, s (support) 41%)",
+         test="tests/test_published_rotor.py::test_rotor_table4_report_is_what_the_builder_writes_now", tier="default"),
+
+    # rotor-testrig.md
+    dict(report="reports/published/rotor-testrig.md",
+         claim="| 1: localized at disk 2 | 3319 | 2596 (-21.8%) | 3317 (-0.1%) | 3221 (-2.9%) |",
+         test="tests/test_published_rotor.py::test_testrig_critical_speeds_under_the_three_readings", tier="default"),
+    dict(report="reports/published/rotor-testrig.md",
+         claim="| 2: localized at disk 1 | 5184 | 7405 (+42.8%) | 7208 (+39.0%) | 5184 (fitted) |",
+         test="tests/test_published_rotor.py::test_testrig_critical_speeds_under_the_three_readings", tier="default"),
+
+    # section5-readings.md
+    dict(report="reports/published/section5-readings.md",
+         claim="`opposed-at-joint-long-sleeve` meets the most rows (17) and is the scene's reading",
+         test="tests/reports/test_section5_readings.py::test_point_b_contact_and_separation_only_with_the_default_reading",
+         tier="slow"),
+    dict(report="reports/published/section5-readings.md", claim="(contact 100 %, r2 never reaches δ0)",
+         test="tests/reports/test_section5_readings.py::test_point_b_contact_and_separation_only_with_the_default_reading",
+         tier="slow"),
+
+    # study-bifurcation.md (a 40-minute run: its reading against its published data)
+    dict(report="reports/published/study-bifurcation.md", claim="It reached 18 000 rpm (1 202 orbits, 2 282 s",
+         test="tests/test_published_studies.py::test_branch_reports_agree_with_the_published_branch_data",
+         tier="default"),
+    dict(report="reports/published/study-bifurcation.md", claim="peaks at 149 mm/s at 4 258 rpm",
+         test="tests/test_published_studies.py::test_branch_reports_agree_with_the_published_branch_data",
+         tier="default"),
+    dict(report="reports/published/study-bifurcation.md", claim="**Restarts: 68, each reported",
+         test="tests/test_published_studies.py::test_branch_reports_agree_with_the_published_branch_data",
+         tier="default"),
+
+    # study-cascade.md
+    dict(report="reports/published/study-cascade.md",
+         claim="1X is 79.2 % (median over speeds and locations) of the 1X–5X sum; lowest 25.0 %",
+         test="tests/test_published_studies.py::test_cascade_statements_follow_from_its_committed_csv",
+         tier="default"),
+    dict(report="reports/published/study-cascade.md",
+         claim="**Loose-support regime by speed:** 0–5100 rpm stick; 5400–6000 rpm contact; 6300–18000 rpm impact.",
+         test="tests/test_published_studies.py::test_cascade_statements_follow_from_its_committed_csv",
+         tier="default"),
+    dict(report="reports/published/study-cascade.md",
+         claim="sum 3X–5X ≥ 9 000 rpm, ratio to disk 1: disk 2 median 11.6, support median 15.2",
+         test="tests/rotor/studies/test_study_slow.py::test_figure12_cascade_61_speeds_two_processes", tier="slow"),
+    dict(report="reports/published/study-cascade.md",
+         claim="2X/1X below 9 000 rpm: disk 1 median 0.0534, disk 2 0.113, support 0.115",
+         test="tests/rotor/studies/test_study_slow.py::test_figure12_cascade_61_speeds_two_processes", tier="slow"),
+
+    # study-findings.md
+    dict(report="reports/published/study-findings.md",
+         claim="Point A (Fig. 13, 4 500 rpm), paper's mesh: yes: 2X/1X disk 1 0.005, disk 2 0.040, support 0.101",
+         test="tests/test_published_studies.py::test_findings_points_a_and_b_on_the_paper_mesh", tier="default"),
+    dict(report="reports/published/study-findings.md", claim="| paper | 10500 | impact (56 % contact, 0 % stuck) |",
+         test="tests/test_published_studies.py::test_findings_points_a_and_b_on_the_paper_mesh", tier="default"),
+    dict(report="reports/published/study-findings.md", claim="| 2/segment | 10500 | impact (46 % contact, 0 % stuck) |",
+         test="tests/test_published_studies.py::test_findings_points_a_and_b_on_the_converged_mesh", tier="default"),
+    dict(report="reports/published/study-findings.md",
+         claim="2 elements per segment 2441, 4269, 8799 (third +9.2 % on the paper's mesh)",
+         test="tests/test_published_rotor.py::test_paper_mesh_puts_the_third_critical_speed_ten_percent_high",
+         tier="default"),
+    dict(report="reports/published/study-findings.md",
+         claim="| §5.1 (Fig. 12): at high speed 3X–5X at disk 2 and the 3# bearing, more than at disk 1 | paper | — | — | yes | yes |",
+         test="tests/rotor/studies/test_study_paper.py::test_finding_in_band", tier="slow"),
+    dict(report="reports/published/study-findings.md",
+         claim="| §5.3.1 (1): below 9 000 rpm no relative displacement between bearing and support (faces stuck) | paper | yes | partly (2 of 14) |",
+         test="tests/rotor/studies/test_study_paper.py::test_finding_in_band", tier="slow"),
+
+    # study-map.md
+    dict(report="reports/published/study-map.md",
+         claim="Counts: beyond law 2, contact 9, impact 43, stick 11 of 65 points; 27 without a periodic steady state.",
+         test="tests/test_published_studies.py::test_study_map_counts_follow_from_its_committed_csv", tier="default"),
+
+    # study-params.md
+    dict(report="reports/published/study-params.md",
+         claim="2X decreases, 3X does not decrease → does not agree",
+         test="tests/rotor/studies/test_study_paper.py::test_finding_in_band", tier="slow"),
+    dict(report="reports/published/study-params.md", claim="1X varies by at most 5.4 % across δ",
+         test="tests/rotor/studies/test_study_paper.py::test_finding_in_band", tier="slow"),
+
+    # study-point.md (rebuilt whole)
+    dict(report="reports/published/study-point.md",
+         claim="| 4500 | stick | 0 | True (1) | 4.60e-03 | 1.01e-01 | 1.73e-06 | 1.42e-04 | 9.94e-05 | 0.443 |",
+         test="tests/test_published_studies.py::test_study_point_report_is_what_points_a_and_b_give_now",
+         tier="default"),
+    dict(report="reports/published/study-point.md",
+         claim="| 10500 | impact | 56 | True (1) | 1.89e-02 | 6.11e-01 | 7.79e-03 | 6.18e-02 | 8.01e-02 | 1.015 |",
+         test="tests/test_published_studies.py::test_study_point_report_is_what_points_a_and_b_give_now",
+         tier="default"),
+
+    # study-runup.md
+    dict(report="reports/published/study-runup.md", claim="1536340 steps of 13.0 µs",
+         test="tests/reports/test_budget.py::test_the_runup_estimate_counts_the_steps_the_runup_takes", tier="default"),
+    dict(report="reports/published/study-runup.md", claim="- disk 1: largest 1X 82.2 mm/s at 4296 rpm.",
+         test="tests/rotor/studies/test_study_slow.py::test_runup_passes_the_critical_speeds_with_continuous_phase",
+         tier="slow"),
+
+    # study-sensitivity.md
+    dict(report="reports/published/study-sensitivity.md",
+         claim="2X fell with δ0 in 18/67 and 3X in 16/67; 2X rose with δ in 65/66 and 3X in 29/66; Σ3X–5X was ≥ 30 % lower without tilt in 58/66.",
+         test="tests/test_published_studies.py::test_sensitivity_trend_counts_follow_from_the_committed_points",
+         tier="default"),
+    dict(report="reports/published/study-sensitivity.md",
+         claim="| base | I I I | no 1/3 (collision 1/3; all pts 1/3); 3X ratio 1.02 |",
+         test="tests/rotor/studies/test_study_sensitivity.py::test_reduced_study_through_the_sweep_reproduces_the_published_base_numbers",
+         tier="slow"),
+
+    # study-testrig.md
+    dict(report="reports/published/study-testrig.md", claim="| 3600 | 0.01 | 1 | stick | 0 | 1.684 | 0.4701 |",
+         test="tests/test_published_studies.py::test_testrig_points_reproduce_the_published_table", tier="slow"),
+    dict(report="reports/published/study-testrig.md",
+         claim="3 vs 1 mm gives 4.3 vs 1.68 mm/s at disk 2, 1.2 vs 0.47 at the support → agrees.",
+         test="tests/test_published_studies.py::test_testrig_points_reproduce_the_published_table", tier="slow"),
+)
+
+#: Markdown reports of reports/published/ without a registered claim: (file, reason)
+NOT_CLAIMS = (
+    ("reports/published/claims.md", "this registry's own listing, generated by benchmarks/list_claims.py"),
+    ("reports/published/perf-compile.md", "wall times only (compile vs cache load); tests never assert wall times"),
+    ("reports/published/perf-dask.md", "wall-time throughput only; the README's 0.999× is checked against it"),
+    ("reports/published/perf-laws.md", "evaluations per second only; tests never assert wall times"),
+    ("reports/published/perf-step-loop.md", "µs per step against commit 291495d's code, which the tree no longer has"),
+)
+
+#: numbers still stated that no test guards: (file, quote, reason)
+UNGUARDED = (
+    dict(report="README.md", claim="moves 1X by up to 9–11 % (partly)",
+         reason="stale: study-findings.md was regenerated (events located); it now gives 49.0 % at 10 200 rpm"),
+    dict(report="README.md", claim="by a median 65–70 % on the converged mesh (holds) but only 9 % on the paper's mesh",
+         reason="stale: the regenerated study-findings.md has no such median (tilt: yes on the paper's mesh, n/a on the converged)"),
+    dict(report="README.md", claim="−22 % on the converged one",
+         reason="stale: not in the regenerated study-findings.md"),
+    dict(report="README.md", claim="at 10 500 rpm the bearing collides 54 % of the time and the support's 1X is 2.7× the paper mesh's",
+         reason="stale: study-findings.md now gives 46 % contact and 24.1 against 7.71 mm/s (3.1×)"),
+    dict(report="README.md", claim="(220 points, 14 min with",
+         reason="wall time of one run, in no report"),
+    dict(report="README.md", claim="the budget's worst case is 3.45 h",
+         reason="the budget estimate of that run, in no report"),
+    dict(report="README.md", claim="made the continuation's SVD 370 times slower",
+         reason="a wall-time ratio; the file cited (reports/cli/__init__.py) does not state it"),
+    dict(report="README.md", claim="about 0.7 MB each (NPZ)",
+         reason="stored point size, measured once, in no report"),
+    dict(report="README.md", claim="about 5 kB a point (0.5 GB as netCDF)",
+         reason="exported point size, measured once, in no report"),
+    dict(report="README.md", claim="the main job: law, accuracy and FEM reports under reports/published/ (~10 s)",
+         reason="wall time; tests never assert wall times"),
+)
