@@ -58,17 +58,18 @@ from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jac
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
 #: the differencing steps of an event block's derivative (:func:`_step_jacobian`), relative to each component's scale:
-#: a ladder from 1.28e-4 down by factors of 2 to 1.25e-7. Each column's derivative is taken where two successive
+#: a ladder from 1.28e-4 down by factors of 4 to 1.25e-7. Each column's derivative is taken where two successive
 #: levels agree best. A fixed step fails on speeds nobody tuned it on: a stick onset after a slow creep has a
 #: large curvature (its central difference at 1e-5 off by 4e-5 of the step's derivative at 9 000 rpm) and a
 #: threshold of the step (the slow-slip hold's rectilinear test, a stick trial) can lie within 1e-6 of the
 #: recorded start (columns not smooth at 1e-6 at 9 000 rpm), while at 16 767 rpm a release block needed 1e-6
 #: (at 3e-6 the located monodromy was 1.9e-3 from central differences of the whole map; 3e-7 with the ladder).
 #: Chosen on five states (Table 4, T/512 after 60 revolutions at 8 400, 10 500, 12 000 and 16 767 rpm; the 9 000 rpm
-#: orbit, T/256): 1.9e-7, 5.3e-8, 5.1e-8, 3.0e-7, 4.3e-7; ladders starting at 3.2e-5 and 6.4e-5 reached 2.6e-6 and
-#: 1.0e-6 at 9 000 rpm. Checked on speeds drawn at random (tests/rotor/dynamics/test_monodromy_random_speeds.py,
+#: orbit, T/256): 4.9e-7, 1.9e-7, 4.4e-8, 3.0e-7, 7.3e-7; by factors of 2 (11 levels, twice the replays) 1.9e-7,
+#: 5.3e-8, 5.1e-8, 3.0e-7, 4.3e-7; ladders starting at 3.2e-5 and 6.4e-5 reached 2.6e-6 and 1.0e-6 at 9 000 rpm.
+#: Checked on speeds drawn at random (tests/rotor/dynamics/test_monodromy_random_speeds.py,
 #: benchmarks/bench_monodromy_random.py).
-LADDER = tuple(1.28e-4 * 0.5 ** k for k in range(11))
+LADDER = tuple(1.28e-4 * 0.25 ** k for k in range(6))
 #: a column whose best two successive levels still differ by more than this fraction of its size is not smooth at
 #: any level of the ladder (a threshold of the step within the smallest step of its start): counted and reported
 SHRINK_TOL = 1e-2
