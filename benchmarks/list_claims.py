@@ -52,11 +52,14 @@ def render(registry=None) -> str:
         lines.append(f"| `{c['report']}` | {_cell(c['claim'])} | `{c['test']}` | {c['tier']} |")
     lines += ["", "## Reports without a claim", "", "| report | why |", "|---|---|"]
     lines += [f"| `{report}` | {_cell(reason)} |" for report, reason in reg.NOT_CLAIMS]
-    lines += ["", "## Numbers no test guards", "",
-              f"{len(reg.UNGUARDED)} numbers the files still state that no test checks (each is quoted from its "
-              "file; the entry goes when the number is fixed or guarded).", "",
-              "| file | number | why |", "|---|---|---|"]
-    lines += [f"| `{u['report']}` | {_cell(u['claim'])} | {_cell(u['reason'])} |" for u in reg.UNGUARDED]
+    lines += ["", "## Numbers no test guards", ""]
+    if not reg.UNGUARDED:
+        lines += ["None: every number the files state is registered above with its test."]
+    else:
+        lines += [f"{len(reg.UNGUARDED)} numbers the files still state that no test checks (each is quoted from its "
+                  "file; the entry goes when the number is fixed or guarded).", "",
+                  "| file | number | why |", "|---|---|---|"]
+        lines += [f"| `{u['report']}` | {_cell(u['claim'])} | {_cell(u['reason'])} |" for u in reg.UNGUARDED]
     return "\n".join(lines) + "\n"
 
 

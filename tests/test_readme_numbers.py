@@ -110,3 +110,107 @@ def test_sensitivity_counts_are_the_sensitivity_report_s():
     assert "no reading and no variant makes all three hold at once" in README
     minutes = float(_one(r"Sweep wall time ([\d.]+) min over 1 run\(s\) with 1 worker processes", md).group(1))
     assert f"({minutes:.0f} min with 1 worker, resumable)" in README
+
+
+# study-findings.md: the README's bullet on the §5 findings, one test per statement. The table's columns after the
+# finding and the mesh are the speed bands L1, L2, H1 (9 000–12 000 rpm), H2, H3.
+FINDINGS_BULLET = _one(r"- `study-findings\.md`: [^\n]*", README).group(0)
+MESHES = {"paper": "paper's mesh", "2/segment": "2 elements/segment"}
+
+
+def _verdicts(finding: str) -> dict[str, list[str]]:
+    """The band verdicts of one finding row of study-findings.md's table, per mesh (``paper``, ``2/segment``)."""
+    rows = {}
+    for mesh in MESHES:
+        row = _one(rf"\| {re.escape(finding)}[^|]* \| {re.escape(mesh)} \|[^\n]*", _md("study-findings.md")).group(0)
+        rows[mesh] = [c.strip() for c in row.strip("|").split("|")[2:]]
+    assert all(len(cells) == 5 for cells in rows.values()), rows
+    return rows
+
+
+def _partly(cell: str) -> tuple[int, int]:
+    k, n = _one(r"^partly \((\d+) of (\d+)\)$", cell).groups()
+    return int(k), int(n)
+
+
+def _judged(mesh: str, finding: str, band: str) -> list[tuple[int, str, str]]:
+    """The periodic (judged) speeds of one finding and band in study-findings.md's "Numbers per speed":
+    (rpm, ✔ or ✘, the numbers)."""
+    md = _md("study-findings.md")
+    section = md.split(f"### {MESHES[mesh]}\n", 1)[1].split("\n#", 1)[0]
+    line = _one(rf"- \*\*{re.escape(finding)}[^*]*\*\*, {band}: [^\n]*", section).group(0)
+    judged = line.split(" Not periodic", 1)[0]
+    return [(int(s), mark, rest) for s, mark, rest in re.findall(r"(\d+) ([✔✘]) ([^;]*)", judged)]
+
+
+def test_findings_that_hold_are_the_findings_report_s():
+    """README "Point A (...) and the 3X–5X near the loose support at 9 000–12 000 rpm hold on both meshes":
+    study-findings.md's point A verdicts and the §5.1 H1 cells on both meshes."""
+    md = _md("study-findings.md")
+    for mesh in ("paper's mesh", "2 elements/segment"):
+        assert _one(rf"Point A \(Fig\. 13, 4 500 rpm\), {mesh}: (\w+)", md).group(1) == "yes"
+    assert all(cells[2] == "yes" for cells in _verdicts("§5.1 (Fig. 12)").values())
+    assert ("Point A (2X with 1X, highest at the support, support stuck) and the 3X–5X near the loose support at "
+            "9 000–12 000 rpm hold on both meshes") in FINDINGS_BULLET
+
+
+def test_misalignment_numbers_are_the_findings_report_s():
+    """README "Larger misalignment raises 2X in every band with two or more periodic speeds; at 9 000–12 000 rpm on
+    the converged mesh 3X rises at 1 of 2 periodic speeds and the support's 1X moves by 49.0 % at 10 200 rpm":
+    study-findings.md's §5.3.2 rows, and the 1X changes (disk 1 / disk 2 / support) at the failing speed."""
+    for cells in _verdicts("§5.3.2 (Fig. 19): 2X rises with δ").values():
+        for cell in cells:
+            assert cell == "yes" or int(_one(r"^n/a \((\d+) periodic", cell).group(1)) < 2, cell
+    k, n = _partly(_verdicts("§5.3.2 (Fig. 19): 3X rises with δ")["2/segment"][2])
+    failing = [(rpm, rest) for rpm, mark, rest in _judged("2/segment", "§5.3.2 (Fig. 19): 1X essentially unchanged",
+                                                          "H1") if mark == "✘"]
+    assert len(failing) == 1, failing
+    rpm, rest = failing[0]
+    support = _one(r"1X change [\d.]+ / [\d.]+ / ([\d.]+) %", rest).group(1)
+    assert (f"Larger misalignment raises 2X in every band with two or more periodic speeds; at 9 000–12 000 rpm on the "
+            f"converged mesh 3X rises at {k} of {n} periodic speeds and the support's 1X moves by {support} % at "
+            f"{_spaced(rpm)} rpm") in FINDINGS_BULLET
+
+
+def test_tilt_numbers_are_the_findings_report_s():
+    """README "Ignoring the tilt lowers 3X–5X by ≥ 30 % at the three speeds of 9 000–12 000 rpm where both cases are
+    periodic on the paper's mesh (9 300, 9 900, 12 000 rpm; none on the converged)": study-findings.md's §5.2 row
+    (threshold, H1 verdicts) and the speeds it judges."""
+    finding = "§5.2 (Fig. 16): ignoring the tilt markedly"
+    threshold = _one(r"\| §5\.2 \(Fig\. 16\): ignoring the tilt markedly \(≥ (\d+) %\)[^|]*\| paper \|",
+                     _md("study-findings.md")).group(1)
+    verdicts = _verdicts(finding)
+    assert verdicts["paper"][2] == "yes" and verdicts["2/segment"][2].startswith("n/a (0 periodic;")
+    speeds = [rpm for rpm, mark, _ in _judged("paper", finding, "H1")]
+    assert all(mark == "✔" for _, mark, _ in _judged("paper", finding, "H1"))
+    assert _judged("2/segment", finding, "H1") == []
+    words = {2: "two", 3: "three", 4: "four", 5: "five"}
+    assert (f"Ignoring the tilt lowers 3X–5X by ≥ {threshold} % at the {words[len(speeds)]} speeds of 9 000–12 000 rpm "
+            f"where both cases are periodic on the paper's mesh ({', '.join(_spaced(s) for s in speeds)} rpm; none on "
+            f"the converged)") in FINDINGS_BULLET
+
+
+def test_clearance_numbers_are_the_findings_report_s():
+    """README "at 9 000–12 000 rpm 2X falls as δ0 grows at 1 of 3 periodic speeds on the paper's mesh and 1 of 5 on
+    the converged, 3X at 1 of 3 and 2 of 5": study-findings.md's §5.3.1 (2) H1 cells."""
+    two = _verdicts("§5.3.1 (2, Fig. 18): at high speed 2X falls")
+    three = _verdicts("§5.3.1 (2, Fig. 18): at high speed 3X falls")
+    p2, c2, p3, c3 = (_partly(v[m][2]) for v in (two, three) for m in ("paper", "2/segment"))
+    assert (f"at 9 000–12 000 rpm 2X falls as δ0 grows at {p2[0]} of {p2[1]} periodic speeds on the paper's mesh and "
+            f"{c2[0]} of {c2[1]} on the converged, 3X at {p3[0]} of {p3[1]} and {c3[0]} of {c3[1]}") in FINDINGS_BULLET
+
+
+def test_point_b_numbers_are_the_findings_report_s():
+    """README "at point B (10 500 rpm) the bearing collides 46 % of the time (56 % on the paper's mesh) and the
+    support's 1X is 24.1 mm/s against the paper mesh's 7.71 mm/s": study-findings.md's points A and B table."""
+    md = _md("study-findings.md")
+
+    def row(mesh: str) -> tuple[str, str]:
+        m = _one(rf"\| {re.escape(mesh)} \| 10500 \| impact \((\d+) % contact, \d+ % stuck\) \| [^|]* \| [^|]* \| "
+                 r"([\d.]+) / [^|]* \| yes \|", md)
+        return m.group(1), m.group(2)
+
+    (paper_contact, paper_1x), (conv_contact, conv_1x) = row("paper"), row("2/segment")
+    assert (f"at point B (10 500 rpm) the bearing collides {conv_contact} % of the time ({paper_contact} % on the "
+            f"paper's mesh) and the support's 1X is {conv_1x} mm/s against the paper mesh's {paper_1x} mm/s"
+            ) in FINDINGS_BULLET
