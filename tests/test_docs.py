@@ -57,6 +57,8 @@ _CITED_PATH = re.compile(r"(?<![\w/.-])((?:contact|sweep|fem_reference|rotor|rep
 NOT_IN_CHECKOUT = {
     "contact/_build.json": "written into the wheel at build time (build_backend/ringcontact_build.py)",
     "docs/examples/exNN.py": "DESIGN.md quotes scikit-fem's layout, not a file of this repository",
+    "docs/_generated/gallery/<stem>.png": "written by the docs build (docs/_ext/gallery_run.py), git-ignored",
+    "docs/_generated/gallery/<stem>.txt": "written by the docs build (docs/_ext/gallery_run.py), git-ignored",
 }
 
 
