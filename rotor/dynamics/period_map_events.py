@@ -58,18 +58,21 @@ from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jac
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 
 #: the differencing steps of an event block's derivative (:func:`_step_jacobian`), relative to each component's scale:
-#: a ladder from 1.28e-4 down by factors of 4 to 1.25e-7. Each column's derivative is taken where two successive
+#: a ladder from 5.12e-4 down by factors of 4 to 1.25e-7. Each column's derivative is taken where two successive
 #: levels agree best. A fixed step fails on speeds nobody tuned it on: a stick onset after a slow creep has a
 #: large curvature (its central difference at 1e-5 off by 4e-5 of the step's derivative at 9 000 rpm) and a
 #: threshold of the step (the slow-slip hold's rectilinear test, a stick trial) can lie within 1e-6 of the
 #: recorded start (columns not smooth at 1e-6 at 9 000 rpm), while at 16 767 rpm a release block needed 1e-6
 #: (at 3e-6 the located monodromy was 1.9e-3 from central differences of the whole map; 3e-7 with the ladder).
-#: Chosen on five states (Table 4, T/512 after 60 revolutions at 8 400, 10 500, 12 000 and 16 767 rpm; the 9 000 rpm
-#: orbit, T/256): 4.9e-7, 1.9e-7, 4.4e-8, 3.0e-7, 7.3e-7; by factors of 2 (11 levels, twice the replays) 1.9e-7,
-#: 5.3e-8, 5.1e-8, 3.0e-7, 4.3e-7; ladders starting at 3.2e-5 and 6.4e-5 reached 2.6e-6 and 1.0e-6 at 9 000 rpm.
-#: Checked on speeds drawn at random (tests/rotor/dynamics/test_monodromy_random_speeds.py,
-#: benchmarks/bench_monodromy_random.py).
-LADDER = tuple(1.28e-4 * 0.25 ** k for k in range(6))
+#: Chosen on nine states: Table 4 (T/512 after 60 revolutions at 8 400, 10 500, 12 000 and 16 767 rpm; the orbits
+#: at 6 292, 8 438 and 9 000 rpm) and the steel-in-aluminium scene (orbits at 8 806 and 9 233 rpm). Ladders from
+#: 3.2e-5, 6.4e-5 and 1.28e-4 left 2.6e-6, 1.0e-6 and 1.6e-5 at one of them; this one with the refinement
+#: (:data:`REFINE_TOL`) 1.2e-7 to 1.7e-6. Checked on speeds drawn at random (tests/rotor/dynamics/
+#: test_monodromy_random_speeds.py, benchmarks/bench_monodromy_random.py).
+LADDER = tuple(5.12e-4 * 0.25 ** k for k in range(7))
+#: a column whose best agreement on :data:`LADDER` is worse than this fraction of its size is differenced again at
+#: the steps halfway between (:func:`_step_jacobian`)
+REFINE_TOL = 1e-7
 #: a column whose best two successive levels still differ by more than this fraction of its size is not smooth at
 #: any level of the ladder (a threshold of the step within the smallest step of its start): counted and reported
 SHRINK_TOL = 1e-2
@@ -171,41 +174,65 @@ def _replays(pm, starts, modes, phi, t, n_steps: int = 1) -> np.ndarray:
                        np.tile(np.asarray(phi, dtype=float), (k, 1, 1)), np.full(k, float(t)), True, n_steps)[0]
 
 
+def _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols) -> np.ndarray:
+    """Central differences ``(level, column, component)`` of the block from ``start`` in the columns ``cols`` at the
+    steps ``hs`` (relative to ``scales``), all replays in one compiled call (:func:`_replays`)."""
+    n3 = start.size
+    starts = np.tile(start, (2 * hs.size * cols.size, 1))
+    pert = starts.reshape(hs.size, cols.size, 2, n3)
+    idx = np.arange(cols.size)
+    for li in range(hs.size):
+        pert[li, idx, 0, cols] += hs[li] * scales[cols]
+        pert[li, idx, 1, cols] -= hs[li] * scales[cols]
+    e = _replays(pm, starts, modes, phi, t, n_steps).reshape(hs.size, cols.size, 2, n3)
+    return (e[:, :, 0] - e[:, :, 1]) / (2.0 * hs[:, None, None] * scales[cols][None, :, None])
+
+
+def _best_of_ladder(hs, d, scales) -> tuple[np.ndarray, np.ndarray]:
+    """Per column of ``d`` (central differences at the steps ``hs``, largest first): the Richardson extrapolation of
+    the pair of successive levels that agrees best with the next pair, and that agreement (scaled, the largest
+    over the components)."""
+    q = (hs[:-1] / hs[1:]) ** 2
+    rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)             # (pair, column, component)
+    gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)        # (pair, column)
+    best = np.argmin(gap, axis=0)
+    idx = np.arange(d.shape[1])
+    return rich[best + 1, idx], gap[best, idx]
+
+
 def _step_jacobian(pm, start, modes, phi, t, scales, n_steps: int = 1) -> tuple[np.ndarray, np.ndarray, int]:
     """``∂(p, v, a)_{n+k}/∂(p, v, a)_n`` (3nr × 3nr) of ``k = n_steps`` located steps (one step, or a block whose
     face forces carry over: :func:`blocks`) by central differences, the replayed end state, and how many of its
-    columns are not smooth at any level of :data:`LADDER`.
+    columns are not smooth at any level of the ladder.
 
     Each column is differenced at every level ``h`` of :data:`LADDER` (relative to its component's scale); the
     central differences of successive levels are Richardson-extrapolated (their ``c h²`` error removed), and the
     column takes the extrapolation of the pair of successive levels that agrees best with the next one (scaled
     by the components' scales): long enough steps where round-off and the Newton solves' tolerance would
     dominate a short one, short enough where the step's curvature (a stick onset after a slow creep) or a
-    threshold decided within ``h`` of the start (the slow-slip hold's rectilinear test) spoils a long one.
-    A column whose best agreement is still worse than :data:`SHRINK_TOL` of its size is counted as not smooth.
-    All replays go through one compiled call (:func:`_replays`)."""
+    threshold decided within ``h`` of the start (the slow-slip hold's rectilinear test) spoils a long one. A
+    column whose best agreement is worse than :data:`REFINE_TOL` of its size is differenced again halfway
+    between the levels (:data:`LADDER` times 1/2) and chosen again on the merged ladder; one whose best agreement
+    is still worse than :data:`SHRINK_TOL` of its size is counted as not smooth."""
     n3 = 3 * pm.nr
     scales = np.asarray(scales, float)
     hs = np.array(LADDER)
-    L = hs.size
-    # the starts (rows): per level, per column, +h then −h; the unperturbed start last
-    starts = np.tile(start, (2 * L * n3 + 1, 1))
     cols = np.arange(n3)
-    pert = starts[:-1].reshape(L, n3, 2, n3)
-    for li in range(L):
-        pert[li, cols, 0, cols] += hs[li] * scales
-        pert[li, cols, 1, cols] -= hs[li] * scales
-    ends = _replays(pm, starts, modes, phi, t, n_steps)
-    e = ends[:-1].reshape(L, n3, 2, n3)
-    d = (e[:, :, 0] - e[:, :, 1]) / (2.0 * hs[:, None, None] * scales[None, :, None])    # (level, column, component)
-    q = (hs[:-1] / hs[1:]) ** 2
-    rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)             # (pair, column, component)
-    gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)        # (pair, column)
-    best = np.argmin(gap, axis=0)
-    J = rich[best + 1, cols].T
-    size = np.abs(J / scales[:, None]).max(axis=0)
-    unsmooth = int(np.count_nonzero(gap[best, cols] > SHRINK_TOL * np.maximum(size, 1e-300)))
-    return np.ascontiguousarray(J), ends[-1].copy(), unsmooth
+    d = _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols)
+    J, gap = _best_of_ladder(hs, d, scales)
+    size = np.maximum(np.abs(J / scales[None, :]).max(axis=1), 1e-300)
+    redo = np.flatnonzero(gap > REFINE_TOL * size)
+    if redo.size:
+        half = hs * 0.5
+        d2 = _differences(pm, start, modes, phi, t, scales, n_steps, half, redo)
+        merged = np.empty((2 * hs.size, redo.size, n3))
+        merged[0::2], merged[1::2] = d[:, redo], d2
+        both = np.empty(2 * hs.size)
+        both[0::2], both[1::2] = hs, half
+        J[redo], gap[redo] = _best_of_ladder(both, merged, scales)
+    unsmooth = int(np.count_nonzero(gap > SHRINK_TOL * size))
+    end = _replays(pm, start[None, :], modes, phi, t, n_steps)[0]
+    return np.ascontiguousarray(J.T), end, unsmooth
 
 
 def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np.ndarray, float, int]:
@@ -236,7 +263,7 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
     # analytically with the held forces' derivative (carry's rec_held); the others differenced
     differenced, held = _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held)
     face = np.ascontiguousarray(tr.face_force, dtype=float)
-    for first, last in blocks(differenced, held) + [(n_steps, n_steps)]:
+    for first, last in blocks(differenced, held, modes) + [(n_steps, n_steps)]:
         if first > start:
             carry(np.ascontiguousarray(rec_p[start:first + 1]), np.ascontiguousarray(rec_v[start:first + 1]),
                   np.ascontiguousarray(modes[start:first + 1]), Spv, Sa, *args,
@@ -254,29 +281,45 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
     return Spv, mismatch, unsmooth
 
 
-def blocks(differenced: list[int], held: np.ndarray) -> list[tuple[int, int]]:
+def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = None) -> list[tuple[int, int]]:
     """The steps to difference, as blocks ``(first, last)`` of consecutive steps replayed in one call.
 
-    A step that holds a face at rest at ``μN`` along its start force (``held`` 2: the step loop's ``status[5:7]``,
-    rotor/dynamics/friction_events.py "Slow slips") takes that force's direction from the step before: the face
-    force is the loop's memory between steps, outside ``(p, v, a)``, and a derivative of the step in ``(p, v, a)``
-    alone (:func:`_step_jacobian` with the recorded force, or :func:`rotor.dynamics.period_map_kernels.carry`, which
-    holds it constant) misses how that direction moves with the start. Such a run of steps is differenced together
-    with the step that set the force (a release, or a stuck step whose multiplier it is), one block from that
-    step's start. Measured on Table 4 at the 9 000 rpm orbit (T/256, production options): a release at step 166
-    and a held step 167, whose end moves 6e4 of its scale per unit change of the held force's direction; the
-    located monodromy 5.3e-2 from central differences of the whole map with the held step carried, 7.7e-6 with
-    the two differenced as one block. Blocks that touch or overlap merge; every other differenced step is a block
-    of its own."""
+    The step loop remembers more than ``(p, v, a)`` from one step to the next: the face forces, and a face just
+    released slips with its release force's direction until it is fast (rotor/dynamics/friction_events.py,
+    "Release"). A derivative of one step in ``(p, v, a)`` alone (:func:`_step_jacobian` with the recorded forces,
+    or :func:`rotor.dynamics.period_map_kernels.carry`, which holds them constant) misses how that memory moves with
+    the start, so such steps are differenced together with the step that set it, one block from that step's start:
+
+    * a step that holds a face at rest at ``μN`` along its start force (``held`` 2: the step loop's ``status[5:7]``,
+      friction_events "Slow slips") joins the step before it (a release, or a stuck step whose multiplier the force
+      is). Measured at the 9 000 rpm orbit of Table 4 (T/256, production options): the end of such a step moves 6e4
+      of its scale per unit change of the held force's direction; carried with the force fixed, the monodromy was
+      5.3e-2 from central differences of the whole map, 2e-6 with the block;
+    * the held steps of a face right after its release (``modes`` 1 then 0 for the face; ``held`` not 0 for it)
+      join the release step. Measured on Table 4 at 9 916.2 rpm (T/512, 60 revolutions after the linear start): one
+      held slow slip after a release, carried, 6.5e-2; differenced alone, 6.5e-2; in the release's block 1.7e-7.
+
+    Blocks that touch or overlap merge; every other differenced step is a block of its own."""
+    held = np.asarray(held)
     marks = set(differenced)
+    chained: set[int] = set()
     for n in np.flatnonzero(np.any(held == 2, axis=1)).tolist():
-        marks.add(n)
-        marks.add(n - 1)                    # the step that set the force the held step starts from
+        marks |= {n, n - 1}                 # the step that set the force the held step starts from
+        chained.add(n)
+    if modes is not None:
+        modes = np.asarray(modes)
+        for k in range(min(2, modes.shape[1])):
+            for n in np.flatnonzero((modes[:-1, k] == 1) & (modes[1:, k] == 0)).tolist():
+                marks.add(n)
+                m = n + 1
+                while m < len(held) and held[m, k] != 0:
+                    marks.add(m)
+                    chained.add(m)
+                    m += 1
     out: list[list[int]] = []
-    chained = {n for n in np.flatnonzero(np.any(held == 2, axis=1)).tolist()}
     for n in sorted(m for m in marks if m >= 0):
         if out and n == out[-1][1] + 1 and n in chained:
-            out[-1][1] = n                   # a held step joins the block of the step before it
+            out[-1][1] = n                   # joins the block of the step before it
         elif out and n <= out[-1][1]:
             continue
         else:
