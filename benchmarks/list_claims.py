@@ -30,6 +30,15 @@ def load_registry(path: Path = REGISTRY):
     return module
 
 
+def _tier(claim: dict, conftest) -> str:
+    """``default``, or ``slow, group K/N``: the slow tier's group that holds the guarding test's file
+    (tests/conftest.py ``slow_group_of``; ``pytest -m slow --slow-group K/N`` runs it)."""
+    if claim["tier"] != "slow":
+        return claim["tier"]
+    rel = claim["test"].split("::")[0].removeprefix("tests/")
+    return f"slow, group {conftest.slow_group_of(rel, conftest.SLOW_GROUPS)}/{conftest.SLOW_GROUPS}"
+
+
 def _cell(text: str) -> str:
     """A table cell: pipes escaped, so a quoted table row stays one cell."""
     return text.replace("|", "\\|")
@@ -38,6 +47,7 @@ def _cell(text: str) -> str:
 def render(registry=None) -> str:
     """The Markdown of ``claims.md`` for ``registry`` (default: tests/claims.py)."""
     reg = registry if registry is not None else load_registry()
+    conftest = load_registry(ROOT / "tests" / "conftest.py")
     claims = reg.CLAIMS
     slow = sum(c["tier"] == "slow" for c in claims)
     reports = list(dict.fromkeys(c["report"] for c in claims))
@@ -46,10 +56,11 @@ def render(registry=None) -> str:
              "`tests/test_claims.py`: every claim is quoted verbatim from its file, every test exists with the tier "
              f"its marks give, every published report has a claim or a reason). {len(claims)} claims in "
              f"{len(reports)} files: {len(claims) - slow} guarded by a default-tier test (`python3 dev.py test`), "
-             f"{slow} by slow tests only (`python3 dev.py test -m slow`). Do not edit.", "",
+             f"{slow} by slow tests only (`python3 dev.py test -m slow`, or one group of them: `python3 dev.py test -m slow "
+             "--slow-group K/N`). Do not edit.", "",
              "| report | claim | guarding test | tier |", "|---|---|---|---|"]
     for c in claims:
-        lines.append(f"| `{c['report']}` | {_cell(c['claim'])} | `{c['test']}` | {c['tier']} |")
+        lines.append(f"| `{c['report']}` | {_cell(c['claim'])} | `{c['test']}` | {_tier(c, conftest)} |")
     lines += ["", "## Reports without a claim", "", "| report | why |", "|---|---|"]
     lines += [f"| `{report}` | {_cell(reason)} |" for report, reason in reg.NOT_CLAIMS]
     lines += ["", "## Numbers no test guards", ""]
