@@ -62,16 +62,17 @@ def test_located_monodromy_equals_central_differences_through_events(F, omega, s
     assert np.abs(plain.monodromy * scales[None, :] / scales[:, None] - Ms).max() > 1e-3 * np.abs(Mf).max()
 
 
-@pytest.mark.slow
+# default tier (6 s for the three on an idle machine): the published perf-located-monodromy.md numbers, checked in CI
 @pytest.mark.parametrize("rpm", [8400.0, 10500.0, 12000.0])
 def test_table4_located_monodromy_through_stick_releases_and_contact_onsets(rpm):
     """Dai et al. (2025) Table 4 rotor, 512 steps per revolution, one period from the state after 60 revolutions from
     the linear one: a stick onset, a release and edge crossings (contact onset and loss, located inside the step) in
     the period. Expected: the Richardson extrapolation of central differences of the located map at 1e-7 and 2e-7 of
     each component's largest magnitude, its convergence checked against the one at 5e-8 and 1e-7 (measured 1.9e-7,
-    1.1e-7, 1.1e-7). The located monodromy agrees to 1e-6, the issue's bound (measured 9.6e-7, 7.2e-7, 8.8e-8: the
-    margin at 8 400 rpm is small; that speed was 0.41 before a stop from a creep was located from any start speed,
-    3.7e-6 with every event step differenced at 1e-6). Not every Table 4 speed has a smooth map at 1e-7: at 9 600 and
+    1.1e-7, 1.1e-7). The located monodromy agrees to 1e-6, the issue's bound (measured 1.2e-7, 6.5e-8, 5.1e-8 with the
+    blocks and the ladder of rotor/dynamics/period_map_events.py; 9.9e-7, 2.2e-7, 5.5e-8 before them; 8 400 rpm was
+    0.41 before a stop from a creep was located from any start speed, 3.7e-6 with every event step differenced at
+    1e-6). Not every Table 4 speed has a smooth map at 1e-7: at 9 600 and
     11 000 rpm these references themselves differ by O(1) (rotor/dynamics/period_map_events.py)."""
     from rotor.dynamics.build import system_from_model
     from rotor.dynamics.initial import linear_initial_state
