@@ -184,7 +184,9 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
 class OrbitResult(ContactSummary, ResultMethods):
     """The periodic orbit at one speed, as ``ringcontact orbit``: period, convergence, Floquet multipliers and
     stability, 1X-5X velocity amplitudes ``velocity_amplitude_m_s[c, k]`` of channel ``channels[c]`` at order
-    k + 1 (m/s), and the loose support over one period (``contact``: the keys of ``simulate``'s summary)."""
+    k + 1 (m/s), and the loose support over one period (``contact``: the keys of ``simulate``'s summary).
+    ``unique`` False: the orbit is one member of a family held by friction (multipliers at +1 from a face stuck
+    through the period; another start may settle on another member), as the CLI's "not unique" line says."""
 
     scene: str
     speed_rpm: float
@@ -202,6 +204,7 @@ class OrbitResult(ContactSummary, ResultMethods):
     velocity_amplitude_m_s: np.ndarray
     max_edge_penetration_m: float
     contact: dict
+    unique: bool
     orbit: object = internal()
     _dim = "channel"
 
@@ -226,7 +229,7 @@ def _orbit_result(name: str, res) -> OrbitResult:
                        float(res.residual), int(res.newton_iterations), bool(res.stable),
                        float(res.floquet.spectral_radius), res.floquet.kind, np.asarray(res.floquet.multipliers),
                        tuple(amps), np.array([[a * 1e-3 for a in v] for v in amps.values()]),
-                       float(res.max_edge_penetration_m), dict(res.contact), res)
+                       float(res.max_edge_penetration_m), dict(res.contact), bool(res.unique), res)
 
 
 def orbit(scene, speed_rpm: float, *, period_revs: int | None = None, steps_per_rev: int | None = None,
@@ -245,8 +248,9 @@ def orbit(scene, speed_rpm: float, *, period_revs: int | None = None, steps_per_
 @dataclass(frozen=True)
 class BranchResult(ResultMethods):
     """Orbits followed over speed (pseudo-arclength continuation), as ``ringcontact branch``: per point the speed,
-    stability, spectral radius and the contact summary; ``bifurcations`` (kind, speed_rpm); ``stop`` why it
-    ended (``end reached`` when it got to ``rpm_end``)."""
+    stability, spectral radius and the contact summary, ``unique`` (False: one member of a family held by friction,
+    :class:`OrbitResult`); ``bifurcations`` (kind, speed_rpm); ``stop`` why it ended (``end reached`` when it got
+    to ``rpm_end``)."""
 
     scene: str
     rpm_start: float
@@ -258,6 +262,7 @@ class BranchResult(ResultMethods):
     contact_share: np.ndarray
     stick_share_right_face: np.ndarray
     stick_share_left_face: np.ndarray
+    unique: np.ndarray
     bifurcations: tuple
     stop: str
     reached_end: bool
@@ -269,7 +274,8 @@ class BranchResult(ResultMethods):
         return [{"speed_rpm": s, "stable": bool(self.stable[i]), "spectral_radius": self.spectral_radius[i],
                  "peak_contact_force_N": self.peak_contact_force_N[i], "contact_share": self.contact_share[i],
                  "stick_share_right_face": self.stick_share_right_face[i],
-                 "stick_share_left_face": self.stick_share_left_face[i]} for i, s in enumerate(self.speeds_rpm)]
+                 "stick_share_left_face": self.stick_share_left_face[i], "unique": bool(self.unique[i])}
+                for i, s in enumerate(self.speeds_rpm)]
 
     def _draw(self, ax) -> None:
         stable = self.stable.astype(bool)
@@ -303,7 +309,7 @@ def branch(scene, rpm_start: float, rpm_end: float, *, max_points: int = 400, st
                         np.array([bool(p["stable"]) for p in pts], dtype=bool), _column(pts, "spectral_radius"),
                         _column(pts, "peak_contact_force_N"), _column(pts, "contact_share"),
                         _column(pts, "stick_share_right_face"), _column(pts, "stick_share_left_face"),
-                        tuple(res.bifurcations), res.stop, res.stop == "end reached",
+                        np.array([bool(p.get("unique", True)) for p in pts], dtype=bool), tuple(res.bifurcations), res.stop, res.stop == "end reached",
                         _orbit_result(sc.name, res.start), res)
 
 

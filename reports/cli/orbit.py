@@ -192,6 +192,10 @@ def _orbit_table(d: dict) -> str:
         lines.append(f"  {name:<14}" + "".join(f"{a:12.5g}" for a in amps))
     if "contact_share" in d:
         lines.append(f"  loose support over the period: {_support_line(d)}")
+    if d.get("family"):
+        lines.append(f"  {d['family']}: {d['neutral_multipliers']} multipliers at +1 (a face stuck through "
+                     "the period); this orbit is where the transient settled, another start may settle on another "
+                     "member (another contact share)")
     return "\n".join(lines)
 
 
@@ -282,6 +286,7 @@ def _branch_table(d: dict, station: str) -> str:
         lines.append(f"  {p['speed_rpm']:10.1f} {str(p['stable']):>7} {p['spectral_radius']:9.5f} {amp:10.4g} "
                      f"{p['leading_multiplier']:>13} {_share(p.get('contact_share')):>8} "
                      f"{p.get('peak_contact_force_N', float('nan')):10.4g}"
+                     + ("  family held by friction" if p.get("unique") is False else "")
                      + (f"  restart: {p['restarted']}, skipped {p['skipped_rpm'][0]:.1f}-{p['skipped_rpm'][1]:.1f} rpm"
                         if p.get("skipped_rpm") else ""))
     lines.append("  bifurcations: " + ("; ".join(f"{b['kind']} at {b['speed_rpm']:.1f} rpm" for b in d["bifurcations"])

@@ -39,6 +39,16 @@ ORDERS = (1, 2, 3, 4, 5)
 RESTART_KINDS = {SECANT: "secant", TRANSIENT: "transient", COLD: "cold", GRID: "step-grid"}
 
 
+#: the words for an orbit that is one member of a continuum of orbits held by friction (JSON ``family``, tables)
+FRICTION_FAMILY = "not unique: a family held by friction"
+
+
+def family_held_by_friction(floquet) -> str | None:
+    """:data:`FRICTION_FAMILY` where ``floquet`` has neutral multipliers (a face stuck through the period: the
+    stuck-face continuum of :mod:`rotor.periodic.floquet`), else None."""
+    return FRICTION_FAMILY if int(floquet.n_neutral) > 0 else None
+
+
 @dataclass(frozen=True)
 class OrbitResult:
     """One periodic orbit of a scene at one speed (SI inside; the amplitudes in mm/s as the CLI prints them).
@@ -126,6 +136,14 @@ class OrbitResult:
     def switch_free(self) -> bool:
         return self.events == 0
 
+    @property
+    def unique(self) -> bool:
+        """False where the orbit is one member of a family held by friction: a face stuck through the period
+        leaves multipliers at +1 (``floquet.n_neutral``, :mod:`rotor.periodic.floquet`), a continuum of orbits
+        that differ by where the ring stuck; this one is where the transient settled (``settled``), and
+        ``simulate`` from another start may give another member (another contact share)."""
+        return family_held_by_friction(self.floquet) is None
+
     def as_dict(self) -> dict:
         """JSON-ready summary, keys with units."""
         return {"speed_rpm": self.speed_rpm, "period_revs": self.period_revs, "period_s": self.period_s,
@@ -136,7 +154,7 @@ class OrbitResult:
                 "velocity_amplitudes_mm_s_1X_to_5X": self.velocity_amplitudes_mm_s_1X_to_5X,
                 "newton_iterations": self.newton_iterations, "residual": self.residual,
                 "transient_revs": self.transient_revs, "settled": self.shooting.settled,
-                "face_mode_changes": self.events,
+                "face_mode_changes": self.events, "unique": self.unique, "family": family_held_by_friction(self.floquet),
                 "singular_directions": self.singular_directions, "switch_free": self.switch_free,
                 "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3, **self.contact,
                 "wall_s": self.wall_s, "backend": self.backend,
@@ -319,7 +337,7 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
              "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted)),
-             "switches_per_period": int(p.events),
+             "switches_per_period": int(p.events), "unique": family_held_by_friction(p.floquet) is None,
              # the end-face modes its period map starts from (a restart may land on an orbit with other modes there)
              **{f"stuck_at_phase_0_{face}_face": bool(m == STICK) for face, m in zip(("right", "left"), start_modes(pb, p))}}
         if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it, and why

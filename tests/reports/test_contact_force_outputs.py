@@ -121,6 +121,9 @@ def test_orbit_json_tells_a_stuck_ring_from_one_that_hits(capsys, tmp_path):
     assert (hits["max_edge_penetration_mm"] > 0) == (hits["contact_share"] > 0)
     for d in (stuck, hits):
         assert all(k in d and k.endswith(UNITS) for k in NEW_KEYS)
+    # the stuck ring's orbit is one of a family held by friction (its neutral multipliers), said as such
+    assert stuck["unique"] is False and stuck["family"] == "not unique: a family held by friction"
+    assert hits["unique"] is (hits["neutral_multipliers"] == 0) and (hits["family"] is None) == hits["unique"]
 
 
 def test_branch_points_carry_the_contact_fields(capsys):
@@ -130,6 +133,7 @@ def test_branch_points_carry_the_contact_fields(capsys):
     assert len(d["points"]) == 2
     for p in d["points"]:
         assert p["contact_share"] == 0 and p["stick_share_right_face"] == 1 and p["peak_contact_force_N"] == 0
+        assert p["unique"] is False                                    # both faces stuck: a family held by friction
 
 
 def test_cascade_csv_has_peak_force_and_shares_per_speed(tmp_path):

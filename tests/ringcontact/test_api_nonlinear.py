@@ -83,6 +83,7 @@ def test_a_stuck_rings_orbit_is_the_linear_unbalance_response(stuck):
     assert o.velocity_amplitude_m_s[d, 0] == pytest.approx(w * u.amplitude_y_m[0, 0], rel=1e-3)
     assert o.velocity_amplitude_m_s[d, 1:].max() < 1e-6 * o.velocity_amplitude_m_s[d, 0]
     assert o.to_dict()["contact"]["contact_share"] == 0.0
+    assert o.unique is False               # both faces stuck: one member of a family held by friction (neutral multipliers)
 
 
 OPTIONS = {"clearance_m", "misalignment_m", "mu", "preload_n", "tilt_ignored", "elements"}
@@ -107,6 +108,7 @@ def test_branch_and_cascade_of_a_stuck_ring(stuck, tmp_path):
     its table. About 40 s: the contact step limit asks for some 9 000 steps a revolution on this rotor."""
     b = rc.branch(stuck, 1500.0, 1600.0, max_points=8)
     assert len(b.speeds_rpm) >= 2 and np.all(b.contact_share == 0) and np.all(b.stick_share_right_face == 1)
+    assert not b.unique.any()
     assert b.plot().get_xlabel() == "rotor speed (rpm)"
     c = rc.cascade(stuck, [1500.0], max_revs=60)
     assert c.transient_revs.tolist() == [60] and not c.converged[0]
