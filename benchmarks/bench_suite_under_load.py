@@ -3,7 +3,8 @@
 Writes ``reports/published/perf-test-suite.md``. For each of ``--runs`` runs, in a row: ``--hogs`` busy-loop
 processes start, then ``python3 dev.py test`` runs in the clone (the first run also builds its ``.venv``);
 the hogs stop when it ends. Recorded per run: exit status, wall time, the pytest summary line, the load
-average sampled every 10 s (mean and maximum), and the 15 slowest tests (pytest's ``--durations=15``).
+average sampled every 10 s (mean and maximum), and the 15 slowest tests (pytest's ``--durations=15``); each
+run's log is ``.suite-run-K.log`` in the clone.
 
 Run: ``python3 benchmarks/bench_suite_under_load.py --clone /tmp/fresh [--runs 2 --hogs 2]`` where the
 clone is a fresh ``git clone`` of the commit to measure (about 20-30 min a run at load 4 on 2 cores).
@@ -50,7 +51,12 @@ def one_run(clone: Path, hogs: int, log: Path) -> dict:
         for p in procs:
             p.kill()
             p.wait()
-    text = log.read_text(errors="replace")
+    return {"rc": rc, "wall_s": wall, "load_mean": sum(loads) / max(len(loads), 1),
+            "load_max": max(loads, default=float("nan")), **parse_log(log.read_text(errors="replace"))}
+
+
+def parse_log(text: str) -> dict:
+    """The pytest summary line, the 15 slowest tests and the failed ones from a ``dev.py test`` log."""
     summary = [ln for ln in text.splitlines() if re.search(r"\d+ (passed|failed)", ln) and " in " in ln]
     after = text.split("slowest 15 durations", 1)[1].splitlines()[1:] if "slowest 15 durations" in text else []
     slowest = []
@@ -59,9 +65,25 @@ def one_run(clone: Path, hogs: int, log: Path) -> dict:
             break
         slowest.append(ln)
     failed = [ln for ln in text.splitlines() if ln.startswith(("FAILED", "ERROR"))]
-    return {"rc": rc, "wall_s": wall, "summary": summary[-1].strip("= ") if summary else "(no summary)",
-            "load_mean": sum(loads) / max(len(loads), 1), "load_max": max(loads, default=float("nan")),
-            "slowest": slowest, "failed": failed}
+    return {"summary": summary[-1].strip("= ") if summary else "(no summary)", "slowest": slowest, "failed": failed}
+
+
+def render(runs: list[dict], commit: str, hogs: int) -> str:
+    """The report's Markdown for ``runs`` (each :func:`one_run`'s dict) on ``commit`` with ``hogs`` busy loops."""
+    lines = ["# The test command under load", "",
+             f"`benchmarks/bench_suite_under_load.py` on a fresh clone of commit {commit}: `python3 dev.py test` "
+             f"{len(runs)} times in a row, each with {hogs} busy-loop processes beside it (`{HOG}`), on "
+             f"{os.cpu_count()} cores ({platform.machine()}, Python {platform.python_version()}). The first run "
+             "also creates the clone's `.venv` and installs everything. Load average sampled every 10 s.", "",
+             "| run | exit status | wall (min) | load mean / max | pytest summary |", "|---|---|---|---|---|"]
+    for k, r in enumerate(runs, 1):
+        lines.append(f"| {k} | {r['rc']} | {r['wall_s'] / 60:.1f} | {r['load_mean']:.1f} / {r['load_max']:.1f} | "
+                     f"{r['summary']} |")
+    for k, r in enumerate(runs, 1):
+        lines += ["", f"## Run {k}: the 15 slowest tests", "", "```", *r["slowest"], "```"]
+        if r["failed"]:
+            lines += ["", "Failed:", "", *[f"- `{f}`" for f in r["failed"]]]
+    return "\n".join(lines) + "\n"
 
 
 def main(argv=None) -> int:
@@ -75,24 +97,11 @@ def main(argv=None) -> int:
                             text=True).stdout.strip()
     runs = []
     for k in range(a.runs):
-        r = one_run(a.clone, a.hogs, a.out.parent / f".suite-run-{k + 1}.log")
+        r = one_run(a.clone, a.hogs, a.clone / f".suite-run-{k + 1}.log")     # logs in the clone, not the repo
         runs.append(r)
         print(f"run {k + 1}: rc {r['rc']}, {r['wall_s'] / 60:.1f} min, load mean {r['load_mean']:.1f} max "
               f"{r['load_max']:.1f}: {r['summary']}", flush=True)
-    lines = ["# The test command under load", "",
-             f"`benchmarks/bench_suite_under_load.py` on a fresh clone of commit {commit}: `python3 dev.py test` "
-             f"{a.runs} times in a row, each with {a.hogs} busy-loop processes beside it (`{HOG}`), on "
-             f"{os.cpu_count()} cores ({platform.machine()}, Python {platform.python_version()}). The first run "
-             "also creates the clone's `.venv` and installs everything. Load average sampled every 10 s.", "",
-             "| run | exit status | wall (min) | load mean / max | pytest summary |", "|---|---|---|---|---|"]
-    for k, r in enumerate(runs, 1):
-        lines.append(f"| {k} | {r['rc']} | {r['wall_s'] / 60:.1f} | {r['load_mean']:.1f} / {r['load_max']:.1f} | "
-                     f"{r['summary']} |")
-    for k, r in enumerate(runs, 1):
-        lines += ["", f"## Run {k}: the 15 slowest tests", "", "```", *r["slowest"], "```"]
-        if r["failed"]:
-            lines += ["", "Failed:", "", *[f"- `{f}`" for f in r["failed"]]]
-    atomic_write_text(a.out, "\n".join(lines) + "\n")
+    atomic_write_text(a.out, render(runs, commit, a.hogs))
     print(f"wrote {a.out}")
     return 0 if all(r["rc"] == 0 for r in runs) else 1
 

@@ -44,9 +44,9 @@ def _seed() -> int:
     return int(head.stdout.strip()[:8], 16) if head.returncode == 0 and head.stdout.strip() else 20261129
 
 
-def _errors(rpm: float) -> tuple[float, float] | None:
+def _errors(rpm: float, scene: str = "paper-table4") -> tuple[float, float] | None:
     """(monodromy error, reference convergence) at ``rpm``; None where the transient leaves the law's domain."""
-    _, _, system = point_system("paper-table4", rpm)
+    _, _, system = point_system(scene, rpm)
     pm = period_map_setup(system, 2 * math.pi / system.omega_rad_s / STEPS, NewmarkOptions(tol=1e-13, locate_events=True))
     try:
         r = period_map(pm, reduced_state(pm, *linear_initial_state(system)), 0.0, 60 * STEPS, jacobian=False)
@@ -58,22 +58,24 @@ def _errors(rpm: float) -> tuple[float, float] | None:
     return scaled_error(res.monodromy, ref, s), scaled_error(ref, check, s)
 
 
-def test_located_monodromy_at_random_table4_speeds_equals_central_differences_of_its_map():
+@pytest.mark.parametrize("scene, n_speeds", [("paper-table4", N_SPEEDS)])
+def test_located_monodromy_at_random_speeds_equals_central_differences_of_its_map(scene, n_speeds):
+    """On the paper's rotor. Not yet on the steel-in-aluminium scene: 1 of 13 draws there misses (below)."""
     seed = _seed()
     rng = np.random.default_rng(seed)
     print(f"seed {seed} (RINGCONTACT_TEST_SEED={seed} reruns these speeds)")
     checked, skipped = [], []
-    for _ in range(8 * N_SPEEDS):      # measured: about 6 in 10 states have no derivative at the reference's scale
-        if len(checked) == N_SPEEDS:
+    for _ in range(8 * n_speeds):      # measured: up to 6 in 10 states have no derivative at the reference's scale
+        if len(checked) == n_speeds:
             break
         rpm = round(float(rng.uniform(6000.0, 18000.0)), 1)
-        got = _errors(rpm)
+        got = _errors(rpm, scene)
         if got is None or got[1] > REFERENCE_CONVERGED:
             skipped.append((rpm, "transient beyond the law's domain" if got is None else f"reference {got[1]:.1e}"))
             continue
         checked.append((rpm, got[0]))
     print("checked", [(r, f"{e:.1e}") for r, e in checked], "skipped", skipped)
-    assert len(checked) == N_SPEEDS, skipped
+    assert len(checked) == n_speeds, skipped
     assert all(e < BOUND for _, e in checked), checked
 
 
@@ -95,3 +97,17 @@ def test_a_held_face_force_is_differenced_with_the_step_that_set_it():
     held[8, 1] = 1
     assert pme.blocks([4], held, modes) == [(4, 6)]
     assert pme.blocks([4, 9], held, modes) == [(4, 6), (9, 9)]
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="measured 3.4e-3: the step loop's memory of steps 35-38 reaches step 50 through twelve plain "
+                          "steps (a block 35-50 gives 1.75e-7); blocks() does not find it yet")
+def test_a_memory_through_plain_steps_on_the_steel_in_aluminium_rotor():
+    """The Table 4 rotor with the steel-in-aluminium bearing (friction 0.3) at 15 287.5 rpm, T/256, the state 60
+    revolutions after the linear start (drawn at random with seed 41): four differenced event steps 35-38, twelve
+    plain steps, then a held slow slip at step 50 whose carried derivative is 47 times off its replay's central
+    differences. The map is smooth there (its reference converged to 5e-7) and the located monodromy is not its
+    derivative. The disagreement is asserted, so the test reports when it is mended."""
+    got = _errors(15287.5, "table4-steel-in-aluminium")
+    assert got is not None and got[1] < REFERENCE_CONVERGED
+    assert got[0] < BOUND, got
