@@ -81,7 +81,10 @@ def main(argv: list[str] | None = None) -> int:
               file=sys.stderr)
         return 2
     with interrupts.handled():       # SIGINT and SIGTERM: one orderly way out (contact.interrupts)
-        return _run(job, rest, program)
+        status = _run(job, rest, program)
+    if program and interrupts.pending_at_exit():
+        interrupts.quiet_shutdown()  # the one line is said: nothing a finaliser prints at shutdown after it
+    return status
 
 
 #: jobs whose dense algebra is on matrices of tens to a few hundred rows (the rotor's reduced coordinates): one BLAS
@@ -117,6 +120,8 @@ def _run(job: str, rest: list[str], program: bool = False) -> int:
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: temporaries removed, workers stopped, one line
         status, text = interrupts.finish(exc)
         print(f"ringcontact {job}: {text}", file=sys.stderr)
+        if program:
+            interrupts.quiet_shutdown()   # said in one line: a finaliser failing from here on prints nothing
         if program and isinstance(exc, interrupts.Interrupted) and interrupts.busy_threads():
             interrupts.exit_now(status)   # a thread still computing a point would hold the exit until it is done
         return status
