@@ -31,10 +31,20 @@ def _wanted_group(spec: str) -> tuple[int, int]:
         head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=os.path.dirname(__file__), capture_output=True, text=True)
         k = int(head.stdout.strip()[:8], 16) if head.returncode == 0 and head.stdout.strip() else 0
         return k % SLOW_GROUPS, SLOW_GROUPS
-    k, n = (int(x) for x in spec.split("/"))
+    import pytest
+    try:
+        k, n = (int(x) for x in spec.split("/"))
+    except ValueError:
+        k = n = -1
     if not 0 <= k < n:
-        raise ValueError(f"--slow-group {spec}: K must be 0 .. N-1")
+        raise pytest.UsageError(f"--slow-group {spec!r}: K/N with whole numbers 0 <= K < N (e.g. 3/8), or 'auto'")
     return k, n
+
+
+def pytest_configure(config):
+    spec = config.getoption("--slow-group")
+    if spec:
+        _wanted_group(spec)          # a bad value ends the run at once, in one line
 
 
 def pytest_collection_modifyitems(config, items):
