@@ -134,6 +134,14 @@ def require_converged(orbit: HBOrbit) -> HBOrbit:
 # ---------------------------------------------------------------------------
 
 
+#: corrector: iterations at most, converged below this scaled step (–) and this relative residual (–)
+CORRECTOR_MAX_ITER = 12
+CORRECTOR_TOL = 1e-10
+RESIDUAL_TOL = 1e-9
+#: scaled step below which a tangent turn above ``max_turn_deg`` is accepted (a corner)
+CORNER_DS = 1e-4
+
+
 @dataclass(frozen=True)
 class HBContinuationOptions:
     """Pseudo-arclength continuation of :func:`hb_branch` (scaled unknowns: coefficients over the state scale,
@@ -141,26 +149,16 @@ class HBContinuationOptions:
 
     ds, ds_min, ds_max : first, smallest and largest step in scaled arclength (–); ds grows ×1.5 after a corrector
         of ≤ 3 iterations, shrinks ×0.6 after ≥ 7, is halved and retried on failure or on a tangent turn above
-        ``max_turn_deg`` (down to ``corner_ds``, below which the turn is accepted: a corner of the curve, where
-        the conformal law grazes, turns the tangent by a finite angle at any step)
-    max_points : int, accepted points at most; max_corrector_iter : int
-    tol : float, corrector converged when its scaled step is below it (–); residual_tol : the scaled residual too
-    locate : bool, folds and grazings located by regula falsi on the arclength (else the interval only)
+        ``max_turn_deg`` (down to :data:`CORNER_DS`, below which the turn is accepted: a corner of the curve,
+        where the conformal law grazes, turns the tangent by a finite angle at any step)
+    max_points : int, accepted points at most
     """
 
     ds: float = 0.05
     ds_min: float = 1e-7
     ds_max: float = 1.0
-    """Steps in scaled arclength (–)."""
     max_points: int = 5000
-    max_corrector_iter: int = 12
-    """Accepted points and corrector iterations at most."""
-    tol: float = 1e-10
-    residual_tol: float = 1e-9
-    """Corrector convergence: scaled step and relative residual (–)."""
     max_turn_deg: float = 15.0
-    corner_ds: float = 1e-4
-    locate: bool = True
 
 
 @dataclass(frozen=True)
@@ -232,7 +230,7 @@ class _Tracer:
         self.at, self.H, self.N, self.P, self.opts = system_at_speed, harmonics, n_time, period_revs, opts
         self.cache: dict = {}
         self.dA_sys = self.dload = self.anchor = None
-        self.modelled = True
+        self.modelled = self.locate = True        # anchored model (see hs); events located
         self.w_factor = 1.0 / period_revs        # ∂ω/∂λ: the fundamental moves with the speed
 
     def true_hs(self, speed: float) -> HarmonicSystem:
@@ -298,14 +296,14 @@ class _Tracer:
         first = 0                   # iterations to the first convergence (on the model): the step control's count
         try:
             R, Jy, hs, z, res = self.evaluate(y)
-            for it in range(1, self.opts.max_corrector_iter + 1):
+            for it in range(1, CORRECTOR_MAX_ITER + 1):
                 F = np.concatenate([R, [tau @ (y - y_pred)]])
                 dy = solve(np.vstack([Jy, tau[None, :]]), -F)
                 y = y + dy
                 R, Jy, hs, z, res = self.evaluate(y)
                 if not np.all(np.isfinite(R)):
                     return None
-                if float(np.max(np.abs(dy))) < self.opts.tol and res < self.opts.residual_tol:
+                if float(np.max(np.abs(dy))) < CORRECTOR_TOL and res < RESIDUAL_TOL:
                     speed = float(y[-1]) * self.sw
                     first = first or it
                     if not self.modelled or abs(speed - self.anchor.speed_rad_s) <= 1e-6 * abs(speed):
@@ -324,7 +322,7 @@ class _LoadTracer(_Tracer):
 
     def __init__(self, base: HarmonicSystem, opts: HBContinuationOptions):
         super().__init__(None, base.fourier.harmonics, base.fourier.n_time, base.period_revs, opts)
-        self.base, self.w_factor, self.modelled = base, 0.0, False
+        self.base, self.w_factor, self.modelled, self.locate = base, 0.0, False, False
         self.dA_sys, self.dload = np.zeros_like(base.A), base.load
         d0 = base.clearance_m if math.isfinite(base.clearance_m) else 0.0
         self.sz = max(float(np.max(np.abs(linear_guess(base)))), d0, 1e-300)
@@ -347,7 +345,7 @@ class _LoadTracer(_Tracer):
 def _homotopy(hs: HarmonicSystem, tol: float):
     """The orbit of ``hs`` by continuation of the load from 0 (the rest state, no force) to 1:
     ``(z, converged, relative residual, corrector iterations)``."""
-    tr = _LoadTracer(hs, HBContinuationOptions(ds=0.2, ds_max=2.0, locate=False))
+    tr = _LoadTracer(hs, HBContinuationOptions(ds=0.2, ds_max=2.0))
     z0, ok, res, its = newton(tr.hs(0.0), np.zeros_like(hs.load), tol=tol)
     if not ok:
         return z0, False, res, its
@@ -382,7 +380,7 @@ def _make_point(tr: _Tracer, got, tau_prev) -> _Point:
 def _advance(tr: _Tracer, pt: _Point, ds: float):
     """One accepted step from ``pt``: ``(point, ds used, rejected steps)``, or ``(None, ds, rejected)`` below
     ``ds_min``. A step is retried with half the length when the corrector fails or the tangent turns more than
-    ``max_turn_deg`` (unless the step is already below ``corner_ds``)."""
+    ``max_turn_deg`` (unless the step is already below :data:`CORNER_DS`)."""
     o = tr.opts
     rejected = 0
     cos_max = math.cos(math.radians(o.max_turn_deg))
@@ -390,7 +388,7 @@ def _advance(tr: _Tracer, pt: _Point, ds: float):
         got = tr.correct(pt.y + ds * pt.tau, pt.tau)
         if got is not None:
             new = _make_point(tr, got, pt.tau)
-            if float(new.tau @ pt.tau) >= cos_max or ds <= o.corner_ds:
+            if float(new.tau @ pt.tau) >= cos_max or ds <= CORNER_DS:
                 return new, ds, rejected
         ds *= 0.5
         rejected += 1
@@ -414,7 +412,7 @@ def _locate(tr: _Tracer, a: _Point, b: _Point, ds: float, what: str, index: int)
     s0, s1, g0, g1 = 0.0, ds, g(a), g(b)
     best = (a, g0) if abs(g0) < abs(g1) else (b, g1)
     last = 0
-    for it in range(60 if tr.opts.locate else 0):
+    for it in range(60 if tr.locate else 0):
         s = (s0 * g1 - s1 * g0) / (g1 - g0) if g1 != g0 else 0.5 * (s0 + s1)
         if not (s0 < s < s1) or it % 4 == 3:           # every fourth trial a bisection: a jump shrinks too
             s = 0.5 * (s0 + s1)
