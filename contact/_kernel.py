@@ -24,6 +24,11 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
 11    1.0: tilt ignored (line contact, translation-only friction)
 12    friction smoothing velocity ε (m/s); 0 = ideal Coulomb
 13    edge-transition width ε_e (m) of the one-point selection; 0 = the paper's sharp rule
+14    bilateral offset o (m); 0 (always, except below) = the law as published. With o > 0 an edge counts
+      as touching from ``Δr > −o`` and the law's linear extension ``h'(0⁺) Δr`` pulls it for ``Δr < 0``:
+      the *contact piece* of the map extended across grazing, which the grazing analysis of
+      rotor/periodic/grazing.py differentiates (di Bernardo et al. 2008: each smooth piece of a
+      piecewise-smooth system continued past its switching surface)
 ====  ==================================================================
 
 Edge selection (Dai et al. 2025 Eqs. 18–19, regularised; :func:`selection`): with the centre
@@ -45,13 +50,26 @@ from contact.errors import OutsideDomainError
 
 compiled_with(__file__, [])  # cached in the user's cache folder (contact.compiled_cache)
 
-N_PARAMS = 14
+N_PARAMS = 15
 STATE_NONE, STATE_EDGE1, STATE_EDGE2, STATE_TWO_POINT, STATE_LINE = 0, 1, 2, 3, 4
 
 
 @numba.njit(cache=True, inline="always")
 def _law(pen, p):
-    """Force per unit contact length h(Δr) (N/m), dh/dΔr, and 1 if inside the domain."""
+    """Force per unit contact length h(Δr) (N/m), dh/dΔr, and 1 if inside the domain; below zero penetration
+    (only with a bilateral offset, slot 14) the linear extension ``h'(0⁺) Δr`` (0 where ``h'(0⁺)`` is not
+    finite)."""
+    if pen < 0.0:
+        _, dh0, _ok = _law_on(0.0, p)
+        if not math.isfinite(dh0):
+            dh0 = 0.0
+        return dh0 * pen, dh0, 1
+    return _law_on(pen, p)
+
+
+@numba.njit(cache=True, inline="always")
+def _law_on(pen, p):
+    """:func:`_law` at ``pen >= 0``."""
     if p[2] == 0.0:
         d0 = p[0]
         q = 2.0 * d0 + pen
@@ -216,7 +234,7 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     l0 = p[1]
     a = sgn * 0.5 * l0
     pen = rho - d0
-    if pen <= 0.0:
+    if pen <= -p[14]:
         return 0.0, 0.0, 0.0, 1
     inv_rho = 1.0 / rho
     ny = ry * inv_rho
@@ -227,7 +245,7 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     hv, dh, ok = _law(pen, p)
     if ok == 0:
         return 0.0, 0.0, 0.0, 0
-    partial = pen < t * l0
+    partial = 0.0 < pen < t * l0       # (a bilateral edge below zero penetration: the full width)
     if partial:
         l = pen / t
     else:
@@ -364,7 +382,7 @@ def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, jac):
     pen1 = rho1 - d0
     pen2 = rho2 - d0
     rr = math.sqrt(y * y + z * z)
-    w1, w2, state, ds, dlam = selection(rr, pen1, pen2, d0, p[13])
+    w1, w2, state, ds, dlam = selection(rr, pen1 + p[14], pen2 + p[14], d0 - p[14], p[13])
     Fy = 0.0
     Fz = 0.0
     My = 0.0
@@ -390,10 +408,10 @@ def _evaluate(y, z, thy, thz, vy, vz, wy, wz, p, jac):
         fy2 = fz2 = sd2 = 0.0
     if jac is not None and (ds != 0.0 or dlam != 0.0):
         # derivatives of the weights (regularised selection): Σ_k E_k ∂w_k/∂(y, z, θy, θz)
-        c1 = 1.0 if pen1 > 0.0 else 0.0
-        c2 = 1.0 if pen2 > 0.0 else 0.0
+        c1 = 1.0 if pen1 + p[14] > 0.0 else 0.0
+        c2 = 1.0 if pen2 + p[14] > 0.0 else 0.0
         s, _ds = _smooth_step(pen1 - pen2, 0.5 * p[13], 0.5)
-        lam, _dl = _smooth_step(d0 - 0.5 * p[13] - rr, 0.5 * p[13], 0.5)
+        lam, _dl = _smooth_step(d0 - p[14] - 0.5 * p[13] - rr, 0.5 * p[13], 0.5)
         n1y = r1y / rho1 if rho1 > 0.0 else 0.0
         n1z = r1z / rho1 if rho1 > 0.0 else 0.0
         n2y = r2y / rho2 if rho2 > 0.0 else 0.0

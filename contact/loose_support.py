@@ -65,7 +65,7 @@ Fast scalar path for a numba-compiled step loop
 ::
 
     from contact.loose_support import LooseSupportParams, point_force, point_force_jacobian
-    p = LooseSupportParams.paper_table4().kernel_args      # tuple of 14 floats
+    p = LooseSupportParams.paper_table4().kernel_args      # tuple of 15 floats
     @numba.njit
     def step(..., p):
         Fy, Fz, My, Mz = point_force(y, z, thy, thz, vy, vz, wy, wz, p)
@@ -221,7 +221,7 @@ class LooseSupportParams:
                 2.0 * math.pi * self.e_star_Pa * self.clearance_m, alpha,
                 laws.beta_coefficient(beta, self.beta_reading), pc, pn, self.c_c_s_per_m,
                 1.0 if self.clip_damping_at_zero else 0.0, self.mu * self.preload_N,
-                1.0 if self.tilt_ignored else 0.0, self.friction_smoothing_m_s, self.edge_transition_m)
+                1.0 if self.tilt_ignored else 0.0, self.friction_smoothing_m_s, self.edge_transition_m, 0.0)
         assert len(args) == N_PARAMS
         return tuple(float(a) for a in args)
 

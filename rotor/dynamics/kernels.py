@@ -24,8 +24,8 @@ compiled_with(__file__, ["contact._kernel"])
 
 @njit(cache=True, inline="always")
 def law_tuple(p):
-    """The law's parameter array (14,) as the tuple :func:`contact.loose_support.point_force_jacobian` takes."""
-    return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13])
+    """The law's parameter array (15,) as the tuple :func:`contact.loose_support.point_force_jacobian` takes."""
+    return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13], p[14])
 
 
 @njit(cache=True, inline="always")

@@ -123,13 +123,13 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
     points, bifs, restarts, fails, failures, stalls = [pt], [], 0, 0, [], []
     direction = math.copysign(1.0, lam_end - lam0)
     ds, stop, far = opts.ds, "max_points", pt          # far: the point farthest towards lam_end so far
+    seen = None                                        # the watch at the last point: (value, scaled point)
     while len(points) < opts.max_points:
         if opts.max_wall_s is not None and time.perf_counter() - t_start > opts.max_wall_s:
             stop = "wall time limit"
             break
         y_prev = y
-        side = None if opts.watch is None else opts.watch(ev, y) > 0.0
-        ahead = side is not None and (opts.watch(ev, y + ds * tau) > 0.0) != side
+        side, ahead, seen = _watched(opts, ev, y, tau, ds, seen)
         back = opts.turn_back is not None and (far.parameter / ev.ls - y[-1]) * direction > opts.turn_back
         got = None if ahead or back else correct(ev, y + ds * tau, tau, opts, phase, y_prev)
         if ahead or (side is not None and got is not None and (opts.watch(ev, got[0]) > 0.0) != side):
@@ -180,6 +180,23 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
             break
     return Branch(tuple(points), tuple(confirmed_folds(points, bifs)), problem.period_revs, stop,
                   time.perf_counter() - t_start, restarts, tuple(failures))
+
+
+def _watched(opts, ev, y, tau, ds: float, seen):
+    """``(side, ahead, seen)``: the side of the watch's zero the point ``y`` is on (None without a watch), whether
+    the zero lies within the step ``ds`` ahead, and this point's ``(value, y)`` for the next call. Ahead: the
+    predictor is on the other side, or the secant through the last point ``seen`` and this one meets zero
+    within the step (a grazing fold turns the branch at the zero: a predictor past it is no orbit's neighbour,
+    may touch, and does not see the zero; measured on a Jeffcott scene of rotor/periodic/jeffcott_scene.py,
+    where the down sweep then jumped onto the stable contact branch)."""
+    if opts.watch is None:
+        return None, False, seen
+    g_now = opts.watch(ev, y)
+    side = g_now > 0.0
+    ahead = (opts.watch(ev, y + ds * tau) > 0.0) != side
+    if not ahead and seen is not None and (dist := float(np.linalg.norm(y - seen[1]))) > 0.0:
+        ahead = (g_now + (g_now - seen[0]) / dist * ds > 0.0) != side
+    return side, ahead, (g_now, y)
 
 
 def before_end(bifs: list, index: int, lam_end: float, direction: float) -> list:

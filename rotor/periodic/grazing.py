@@ -56,6 +56,12 @@ ACCEPT_TOL = 1e-7
 #: (measured: a rotor scene with a 1 GPa ring stopped 0.11 δ0 short of grazing, and one Newton step from there
 #: went to 4 % of δ0 in contact and diverged)
 LEVEL_FRACTIONS = (0.5, 0.2, 0.05, 0.01, 0.0)
+#: how far inside the clearance (fraction of δ0) the contact piece of :func:`free_system` holds the ring
+BILATERAL_OFFSET = 0.5
+#: tries at the first orbit past a grazing orbit, the penetration quartered each time
+PAST_TRIES = 4
+#: how far (m) :func:`free_system` moves the law's clearance out: no orbit of the scheme's domain reaches it
+FREE_CLEARANCE_SHIFT_M = 1.0
 
 
 def penetrations(flow: Flow, u) -> np.ndarray:
@@ -138,21 +144,141 @@ def solve_on_level(ev: Evaluator, y0, level: float, n: int, opts: ContinuationOp
     return best if best is not None and best[3] < ACCEPT_TOL else None
 
 
-def _cross(problem: Problem, last, floor, ls: float, opts: ContinuationOptions):
-    """From ``last`` (the segment's last orbit, on one side of grazing): the grazing orbit and the first orbit
-    past it. Returns ``(grazing point, kind, critical multiplier past it, first state, first parameter, first
-    tangent)`` or None."""
-    ev = Evaluator(problem, floor.copy(), ls)
-    y = np.concatenate([last.state / floor, [last.parameter / ls]])
-    g_last, n = largest_penetration(ev.flow(last.parameter), last.state, problem.n_steps, start_modes(problem, last))
-    got = None
-    for frac in LEVEL_FRACTIONS:        # towards the grazing orbit through orbits of the side the branch is on
-        got = solve_on_level(ev, y, frac * g_last, n, opts)
+def free_system(system, offset_m: float | None = None):
+    """``system`` with its ring's contact as one smooth piece of the period map.
+
+    ``offset_m`` None: the *free piece*, the contact switched off (the law's clearance moved a metre out in the
+    compiled kernel's parameters, its Python force zero). ``offset_m`` > 0 (m): the *contact piece*, the law
+    made bilateral within ``offset_m`` of the ring (kernel slot 14, :mod:`contact._kernel`: an edge touching
+    from ``Δr > −offset_m`` and pulled by the law's linear extension below zero penetration), so an orbit
+    that grazes the ring all round (a circular whirl) stays on one smooth piece. ``law.clearance_m`` is kept,
+    so :func:`penetrations` measures against the true clearance."""
+    sup = system.support
+    params = np.asarray(sup.law.params, float).copy()
+    if offset_m is None:
+        params[0] += FREE_CLEARANCE_SHIFT_M
+    else:
+        params[14] = offset_m
+    law = replace(sup.law, params=params, force=_no_force if offset_m is None else sup.law.force)
+    return replace(system, support=replace(sup, law=law))
+
+
+def _no_force(u, v):
+    return np.zeros(4)
+
+
+def free_problem(problem: Problem, offset_m: float | None = None) -> Problem:
+    """``problem`` whose systems are :func:`free_system`'s (same state layout, same steps)."""
+    at = problem.system_at
+    return replace(problem, system_at=lambda lam: free_system(at(lam), offset_m))
+
+
+def _piece(problem: Problem, ev: Evaluator, offset_m: float | None = None) -> Evaluator:
+    """An evaluator of :func:`free_problem` with ``ev``'s scales and start modes."""
+    out = Evaluator(free_problem(problem, offset_m), ev.s, ev.ls)
+    out.modes0 = ev.modes0
+    return out
+
+
+def _grazing_orbit(problem: Problem, ev: Evaluator, y, g_last: float, n: int, opts: ContinuationOptions):
+    """The grazing orbit near the scaled ``y`` (largest penetration ``g_last`` δ0 at step ``n``): solved on the
+    free piece of the map (:func:`free_system`), where it is a smooth root: with a contact far stiffer than the
+    rotor the true map's Jacobian flips between the two pieces from one iterate to the next at zero
+    penetration and Newton stalls (measured on a Jeffcott scene of rotor/periodic/jeffcott_scene.py with a
+    2 GPa ring: the level-0 solve on the true map failed at 1 313.7 rpm, 1e-4 δ0 from the corner). Returns
+    ``(y, J, M, residual)``: the free piece's Jacobian and monodromy (the true map's are set-valued there: its
+    Jacobian mixes the pieces step by step and made a stable grazing orbit look unstable), the true map's
+    residual; or None."""
+    free = _piece(problem, ev)
+    got = solve_on_level(free, y, 0.0, n, opts)
+    if got is None and g_last > 0:      # from deep in contact: nearer first through the true map's own orbits
+        for frac in LEVEL_FRACTIONS[:-1]:
+            got = solve_on_level(ev, y, frac * g_last, n, opts)
+            if got is None:
+                return None
+            y = got[0]
+        got = solve_on_level(free, y, 0.0, n, opts)
+    if got is None:
+        return None
+    y_g = got[0]
+    g_max, n_max = largest_penetration(ev.flow(float(y_g[-1] * ev.ls)), y_g[:-1] * ev.s, problem.n_steps, ev.modes0)
+    if n_max != n and g_max > GRAZING_TOL:          # the largest penetration moved to another step: solve there
+        got = solve_on_level(free, y_g, 0.0, n_max, opts)
         if got is None:
             return None
-        y = got[0]
+        y_g = got[0]
+    on_true = _on_true_map(ev, got)     # an orbit of the true map too; its multipliers are the free piece's
+    return None if on_true is None else (y_g, got[1], got[2], on_true[3])
+
+
+def _on_true_map(ev: Evaluator, got):
+    """``got`` (a level solve on one piece) evaluated on the true map: ``(y, J, M, residual)``, or None where
+    it is no orbit of the true map (residual above :data:`ACCEPT_TOL`)."""
+    if got is None:
+        return None
+    try:
+        R, J, M = ev(got[0][:-1] * ev.s, got[0][-1] * ev.ls)
+    except (OutsideDomainError, ConvergenceError, InputError):
+        return None
+    res = float(np.max(np.abs(R)))
+    return (got[0], J, M, res) if res < ACCEPT_TOL else None
+
+
+def _first_past(problem: Problem, ev: Evaluator, y_g, into_contact: bool, n: int, opts: ContinuationOptions,
+                dlam_max: float):
+    """The first orbit past the grazing orbit ``y_g``: at the penetration (step ``n``) that the piece's tangent
+    puts ``dlam_max`` (scaled parameter) away, at most ``±GRAZING_STEP`` δ0 (a stiff ring's contact branch
+    runs far in speed for a small penetration: 1e-3 δ0 was 104 rpm past the grazing orbit on the scene of
+    the measurement below), from that tangent's predictor,
+    solved on the smooth piece of the side it lies on (:func:`free_system`: the free piece out of contact, the
+    bilateral contact piece into it) and accepted where it is an orbit of the true map. On the true map itself
+    Newton chatters there when the orbit grazes all round: its iterates touch on part of the orbit only and
+    their Jacobians jump between the pieces (measured on a Jeffcott scene of rotor/periodic/jeffcott_scene.py
+    with a 2 GPa ring: residuals 5e-9 to 3e-6 over 12 iterations at 1e-9 δ0, 5e-3 to 3e-2 at 1e-3 δ0). Where
+    the piece's orbit is not the true map's (an orbit touching on part of its period only, where the map is
+    C¹ across grazing), Newton on the true map from it, and last from the grazing orbit at ``±GRAZING_STEP`` δ0
+    (the off-centre orbit of tests/rotor/periodic/test_grazing.py). Returns ``(y, J, M, residual)`` or None."""
+    d0 = ev.flow(float(y_g[-1] * ev.ls)).system.support.law.clearance_m
+    piece = _piece(problem, ev, BILATERAL_OFFSET * d0 if into_contact else None)
+    sign = 1.0 if into_contact else -1.0
+    try:        # the piece's tangent at the grazing orbit (an orbit of both pieces), oriented across grazing
+        _, J_p, _ = piece(y_g[:-1] * ev.s, y_g[-1] * ev.ls)
+        grad = _gradient(piece, y_g, n)
+    except (OutsideDomainError, ConvergenceError, InputError):
+        return None
+    tau = unit_tangent(J_p, sign * grad, opts.rcond, neutral_rows(J_p))
+    slope = abs(float(grad @ tau))              # |dg/ds| along the piece's tangent
+    level = sign * min(GRAZING_STEP, slope * dlam_max / max(abs(float(tau[-1])), 1e-300))
+    for _ in range(PAST_TRIES):         # a curved branch near the corner: a shorter step
+        got = solve_on_level(piece, y_g + level / float(grad @ tau) * tau, level, n, opts)
+        if got is not None:
+            break
+        level *= 0.25
+    on_true = _on_true_map(ev, got)
+    if on_true is not None:
+        return on_true
+    if got is not None and (on_true := solve_on_level(ev, got[0], level, n, opts)) is not None:
+        return on_true
+    return solve_on_level(ev, y_g, sign * GRAZING_STEP, n, opts)     # the true map from the grazing orbit
+
+
+def _cross(problem: Problem, points, floor, ls: float, opts: ContinuationOptions, lam_end: float):
+    """From the segment's ``points`` (its last orbit on one side of grazing): the grazing orbit and the first
+    orbit past it, no farther in the parameter than the segment's last step nor than half the way to
+    ``lam_end``. Returns ``(grazing point, kind, critical multiplier past it, first state, first parameter, first
+    tangent)`` or None."""
+    last = points[-1]
+    ev = Evaluator(problem, floor.copy(), ls)
+    ev.modes0 = start_modes(problem, last)
+    y = np.concatenate([last.state / floor, [last.parameter / ls]])
+    g_last, n = largest_penetration(ev.flow(last.parameter), last.state, problem.n_steps, ev.modes0)
+    got = _grazing_orbit(problem, ev, y, g_last, n, opts)
+    if got is None:
+        return None
     y_g, J_g, M_g, res_g = got
-    got = solve_on_level(ev, y_g, -GRAZING_STEP if g_last > 0 else GRAZING_STEP, n, opts)
+    step = abs(points[-1].parameter - points[-2].parameter) if len(points) > 1 else abs(lam_end - last.parameter)
+    dlam_max = min(step, 0.5 * abs(lam_end - float(y_g[-1] * ls))) / ls
+    got = _first_past(problem, ev, y_g, g_last < 0, n, opts, dlam_max)
     if got is None:
         return None
     y1, J1, M1, res1 = got
@@ -204,7 +330,7 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
         failures += br.failures
         if br.stop != "grazing" or not br.points or k == max_grazings:
             break
-        crossed = _cross(problem, br.points[-1], floor, ls, opts)
+        crossed = _cross(problem, br.points, floor, ls, opts, lam_end)
         if crossed is None:             # the plain continuation (its restarts, if allowed) from the last orbit on
             last = br.points[-1]
             rest = continue_branch(problem, last.state, last.parameter, lam_end, scales=floor, lam_scale=ls,

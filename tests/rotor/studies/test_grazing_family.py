@@ -1,0 +1,72 @@
+"""Branches through grazing on rotor scenes nobody tuned: Jeffcott rotors in a conformal clearance ring, written as
+ordinary scenes (rotor/periodic/jeffcott_scene.py), followed by the branch that ``ringcontact branch`` runs
+(rotor/studies/orbit.py) up and down their hysteresis.
+
+Cases: a seeded random family (rotor/periodic/jeffcott_scene.py: random_family; the seed is the commit's hash, or
+``RINGCONTACT_TEST_SEED``, printed). Expected values: the exact discrete circular whirl of the average-acceleration
+Newmark scheme (the closed form of rotor/periodic/jeffcott_scene.py with the scheme's warped frequency), its
+grazing speeds, grazing folds and smooth folds. The default run checks one rotor both ways and one sweep through
+the command line; the slow tier checks ten (the issue's family; benchmarks/bench_grazing_family.py reports them).
+"""
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from seeds import commit_seed
+
+from reports.cli.orbit import branch_main
+from rotor.periodic.jeffcott_scene import random_family, scene_toml
+from rotor.studies.grazing_family import check_branch, expected_events, sweep_range
+
+#: the issue's bounds: every closed-form fold and grazing within 0.1 %, every orbit within 1e-6 of the curve
+EVENT_RTOL = 1e-3
+DISTANCE_BOUND = 1e-6
+
+
+def _assert_sweep(c) -> None:
+    assert c.stop == "end reached", c
+    assert c.restarts == 0, c
+    assert len(c.expected) == 3, c                  # grazing, grazing fold and the jump's fold in the range
+    assert max(c.fold_errors) < EVENT_RTOL, c
+    assert c.middle_points >= 1 and c.middle_unstable == c.middle_points, c
+    assert c.worst_distance < DISTANCE_BOUND, c
+
+
+def _family(count: int):
+    seed = commit_seed()
+    print(f"seed {seed} (RINGCONTACT_TEST_SEED={seed} reruns this family)")
+    return random_family(seed, count)
+
+
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_one_random_rotor_both_ways_through_every_corner_and_fold(direction, tmp_path):
+    rotor = _family(1)[0]
+    low, high = sweep_range(rotor)
+    _assert_sweep(check_branch(rotor, low, high, direction, tmp_path))
+
+
+def test_ringcontact_branch_reports_the_closed_form_grazings_and_fold(tmp_path):
+    rotor = _family(1)[0]
+    low, high = (float(f"{v:.6f}") for v in sweep_range(rotor))      # the speeds as typed
+    scene = tmp_path / "jeffcott-ring.toml"
+    scene.write_text(scene_toml(rotor), encoding="utf-8")
+    out = tmp_path / "branch.json"
+    assert branch_main([str(scene), "--rpm-start", str(low), "--rpm-end", str(high), "--out", str(out),
+                        "--accept-long"]) == 0
+    d = json.loads(out.read_text(encoding="utf-8"))
+    assert sum(d["restarts"].values()) == 0
+    assert d["stop"] == "end reached" and d["points"][-1]["speed_rpm"] == pytest.approx(high, rel=1e-12)
+    found = [(b["kind"], b["speed_rpm"]) for b in d["bifurcations"]]
+    for kind, speed in expected_events(rotor, d["steps_per_rev"], low, high):
+        assert min(abs(s - speed) / speed for k, s in found if k == kind) < EVENT_RTOL, (kind, speed, found)
+    assert all(math.isfinite(amps[0]) for amps in d["points"][-1]["velocity_amplitudes_mm_s_1X_to_5X"].values())
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_ten_random_rotors_both_ways(direction, tmp_path):
+    for rotor in _family(10):
+        low, high = sweep_range(rotor)
+        _assert_sweep(check_branch(rotor, low, high, direction, tmp_path))
