@@ -5,10 +5,11 @@ Equations ``R(x, λ) = Φ_λ(x) − x = 0`` plus the arclength condition ``τ·(
 all in scaled variables (``x_j/s_j``, ``λ/λ_s``). The predictor steps ``ds`` along the unit tangent ``τ``;
 the corrector is Newton on the bordered system ``[[D(M − I)D⁻¹, D ∂R/∂λ λ_s], [τᵀ]]`` solved in the
 minimum-norm sense. A face stuck through the whole period makes the orbits a continuum (multipliers exactly
-1, :mod:`rotor.periodic.floquet`): a branch is then a family, not a curve, and its null directions (singular
-values of the scaled ``M − I`` below :data:`NEUTRAL_TOL`) enter as phase conditions ``v·(y − y_prev) = 0``,
-so that each point stays at the previous point's place in the continuum and the tangent has no component
-along it. Step control:
+1, :mod:`rotor.periodic.floquet`): a branch is then a family, not a curve, and its conserved levels (left null
+vectors ``u`` of the scaled ``M − I``, singular values below :data:`NEUTRAL_TOL`: the offsets at which the stuck
+faces hold) enter as phase conditions ``u·(y − y_prev) = 0`` (:func:`rotor.periodic.corrector.neutral_rows`), so
+that each point keeps the previous point's offsets, as a slow change of the parameter does while the faces stay
+stuck, and the tangent does not change them. Step control:
 ``ds`` grows ×1.5 after a corrector of ≤ 3 iterations, shrinks ×0.6 after ≥ 7, is halved and retried on
 failure (no convergence, or an iterate the scheme cannot step: beyond the contact law's domain), down to
 ``ds_min``.
@@ -22,7 +23,8 @@ and to the load, which the period map does not carry).
 Switches (the Table 4 rotor, friction on the ring's end faces). The corrector stops where the map jumps, as
 measured at three stalls of the plain corrector (600–18 000 rpm, 2 240 steps per revolution; the monodromy
 agreed there with central differences to 3e-6 of its scale one step back, so the Jacobian was not the cause):
-at 3 083 and 3 954 rpm both faces stick through the period (four neutral multipliers) and the phase rows hold
+at 3 083 and 3 954 rpm both faces stick through the period (four neutral multipliers) and the phase rows (then
+right null vectors, which let the offsets drift along the branch) hold
 the orbit at the place of the continuum where face 2's holding force has reached μN (1 499 and 1 496 N of
 1 500 N): a parameter step of 4e-4 rpm makes the face slip for a step and the scaled residual jump from 5e-11
 to 4e-4 (2.7e-4 at 3 954 rpm), while shooting at fixed speed (no phase rows) finds a stuck orbit 0.1 rpm on,
@@ -73,7 +75,7 @@ from rotor.periodic.branch_types import (COLD, GRID, NEUTRAL_TOL, PARAM_REL_STEP
                                          start_modes)
 from rotor.periodic.corrector import correct, land, make_point, neutral_rows, rescale, unit_tangent
 from rotor.periodic.period_flow import advance
-from rotor.periodic.restarts import bridge, jump_past_fold, restart
+from rotor.periodic.restarts import bridge, jump_past_fold, restart, shot
 from rotor.periodic.shooting import ShootingOptions, shoot
 
 __all__ = ["COLD", "GRID", "NEUTRAL_TOL", "PARAM_REL_STEP", "RESCALE_RATIO", "RESTART_NAMES", "RESTART_STEP", "SECANT", "TRANSIENT",
@@ -156,8 +158,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
             restarts += 1
             ds = opts.ds
         else:
-            y, J, M, it, res = got
-            restarted = 0
+            (y, J, M, it, res), restarted = got, 0
             if stalls:
                 failures.append((float(points[-1].parameter), _stall_text(stalls), f"passed with a step ds = {ds:.3g}"))
         fails, stalls = 0, []
@@ -165,10 +166,11 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
         if not back:           # across a jump past a fold the two orbits lie on different branches
             bifs += bifurcations_between(ev, points[-1], pt, len(points), y_prev, tau, ds, opts, phase)
-        if (pt.parameter - lam_end) * direction > 0 and (landed := land(ev, y_prev, y, lam_end, opts, phase)):
-            y, J, M, it, res = landed        # the last orbit at lam_end itself, not beyond it
-            pt = make_point(ev, y, J, M, it, res, tau_new, opts, restarted, why)
-            bifs = before_end(bifs, len(points), lam_end, direction)
+        if (pt.parameter - lam_end) * direction > 0 and (landed := _at_end(ev, y_prev, y, lam_end, opts, phase,
+                                                                           failures)):
+            y, J, M, it, res, how, end_why = landed        # the last orbit at lam_end itself, not beyond it
+            pt = make_point(ev, y, J, M, it, res, tau_new, opts, how or restarted, end_why if how else why)
+            restarts, bifs = restarts + (how > 0), before_end(bifs, len(points), lam_end, direction)
         points.append(pt)
         far = pt if (pt.parameter - far.parameter) * direction > 0 else far
         report("branch_point", points=len(points), max_points=opts.max_points, parameter=pt.parameter, start=lam0,
@@ -205,6 +207,31 @@ def before_end(bifs: list, index: int, lam_end: float, direction: float) -> list
     not on the branch. Measured on Table 4 (run at commit 9feddee): a Neimark-Sacker crossing at 18 054.5 rpm with
     ``--rpm-end 18000``."""
     return [b for b in bifs if b.index != index or (b.parameter - lam_end) * direction <= 0]
+
+
+def _at_end(ev, y_prev, y, lam_end: float, opts, phase, failures: list):
+    """The orbit at exactly ``lam_end`` between the scaled points ``y_prev`` and ``y`` on either side of it, as
+    ``(y, J, M, iterations, residual, how, why)``: the corrector on ``λ = lam_end``
+    (:func:`rotor.periodic.corrector.land`, ``how`` 0, ``why`` ""); if it fails (``why`` says how), shooting at
+    ``lam_end`` from the interpolated state (Newton at fixed parameter, ``how`` 0), then from a transient of
+    ``y_prev`` (:data:`TRANSIENT`, a restart), the way it was passed entered in ``failures``. None if all fail
+    (the branch ends beyond ``lam_end``, said in ``failures``)."""
+    landed = land(ev, y_prev, y, lam_end, opts, phase)
+    if landed is not None:
+        return (*landed, 0, "")
+    why = f"1 corrector failure, last: {ev.failure}"
+    y_end = y_prev + (lam_end / ev.ls - y_prev[-1]) / (y[-1] - y_prev[-1]) * (y - y_prev)
+    for how in (SECANT, TRANSIENT):
+        got = shot(ev, y_end, opts, how, y_prev)
+        if got is not None:
+            failures.append((lam_end, why, f"{'shot at fixed' if how == SECANT else 'restart (transient) at'} "
+                                           f"{ev.pb.name} = {lam_end:.6g}, the end"))
+            y_new, J, M, it, res, _ = got
+            return y_new, J, M, it, res, 0 if how == SECANT else TRANSIENT, why
+    ev.failure = why
+    failures.append((float(y[-1] * ev.ls), why,
+                     f"no orbit at {ev.pb.name} = {lam_end:.6g}: the last orbit lies beyond"))
+    return None
 
 
 def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts, fold=None):

@@ -18,10 +18,27 @@ BACKTRACKS = 3
 
 
 def neutral_rows(J, tol: float = NEUTRAL_TOL) -> np.ndarray:
-    """Phase rows ``(k, n + 1)``: the directions ``v`` with ``D(M − I)D⁻¹ v = 0`` (singular values below
-    ``tol`` times the largest) padded with a zero parameter entry: a stuck face's continuum of orbits."""
-    _, s, vt = np.linalg.svd(J[:, :-1])
-    rows = vt[s < tol * s[0]]
+    """Phase rows ``(k, n + 1)`` of a stuck face's continuum of orbits (singular values of the scaled ``M − I``
+    below ``tol`` times the largest), padded with a zero parameter entry: its conserved levels.
+
+    The rows are the left null vectors ``u`` (``uᵀ D(M − I)D⁻¹ = 0``): ``u·y`` is the same after a period as
+    before for every state (a face stuck through the period holds its tangential offset exactly), so
+    ``u·(y − y_prev) = 0`` keeps the offset at which the faces hold, as a slow change of the parameter does while
+    they stay stuck (the levels :func:`rotor.periodic.shooting.level_step` keeps at fixed parameter). Right null
+    vectors ``v`` instead (the rows before issue 36) hold a direction without physical meaning and let the
+    offset drift along the branch: on the Friswell loose-aluminium scene (tests/rotor/periodic/
+    test_friswell_loose_branch.py, 2 000 N preload) the ring's offset went from 0 at 2 300 rpm to 19.8 µm of
+    its 20 µm clearance at 2 470 rpm, where the next predictor put it into radial contact, the holding force
+    past μN = 200 N, the faces slipping 54 times in the period: a stall. Where ``U0ᵀ V0`` is ill-conditioned
+    (reciprocal condition below 1e-6: the levels do not fix the member) the right null vectors are returned."""
+    U, s, vt = np.linalg.svd(J[:, :-1])
+    null = s < tol * s[0]
+    U0, V0 = U[:, null], vt[null].T
+    rows = U0.T
+    if U0.shape[1]:
+        sg = np.linalg.svd(U0.T @ V0, compute_uv=False)
+        if not sg[-1] > 1e-6 * max(sg[0], 1e-300):
+            rows = V0.T
     return np.hstack([rows, np.zeros((len(rows), 1))])
 
 
@@ -38,8 +55,9 @@ def unit_tangent(J, prev, rcond, phase=None):
 
 def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, anchor=None):
     """Newton on ``[R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or None
-    (``ev.failure`` then says why). The phase rows ``P`` keep the orbit's place in a stuck face's continuum
-    that of ``anchor``.
+    (``ev.failure`` then says why, with the end-face switches in the last iterate's period where there were
+    any). The phase rows ``P`` (:func:`neutral_rows`) keep the orbit's levels in a stuck face's continuum those
+    of ``anchor``.
 
     A step whose residual is larger than the last iterate's is halved (at most :data:`BACKTRACKS` times, each
     an iteration): where a switch inside the period makes the map's derivative jump (a kink), the full Newton
@@ -73,7 +91,8 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
         if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
             return y - dy, J, M, it, res
     ev.failure = (f"no convergence in {opts.max_iter} iterations (residuals "
-                  + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")")
+                  + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")"
+                  + (f"; the faces switched {ev.events} times in the last iterate's period" if ev.events > 0 else ""))
     return None
 
 
