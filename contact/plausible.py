@@ -66,7 +66,22 @@ RANGES: dict[str, tuple[float, float, str, bool, bool, str]] = {
     "speed_points": (1, 10000, "-", True, True, "speeds of a linear sweep"),
     "modes": (1, 200, "-", True, True, "modes of a rotor model"),
     "elements": (1, 64, "-", True, True, "elements per shaft segment (64 resolve any mode below 1 MHz)"),
+    # ring-pair files (fem_reference.ring_scene) and the calibrated-law files made from them (contact.calibrate)
+    "ring_length_mm": (1e-4, 10000.0, "mm", True, True, "a ring's radius, thickness, width or clearance: wrong unit? millimetres expected"),
+    "ring_modulus_gpa": (0.5, 1200.0, "GPa", True, True, "soft polymers to tungsten carbide: 7.2e10 typed here is Pa, not GPa"),
+    "stiffness_factor": (0.0, 1000.0, "-", False, True, "factor on the conformal law's stiffness (1: the law as published)"),
+    "foundation_modulus_pa_per_m": (0.0, 1e18, "Pa/m", False, True, "1000 GPa over 1 um of ring: stiffer is no ring"),
+    "law_exponent": (0.5, 5.0, "-", True, True, "force ~ penetration^n: 1 (line contact) to 1.5 (Hertz point) in practice"),
+    "far_field_constant": (-1000.0, 1000.0, "-", True, True, "the conformal-compliance law's far-field constant C (fits give 1-5)"),
 }
+
+#: largest penetration a law holds for, as a fraction of the contact radius (small-strain limit of both FEM
+#: references; a ring-pair file's range and a law file's validity)
+MAX_PENETRATION_TO_RADIUS = 0.02
+#: largest radial clearance, as a fraction of the contact radius (a larger gap is not a bearing seat)
+MAX_CLEARANCE_TO_RADIUS = 0.05
+#: largest tilt (arcmin) of a ring-pair file's range and a law file's validity (small-rotation model)
+MAX_TILT_ARCMIN = 60.0
 
 
 def range_text(name: str) -> str:
@@ -110,3 +125,21 @@ def check_field(where: str, key: str, value, shown: str, si) -> None:
         raise InputError(f"{where}.{key} = {shown}: must be finite")
     if key in RANGES and isinstance(value, (int, float)) and not isinstance(value, bool):
         check(key, float(value), shown, label=f"{where}.{key}")
+
+
+def check_scaled(name: str, value_si: float, si_per_unit: float, label: str, typed: str, typed_unit: str) -> float:
+    """A value held in SI in a file (``typed`` as written there, in ``typed_unit``) inside ``RANGES[name]``.
+
+    ``si_per_unit`` converts the row's unit to SI (1e9 for GPa). The refusal names ``label``, the value as
+    written with its unit, the value in the row's unit and the range, e.g.
+    ``geometry.bearing_E_Pa = -2.04e+11 Pa (-204 GPa): must be in [0.5, 1200] GPa (...)``.
+    """
+    value = value_si / si_per_unit
+    if inside(name, value):
+        return value_si
+    unit = RANGES[name][2]
+    shown = f"{typed} {typed_unit}".rstrip()
+    if si_per_unit != 1.0 or unit not in ("-", typed_unit):
+        shown += f" ({value:g} {unit})"
+    why = "must be finite" if not math.isfinite(value) else f"must be {range_text(name)}"
+    raise InputError(f"{label} = {shown}: {why} ({RANGES[name][5]})")

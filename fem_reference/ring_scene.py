@@ -48,6 +48,7 @@ from pathlib import Path
 
 from contact.errors import DatasetError, InputError
 from contact.package_data import entries, shipped, stem
+from contact.plausible import MAX_CLEARANCE_TO_RADIUS, MAX_PENETRATION_TO_RADIUS, MAX_TILT_ARCMIN, RANGES
 from contact.units import ARCMIN, GPA, MM
 from fem_reference.plane.geometry import Material, RingPair
 from fem_reference.scenes import BEARING_DRIVES, SUPPORT_HOLDS, Scene, by_name
@@ -73,8 +74,6 @@ _FINEST_FIRST_LEVEL_M = 1e-3
 _ARC_ELEMENTS = 3
 _ARC_SHRINK = 0.85          # elastic arc / rigid-overlap arc at the smallest penetrations (measured 0.93)
 _PHI_ELEMENTS_3D = 64       # angular multiplier elements over [0, pi] on the coarsest 3D level (Q0)
-MAX_TILT_ARCMIN = 60.0      # small-rotation model and the 3D levels' edge grading
-MAX_PENETRATION_TO_RADIUS = 0.02   # small-strain limit of both FEM references
 
 
 # section -> key -> (unit shown, kind, required); kinds: "len" mm, "mod" GPa, "nu", "text", "pair", "list"
@@ -92,8 +91,9 @@ KEYS: dict[str, dict[str, tuple[str, str, bool]]] = {
               "penetration_points_mm": ("mm", "list", False), "penetration_points_3d_mm": ("mm", "list", False),
               "tilt_points_arcmin": ("arcmin", "list", False)},
 }
-MODULUS_RANGE_GPA = (0.5, 1200.0)   # soft polymers to tungsten carbide: 7.2e10 typed here is Pa, not GPa
-LENGTH_RANGE_MM = (1e-4, 10_000.0)
+# one source with the law files made from a ring-pair file (contact.plausible, contact.calibrate.validate)
+MODULUS_RANGE_GPA = RANGES["ring_modulus_gpa"][:2]   # soft polymers to tungsten carbide: 7.2e10 typed here is Pa
+LENGTH_RANGE_MM = RANGES["ring_length_mm"][:2]
 
 
 @dataclass(frozen=True)
@@ -298,9 +298,10 @@ def _check_geometry(origin: str, ring: dict, housing: dict) -> None:
         raise InputError(f"{_where(origin, 'bearing_ring', 'inner_radius_mm')} = {ri:g} mm: must be < "
                          f"[bearing_ring] outer_radius_mm = {ro:g} mm (the radii cross)")
     c = housing["radial_clearance_mm"]
-    if c > 0.05 * ro:
-        raise InputError(f"{_where(origin, 'housing', 'radial_clearance_mm')} = {c:g} mm: must be <= 5 % of the ring's "
-                         f"outer radius ({0.05 * ro:g} mm): a clearance that large is not a bearing seat")
+    if c > MAX_CLEARANCE_TO_RADIUS * ro:
+        raise InputError(f"{_where(origin, 'housing', 'radial_clearance_mm')} = {c:g} mm: must be <= "
+                         f"{100 * MAX_CLEARANCE_TO_RADIUS:g} % of the ring's outer radius "
+                         f"({MAX_CLEARANCE_TO_RADIUS * ro:g} mm): a clearance that large is not a bearing seat")
     bore, ho = ro + c, housing["outer_radius_mm"]
     if ho <= bore:
         raise InputError(f"{_where(origin, 'housing', 'outer_radius_mm')} = {ho:g} mm: must be > the bore radius "

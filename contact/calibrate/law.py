@@ -14,7 +14,8 @@ from functools import cached_property
 import numpy as np
 
 from contact import laws
-from contact.calibrate.families import FAMILIES, KERNEL_LAW_CODE, PARAMETERS, SceneGeometry, family_force
+from contact.calibrate.families import KERNEL_LAW_CODE, SceneGeometry, family_force
+from contact.calibrate.validate import check_behaviour, check_document
 from contact.dataset import check_document_sha256, document_sha256
 from contact.errors import DatasetError, InputError
 from contact.loose_support import LooseSupportParams
@@ -193,24 +194,11 @@ class CalibratedLaw:
             raise DatasetError(f"{source}: not valid JSON (or nested too deeply): {str(exc)[:120]}") from None
         if not isinstance(doc, dict) or doc.get("schema") != SCHEMA or doc.get("version") != VERSION:
             raise DatasetError(f"{source}: not a {SCHEMA} v{VERSION} file")
-        check_document_sha256(doc, source)
-        try:
-            fam = doc["family"]
-            if fam not in FAMILIES:
-                raise DatasetError(f"{source}: family {fam!r} unknown (have {', '.join(FAMILIES)})")
-            params = {k: float(doc["parameters"][k]) for k, _ in PARAMETERS[fam]}
-            if not all(math.isfinite(v) for v in params.values()):
-                raise DatasetError(f"{source}: non-finite parameter")
-            return cls(name=doc["name"], scene=doc["scene"], family=fam, parameters=params,
-                       parameter_std={k: float(v) for k, v in doc["parameter_std"].items()},
-                       parameter_units=dict(doc["parameter_units"]), geometry=SceneGeometry(**doc["geometry"]),
-                       validity_penetration_m=(float(doc["validity"]["penetration_min_m"]),
-                                               float(doc["validity"]["penetration_max_m"])),
-                       dataset=dict(doc["dataset"]), fit=dict(doc.get("fit", {})),
-                       validity_tilt_max_rad=float(doc["validity"].get("tilt_max_rad", 0.0)),
-                       provenance=dict(doc.get("provenance", {})))
-        except (KeyError, TypeError, ValueError) as exc:
-            raise DatasetError(f"{source}: malformed calibrated law ({exc!r})") from exc
+        check_document_sha256(doc, source)      # accidents only: the content is checked as any input
+        fields = check_document(doc, source)      # every field's type and range, one-line DatasetError
+        law = cls(**{**fields, "geometry": SceneGeometry(**fields["geometry"])})
+        check_behaviour(law, source)              # finite, > 0 and rising over its validity range
+        return law
 
 
 def _round_floats(obj, digits: int = 12):

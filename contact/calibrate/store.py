@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import stat
 from dataclasses import dataclass
 from pathlib import Path
@@ -104,7 +105,27 @@ def shipped_record(name: str, directory=CALIBRATED_DIR) -> LawFile:
     return _record(data, os.fspath(path) if isinstance(path, os.PathLike) else str(path), str(path))
 
 
+#: what a stored law's name may hold: it names a file inside the calibrated folder, never a path
+NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,199}")
+
+
+def check_law_name(name) -> str:
+    """``name`` if it can only name a file inside the calibrated folder (no path separator, no ``..``).
+
+    Raises
+    ------
+    DatasetError
+        a name with a path separator, ``..``, a leading dot or anything but letters, digits, ``.``, ``-``, ``_``.
+    """
+    if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name) or ".." in name:
+        raise DatasetError(f"calibrated law {name!r}: a law's name, not a path (letters, digits, '.', '-', '_'; "
+                           f"no '/' or '..'; available: {', '.join(available()) or 'none'}); give a law file "
+                           "elsewhere by its path (.json)")
+    return name
+
+
 def _stored_path(name: str, directory):
+    check_law_name(name)
     directory = location(directory)
     path = directory.joinpath(f"{name}.json")
     if not path.is_file():

@@ -115,6 +115,24 @@ def geometry_mismatch(values_si: dict, law) -> tuple | None:
             return key, float(mine) / scale, theirs / scale, unit
 
 
+def outside_scene_ranges(law) -> str | None:
+    """Why the calibrated ``law`` cannot serve a rotor scene: the first of its geometry values outside the range a
+    scene allows for that key (:data:`contact.plausible.RANGES`, the scene's own check); None if all are inside.
+
+    A law file holds any ring a ring-pair file can describe (a 0.1 um ring included); a scene whose ring width
+    must be 1-500 mm cannot take such a law's width as its own.
+    """
+    from contact.plausible import RANGES, inside, range_text
+    for key, (_, gattr, unit, scale) in GEOMETRY_KEYS.items():
+        if key not in RANGES:
+            continue
+        si = float(getattr(law.geometry, gattr))
+        if not inside(key, si / scale):
+            return (f"its geometry.{gattr} = {si:g} is {key} = {_shown(si / scale, unit)}, and a rotor scene's {key} "
+                    f"must be {range_text(key)} ({RANGES[key][5]})")
+    return None
+
+
 def _shown(value: float, unit: str) -> str:
     return f"{value:.6g} {unit}".rstrip()
 
@@ -143,6 +161,9 @@ def complete_loose_support(kw: dict, origin: str, base_dir) -> dict:
         law.kernel_law()        # a family the compiled loose-support kernel has (not conformal-compliance)
     except InputError as exc:
         raise InputError(f"{where}.law = {text!r}: {exc}") from None
+    why = outside_scene_ranges(law)
+    if why is not None:
+        raise InputError(f"{where}.law = {text!r}: {law_label(text)}: {why}")
     bad = geometry_mismatch(kw, law)
     if bad is not None:
         key, mine, theirs, unit = bad
@@ -176,6 +197,9 @@ def with_law(scene, text: str, where: str = "--law"):
         rec.law.kernel_law()        # a family the compiled loose-support kernel has
     except InputError as exc:
         raise InputError(f"{where} = {text}: {exc}") from None
+    why = outside_scene_ranges(rec.law)
+    if why is not None:
+        raise InputError(f"{where} = {text}: {law_label(text)}: {why}")
     bad = geometry_mismatch(vars(ls), rec.law)
     if bad is not None:
         key, mine, theirs, unit = bad
