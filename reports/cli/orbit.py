@@ -46,12 +46,36 @@ from reports.cli import _budget
 from reports.cli._edge import Parser, count, fail, in_dir, in_file, out_file, out_prefix, quantity
 from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, override_words,
                                         scene_from_args, warm_up_shown)
+from reports.cli._orbit_hb import check_method_args, hb_branch_run, hb_branch_table, hb_choice, hb_orbit_table
+
+
+def _method(text: str) -> str:
+    """A ``type=`` for ``--method``: shooting, hb or auto."""
+    if text not in METHOD_NAMES:
+        raise argparse.ArgumentTypeError(f"= {text}: must be one of {', '.join(METHOD_NAMES)}")
+    return text
+
+
+#: ``--method`` values (rotor/studies/orbit_methods.py: METHODS)
+METHOD_NAMES = ("shooting", "hb", "auto")
 
 
 def _common(p: argparse.ArgumentParser) -> None:
     add_scene_options(p)
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=None,
                    help="time steps per revolution (default: 256, more where the contact step limit needs it)")
+    p.add_argument("--method", type=_method, default="shooting",
+                   help="shooting (default: Newton on the time integration's period map, Floquet stability, "
+                        "impacts and stick/slip), hb (harmonic balance: a frictionless ring only, no step error, "
+                        "stability not computed) or auto (HB where the ring is frictionless and its spectrum "
+                        "converges below shooting's step error, else shooting; the JSON says which ran and why, "
+                        "and checks HB against shooting at the speed)")
+    p.add_argument("--harmonics", type=count(1, 64, "harmonics"), default=None,
+                   help="HB harmonics for --method hb or auto (default: 1, 2, 4 ... 32 until the spectrum's "
+                        "highest retained harmonics fall below the bound; ignored by shooting)")
+    p.add_argument("--richardson", action="store_true",
+                   help="shooting also with twice the steps per revolution, the amplitudes extrapolated to "
+                        "continuous time (Richardson; JSON richardson); not with --method hb (no step)")
     p.add_argument("--json", action="store_true", help="print the result as JSON (default: a short table)")
     p.add_argument("--out", type=out_file, default=None, help="also write the JSON result to this file")
     add_progress_option(p)
@@ -246,16 +270,53 @@ def no_orbit_text(args, speed_rpm: float, steps_per_rev: int, attempts: list[dic
 
 
 def _orbit(args) -> int:
-    from rotor.studies.orbit import orbit
+    from rotor.studies.orbit_methods import cross_check
 
     name, _, loose = _scene(args)
+    check_method_args(args, "ringcontact orbit", args.speed_rpm, _overrides(args))
+    pt, choice = (None, None) if args.method == "shooting" else hb_choice(args, args.speed_rpm, _overrides(args))
+    if pt is None:                          # shooting: asked for, or chosen by auto (choice says why)
+        d, res, events = _shooting_orbit(args, name, loose, choice)
+        return _orbit_done(args, d, res, events, name)
+    d = {"scene": name, **pt.as_dict(), **law_fields(loose, pt.fields["max_edge_penetration_mm"] * 1e-3),
+         "method_choice": choice}
+    if args.method == "auto":               # each method checks the other where both apply
+        sd, res, _ = _shooting_orbit(args, name, loose, hb=pt)
+        d["cross_check"] = (cross_check(d, sd) if res.converged else
+                            {"methods": ["hb", "shooting"], "shooting": "no orbit found by shooting at this speed"})
+    _emit(args, d, hb_orbit_table(d))
+    if not pt.orbit.converged:
+        print(f"ringcontact orbit: error: no HB orbit at {args.speed_rpm:g} rpm (Newton stalled at relative residual "
+              f"{pt.orbit.residual:.1e} with {pt.orbit.harmonics} harmonics); try --method shooting", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _shooting_orbit(args, name: str, loose, choice: dict | None = None, hb=None) -> tuple:
+    """``(JSON, OrbitResult, Events)`` of the shooting orbit at ``--speed-rpm`` (``choice``: auto's, why shooting
+    ran); ``hb``: an HB point whose orbit shooting starts on (its phase-0 state, one transient revolution, then
+    Newton: the same orbit where several coexist, stable or not)."""
+    from rotor.studies.orbit import orbit
+    from rotor.periodic.shooting import ShootingOptions
+
+    start = {}
+    if hb is not None:
+        import numpy as np
+        st = hb.fields["phase0_state"]
+        start = {"start": (np.array(st["q_m_rad"]), np.array(st["v_m_s_rad_s"])), "period_revs": hb.orbit.period_revs,
+                 "options": ShootingOptions(transient_revs=1, round_growth=2.0)}
     _check_work(args, "ringcontact orbit", args.speed_rpm)
     res, events = _watched("ringcontact orbit", args, lambda: orbit(
-        args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, period_revs=args.period_revs,
-        **_overrides(args)))
+        args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, **{"period_revs": args.period_revs, **start},
+        richardson=args.richardson, **_overrides(args)))
     d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m,
                                               res.contact.get("max_tilt_in_contact_arcmin")),
-         "attempts": events.attempts}
+         "attempts": events.attempts, "method": "shooting", **({"method_choice": choice} if choice else {})}
+    return d, res, events
+
+
+def _orbit_done(args, d: dict, res, events, name: str) -> int:
+    """Write a shooting orbit's JSON or table; exit 1 with one line where it did not converge."""
     if res.converged:
         _emit(args, d, _orbit_table(d))
         return 0
@@ -319,7 +380,8 @@ def _chosen_orbit(args, name: str) -> dict:
         raise InputError(f"--rpm-start = {args.rpm_start:g} rpm: the orbit of --from-orbit is at {rpm!r} rpm; "
                          "start the branch there")
     return {"start": (np.array(state["q_m_rad"], float), np.array(state["v_m_s_rad_s"], float)),
-            "period_revs": int(o["period_revs"]), "steps_per_rev": args.steps_per_rev or int(o["steps_per_rev"])}
+            "period_revs": int(o["period_revs"]),
+            "steps_per_rev": args.steps_per_rev or (int(o["steps_per_rev"]) if o.get("steps_per_rev") else None)}
 
 
 def _state_start(args, name: str, n_dofs: int) -> dict:
@@ -370,6 +432,10 @@ def _branch(args) -> int:
                          f"(have {', '.join(channels)})")
     if args.from_state is not None and args.from_orbit is not None:
         raise InputError(f"--from-state = {args.from_state}: give --from-orbit or --from-state, not both")
+    check_method_args(args, "ringcontact branch", min(args.rpm_start, args.rpm_end), _overrides(args))
+    pt, choice = (None, None) if args.method == "shooting" else hb_choice(args, args.rpm_start, _overrides(args))
+    if pt is not None:
+        return _hb_branch(args, name, loose, station, pt, choice)
     chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}   # a bad --from-orbit first
     if args.from_state is not None:                                                  # and a bad --from-state
         from rotor.studies.steady_state import point_system
@@ -380,10 +446,11 @@ def _branch(args) -> int:
         args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(
             max_points=int(args.max_points), turn_back=None if args.turn_back_rpm is None else
             args.turn_back_rpm / (abs(args.rpm_end - args.rpm_start) / 10.0)),     # the branch's speed scale
-        **chosen, **_overrides(args)))
+        richardson=args.richardson, **chosen, **_overrides(args)))
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
-         "wall_s": round(time.perf_counter() - t0, 3)}
+         "wall_s": round(time.perf_counter() - t0, 3), "method": "shooting",
+         **({"method_choice": choice} if choice else {})}
     deepest_mm = max([p.get("max_edge_penetration_mm", 0.0) for p in d["points"]], default=0.0)
     tilt = max([p.get("max_tilt_in_contact_arcmin", 0.0) for p in d["points"]], default=0.0)
     d.update(law_fields(loose, max(deepest_mm * 1e-3, res.start.max_edge_penetration_m),    # deepest of the branch
@@ -401,6 +468,29 @@ def _branch(args) -> int:
         print(f"ringcontact branch: error: the branch stopped at "
               f"{d['points'][-1]['speed_rpm'] if d['points'] else args.rpm_start:.1f} rpm before --rpm-end = "
               f"{args.rpm_end:g} rpm ({d['stop']}); the orbits found are in the output", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _hb_branch(args, name: str, loose, station: str, pt, choice: dict) -> int:
+    """The branch by harmonic balance (``--method hb``, or chosen by ``auto`` at ``--rpm-start``); with ``auto``
+    the start orbit checked against shooting's at ``--rpm-start``."""
+    from rotor.studies.orbit_methods import cross_check
+
+    t0 = time.perf_counter()
+    d = hb_branch_run(args, name, pt, choice, _overrides(args))
+    if args.method == "auto":
+        o = argparse.Namespace(**{**vars(args), "speed_rpm": args.rpm_start, "period_revs": None})
+        sd, res, _ = _shooting_orbit(o, name, loose, hb=pt)
+        d["cross_check"] = (cross_check(d["start"], sd) if res.converged else
+                            {"methods": ["hb", "shooting"], "shooting": "no orbit found by shooting at --rpm-start"})
+    d["wall_s"] = round(time.perf_counter() - t0, 3)
+    deepest_mm = max([p["max_edge_penetration_mm"] for p in d["points"]], default=0.0)
+    d.update(law_fields(loose, deepest_mm * 1e-3))
+    _emit(args, d, hb_branch_table(d, station))
+    if d["stop"] != "end reached":
+        print(f"ringcontact branch: error: the HB branch stopped at {d['points'][-1]['speed_rpm']:.1f} rpm before "
+              f"--rpm-end = {args.rpm_end:g} rpm ({d['stop']}); the orbits found are in the output", file=sys.stderr)
         return 1
     return 0
 

@@ -67,10 +67,11 @@ def spectrum_tail(system, coefficients) -> float:
 
 @dataclass(frozen=True)
 class HBPoint:
-    """One HB orbit of a scene: ``orbit`` (:class:`rotor.periodic.harmonic_balance.HBOrbit`), ``fields`` (the JSON
+    """One HB orbit of a scene at ``speed_rpm`` (rpm, as asked): ``orbit`` (:class:`rotor.periodic.harmonic_balance.HBOrbit`), ``fields`` (the JSON
     fields of :func:`orbit_fields`), ``ladder`` (``(H, tail, converged, cpu_s)`` of every rung climbed),
     ``tail`` (the spectrum tail of the orbit returned), ``wall_s``, ``cpu_s`` (the whole point)."""
 
+    speed_rpm: float
     orbit: HBOrbit
     fields: dict
     ladder: tuple
@@ -80,7 +81,7 @@ class HBPoint:
 
     def as_dict(self) -> dict:
         o = self.orbit
-        return {"speed_rpm": o.speed_rad_s * TO_RPM, "period_revs": o.period_revs,
+        return {"speed_rpm": self.speed_rpm, "period_revs": o.period_revs,
                 "period_s": 2.0 * math.pi * o.period_revs / o.speed_rad_s, "converged": o.converged,
                 "stable": None, "stability": "not computed (harmonic balance: no Hill's method; use --method shooting)",
                 "method": "hb", "harmonics": o.harmonics, "n_time": o.n_time, "spectrum_tail": self.tail,
@@ -118,26 +119,39 @@ def orbit_fields(system, model, coefficients, speed_rad_s: float, period_revs: i
     return out
 
 
-def _ladder(system, harmonics, n_time, period_revs, tail_tol, guess):
-    """The orbit at fixed ``harmonics``, or climbing 1, 2, 4 … :data:`MAX_AUTO_HARMONICS` until the tail is
-    below ``tail_tol``: ``(orbit, ladder, tail)``; the last orbit when no rung met it."""
-    rungs = [int(harmonics)] if harmonics else [2 ** k for k in range(int(math.log2(MAX_AUTO_HARMONICS)) + 1)]
+def min_harmonics(system, period_revs: int = 1) -> int:
+    """The fewest harmonics that hold every load order of ``system`` (order × ``period_revs``), at least 1."""
+    f = system.force
+    return max([1] + [int(round(float(o) * period_revs)) for o, c, s_ in zip(f.orders, f.cos, f.sin)
+                      if np.any(c) or np.any(s_)])
+
+
+def _ladder(system, harmonics, n_time, period_revs, tail_tol, guess, max_cpu_s):
+    """The orbit at fixed ``harmonics``, or climbing 1, 2, 4 … :data:`MAX_AUTO_HARMONICS` (from the fewest that
+    hold the load) until the tail is below ``tail_tol`` or the next rung's predicted CPU (the last one's × 8)
+    exceeds ``max_cpu_s``: ``(orbit, ladder, tail)``; the last converged orbit when no rung met the tail."""
+    low = min_harmonics(system, period_revs)
+    rungs = [int(harmonics)] if harmonics else [h for h in (2 ** k for k in range(12)) if h <= MAX_AUTO_HARMONICS]
+    rungs = rungs if harmonics else [h for h in rungs if h >= low] or [low]
     ladder, orbit, tail = [], None, math.inf
     for H in rungs:
+        if ladder and 8.0 * ladder[-1][3] > max_cpu_s:
+            break
         c0 = time.process_time()
         o = hb_orbit(system, H, n_time, period_revs=period_revs, guess=orbit if orbit is not None else guess)
-        tail = spectrum_tail(system, o.coefficients) if o.converged else math.inf
-        ladder.append((H, tail, bool(o.converged), time.process_time() - c0))
+        t = spectrum_tail(system, o.coefficients) if o.converged else math.inf
+        ladder.append((H, t, bool(o.converged), time.process_time() - c0))
         if not o.converged:
             break
-        orbit = o
+        orbit, tail = o, t
         if tail < tail_tol:
             break
     return orbit if orbit is not None else o, tuple(ladder), tail
 
 
 def hb_point(scene: str, speed_rpm: float, *, harmonics: int | None = None, n_time: int | None = None,
-             period_revs: int = 1, tail_tol: float = TAIL_TOL, stations=None, guess=None, **overrides) -> HBPoint:
+             period_revs: int = 1, tail_tol: float = TAIL_TOL, max_cpu_s: float = math.inf, stations=None, guess=None,
+             **overrides) -> HBPoint:
     """The HB orbit of ``scene`` at ``speed_rpm`` (rpm) with its reported fields.
 
     Parameters
@@ -150,14 +164,16 @@ def hb_point(scene: str, speed_rpm: float, *, harmonics: int | None = None, n_ti
         Period in revolutions (the fundamental is ``Ω/period_revs``).
     tail_tol : float
         Bound of the spectrum tail for the ladder (–).
+    max_cpu_s : float
+        No rung of the ladder started whose predicted CPU (the last rung's × 8) exceeds it (s).
     overrides
         As :func:`rotor.studies.steady_state.point_system`. Raises InputError where HB does not apply.
     """
     w0, c0 = time.perf_counter(), time.process_time()
     _, model, system = point_system(scene, speed_rpm, **overrides)
-    orbit, ladder, tail = _ladder(system, harmonics, n_time, period_revs, tail_tol, guess)
+    orbit, ladder, tail = _ladder(system, harmonics, n_time, period_revs, tail_tol, guess, max_cpu_s)
     fields = orbit_fields(system, model, orbit.coefficients, orbit.speed_rad_s, period_revs, stations)
-    return HBPoint(orbit, fields, ladder, tail, time.perf_counter() - w0, time.process_time() - c0)
+    return HBPoint(float(speed_rpm), orbit, fields, ladder, tail, time.perf_counter() - w0, time.process_time() - c0)
 
 
 def hb_scene_branch(scene: str, rpm_start: float, rpm_end: float, *, harmonics: int | None = None,

@@ -31,6 +31,7 @@ from rotor.periodic.continuation import (COLD, GRID, SECANT, TRANSIENT, Branch, 
 from rotor.periodic.floquet import FloquetResult
 from rotor.periodic.grazing import continue_through_grazing
 from rotor.periodic.period_flow import Flow, make_flow, record, to_full
+from rotor.periodic.richardson import extrapolate_branch
 from rotor.periodic.shooting import MAX_PERIOD_REVS, ShootingOptions, ShootingResult, shoot, shoot_from_transient
 from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, point_system, step_per_rev
 
@@ -131,6 +132,7 @@ class OrbitResult:
     v_m_s: np.ndarray
     max_edge_penetration_m: float = 0.0
     contact: dict = field(default_factory=dict)
+    richardson: dict | None = None
 
     @property
     def switch_free(self) -> bool:
@@ -158,7 +160,8 @@ class OrbitResult:
                 "singular_directions": self.singular_directions, "switch_free": self.switch_free,
                 "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3, **self.contact,
                 "wall_s": self.wall_s, "backend": self.backend,
-                "phase0_state": {"q_m_rad": [float(x) for x in self.q_m], "v_m_s_rad_s": [float(x) for x in self.v_m_s]}}
+                "phase0_state": {"q_m_rad": [float(x) for x in self.q_m], "v_m_s_rad_s": [float(x) for x in self.v_m_s]},
+                **({} if self.richardson is None else {"richardson": self.richardson})}
 
 
 def velocity_amplitudes(flow: Flow, model, res_state, t0_s: float, modes, period_revs: int, steps_per_rev: int,
@@ -201,7 +204,7 @@ def _overrides(kw: dict) -> dict:
 
 def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, period_revs: int | None = None,
           backend: str = "auto", options: ShootingOptions | None = None, start=None, stations=None,
-          period_hint: int | None = None, **overrides) -> OrbitResult:
+          period_hint: int | None = None, richardson: bool = False, **overrides) -> OrbitResult:
     """The periodic orbit of ``scene`` at ``speed_rpm`` (rpm), its stability and 1X-5X velocity amplitudes.
 
     ``overrides``: ``clearance_m``, ``misalignment_m``, ``tilt_ignored``, ``mu``, ``preload_n``,
@@ -209,7 +212,9 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     :func:`rotor.studies.steady_state.step_per_rev`. ``period_revs`` None: found (1..8). ``start``: full
     ``(q0, v0)`` at t = 0 instead of the linear periodic solution (e.g. a neighbouring speed's orbit).
     ``period_hint``: a period (revolutions) to try in every transient round besides those the Poincaré
-    returns support (a neighbouring speed's, :func:`cascade`).
+    returns support (a neighbouring speed's, :func:`cascade`). ``richardson``: also the orbit with twice the steps
+    from this one and the amplitudes extrapolated to continuous time (:func:`richardson_fields`, JSON
+    ``richardson``).
     """
     t_start = time.perf_counter()
     check_positive("speed_rpm", speed_rpm, "rpm", upper=plausible.top("run_speed_rpm"))    # an orbit needs a period: no zero speed
@@ -225,9 +230,37 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
         res = _from_step_grid_orbit(flow, system, n, backend, q0, v0, res, period_revs, options, period_hint)
     amps, pen, contact = period_response(flow, model, res.state, res.t0_s, res.modes, res.period_revs, n, stations)
     q, v = to_full(flow, res.state, 0.0)
+    rich = None
+    if richardson and res.converged:
+        fine = orbit(scene, speed_rpm, steps_per_rev=2 * n, period_revs=res.period_revs, backend=backend,
+                     start=(q, v), options=ShootingOptions(transient_revs=1, round_growth=2.0), stations=stations,
+                     **overrides)
+        rich = richardson_fields(n, amps, pen, fine.converged, fine.velocity_amplitudes_mm_s_1X_to_5X,
+                                 fine.max_edge_penetration_m)
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
                        res.floquet, amps, res.newton_iterations, res.residual, res.transient_revs, res.events,
-                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v, pen, contact)
+                       res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v, pen, contact,
+                       rich)
+
+
+def richardson_fields(n: int, amps: dict, pen_m: float, fine_converged: bool, fine_amps: dict, fine_pen_m: float,
+                      speed_rpm: float | None = None) -> dict:
+    """Richardson extrapolation (Richardson 1911) of an orbit's amplitudes in the step: the scheme is symmetric, so
+    a quantity of its orbit is ``y_N = y* + C h² + O(h⁴)`` on a fixed hyperplane (:mod:`rotor.periodic.richardson`)
+    and ``(4 y_2N − y_N)/3`` is within ``O(h⁴)`` of the continuous-time value. ``amps``/``fine_amps``: 1X-5X
+    velocity amplitudes (mm/s) with ``n`` and ``2n`` steps per revolution; ``pen_m``/``fine_pen_m``: largest edge
+    penetration (m). Returns the JSON ``richardson`` (``speed_rpm``: the extrapolated speed where the branch's
+    hyperplane fixed a state component instead); ``converged`` False (and no values) where the 2N orbit failed."""
+    out = {"steps_per_rev": [n, 2 * n], "converged": bool(fine_converged)}
+    if not fine_converged:
+        return out
+    ext = {k: [(4.0 * b - a) / 3.0 for a, b in zip(amps[k], fine_amps[k])] for k in amps}
+    top = max(max(abs(x) for x in v) for v in ext.values()) if ext else 0.0
+    out.update({**({} if speed_rpm is None else {"speed_rpm": speed_rpm}), "velocity_amplitudes_mm_s_1X_to_5X": ext,
+                "max_edge_penetration_mm": max((4.0 * fine_pen_m - pen_m) / 3.0, 0.0) * 1e3,
+                "largest_change_from_N": max((abs(e - a) for k in amps for a, e in zip(amps[k], ext[k])), default=0.0)
+                / top if top else 0.0})
+    return out
 
 
 def _from_step_grid_orbit(flow: Flow, system, n: int, backend: str, q0, v0, failed: ShootingResult, period_revs,
@@ -286,7 +319,8 @@ class BranchResult:
 
 def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
            options: ContinuationOptions | None = None, amplitudes: bool = True, through_grazing: bool | None = None,
-           start=None, period_revs: int | None = None, locate_events: bool | None = None, **overrides) -> BranchResult:
+           start=None, period_revs: int | None = None, locate_events: bool | None = None, richardson: bool = False,
+           **overrides) -> BranchResult:
     """Continue the orbit found at ``rpm_start`` (:func:`orbit`) in speed until ``rpm_end`` (rpm).
 
     The arclength is measured with the start orbit's scales and a speed scale of a tenth of the range.
@@ -303,6 +337,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     from that state reaches (period found).
     ``locate_events``: the continuation's maps locate friction events inside the step
     (:func:`rotor.periodic.period_flow.make_flow`; None: the scheme's default).
+    ``richardson``: every point also corrected with twice the steps per revolution and extrapolated
+    (:func:`rotor.periodic.richardson.extrapolate_branch`; each point's JSON ``richardson``, :func:`richardson_fields`).
     """
     t_start = time.perf_counter()
     check_positive("rpm_start", rpm_start, "rpm", upper=plausible.top("run_speed_rpm"))
@@ -332,8 +368,10 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     w0, w1 = rpm_start / to_rpm, rpm_end / to_rpm
     follow = continue_through_grazing if follows_grazing(sys_lo.support, through_grazing) else continue_branch
     br = follow(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
+    ex = (extrapolate_branch(pb, br, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
+          if richardson and br.points else None)
     pts = []
-    for p in br.points:
+    for i, p in enumerate(br.points):
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
              "leading_multiplier": p.floquet.leading, "restarted": RESTART_KINDS.get(int(p.restarted)),
@@ -348,10 +386,25 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
             amps, pen, contact = period_response(flow, model, p.state, 0.0, start_modes(pb, p), pb.period_revs, n)
             d["velocity_amplitudes_mm_s_1X_to_5X"], d["max_edge_penetration_mm"] = amps, pen * 1e3
             d.update(contact)
+        if ex is not None:
+            d["richardson"] = _extrapolated_point(pb, ex, i, p, model, start_modes(pb, p))
         pts.append(d)
     bifs = tuple({"kind": b.kind, "speed_rpm": b.parameter * to_rpm, "after_point": b.index,
                   **({"detail": b.detail} if b.detail else {})} for b in br.bifurcations)
     return BranchResult(tuple(pts), bifs, first, br.stop, time.perf_counter() - t_start, br)
+
+
+def _extrapolated_point(pb, ex, i: int, point, model, modes) -> dict:
+    """The JSON ``richardson`` of branch point ``i`` (``point``, N steps per revolution) from
+    :func:`rotor.periodic.richardson.extrapolate_branch`'s result ``ex``: the amplitudes over one period of the
+    point and of its 2N orbit, extrapolated (:func:`richardson_fields`)."""
+    n = pb.steps_per_rev
+    if not ex.converged[i]:
+        return richardson_fields(n, {}, 0.0, False, {}, 0.0)
+    a, pen, _ = period_response(pb.flow(point.parameter), model, point.state, 0.0, modes, pb.period_revs, n)
+    b, pen2, _ = period_response(replace(pb, steps_per_rev=2 * n).flow(ex.fine_parameters[i]), model,
+                                 ex.fine_states[i], 0.0, modes, pb.period_revs, 2 * n)
+    return richardson_fields(n, a, pen, True, b, pen2, speed_rpm=float(ex.parameters[i]) * 30.0 / math.pi)
 
 
 def follows_grazing(support, through_grazing: bool | None) -> bool:
