@@ -102,6 +102,12 @@ def _start(problem, ev, state0, lam0, lam_end, opts, tangent0):
     return make_point(ev, y, J, M, 0, float(np.max(np.abs(R))), tau, opts), y, J, phase, tau
 
 
+#: a point this close to the range's end (relative) has reached it: the landing corrector solves λ = λ_end in
+#: scaled units, and λ/λ_s·λ_s may come back one rounding short (measured: a Jeffcott-ring branch then landed
+#: on the end 330 times over, rotor/periodic/jeffcott_scene.py seed 2301554633, rotor 3)
+END_RTOL = 1e-12
+
+
 def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, scales, lam_scale: float | None = None,
                     options: ContinuationOptions | None = None, tangent0=None) -> Branch:
     """Follow the branch through the orbit near ``state0`` at ``lam0`` until the parameter passes ``lam_end``.
@@ -267,7 +273,7 @@ def _next_step(ds: float, iterations: int, switched: bool, opts) -> float:
 def _ended(lam: float, lam0: float, lam_end: float, direction: float, opts) -> str:
     """Why the branch ends at the parameter ``lam`` ("end reached", "turned back beyond the start"), or
     "max_points" (it goes on unless the points run out)."""
-    if (lam - lam_end) * direction >= 0:
+    if (lam - lam_end) * direction >= -END_RTOL * abs(lam_end):     # a landing at lam_end rounds either way
         return "end reached"
     if (lam0 - lam) * direction > opts.back_margin * abs(lam_end - lam0):
         return "turned back beyond the start"
