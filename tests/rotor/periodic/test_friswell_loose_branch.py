@@ -151,3 +151,21 @@ def test_the_command_line_branch_both_ways(tmp_path):
         assert d["stop"] == "end reached" and not any(d["restarts"].values()) and d["corrector_failures"] == []
         assert not any("skipped_rpm" in p for p in d["points"])
         assert d["points"][-1]["speed_rpm"] == pytest.approx(end, abs=1e-9)
+
+
+def test_a_failed_landing_is_shot_at_rpm_end_and_said(monkeypatch):
+    """Where the corrector on λ = rpm_end fails (forced here), the last orbit is shot at rpm_end itself from the
+    interpolated state (Newton at fixed speed), not left beyond it, and the branch says so in its failures; the
+    orbit is the locked linear response there (to C (π/N)², as every orbit of the branch)."""
+    import rotor.periodic.continuation as cont
+
+    end = 2340.0
+    monkeypatch.setattr(cont, "land", lambda *a, **k: None)
+    shot = branch(SCENE, RPM_START, end)
+    assert shot.points[-1]["speed_rpm"] == pytest.approx(end, abs=1e-9) and shot.branch.restarts == 0
+    (lam, why, outcome), = shot.branch.failures
+    assert lam == pytest.approx(end * math.pi / 30.0) and outcome.startswith("shot at fixed speed_rad_s")
+    amps = shot.points[-1]["velocity_amplitudes_mm_s_1X_to_5X"]
+    lin = _linear_1x_mm_s(end, amps, shot.start.steps_per_rev)
+    for name, a in amps.items():
+        assert a[0] == pytest.approx(lin[name], rel=NEWMARK_COEFF * (math.pi / shot.start.steps_per_rev) ** 2), name
