@@ -17,6 +17,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from contact.errors import InputError
+import ringcontact._checks as _checks
 from ringcontact.results import ResultMethods, internal
 
 MM, GPA = 1e-3, 1e9
@@ -78,11 +79,28 @@ def law(name: str = "conformal", penetration_m=1e-5, tilt_rad=0.0, *, clearance_
     modulus : str or None
         The 2D idealisation of an analytic law (``plane_stress`` …; None: the law's default).
     """
-    from reports.cli.law import evaluate
-    pen, tilt = (np.asarray(a, dtype=float).ravel() for a in np.broadcast_arrays(penetration_m, tilt_rad))
+    from reports.cli.law import MAX_POINTS, evaluate
+    if not isinstance(name, (str, os.PathLike)):
+        raise InputError(f"name = {name!r}: must name a law (conformal …, calibrated:<name> or a law file's path)")
+    pen_m = _checks.numbers_in("penetration_m", penetration_m, "--penetration-mm", "penetration_mm", MM, "m")
+    tilt = _checks.numbers_in("tilt_rad", tilt_rad, "--tilt-arcmin", "tilt_arcmin", ARCMIN, "rad")
+    try:
+        pen, tilt = (np.asarray(a, dtype=float).ravel() for a in np.broadcast_arrays(pen_m, tilt))
+    except ValueError:
+        raise InputError(f"penetration_m {np.shape(pen_m)} and tilt_rad {np.shape(tilt)}: shapes that do not "
+                         "broadcast against each other") from None
+    if pen.size > MAX_POINTS:
+        raise InputError(f"penetration_m x tilt_rad: {pen.size} points, more than the {MAX_POINTS} of ringcontact law "
+                         "(call contact.tilt.aligned_tilt_contact for a batch)")
     given = {"clearance_mm": clearance_m, "width_mm": width_m, "bearing_E_GPa": bearing_modulus_pa,
              "bearing_nu": bearing_poisson, "support_E_GPa": support_modulus_pa, "support_nu": support_poisson}
     scale = {"clearance_mm": MM, "width_mm": MM, "bearing_E_GPa": GPA, "support_E_GPa": GPA}
+    for (key, v), kw in zip(given.items(), ("clearance_m", "width_m", "bearing_modulus_pa", "bearing_poisson",
+                                            "support_modulus_pa", "support_poisson")):
+        if v is not None:
+            row = "E_GPa" if key.endswith("GPa") else "nu" if key.endswith("nu") else key
+            _checks.number(kw, v, "--" + key.replace("_", "-"), row, scale.get(key, 1.0),
+                           {"clearance_mm": "m", "width_mm": "m"}.get(key, "Pa" if row == "E_GPa" else ""))
     args = SimpleNamespace(law=str(name), modulus=modulus, beta_reading="zero", penetration_at=penetration_at,
                            **{k: None if v is None else float(v) / scale.get(k, 1.0) for k, v in given.items()})
     points = evaluate(args, pen / MM, tilt / ARCMIN)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact.errors import InputError
+import ringcontact._checks as _checks
 from ringcontact.results import ResultMethods, internal
 from ringcontact.scene import as_scene
 
@@ -21,15 +22,27 @@ RAD_S_PER_RPM = math.pi / 30.0
 
 def _model(scene, elements: int | None):
     from rotor.model.assembly import assemble
+    if elements is not None:
+        _checks.whole("elements", elements, "--elements", "elements")
     sc = as_scene(scene)
     return sc, assemble(sc, elements_per_segment=elements)
 
 
+def _n_modes(n_modes, sc) -> int:
+    """``n_modes`` (None: the scene's ``[analysis] modes``) in the range of ``rotor modes --modes``."""
+    return sc.analysis.modes if n_modes is None else _checks.whole("n_modes", n_modes, "--modes", "modes")
+
+
 def _speeds_rpm(rpm, name: str = "rpm") -> np.ndarray:
-    speeds = np.atleast_1d(np.asarray(rpm, dtype=float))
-    if speeds.ndim != 1 or not speeds.size or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"{name} = {rpm!r} rpm: must be one or more finite speeds >= 0 rpm")
-    return speeds
+    """1 to ``COUNTS["speeds"]`` speeds (``rotor campbell --points``), each in the range of ``--speed-rpm``."""
+    return _checks.speed_list(name, rpm, "--speed-rpm", "speed_rpm", "speeds")
+
+
+def _campbell_budget(func: str, model, speeds, accept_long) -> None:
+    """The eigenproblems of ``rotor campbell`` against the jobs' budget (:func:`reports.cli._budget.campbell`)."""
+    from reports.cli import _budget
+    _checks.budget(func, _budget.campbell(model.n_dofs, len(speeds)), accept_long,
+                   f"rpm: {len(speeds)} speeds of a {model.n_dofs}-DOF model", "fewer speeds or elements")
 
 
 @dataclass(frozen=True)
@@ -101,10 +114,11 @@ def modes(scene, speed_rpm: float = 0.0, *, n_modes: int | None = None, damped: 
         Elements per shaft segment (None: the scene's mesh).
     """
     from rotor.linear.modes import modes as solve
-    if not (math.isfinite(speed_rpm) and speed_rpm >= 0):
-        raise InputError(f"speed_rpm = {speed_rpm} rpm: must be finite and >= 0")
+    speed_rpm = _checks.number("speed_rpm", speed_rpm, "--speed-rpm", "speed_rpm", si_unit="rpm")
+    damped = _checks.flag_of("damped", damped)
+    lock_loose_support = _checks.flag_of("lock_loose_support", lock_loose_support)
     sc, model = _model(scene, elements)
-    res = solve(model, speed_rpm * RAD_S_PER_RPM, n_modes=n_modes or sc.analysis.modes,
+    res = solve(model, speed_rpm * RAD_S_PER_RPM, n_modes=_n_modes(n_modes, sc),
                 lock_loose_support=lock_loose_support, damped=damped)
     return ModesResult(sc.name, float(speed_rpm), res.frequency_hz * 2 * math.pi, res.frequency_hz,
                        res.damping_ratio, res.forward_fraction, res.whirl, tuple(model.dof_names), res.shapes,
@@ -135,13 +149,20 @@ class CampbellResult(ResultMethods):
 
 
 def campbell(scene, rpm, *, n_modes: int | None = None, damped: bool = False, lock_loose_support: bool = True,
-             elements: int | None = None) -> CampbellResult:
-    """Whirl frequencies at every speed of ``rpm`` (rpm), as ``ringcontact rotor campbell``."""
+             elements: int | None = None, accept_long: bool = False) -> CampbellResult:
+    """Whirl frequencies at every speed of ``rpm`` (rpm), as ``ringcontact rotor campbell``.
+
+    The speeds (at most as many as ``--points`` takes) and the eigenproblems' work are checked as the job checks
+    them; work beyond the jobs' budget is refused unless ``accept_long`` (the job's ``--accept-long``).
+    """
     from rotor.linear.modes import campbell as solve
     speeds = _speeds_rpm(rpm)
+    damped = _checks.flag_of("damped", damped)
+    lock_loose_support = _checks.flag_of("lock_loose_support", lock_loose_support)
     sc, model = _model(scene, elements)
-    c = solve(model, speeds * RAD_S_PER_RPM, n_modes=n_modes or sc.analysis.modes,
-              lock_loose_support=lock_loose_support, damped=damped)
+    n = _n_modes(n_modes, sc)
+    _campbell_budget("campbell", model, speeds, accept_long)
+    c = solve(model, speeds * RAD_S_PER_RPM, n_modes=n, lock_loose_support=lock_loose_support, damped=damped)
     return CampbellResult(sc.name, speeds, c.frequency_hz * 2 * math.pi, c.frequency_hz, c.damping_ratio, c.whirl, c)
 
 
@@ -192,8 +213,15 @@ def unbalance_response(scene, rpm, *, stations=None, order: int = 1, lock_loose_
     the disks, else the first station)."""
     from rotor.linear.unbalance import forced_response
     speeds = _speeds_rpm(rpm)
+    if isinstance(order, bool) or order not in (1, 2):
+        raise InputError(f"order = {order!r}, i.e. --order = {order}: must be 1 (unbalance) or 2 (misalignment)")
+    lock_loose_support = _checks.flag_of("lock_loose_support", lock_loose_support)
     sc, model = _model(scene, elements)
+    if isinstance(stations, str):
+        stations = [stations]
     names = tuple(stations or [d.name for d in sc.disks] or [sc.stations[0].name])
+    for n in names:
+        model.node_of(n)              # an unknown name: one InputError naming it, before any solving
     resp = forced_response(model, speeds * RAD_S_PER_RPM, order=order, lock_loose_support=lock_loose_support)
     shape = (len(speeds), len(names))
     major, minor, ay, py, az, pz = (np.zeros(shape) for _ in range(6))

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact.units import check_positive
+import ringcontact._checks as _checks
 from ringcontact.results import ResultMethods, internal
 from ringcontact.scene import as_scene
 
@@ -25,8 +25,37 @@ CONTACT_KEYS = ("peak_contact_force_N", "mean_contact_force_N", "peak_contact_mo
 
 
 def _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements) -> dict:
-    return {"clearance_m": clearance_m, "misalignment_m": misalignment_m, "mu": mu, "preload_n": preload_n,
-            "tilt_ignored": bool(tilt_ignored), "elements_per_segment": elements}
+    """The loose-support overrides, each checked with the range of the jobs' option (None keeps the scene's)."""
+    c = _checks
+    return {"clearance_m": None if clearance_m is None else c.number("clearance_m", clearance_m, "--clearance-mm",
+                                                                     "clearance_mm", 1e-3, "m"),
+            "misalignment_m": None if misalignment_m is None else c.number(
+                "misalignment_m", misalignment_m, "--misalignment-mm", "misalignment_mm", 1e-3, "m"),
+            "mu": None if mu is None else c.number("mu", mu, "--mu", "mu"),
+            "preload_n": None if preload_n is None else c.number("preload_n", preload_n, "--preload-N", "preload_N",
+                                                                 si_unit="N"),
+            "tilt_ignored": c.flag_of("tilt_ignored", tilt_ignored),
+            "elements_per_segment": None if elements is None else c.whole("elements", elements, "--elements",
+                                                                         "elements")}
+
+
+def _speed(keyword: str, rpm, flag: str = "--speed-rpm") -> float:
+    """A spin speed (rpm) in the range of the jobs' ``--speed-rpm`` (> 0: a step is a share of a revolution)."""
+    return _checks.number(keyword, rpm, flag, "run_speed_rpm", si_unit="rpm")
+
+
+def _orbit_budget(func: str, sc, rpm: float, ov: dict, steps_per_rev, period_revs, points: int, accept_long) -> None:
+    """The shooting work at ``rpm`` (and ``points`` orbits of a branch) against the jobs' budget, as ``orbit`` and
+    ``branch`` estimate it (:func:`reports.cli._budget.orbit`), before :mod:`rotor.studies.orbit` is called."""
+    from reports.cli import _budget
+    from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
+    system = point_system(sc, rpm, **ov)[2]
+    n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
+    cause = (f"steps_per_rev = {n}" if steps_per_rev else
+             f"{n} steps per revolution (the contact step limit at {rpm:g} rpm)")
+    _checks.budget(func, _budget.orbit(system, n, period_revs, points), accept_long,
+                   cause + (f" and max_points = {points}" if points else ""),
+                   "fewer steps per revolution" + (" or max_points" if points else ""))
 
 
 class ContactSummary:
@@ -113,7 +142,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
              record_per_rev: int = 64, stations=None, clearance_m: float | None = None,
              misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
              tilt_ignored: bool = False, elements: int | None = None, steady: bool = False,
-             max_revs: int = 8000) -> SimulationResult:
+             max_revs: int = 8000, accept_long: bool = False) -> SimulationResult:
     """Integrate ``revolutions`` revolutions at ``speed_rpm`` (rpm) from rest, as ``ringcontact simulate``.
 
     ``steps_per_rev`` None: chosen as ``simulate`` and ``orbit`` choose it (256 or more where the contact step
@@ -125,6 +154,9 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     (:func:`rotor.studies.steady_record.record_after_steady`), and ``steady_state`` says whether a period was
     found (``converged``, ``period_revs``, ``transient_revs``, ``poincare_change``). A record that is not periodic
     is returned with ``converged`` False, not refused.
+
+    Every argument is checked with the range of the job's option (``revolutions`` as ``--revolutions`` …), and
+    the run's steps and records against the job's budget: beyond it refused unless ``accept_long``.
     """
     from rotor.dynamics.constraints import edge_offsets
     from rotor.dynamics.production import simulate_production
@@ -135,24 +167,29 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     from rotor.studies.steady_state import (SAMPLES_FOR_5X, SteadyStateOptions, point_system, steady_state,
                                             step_per_rev)
 
-    check_positive("speed_rpm", speed_rpm, "rpm", upper=1e5)
-    check_positive("revolutions", revolutions, "rev", upper=1e6)
+    speed_rpm = _speed("speed_rpm", speed_rpm)
+    revolutions = _checks.number("revolutions", revolutions, "--revolutions", "revolutions", si_unit="rev")
+    record_per_rev = _checks.whole("record_per_rev", record_per_rev, "--record-per-rev", "record_per_rev")
+    if steps_per_rev is not None:
+        steps_per_rev = _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")
+    steady = _checks.flag_of("steady", steady)
+    if steady:
+        max_revs = _checks.whole("max_revs", max_revs, "--max-revs", "max_revs")
     sc, model, system = point_system(as_scene(scene), speed_rpm, **_overrides(
         clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
-    if not math.isfinite(record_per_rev) or int(record_per_rev) != record_per_rev or record_per_rev < 1:
-        raise InputError(f"simulate: record_per_rev = {record_per_rev}: must be a whole number of samples >= 1")
     if steps_per_rev is None:      # a multiple of record_per_rev; the detector's transient sampling too
         fives = SteadyStateOptions(samples_per_rev=int(record_per_rev)) if record_per_rev >= SAMPLES_FOR_5X else \
             SteadyStateOptions()
         steps_per_rev = math.ceil(step_per_rev(system, fives) / record_per_rev) * int(record_per_rev)
     n = int(steps_per_rev)
-    check_positive("record_per_rev", record_per_rev, "samples", upper=n)
+    if record_per_rev > n:
+        raise InputError(f"record_per_rev = {record_per_rev}: must be <= steps_per_rev = {n} (a sample a step at most)")
+    _simulate_budget(revolutions, n, record_per_rev, max_revs if steady else 0, model.n_dofs, accept_long)
     names = [f"{s}.{c}" for s in (stations or model.response_stations(primary_only=True)) for c in ("y", "z")]
     idx = [model.dof_index(x) for x in names]
     dt = 2 * math.pi / (system.omega_rad_s * n)
     steady_info = None
     if steady:
-        check_positive("max_revs", max_revs, "rev", upper=1e6)
         if n % int(record_per_rev) or int(record_per_rev) < SAMPLES_FOR_5X or int(round(revolutions)) < 1:
             raise InputError(f"simulate: steady = True needs revolutions >= 1 (got {revolutions:g} rev) and "
                              f"record_per_rev >= {SAMPLES_FOR_5X} dividing steps_per_rev {n} (got {record_per_rev})")
@@ -177,6 +214,16 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
         cols["contact_force_N"], cols["contact_force_y_N"], cols["contact_force_z_N"], cols["contact_moment_Nm"],
         cols["face_right_stuck"], cols["face_left_stuck"], sup.law.clearance_m if sup is not None else None,
         summary, steady_info, tr)
+
+
+def _simulate_budget(revolutions: float, n: int, record_per_rev: int, transient_revs: int, n_dofs: int,
+                     accept_long) -> None:
+    """The run's steps and records against the budget of ``simulate`` (:func:`reports.cli._budget.stepping`)."""
+    from reports.cli import _budget
+    steps = revolutions * n + transient_revs * n
+    est = _budget.stepping(steps, revolutions * record_per_rev + 1, n_dofs)
+    _checks.budget("simulate", est, accept_long, f"revolutions = {revolutions:g} rev at steps_per_rev {n} and "
+                   f"record_per_rev {record_per_rev}", "fewer revolutions or records")
 
 
 # ------------------------------------------------------------------------------------------------------------
@@ -234,13 +281,22 @@ def _orbit_result(name: str, res) -> OrbitResult:
 
 def orbit(scene, speed_rpm: float, *, period_revs: int | None = None, steps_per_rev: int | None = None,
           clearance_m: float | None = None, misalignment_m: float | None = None, mu: float | None = None,
-          preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None) -> OrbitResult:
+          preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None,
+          accept_long: bool = False) -> OrbitResult:
     """The periodic orbit at ``speed_rpm`` (rpm) by shooting, its stability and harmonics
-    (:func:`rotor.studies.orbit.orbit`); ``converged`` False when no orbit of 1 to 8 revolutions was found."""
+    (:func:`rotor.studies.orbit.orbit`); ``converged`` False when no orbit of 1 to 8 revolutions was found.
+    Arguments are checked with the ranges of ``ringcontact orbit``'s options, the work against its budget
+    (beyond it refused unless ``accept_long``)."""
     from rotor.studies.orbit import orbit as shoot
+    speed_rpm = _speed("speed_rpm", speed_rpm)
+    if period_revs is not None:
+        period_revs = _checks.whole("period_revs", period_revs, "--period-revs", "period_revs")
+    if steps_per_rev is not None:
+        steps_per_rev = _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")
+    ov = _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements)
     sc = as_scene(scene)
-    res = shoot(sc, speed_rpm, steps_per_rev=steps_per_rev, period_revs=period_revs,
-                **_overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
+    _orbit_budget("orbit", sc, speed_rpm, ov, steps_per_rev, period_revs, 0, accept_long)
+    res = shoot(sc, speed_rpm, steps_per_rev=steps_per_rev, period_revs=period_revs, **ov)
     return _orbit_result(sc.name, res)
 
 
@@ -290,20 +346,43 @@ class BranchResult(ResultMethods):
         ax.legend(fontsize=8)
 
 
+@dataclass(frozen=True)
+class _PointTask:
+    """A cascade speed as the budget reads a study's sweep task (:func:`reports.cli._budget.steady_points`)."""
+
+    params: dict
+    outputs: tuple = ()
+
+    @property
+    def points(self) -> tuple:
+        return (("", self.params),)
+
+
 def _column(points, key: str) -> np.ndarray:
     return np.array([np.nan if p.get(key) is None else float(p[key]) for p in points])
 
 
 def branch(scene, rpm_start: float, rpm_end: float, *, max_points: int = 400, steps_per_rev: int | None = None,
            clearance_m: float | None = None, misalignment_m: float | None = None, mu: float | None = None,
-           preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None) -> BranchResult:
+           preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None,
+           accept_long: bool = False) -> BranchResult:
     """Follow the orbit found at ``rpm_start`` to ``rpm_end`` (rpm) (:func:`rotor.studies.orbit.branch`), at most
-    ``max_points`` orbits."""
+    ``max_points`` orbits; arguments and work checked as ``ringcontact branch`` checks them (``accept_long``)."""
+    from contact.errors import InputError
     from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch as follow
+    rpm_start, rpm_end = _speed("rpm_start", rpm_start, "--rpm-start"), _speed("rpm_end", rpm_end, "--rpm-end")
+    if rpm_start == rpm_end:
+        raise InputError(f"rpm_end = {rpm_end:g} rpm: must differ from rpm_start = {rpm_start:g} rpm (a branch "
+                         "follows the orbit over a range of speeds)")
+    max_points = _checks.whole("max_points", max_points, "--max-points", "max_points")
+    if steps_per_rev is not None:
+        steps_per_rev = _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")
+    ov = _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements)
     sc = as_scene(scene)
+    _orbit_budget("branch", sc, rpm_start, ov, steps_per_rev, None, max_points, accept_long)
     res = follow(sc, rpm_start, rpm_end, steps_per_rev=steps_per_rev, options=ContinuationOptions(
-        max_points=int(max_points)), **_overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
+        max_points=max_points), **ov)
     pts = res.points
     return BranchResult(sc.name, float(rpm_start), float(rpm_end), _column(pts, "speed_rpm"),
                         np.array([bool(p["stable"]) for p in pts], dtype=bool), _column(pts, "spectral_radius"),
@@ -381,17 +460,23 @@ class CascadeResult(ResultMethods):
 
 def cascade(scene, rpms, *, max_revs: int = 1500, steps_per_rev: int = 256, clearance_m: float | None = None,
             misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
-            tilt_ignored: bool = False, elements: int | None = None) -> CascadeResult:
+            tilt_ignored: bool = False, elements: int | None = None, accept_long: bool = False) -> CascadeResult:
     """The steady state at each speed of ``rpms`` (rpm, > 0) by integration (transient detected and discarded,
-    :func:`rotor.studies.steady_state.run_point`, at most ``max_revs`` revolutions of transient a speed)."""
+    :func:`rotor.studies.steady_state.run_point`, at most ``max_revs`` revolutions of transient a speed).
+    Arguments are checked as ``study cascade`` checks its options (1 to 2000 speeds …), the work against its
+    budget (beyond it refused unless ``accept_long``)."""
+    from reports.cli import _budget
     from rotor.studies.steady_state import run_point
+    speeds = _checks.speed_list("rpms", rpms, "--rpm-max", "run_speed_rpm", "study_speeds")
+    options = {"max_revs": _checks.whole("max_revs", max_revs, "--max-revs", "max_revs"),
+               "steps_per_rev": _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")}
+    ov = _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements)
     sc = as_scene(scene)
-    speeds = np.atleast_1d(np.asarray(rpms, dtype=float))
-    for s in speeds:
-        check_positive("rpms", float(s), "rpm", upper=1e5)
-    pts = [run_point(sc, float(s), options={"max_revs": int(max_revs), "steps_per_rev": int(steps_per_rev)},
-                     **_overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
-           for s in speeds]
+    tasks = [_PointTask({"scene": sc, "speed_rpm": float(s), "options": options, **ov}) for s in speeds]
+    _checks.budget("cascade", _budget.steady_points(tasks), accept_long,
+                   f"{len(speeds)} speeds of at most max_revs = {options['max_revs']} revolutions",
+                   "fewer speeds or max_revs")
+    pts = [run_point(sc, float(s), options=options, **ov) for s in speeds]
     infos = [p[1] for p in pts]
     return CascadeResult(sc.name, speeds, tuple(str(c) for c in pts[0][0]["channels"]),
                          np.array([np.abs(a["harm_v"]) for a, _ in pts]), np.array([np.abs(a["harm_q"]) for a, _ in pts]),

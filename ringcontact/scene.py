@@ -133,6 +133,8 @@ def as_scene(scene) -> Scene:
     """``scene`` as a checked :class:`Scene`: a path or a bundled name is read, a dataclass checked."""
     if isinstance(scene, rotor_scene.Scene):
         return scene.checked() if isinstance(scene, Scene) else Scene.of(scene).checked()
+    from ringcontact._checks import scene_argument
+    scene_argument(scene)             # None, a number …: refused in one line before a path is made of it
     return load_scene(scene)
 
 

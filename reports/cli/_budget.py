@@ -88,16 +88,18 @@ def describe(est: Estimate) -> str:
             f"{est.nbytes / 2 ** 30:.3g} GiB of records ({est.made_of})")
 
 
-def check(prog: str, est: Estimate, accept_long: bool, cause: str, remedy: str) -> None:
+def check(prog: str, est: Estimate, accept_long: bool, cause: str, remedy: str, *,
+          override: str = "--accept-long") -> None:
     """Refuse ``est`` beyond the budget (unless ``accept_long``), announce it beyond :data:`ANNOUNCE_S`.
 
     ``cause``: the options the user typed that make the work (``--steps-per-rev = 100000``), ``remedy``: what
-    to change instead (``fewer steps per revolution``). Raises :class:`WorkBudgetError`.
+    to change instead (``fewer steps per revolution``), ``override``: how the caller accepts it (the flag, or
+    the API's keyword ``accept_long=True``). Raises :class:`WorkBudgetError`.
     """
     over = est.seconds > WORK_BUDGET_S or est.nbytes > MEMORY_BUDGET_BYTES
     if over and not accept_long:
         raise WorkBudgetError(f"{cause}: {describe(est)}, beyond the budget of {WORK_BUDGET_S / 60:g} min and "
-                              f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB; {remedy}, or --accept-long to run it anyway")
+                              f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB; {remedy}, or {override} to run it anyway")
     if est.seconds >= ANNOUNCE_S or over:
         print(f"{prog}: {describe(est)}; starting", file=sys.stderr, flush=True)
 

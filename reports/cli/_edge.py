@@ -91,6 +91,21 @@ def count(lo: int, hi: int, what: str = ""):
     return parse
 
 
+#: the whole-number options the jobs share, ``(low, high, unit)`` as :func:`count` takes them: the command line's
+#: ``type=count(*COUNTS[key])`` and the Python API (ringcontact/_checks.py) read the same bounds
+COUNTS = {
+    "steps_per_rev": (16, 100000, ""),          # Newmark steps per revolution (simulate, rotor response, orbit, study)
+    "record_per_rev": (1, 100000, ""),          # recorded samples per revolution (simulate, rotor response)
+    "period_revs": (1, 8, "revolutions"),       # the period an orbit is looked for at (orbit)
+    "max_points": (2, 5000, "points"),          # most orbits of a branch (branch)
+    "modes": (1, 200, ""),                      # modes of a rotor model (rotor modes, campbell …)
+    "elements": (1, 64, ""),                    # elements per shaft segment (every rotor job)
+    "speeds": (2, 2000, ""),                    # speeds of a Campbell diagram or an unbalance response (--points)
+    "study_speeds": (1, 2000, ""),              # speeds of a study's cascade (study cascade --points)
+    "max_revs": (24, 100000, "revolutions"),    # transient cap of a steady state (SteadyStateOptions.min_revs up)
+}
+
+
 #: bytes a written name may grow by: a temporary ``.NAME.PID.XXXXXXXX.tmp`` (contact.files) or a prefix's
 #: longest suffix (``-misalignment.png``)
 NAME_GROWTH = 32

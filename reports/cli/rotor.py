@@ -27,7 +27,7 @@ import numpy as np
 
 from contact.errors import InputError, RingContactError
 from reports.cli import _budget
-from reports.cli._edge import PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
+from reports.cli._edge import COUNTS, PUBLISHED, Parser, count, fail, out_dir, out_prefix, quantity
 from reports.cli._scene_options import add_scene_options, finish, linear_scene
 
 RPM = 30 / math.pi
@@ -341,10 +341,10 @@ def _parser() -> argparse.ArgumentParser:
 
     def common(sp, speed_range=True):
         add_scene_options(sp)
-        sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override, 1-64)")
+        sp.add_argument("--elements", type=count(*COUNTS["elements"]), default=None, help="elements per shaft segment (override, 1-64)")
         sp.add_argument("--open-support", action="store_true",
                         help="leave the loose-support bearing and support unconnected (default: locked together)")
-        sp.add_argument("--modes", type=count(1, 200), default=None, help="number of modes (1-200)")
+        sp.add_argument("--modes", type=count(*COUNTS["modes"]), default=None, help="number of modes (1-200)")
         sp.add_argument("--json", action="store_true", help="print JSON instead of a table (frequencies and speeds in "
                         "both units: frequency_hz and frequency_rad_s, speed_rpm and speed_rad_s)")
         sp.add_argument("--units", choices=("hz", "rad/s"), default="hz",
@@ -363,7 +363,7 @@ def _parser() -> argparse.ArgumentParser:
     sp.set_defaults(func=cmd_modes)
     sp = sub.add_parser("campbell", help="whirl frequencies over a speed range")
     common(sp)
-    sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
+    sp.add_argument("--points", type=count(*COUNTS["speeds"]), default=None, help="number of speeds (2-2000)")
     sp.add_argument("--plot", type=out_prefix, default=None, help="write PREFIX-campbell.png and .svg")
     _budget.add_accept_long(sp)
     sp.add_argument("--damped", action="store_true", help="include viscous damping: damped frequencies and each "
@@ -376,7 +376,7 @@ def _parser() -> argparse.ArgumentParser:
     sp.set_defaults(func=cmd_critical)
     sp = sub.add_parser("unbalance", help="linear steady-state unbalance (1X) or misalignment (2X) response")
     common(sp)
-    sp.add_argument("--points", type=count(2, 2000), default=None, help="number of speeds (2-2000)")
+    sp.add_argument("--points", type=count(*COUNTS["speeds"]), default=None, help="number of speeds (2-2000)")
     sp.add_argument("--nodes", nargs="+", default=None, help="nodes or element names (default: the disks)")
     sp.add_argument("--order", type=int, default=1, choices=(1, 2), help="1: unbalance, 2: misalignment")
     sp.add_argument("--plot", type=out_prefix, default=None,
@@ -384,7 +384,7 @@ def _parser() -> argparse.ArgumentParser:
     sp.set_defaults(func=cmd_unbalance)
     sp = sub.add_parser("static", help="static deflection and bearing reactions under gravity and static loads")
     add_scene_options(sp)
-    sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override, 1-64)")
+    sp.add_argument("--elements", type=count(*COUNTS["elements"]), default=None, help="elements per shaft segment (override, 1-64)")
     sp.add_argument("--json", action="store_true", help="print JSON instead of a table")
     sp.set_defaults(func=cmd_static)
     sp = sub.add_parser("response", help="linear time response of the stations (loose support locked), CSV")
@@ -395,9 +395,9 @@ def _parser() -> argparse.ArgumentParser:
                     help="harmonic: steady state by superposition (default); newmark: from rest, in time")
     sp.add_argument("--stations", default=None, help="comma-separated station/disk/bearing/support names "
                     "(default: the scene's disks, loose-support bearing, supports and bearings)")
-    sp.add_argument("--steps-per-rev", type=count(16, 100000), default=256, help="Newmark steps per revolution (default 256)")
-    sp.add_argument("--record-per-rev", type=count(1, 100000), default=64, help="samples per revolution (default 64)")
-    sp.add_argument("--elements", type=count(1, 64), default=None, help="elements per shaft segment (override)")
+    sp.add_argument("--steps-per-rev", type=count(*COUNTS["steps_per_rev"]), default=256, help="Newmark steps per revolution (default 256)")
+    sp.add_argument("--record-per-rev", type=count(*COUNTS["record_per_rev"]), default=64, help="samples per revolution (default 64)")
+    sp.add_argument("--elements", type=count(*COUNTS["elements"]), default=None, help="elements per shaft segment (override)")
     sp.add_argument("--json", action="store_true", help="print the summary as JSON")
     sp.add_argument("--out", type=out_dir, default="response-out", help="output directory (default response-out)")
     _budget.add_accept_long(sp)

@@ -51,7 +51,7 @@ from contact.errors import InputError, OutputError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
 from reports.cli import _budget
-from reports.cli._edge import Parser, count, fail, out_dir, quantity
+from reports.cli._edge import COUNTS, Parser, count, fail, out_dir, quantity
 from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, max_revs, scene_from_args,
                                         warm_up_shown)
 from rotor.dynamics import constraints as cons
@@ -64,10 +64,10 @@ def _parser() -> argparse.ArgumentParser:
     add_scene_options(p, transient=True)
     p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
     p.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
-    p.add_argument("--steps-per-rev", type=count(16, 100000), default=None,
+    p.add_argument("--steps-per-rev", type=count(*COUNTS["steps_per_rev"]), default=None,
                    help="time steps per revolution (default: chosen as orbit and the studies do, 256 or more where the "
                         "contact step limit needs it, a multiple of --record-per-rev; rotor.studies.steady_state.step_per_rev)")
-    p.add_argument("--record-per-rev", type=count(1, 100000), default=64, help="recorded samples per revolution (default 64)")
+    p.add_argument("--record-per-rev", type=count(*COUNTS["record_per_rev"]), default=64, help="recorded samples per revolution (default 64)")
     p.add_argument("--scheme", choices=("production", "reference"), default="production",
                    help="production (fast, default) or the paper's reference scheme (slow)")
     p.add_argument("--dofs", default=None,
