@@ -126,7 +126,10 @@ def shot(ev, y_pred, opts, how: int, y_last):
     the step grid is closed again by Newton in the branch's scales (which may be far below the orbit's own: 1/680
     to 1/30 000 of them with the 600 rpm start's scales there) before that check."""
     pb, lam = ev.pb, y_pred[-1] * ev.ls
-    flow = ev.flow(lam)
+    try:
+        flow = ev.flow(lam)
+    except InputError:      # a parameter the scheme cannot step (its step past the contact limit): no orbit here
+        return None
     sopts = ShootingOptions(tol=opts.tol, rcond=opts.rcond, max_iter=2 * opts.max_iter, transient_revs=2,
                             round_growth=2.0, max_transient_revs=RESTART_TRANSIENT_REVS)
     try:
