@@ -64,9 +64,11 @@ def run_response(scene_name: str, speed_rpm: float, revolutions: float, out: str
         per[s] = {"last_rev_max_radius_um": float(np.hypot(y, z).max() * 1e6),
                   "forced_response_semi_major_um_1X": float(closed[1].orbit(model, s)[0][0] * 1e6),
                   "forced_response_semi_major_um_2X": float(closed[2].orbit(model, s)[0][0] * 1e6)}
+    from rotor.linear.stability import first_unstable, stability_field
     summary = {"scene": scene.name, "speed_rpm": speed_rpm, "revolutions": revolutions, "method": method,
                "loose_support": "locked" if scene.loose_support is not None else "none",
                "dt_s": res.dt_s, "samples": len(res.t_s), "stations": per,
+               "stability": stability_field(first_unstable(model, [omega])),
                "files": ["response.csv", "response-summary.json"]}
     atomic_write_text(out / "response-summary.json", json.dumps(summary, indent=2) + "\n")
     return summary

@@ -63,6 +63,16 @@ def _warn_free(model, args) -> None:
         print(f"ringcontact rotor: warning: {msg}; rigid-body (0 Hz) modes are left out", file=sys.stderr)
 
 
+def _stability(args, model, speeds_rad_s, consequence: str) -> dict:
+    """The damped linearisation checked over ``speeds_rad_s`` (:mod:`rotor.linear.stability`): a mode with negative
+    damping named in one warning line on stderr; the JSON field ``stability`` returned."""
+    from rotor.linear.stability import first_unstable, stability_field, warning
+    found = first_unstable(model, speeds_rad_s, lock_loose_support=not args.open_support)
+    if found is not None:
+        print(warning(f"ringcontact rotor {args.cmd}", found, consequence), file=sys.stderr)
+    return stability_field(found)
+
+
 def _max_speed(args, scene) -> float:
     if args.max_rpm is None:
         return scene.analysis.max_speed_rad_s
@@ -128,8 +138,9 @@ def cmd_modes(args) -> int:
               f"{r['forward_fraction']:>8.3f} {r['damping_ratio']:>7.4f}" for r in rows]
     if args.plot:
         _plot_mode_shapes(args, scene, model, res)
-    _emit(args, {"scene": scene.name, "speed_rpm": args.speed_rpm, "dofs": model.n_dofs, "modes": rows},
-          "\n".join(lines))
+    stab = _stability(args, model, [args.speed_rpm / RPM], "its free vibration grows (--damped shows every zeta)")
+    _emit(args, {"scene": scene.name, "speed_rpm": args.speed_rpm, "dofs": model.n_dofs, "modes": rows,
+                 "stability": stab}, "\n".join(lines))
     return 0
 
 
@@ -165,7 +176,9 @@ def cmd_campbell(args) -> int:
             "frequency_hz": [[None if not np.isfinite(v) else float(v) for v in row] for row in camp.frequency_hz],
             "frequency_rad_s": _finite_rows(camp.frequency_hz * 2 * math.pi),
             "whirl": [list(w) for w in camp.whirl], "damped": bool(args.damped),
-            "damping_ratio": _finite_rows(camp.damping_ratio), "log_decrement": _finite_rows(camp.log_decrement)}
+            "damping_ratio": _finite_rows(camp.damping_ratio), "log_decrement": _finite_rows(camp.log_decrement),
+            "stability": _stability(args, model, speeds, "its free vibration grows from that speed on "
+                                                          "(--damped shows every zeta)")}
     missing = int(np.sum(~np.isfinite(camp.frequency_hz)))
     if missing:      # said, not left to a reader of the JSON to find as nulls
         print(f"ringcontact rotor campbell: warning: {missing} of {camp.frequency_hz.size} whirl frequencies are "
@@ -227,7 +240,9 @@ def cmd_unbalance(args) -> int:
     table = {n: resp.orbit(model, n)[0] * 1e6 for n in nodes}
     data = {"scene": scene.name, "order": args.order, "speed_rpm": (speeds * RPM).tolist(),
             "speed_rad_s": speeds.tolist(), "semi_major_um": {n: v.tolist() for n, v in table.items()},
-            "phase_reference": PHASE_REFERENCE, **_amplitudes_and_phases(model, resp, nodes)}
+            "phase_reference": PHASE_REFERENCE, **_amplitudes_and_phases(model, resp, nodes),
+            "stability": _stability(args, model, speeds, "the steady forced response below is not what the rotor "
+                                                         "will do (its free vibration grows)")}
     lines = [scene.title, f"{args.order}X orbit semi-major axis (µm) and phase of y (deg; 0: in step with the load "
              "at +y, negative: lagging)",
              f"{'speed (' + _su(args) + ')':>13} " + " ".join(f"{n + ' um':>12} {'deg':>7}" for n in nodes)]
@@ -273,6 +288,11 @@ def cmd_response(args) -> int:
     summary = run_response(scene, args.speed_rpm, args.revolutions, args.out, method=args.method,
                            stations=stations, steps_per_rev=args.steps_per_rev, record_per_rev=args.record_per_rev,
                            elements=args.elements)
+    if summary["stability"]["unstable_mode"] is not None:
+        from rotor.linear.stability import UnstableMode, warning
+        found = UnstableMode.from_dict(summary["stability"]["unstable_mode"])
+        print(warning("ringcontact rotor response", found, "the steady 1X/2X columns are not what the rotor will do "
+                      "(its free vibration grows)"), file=sys.stderr)
     _emit(args, summary, summary_table(summary) + f"\nwrote {args.out}/response.csv, response-summary.json")
     return 0
 

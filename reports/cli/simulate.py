@@ -47,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from contact import interrupts, plausible
-from contact.errors import InputError, OutputError, RingContactError
+from contact.errors import ConvergenceError, InputError, OutputError, OutsideDomainError, RingContactError
 from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
 from reports.cli import _budget
@@ -143,6 +143,34 @@ def _check_options(args) -> None:
                          "dividing --steps-per-rev")   # refused before building or compiling anything
 
 
+def _warn_unstable(model, omega_rad_s: float):
+    """The unstable mode of the rotor's linearisation (locked and open: :func:`rotor.linear.stability.
+    linearisation_unstable`), said in one warning line before the run; None for a stable rotor."""
+    from rotor.linear.stability import linearisation_unstable, warning
+    found = linearisation_unstable(model, omega_rad_s)
+    if found is not None:
+        print(warning("ringcontact simulate", found, "a run that grows is the rotor's instability, not the contact "
+                      "law"), file=sys.stderr, flush=True)
+    return found
+
+
+def _integrate(args, run, system, model, dt: float, n_steps: int, rec: int, unstable):
+    """The run (``--steady``: transient detected, then whole periods) as ``(trajectory, dt, steps, extra fields)``;
+    a divergence of an ``unstable`` rotor is said to be the rotor's (:func:`rotor.linear.stability.divergence_message`)."""
+    try:
+        if args.steady:
+            amp_names = _dof_names(args, model, primary_only=False)
+            return interrupts.in_thread(_steady_run, args, system, model, amp_names,
+                                        [model.dof_index(n) for n in amp_names])
+        # in a thread: Ctrl-C is honoured at once, not after the compiled loop (measured: 20 s later)
+        return interrupts.in_thread(run, system, dt, n_steps, q0=system.offset, record_every=rec), dt, n_steps, {}
+    except (OutsideDomainError, ConvergenceError) as exc:
+        if unstable is None:
+            raise
+        from rotor.linear.stability import divergence_message
+        raise type(exc)(divergence_message(unstable, exc)) from None
+
+
 def _run(args) -> int:
     from rotor.dynamics.production import simulate_production, warm_up
     from rotor.dynamics.reference import simulate_reference
@@ -161,17 +189,12 @@ def _run(args) -> int:
     rec = max(1, args.steps_per_rev // args.record_per_rev)
     transient = int(args.max_revs or 8000) * args.steps_per_rev if args.steady else 0   # --steady: at most
     check_budget(args, n_steps + transient, n_steps // rec + 1, model.n_dofs)
+    unstable = _warn_unstable(model, omega)
     run = simulate_production if args.scheme == "production" else simulate_reference
     # compile or load the step loop now (the --steady detector uses it too), the seconds shown on a terminal
     compiled = warm_up_shown("ringcontact simulate", args, warm_up)
     t0 = time.perf_counter()
-    extra = {}
-    if args.steady:
-        amp_names = _dof_names(args, model, primary_only=False)
-        tr, dt, n_steps, extra = interrupts.in_thread(_steady_run, args, system, model, amp_names,
-                                                      [model.dof_index(n) for n in amp_names])
-    else:      # in a thread: Ctrl-C is honoured at once, not after the compiled loop (measured: 20 s later)
-        tr = interrupts.in_thread(run, system, dt, n_steps, q0=system.offset, record_every=rec)
+    tr, dt, n_steps, extra = _integrate(args, run, system, model, dt, n_steps, rec, unstable)
     run_s = time.perf_counter() - t0
     sup = system.support  # None: a scene without a loose support (no contact, no end faces)
     r1, r2 = cons.edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
