@@ -19,7 +19,7 @@ from contact.threads import set_thread_env, thread_share
 
 set_thread_env(thread_share(1))      # this process's share of the cores, before numpy loads (contact/threads.py)
 
-from contact.errors import RingContactError  # noqa: E402
+from contact.errors import OutputError, RingContactError  # noqa: E402
 from reports.cli._edge import Parser, count, fail, out_dir  # noqa: E402
 
 PROG = "ringcontact bearing"
@@ -51,6 +51,11 @@ def main(argv: list[str] | None = None) -> int:
             summary = run(rs, out, workers=args.workers, executor=client, fresh=args.fresh, log=log)
     except RingContactError as exc:
         return fail(PROG, exc)
+    except OSError as exc:          # disk full, folder removed meanwhile: each file is whole or absent, summary last
+        where = exc.filename or args.out or "the output folder"
+        return fail(PROG, OutputError(f"--out: could not write {where} ({exc.strerror or exc}); the folder holds no "
+                                      "summary, so no complete run: free space and run again (finished points are "
+                                      "kept)"))
     if args.json:
         print(json.dumps(summary, indent=1, allow_nan=False))
     else:
