@@ -298,9 +298,13 @@ def cmd_response(args) -> int:
 
 
 def cmd_static(args) -> int:
-    from rotor.linear.static import static_deflection
+    from rotor.linear.static import plausibility, plausibility_warning, static_deflection
     scene, model = _load(args, modal=False)
     st = static_deflection(model)
+    check = plausibility(model, st)
+    said = plausibility_warning("ringcontact rotor static", check)
+    if said:
+        print(said, file=sys.stderr)
     total = st.load_N[[i for i, n in enumerate(model.dof_names) if n.endswith(".y")]].sum(), \
         st.load_N[[i for i, n in enumerate(model.dof_names) if n.endswith(".z")]].sum()
     stations = [{"station": n, "y_um": y * 1e6, "z_um": z * 1e6}
@@ -309,7 +313,11 @@ def cmd_static(args) -> int:
     reactions = [{"element": k, "force_y_N": fy, "force_z_N": fz} for k, (fy, fz) in st.reactions_N.items()]
     data = {"scene": scene.name, "dofs": model.n_dofs, "loose_support": "locked" if scene.loose_support else None,
             "load_on_free_dofs_y_N": float(total[0]), "load_on_free_dofs_z_N": float(total[1]),
-            "stations": stations, "reactions": reactions}
+            "stations": stations, "reactions": reactions,
+            "plausibility": {"plausible": check["plausible"], "station": check["station"],
+                             "deflection_mm": 1e3 * check["deflection_m"],
+                             "limits_mm": {k: 1e3 * v for k, v in check["limits_m"].items()},
+                             "exceeded": check["exceeded"]}}
     lines = [scene.title, f"static deflection under gravity and static loads ({model.n_dofs} DOFs"
              + (", loose support locked: the clearance is a time-integration question)" if scene.loose_support else ")"),
              f"load on the free DOFs: y {total[0]:.6g} N, z {total[1]:.6g} N (loads on fixed DOFs go to ground)",

@@ -59,3 +59,46 @@ def static_deflection(model: RotorModel, *, lock_loose_support: bool = True) -> 
         fy, fz = K2 @ yz
         reactions[name] = (float(fy), float(fz))
     return StaticDeflection(q_m=q, dof_names=tuple(model.dof_names), load_N=f, reactions_N=reactions)
+
+
+#: a static deflection beyond this share of the shaft's length is not a small deflection: the linear model's
+#: answer is implausible (a load or a gravity typed in the wrong unit, a bearing far too soft)
+SHAFT_LENGTH_FRACTION = 0.01
+
+
+def plausibility(model: RotorModel, st: StaticDeflection) -> dict:
+    """The largest lateral deflection ``|(y, z)|`` of any station or support node against two limits: the loose
+    support's radial clearance (a rotor deflected further than its ring's gap rests on the ring, which the linear
+    statics leaves out) and :data:`SHAFT_LENGTH_FRACTION` of the shaft's length (beyond small deflections).
+
+    Returns the JSON field ``{"plausible", "station", "deflection_m", "limits_m": {name: value},
+    "exceeded": [names]}``; ``exceeded`` is empty when the deflection is within both limits."""
+    sc = model.scene
+    names = [s.name for s in sc.stations] + [s.name for s in sc.supports]
+    mags = [float(np.hypot(*st.displacement_m(n))) for n in names]
+    k = int(np.argmax(mags)) if mags else 0
+    xs = [s.x_m for s in sc.stations]
+    limits = {}
+    if sc.loose_support is not None:
+        limits["clearance"] = float(sc.loose_support.clearance_m)
+    if xs and max(xs) > min(xs):
+        limits["shaft_length_fraction"] = SHAFT_LENGTH_FRACTION * (max(xs) - min(xs))
+    worst = mags[k] if mags else 0.0
+    exceeded = [name for name, lim in limits.items() if worst > lim]
+    return {"plausible": not exceeded, "station": names[k] if names else None, "deflection_m": worst,
+            "limits_m": limits, "exceeded": exceeded}
+
+
+def plausibility_warning(prog: str, field: dict) -> str | None:
+    """One stderr line for an implausible static deflection (None when it is plausible): the station, its
+    deflection in mm and each limit it exceeds with its value and what follows from it."""
+    if field["plausible"]:
+        return None
+    said = {"clearance": "the loose support's clearance ({} mm: the ring's contact, left out of these statics with "
+                         "the support locked, shapes such a state; simulate gives it)",
+            "shaft_length_fraction": f"{100 * SHAFT_LENGTH_FRACTION:g} % of the shaft's length ({{}} mm: not a small "
+                                     "deflection, a linear model does not hold; check the static loads, the gravity, "
+                                     "the bearing stiffnesses and their units)"}
+    beyond = " and ".join(said[n].format(f"{1e3 * field['limits_m'][n]:.4g}") for n in field["exceeded"])
+    return (f"{prog}: warning: implausible static deflection: station {field['station']!r} moves "
+            f"{1e3 * field['deflection_m']:.4g} mm, beyond {beyond}")
