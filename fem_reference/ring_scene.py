@@ -57,7 +57,7 @@ SCHEMA = "ringcontact.ring-scene/1"
 #: the bundled ring-pair files (read through importlib.resources, see contact.package_data)
 RING_SCENE_DIR = shipped("fem_reference", "ring_scenes")
 MAX_FILE_BYTES = 64_000
-_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]{0,59}$")
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]{0,59}\Z")     # \Z: no newline after the name
 
 #: 3D boundary-condition scene (fem_reference.solid.compliance.SCENES) of each (hold, drive); the 3D
 #: reference is a body of revolution, so only holds that are the same all round the ring exist in 3D

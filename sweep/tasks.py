@@ -20,7 +20,7 @@ from typing import Callable
 
 from contact.errors import InputError
 
-_KEY = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]{0,120}$")
+_KEY = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]{0,120}\Z")     # \Z: no newline after the key
 
 
 @dataclass(frozen=True)

@@ -211,6 +211,12 @@ def dataset_provenance(path, ds: ReferenceDataset) -> dict:
             "code_revision": ds.metadata.get("code_revision")}
 
 
+def _defined(fit: FamilyFit) -> bool:
+    """True if ``fit`` has finite parameters and a finite fitted and held-out value at every point."""
+    return (all(math.isfinite(v) for v in fit.parameters.values()) and bool(np.all(np.isfinite(fit.fit_rel_err)))
+            and bool(np.all(np.isfinite(fit.holdout_rel_err))))
+
+
 def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | None = None) -> tuple[CalibratedLaw, list[FamilyFit]]:
     """Fit every family to a scene's zero-tilt points, select one, return it as a :class:`CalibratedLaw` and all fits.
 
@@ -221,7 +227,13 @@ def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | 
     usable = [fam for fam in FAMILIES if len(PARAMETERS[fam]) + 2 <= pen.size]   # room for a hold-out
     if not usable:
         raise InputError(f"scene {scene!r}: {pen.size} zero-tilt points, need >= 3 to fit and hold out")
-    fits = [fit_family(fam, pen, force, geo) for fam in usable]
+    tried = [fit_family(fam, pen, force, geo) for fam in usable]
+    # a family without a value at some point (the conformal law beyond its neat-fit limit, about 10 clearances of
+    # penetration) cannot describe these points: it is left out, never chosen by a NaN error
+    fits = [f for f in tried if _defined(f)]
+    if not fits:
+        raise InputError(f"scene {scene!r}: no law family has a value at every penetration of "
+                         f"[{pen.min() * 1e3:g}, {pen.max() * 1e3:g}] mm; a smaller penetration range")
     best = select_family(fits)
     fit_doc = {
         "method": "linear least squares in log force; 1-sigma from residual variance; hold-out = leave-one-out",
@@ -233,6 +245,8 @@ def calibrate_scene(dataset: ReferenceDataset, scene: str, dataset_info: dict | 
         "families": [{"family": f.family, "n_parameters": f.n_parameters, "parameters": f.parameters,
                       "holdout_rms_rel": f.holdout_rms, "holdout_max_rel": f.holdout_max} for f in fits],
     }
+    if len(fits) < len(tried):
+        fit_doc["families_without_a_value"] = [f.family for f in tried if not _defined(f)]
     if best.family == "foundation":
         fit_doc["foundation_modulus_estimate_Pa_per_m"] = geo.foundation_modulus_estimate_Pa_per_m()
     warning = holdout_warning(best.holdout_rel_err, fem_err)

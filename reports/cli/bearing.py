@@ -20,9 +20,28 @@ from contact.threads import set_thread_env, thread_share
 set_thread_env(thread_share(1))      # this process's share of the cores, before numpy loads (contact/threads.py)
 
 from contact.errors import OutputError, RingContactError  # noqa: E402
-from reports.cli._edge import Parser, count, fail, out_dir  # noqa: E402
+from reports.cli._budget import add_accept_long, check  # noqa: E402
+from reports.cli._edge import Parser, check_arg, count, fail, out_dir  # noqa: E402
 
 PROG = "ringcontact bearing"
+
+
+def _run(args, rs, out) -> dict:
+    """The pipeline into ``out``; an I/O error while writing (disk full, folder removed meanwhile) is one line
+    naming the path: each file is whole or absent, the summary last."""
+    from reports.bearing.pipeline import run
+    from sweep.cluster import connect
+
+    log = (lambda msg: print(msg, file=sys.stderr)) if args.json else print
+    try:
+        with connect(args.scheduler) as client:
+            return run(rs, out, workers=args.workers, executor=client, fresh=args.fresh, log=log)
+    except OSError as exc:
+        if isinstance(exc, RingContactError):
+            raise
+        where = exc.filename or out
+        raise OutputError(f"--out: could not write {where} ({exc.strerror or exc}); the folder holds no summary, so "
+                          "no complete run: free space and run again (finished points are kept)") from None
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -35,27 +54,22 @@ def main(argv: list[str] | None = None) -> int:
                     help="run the FEM points on the dask.distributed cluster at ADDRESS (the dask extra)")
     ap.add_argument("--fresh", action="store_true", help="recompute every point (ignore an interrupted run's points)")
     ap.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_accept_long(ap)
     args = ap.parse_args(sys.argv[1:] if argv is None else argv)
+    if args.out is not None:
+        check_arg(ap, "--out", out_dir, args.out)      # '' refused as every job refuses it, not the default folder
     try:
         from fem_reference.ring_scene import load
-        from reports.bearing.pipeline import run
-        from sweep.cluster import connect
+        from reports.bearing.work import estimate
 
         rs = load(args.scene)
-        try:
-            out = out_dir(args.out or f"bearing-{rs.name}")
-        except argparse.ArgumentTypeError as exc:   # the writable check, before any computing
-            ap.error(f"--out {exc}")
-        log = (lambda msg: print(msg, file=sys.stderr)) if args.json else print
-        with connect(args.scheduler) as client:
-            summary = run(rs, out, workers=args.workers, executor=client, fresh=args.fresh, log=log)
+        out = check_arg(ap, "--out", out_dir, args.out if args.out is not None else f"bearing-{rs.name}")
+        check(PROG, estimate(rs, args.workers), args.accept_long,
+              f"FILE = {args.scene}: ring pair {rs.name!r}, bore radius {rs.scene.rings.bore_radius_m * 1e3:g} mm",
+              "a smaller ring or fewer penetration and tilt points")
+        summary = _run(args, rs, out)
     except RingContactError as exc:
         return fail(PROG, exc)
-    except OSError as exc:          # disk full, folder removed meanwhile: each file is whole or absent, summary last
-        where = exc.filename or args.out or "the output folder"
-        return fail(PROG, OutputError(f"--out: could not write {where} ({exc.strerror or exc}); the folder holds no "
-                                      "summary, so no complete run: free space and run again (finished points are "
-                                      "kept)"))
     if args.json:
         print(json.dumps(summary, indent=1, allow_nan=False))
     else:
