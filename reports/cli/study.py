@@ -310,6 +310,19 @@ def _require_finished(flag: str, d: Path) -> None:
     st = run_status(d)
     if not st["complete"]:
         raise InputError(f"{flag} = {d}: not a finished study ({st['why']}); rerun the study to complete it")
+    _require_kind(flag, d)
+
+
+def _require_kind(flag: str, d: Path) -> None:
+    """Refuse a finished study of another kind than ``flag`` publishes (a run-up folder given to ``--cascade``
+    ended in ``KeyError: 'speed_rpm'``): the study named in its ``sweep.json`` against the one the flag needs."""
+    from sweep.store import ResultStore
+    need = flag.removeprefix("--").removesuffix("-converged")
+    need = "cascade" if need == "notilt" else need
+    held = (ResultStore(d).read_manifest(required=False) or {}).get("study")
+    if held is not None and held != need:
+        raise InputError(f"{flag} = {d}: holds a finished '{held}' study (its sweep.json), and {flag} publishes a "
+                         f"'{need}' study; give the folder of a ringcontact study {need} run")
 
 
 def _distinct(speeds, args):
