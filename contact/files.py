@@ -83,6 +83,11 @@ def _new_temporary(path: Path, write) -> str:
             fh.flush()
             os.fchmod(fh.fileno(), 0o666 & ~_umask())
             os.fsync(fh.fileno())
+    except OSError as exc:          # a full disk raises in write or fsync without a file name: name the target
+        _discard([tmp] if tmp else [])
+        if exc.filename is None:
+            raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
+        raise
     except BaseException:
         _discard([tmp] if tmp else [])
         raise

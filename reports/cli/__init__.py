@@ -104,6 +104,10 @@ def blas_threads(job: str) -> dict:
     return set_thread_env(1)
 
 
+#: the errors of a write the user can remedy (space, quota, a read-only file system), said in one line
+WRITE_FAILURES = (errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EFBIG)
+
+
 def _run(job: str, rest: list[str], program: bool = False) -> int:
     """Run ``job``'s entry on ``rest``: its exit status, every failure and interruption as one line
     (``program``: this is the ringcontact process, which may end at once after an interruption)."""
@@ -129,6 +133,12 @@ def _run(job: str, rest: list[str], program: bool = False) -> int:
         sys.stderr.close()
         return 0
     except OSError as exc:
+        if exc.errno in WRITE_FAILURES:      # disk full, quota, read-only: atomic writes leave no half-written file
+            where = os.fsdecode(exc.filename) if exc.filename else "the output"
+            print(f"ringcontact {job}: error: could not write {where} ({exc.strerror or os.strerror(exc.errno)}); "
+                  "every file written is whole, none half-written; free space (or choose another --out) and run "
+                  "again", file=sys.stderr)
+            return 1
         if exc.errno != errno.ENAMETOOLONG:
             return _internal(job, exc)
         name = os.fsdecode(exc.filename or "")     # only a name the user typed (or one made from it) is too long

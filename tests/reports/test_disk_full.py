@@ -8,6 +8,8 @@ from __future__ import annotations
 import errno
 import os
 
+import pytest
+
 from reports import cli
 
 
@@ -35,3 +37,27 @@ def test_simulate_on_a_full_disk_writes_no_summary(tmp_path, monkeypatch, capsys
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 1 and len(err) == 1 and "internal error" not in err[0], err
     assert os.strerror(errno.ENOSPC) in err[0] and not (tmp_path / "o" / "simulate-summary.json").exists()
+
+
+def _fsync_enospc(*args):
+    raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))     # as a full disk raises it: no file name
+
+
+@pytest.mark.parametrize("argv", [
+    ["calibrate", "--out", "{o}"],
+    ["rotor", "response", "verify-jeffcott", "--speed-rpm", "1000", "--revolutions", "2", "--out", "{o}"],
+    ["rotor", "campbell", "verify-jeffcott", "--points", "3", "--plot", "{o}/c"],
+    ["rotor", "unbalance", "verify-jeffcott", "--points", "3", "--plot", "{o}/u"],
+    ["rotor", "modes", "verify-jeffcott", "--plot", "{o}/m"],
+], ids=lambda a: " ".join(a[:2]))
+def test_a_full_disk_is_one_line_naming_the_path(tmp_path, monkeypatch, capsys, argv):
+    """A write that fails as a full disk fails (in fsync, no file name): one line naming the file in the output
+    folder, exit 1, no temporary and no half-written file left."""
+    out = tmp_path / "o"
+    out.mkdir()
+    monkeypatch.setattr(os, "fsync", _fsync_enospc)
+    rc = cli.main([a.replace("{o}", str(out)) for a in argv])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 1 and len(err) == 1 and "internal error" not in err[0], err
+    assert f"could not write {out}/" in err[0] and os.strerror(errno.ENOSPC) in err[0], err
+    assert list(out.rglob("*")) == [], sorted(out.rglob("*"))
