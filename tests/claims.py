@@ -247,6 +247,12 @@ CLAIMS = (
          test="tests/rotor/dynamics/test_friction_events.py::test_undamped_den_hartog_reaches_a_periodic_state",
          tier="default"),
 
+    # perf-grazing-family.md: the family of the run's seed; the slow test checks the same bounds on the commit's seed
+    dict(report="reports/published/perf-grazing-family.md", claim="no restart, the end reached): **20 of 20**.",
+         test="tests/rotor/studies/test_grazing_family.py::test_ten_random_rotors_both_ways", tier="slow"),
+    dict(report="reports/published/perf-grazing-family.md", claim="every middle-branch orbit unstable, every orbit within 1e-6",
+         test="tests/rotor/studies/test_grazing_family.py::test_one_random_rotor_both_ways_through_every_corner_and_fold",
+         tier="default"),
     # perf-grazing.md
     dict(report="reports/published/perf-grazing.md",
          claim="Closed form (warped): grazing 279.570680 rad/s, grazing fold 374.300780 rad/s, fold 445.873221 rad/s.",
