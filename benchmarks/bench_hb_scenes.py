@@ -49,6 +49,8 @@ from rotor.studies.orbit import branch  # noqa: E402
 from rotor.studies.steady_state import point_system  # noqa: E402
 
 OUT = ROOT / "reports" / "published"
+#: a pyHarm-os branch still running after this (s, wall: two runs in its process) is stopped and reported as such
+PYHARM_TIMEOUT_S = 120.0
 TO_RPM = 30.0 / math.pi
 
 
@@ -88,10 +90,15 @@ def run_pyharm(rotor, low: float, high: float, work: Path) -> dict:
               "ds0": 1.0, "ds_max": 5.0, "repeat": 2,
               "law": {"clearance_m": args[0], "width_m": args[1], "c3": args[3], "alpha": args[4], "beta": args[5]}}
     (work / "params.json").write_text(json.dumps(params))
-    res = subprocess.run([str(VENV / "bin" / "python"), str(ROOT / "benchmarks" / "pyharm_jeffcott_ring.py"),
-                          str(work / "params.json"), str(work / "out.json")], capture_output=True, text=True, cwd=work)
+    try:
+        res = subprocess.run([str(VENV / "bin" / "python"), str(ROOT / "benchmarks" / "pyharm_jeffcott_ring.py"),
+                              str(work / "params.json"), str(work / "out.json")], capture_output=True, text=True,
+                              cwd=work, timeout=PYHARM_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        return {"cpu_s": math.nan, "points": 0, "errors": [], "stop": f"not finished in {PYHARM_TIMEOUT_S:g} s wall"}
     if res.returncode != 0:
-        raise RuntimeError("pyHarm run failed: " + (res.stderr.strip().splitlines() or ["?"])[-1])
+        return {"cpu_s": math.nan, "points": 0, "errors": [],
+                "stop": "failed: " + (res.stderr.strip().splitlines() or ["?"])[-1][:120]}
     out = json.loads((work / "out.json").read_text())
     w = np.array([pt[0] for pt in out["points"]])
     x = np.array([pt[1] for pt in out["points"]])
@@ -99,6 +106,12 @@ def run_pyharm(rotor, low: float, high: float, work: Path) -> dict:
     err = [orbit_distance(rotor, float(a), float(b), None) for a, b in zip(w, r)]
     return {"cpu_s": out["cpu_s"], "points": len(w), "errors": err, "stop": f"to {w[-1]:.2f} rad/s",
             "version": out["version"]}
+
+
+def _sums(rs: list, ph: list) -> tuple[float, float, int]:
+    """CPU sums of ``rs`` and of pyHarm-os on the rotors where pyHarm-os finished, and that count."""
+    both = [(r["cpu_s"], p["cpu_s"]) for r, p in zip(rs, ph) if math.isfinite(p["cpu_s"])]
+    return sum(a for a, _ in both), sum(b for _, b in both), len(both)
 
 
 def table4(speeds_rpm, harmonics=(8, 16, 32)) -> list[dict]:
@@ -180,16 +193,19 @@ def report(seed, count, fam, t4, loads) -> str:
     for name, rs in rows.items():
         if not rs:
             continue
-        e = [x for r in rs for x in r["errors"]]
+        e = [x for r in rs for x in r["errors"]] or [math.nan]
         cpu = sum(r["cpu_s"] for r in rs)
-        ref = sum(p["cpu_s"] for p in ph[:len(rs)]) if len(ph) >= len(rs) else math.nan
+        a, b, m = _sums(rs, ph) if ph else (math.nan, math.nan, 0)
         lines.append(f"| {name} | {len(rs)} | {sum(r['points'] for r in rs)} | {max(e):.2e} | {np.median(e):.2e} | "
-                     f"{cpu:.2f} | {cpu / ref:.3f} |")
+                     f"{cpu:.2f} | {a / b if m else math.nan:.3f} (on {m}) |")
     if ph:
-        ratios = [h["cpu_s"] / p["cpu_s"] for h, p in zip(hb, ph)]
-        lines += ["", f"HB / pyHarm-os CPU per rotor: {min(ratios):.2f} to {max(ratios):.2f} (pyHarm-os "
-                  f"{ph[0]['version']}, one harmonic, 16 time samples, benchmarks/pyharm_jeffcott_ring.py). Every HB "
-                  f"stop: {sorted({r['stop'] for r in hb})}."]
+        ratios = [h["cpu_s"] / p["cpu_s"] for h, p in zip(hb, ph) if math.isfinite(p["cpu_s"])] or [math.nan]
+        ver = next((p["version"] for p in ph if "version" in p), "?")
+        lines += ["", f"HB / pyHarm-os CPU per rotor: {min(ratios):.2f} to {max(ratios):.2f} (pyHarm-os {ver}, one "
+                  "harmonic, 16 time samples, benchmarks/pyharm_jeffcott_ring.py). HB CPU: the continuation "
+                  "(hb_branch, the scene's system built at every speed it asks for); with every point's reported "
+                  f"fields {sum(r['with_fields_cpu_s'] for r in hb):.2f} s. Every HB stop: "
+                  f"{sorted({r['stop'] for r in hb})}; pyHarm-os stops: {[p['stop'] for p in ph]}."]
     else:
         lines += ["", f"pyHarm-os was not run: {fam['pyharm_missing']}."]
     lines += ["", "## Table 4 without friction (paper-table4 --mu 0)", "",
