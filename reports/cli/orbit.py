@@ -41,7 +41,7 @@ import sys
 import time
 from pathlib import Path
 
-from contact.errors import InputError, RingContactError
+from contact.errors import ConvergenceError, InputError, OutsideDomainError, RingContactError
 from reports.cli import _budget
 from reports.cli._edge import Parser, count, fail, in_dir, in_file, out_file, out_prefix, quantity
 from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, override_words,
@@ -134,13 +134,36 @@ def _check_work(args, prog: str, rpm: float, points: int = 0) -> None:
     (:func:`reports.cli._budget.orbit`)."""
     from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
 
-    system = point_system(args.scene, rpm, **_overrides(args))[2]
+    _, model, system = point_system(args.scene, rpm, **_overrides(args))
     n = int(args.steps_per_rev or step_per_rev(system, SteadyStateOptions()))
     est = _budget.orbit(system, n, getattr(args, "period_revs", None), points)
     cause = (f"--steps-per-rev = {n}" if args.steps_per_rev else
              f"{n} steps per revolution (the contact step limit at {rpm:g} rpm)")
     _budget.check(prog, est, args.accept_long, cause + (f" and --max-points = {points}" if points else ""),
                   "fewer steps per revolution" + (" or --max-points" if points else ""))
+    _warn_unstable(args, prog, model, (args.rpm_start, args.rpm_end) if points else (rpm,))
+
+
+def _warn_unstable(args, prog: str, model, speeds_rpm) -> None:
+    """The first unstable mode of the rotor's linearisation (loose support locked, then open:
+    :func:`rotor.linear.stability.linearisation_unstable`) at the speeds (rpm; a branch's ends and middle), said in
+    one warning line before the work and kept in ``args.unstable`` for the failure message and the JSON."""
+    from rotor.linear.stability import linearisation_unstable, warning
+
+    ends = [float(v) for v in speeds_rpm]
+    found = None
+    for rpm in (ends if len(ends) == 1 else [ends[0], 0.5 * (ends[0] + ends[-1]), ends[-1]]):
+        found = found or linearisation_unstable(model, rpm * math.pi / 30.0)
+    args.unstable = found
+    if found is not None:
+        print(warning(prog, found, "an orbit that grows is the rotor's instability, not the contact law"),
+              file=sys.stderr, flush=True)
+
+
+def _stability(args) -> dict:
+    """The JSON field ``stability`` of :func:`rotor.linear.stability.stability_field` for ``args.unstable``."""
+    from rotor.linear.stability import stability_field
+    return {"stability": stability_field(getattr(args, "unstable", None))}
 
 
 def law_fields(loose, max_edge_penetration_m: float, max_tilt_in_contact_arcmin: float | None = None) -> dict:
@@ -242,7 +265,13 @@ def _watched(label: str, args, compute):
     warm_up_shown(label, args, warm_up)
     events = Events(label, parameter_unit=("rpm", 30.0 / math.pi), enabled=args.progress)
     with reporting(events), events:
-        return compute(), events
+        try:
+            return compute(), events
+        except (OutsideDomainError, ConvergenceError) as exc:      # an unstable rotor's divergence is the rotor's
+            if getattr(args, "unstable", None) is None:
+                raise
+            from rotor.linear.stability import divergence_message
+            raise type(exc)(divergence_message(args.unstable, exc)) from None
 
 
 def _tried(attempts: list[dict]) -> str:
@@ -311,7 +340,8 @@ def _shooting_orbit(args, name: str, loose, choice: dict | None = None, hb=None)
         richardson=args.richardson, **_overrides(args)))
     d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m,
                                               res.contact.get("max_tilt_in_contact_arcmin")),
-         "attempts": events.attempts, "method": "shooting", **({"method_choice": choice} if choice else {})}
+         "attempts": events.attempts, "method": "shooting", **({"method_choice": choice} if choice else {}),
+         **_stability(args)}
     return d, res, events
 
 
@@ -450,7 +480,7 @@ def _branch(args) -> int:
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3), "method": "shooting",
-         **({"method_choice": choice} if choice else {})}
+         **({"method_choice": choice} if choice else {}), **_stability(args)}
     deepest_mm = max([p.get("max_edge_penetration_mm", 0.0) for p in d["points"]], default=0.0)
     tilt = max([p.get("max_tilt_in_contact_arcmin", 0.0) for p in d["points"]], default=0.0)
     d.update(law_fields(loose, max(deepest_mm * 1e-3, res.start.max_edge_penetration_m),    # deepest of the branch
