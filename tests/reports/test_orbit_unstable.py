@@ -9,27 +9,19 @@ from __future__ import annotations
 import json
 
 import pytest
+from unstable_scenes import table4_cross_coupled
 
 from reports import cli
 from rotor.linear.stability import linearisation_unstable
 from rotor.model.assembly import assemble
-from rotor.model.scene import load_scene, scene_path
+from rotor.model.scene import load_scene
 from rotor.periodic.jeffcott_scene import JeffcottRing, scene_toml
-
-
-def _table4(tmp_path, k_cross: float):
-    text = scene_path("paper-table4").read_text(encoding="utf-8").replace(
-        "damping_n_s_per_m = 1.5e3\n", f"damping_n_s_per_m = 1.5e3\nstiffness_yz_n_per_m = {k_cross:g}\n"
-        f"stiffness_zy_n_per_m = {-k_cross:g}\n", 1)
-    path = tmp_path / "t4.toml"
-    path.write_text(text, encoding="utf-8")
-    return path
 
 
 @pytest.mark.parametrize("job,extra", [("orbit", ["--speed-rpm", "3000"]),
                                        ("branch", ["--rpm-start", "3000", "--rpm-end", "3100", "--max-points", "3"])])
 def test_orbit_and_branch_say_unstable_and_blame_the_rotor(job, extra, tmp_path, capsys):
-    scene = _table4(tmp_path, 1e7)
+    scene = table4_cross_coupled(tmp_path, 1e7)
     found = linearisation_unstable(assemble(load_scene(scene)), 3000 * 3.141592653589793 / 30)
     assert found is not None and found.damping_ratio < 0
     rc = cli.main([job, str(scene), *extra, "--json", "--accept-long"])

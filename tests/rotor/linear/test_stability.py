@@ -9,6 +9,7 @@ import json
 import re
 
 import pytest
+from unstable_scenes import table4_cross_coupled
 
 from reports import cli
 from rotor.linear.modes import modes
@@ -79,18 +80,8 @@ def test_every_linear_job_says_unstable_and_names_the_mode(job, extra, tmp_path,
                                                                                   "unstable_mode": None}
 
 
-def _table4(tmp_path, k_cross: float):
-    """paper-table4 with its bearing1 cross-coupled by k_yz = -k_zy = ``k_cross`` (N/m)."""
-    text = scene_path("paper-table4").read_text(encoding="utf-8").replace(
-        "damping_n_s_per_m = 1.5e3\n", f"damping_n_s_per_m = 1.5e3\nstiffness_yz_n_per_m = {k_cross:g}\n"
-        f"stiffness_zy_n_per_m = {-k_cross:g}\n", 1)
-    path = tmp_path / "t4.toml"
-    path.write_text(text, encoding="utf-8")
-    return path
-
-
 def test_simulate_says_the_divergence_is_the_rotors(tmp_path, capsys):
-    scene = _table4(tmp_path, 1e7)
+    scene = table4_cross_coupled(tmp_path, 1e7)
     found = linearisation_unstable(assemble(load_scene(scene)), 3000 * RPM)
     assert found is not None and found.damping_ratio < 0
     rc, out, err = _run(["simulate", "--scene", scene, "--speed-rpm", "3000", "--revolutions", "40", "--out",
