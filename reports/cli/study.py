@@ -212,6 +212,7 @@ def _run(args) -> int:
     scene, _ = _scene_model(args.scene, None, _ov(args).get("law"))  # a bad scene or law: refused here, not per point
     _paper_stations(args, scene)
     _law_clearances(args, scene)
+    _warn_unstable(args, scene)
     out = Path(args.out)
     figs = Path(args.figures) if args.figures else out / "figures"
     opts = _options(args)
@@ -221,6 +222,26 @@ def _run(args) -> int:
     for f in study(args, out, figs, opts):
         print(f"  wrote {f}")
     return 0
+
+
+def _warn_unstable(args, scene) -> None:
+    """One warning line when the rotor's linearisation (loose support locked, then open) has a mode of negative
+    damping at the study's speeds (its ends and middle: :func:`rotor.linear.stability.linearisation_unstable`):
+    its points' answers are then the growth of an unstable rotor, not the contact law's doing (issue 40)."""
+    from rotor.linear.stability import linearisation_unstable, warning
+    from rotor.model.assembly import assemble
+    speeds = [v for k in ("rpm_min", "rpm_max", "rpm_start", "rpm_end") if (v := getattr(args, k, None)) is not None]
+    speeds += list(getattr(args, "speed_rpm", None) or [])
+    if not speeds:
+        return
+    lo, hi = min(speeds), max(speeds)
+    model = assemble(scene, elements_per_segment=getattr(args, "elements", None))
+    for rpm in sorted({lo, 0.5 * (lo + hi), hi}):
+        found = linearisation_unstable(model, rpm * 3.141592653589793 / 30.0)
+        if found is not None:
+            print(warning(f"ringcontact study {args.study}", found, "its points grow with the rotor's instability, "
+                                                                    "not by the contact law"), file=sys.stderr)
+            return
 
 
 def _paper_stations(args, scene) -> None:

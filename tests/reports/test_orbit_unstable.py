@@ -65,3 +65,13 @@ def test_orbit_and_branch_on_a_full_disk_say_so_in_one_line(job, extra, tmp_path
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 1 and "internal error" not in err[-1] and f"could not write {out}/r.json" in err[-1], err
     assert list(out.iterdir()) == []
+
+
+def test_a_study_of_an_unstable_rotor_says_so_before_its_points(tmp_path, capsys):
+    scene = table4_cross_coupled(tmp_path, 1e7)
+    found = linearisation_unstable(assemble(load_scene(scene)), 3000 * 3.141592653589793 / 30)
+    cli.main(["study", "cascade", "--scene", str(scene), "--rpm-min", "3000", "--rpm-max", "3000", "--points", "1",
+              "--out", str(tmp_path / "c")])
+    err = capsys.readouterr().err
+    warn = [ln for ln in err.splitlines() if "warning: unstable rotor" in ln]
+    assert len(warn) == 1 and f"mode {found.mode}" in warn[0] and "not by the contact law" in warn[0], err
