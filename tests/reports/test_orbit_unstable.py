@@ -75,3 +75,22 @@ def test_a_study_of_an_unstable_rotor_says_so_before_its_points(tmp_path, capsys
     err = capsys.readouterr().err
     warn = [ln for ln in err.splitlines() if "warning: unstable rotor" in ln]
     assert len(warn) == 1 and f"mode {found.mode}" in warn[0] and "not by the contact law" in warn[0], err
+
+
+def test_fem_vtu_on_a_full_disk_says_so_in_one_line(tmp_path, monkeypatch, capsys):
+    """The FEM jobs write through the same atomic writes and dispatcher (issue 40): a full disk at fem-vtu's
+    output is one line naming it, nothing left (one coarse point, 4 mm elements)."""
+    import errno
+    import os
+
+    out = tmp_path / "o"
+    out.mkdir()
+
+    def full(*args):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "fsync", full)
+    rc = cli.main(["fem-vtu", "0.01", str(out / "p.vtu"), "--h-mm", "4"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 1 and "internal error" not in err[-1] and f"could not write {out}/p.vtu" in err[-1], err
+    assert list(out.iterdir()) == []
