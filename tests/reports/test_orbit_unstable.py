@@ -94,3 +94,26 @@ def test_fem_vtu_on_a_full_disk_says_so_in_one_line(tmp_path, monkeypatch, capsy
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 1 and "internal error" not in err[-1] and f"could not write {out}/p.vtu" in err[-1], err
     assert list(out.iterdir()) == []
+
+
+@pytest.mark.parametrize("argv", [["study", "cascade", "--rpm-min", "3000", "--rpm-max", "3000", "--points", "1",
+                                   "--out", "{o}/c"],
+                                  ["study", "point", "--speed-rpm", "3000", "--out", "{o}/p"],
+                                  ["report", "--out", "{o}", "--only", "accuracy"]], ids=lambda a: " ".join(a[:2]))
+def test_studies_and_reports_on_a_full_disk_say_so_in_one_line(argv, tmp_path, monkeypatch, capsys):
+    """Study and report jobs on a full disk: one line naming the file, exit 1, no data file left (a study's folder
+    keeps only its writer's lock, which the next writer takes over: sweep/guard.py)."""
+    import errno
+    import os
+
+    out = tmp_path / "o"
+    out.mkdir()
+
+    def full(*args):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "fsync", full)
+    rc = cli.main([a.replace("{o}", str(out)) for a in argv])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 1 and "internal error" not in err[-1] and f"could not write {out}/" in err[-1], err
+    assert [p for p in out.rglob("*") if p.is_file() and p.name != ".lock"] == []
