@@ -47,9 +47,12 @@ def test_one_random_rotor_both_ways_through_every_corner_and_fold(direction, tmp
     _assert_sweep(check_branch(rotor, low, high, direction, tmp_path))
 
 
-def test_ringcontact_branch_reports_the_closed_form_grazings_and_fold(tmp_path):
+def test_ringcontact_branch_reports_the_closed_form_grazing(tmp_path):
+    """The command line over the first grazing only (the whole curve is the API tests' above, the same code)."""
     rotor = _family(1)[0]
-    low, high = (float(f"{v:.6f}") for v in sweep_range(rotor))      # the speeds as typed
+    low = float(f"{sweep_range(rotor)[0]:.6f}")                          # the speeds as typed
+    first = expected_events(rotor, 256, 0.0, math.inf)[0][1]
+    high = float(f"{0.5 * (first + expected_events(rotor, 256, 0.0, math.inf)[1][1]):.6f}")
     scene = tmp_path / "jeffcott-ring.toml"
     scene.write_text(scene_toml(rotor), encoding="utf-8")
     out = tmp_path / "branch.json"
@@ -59,7 +62,9 @@ def test_ringcontact_branch_reports_the_closed_form_grazings_and_fold(tmp_path):
     assert sum(d["restarts"].values()) == 0
     assert d["stop"] == "end reached" and d["points"][-1]["speed_rpm"] == pytest.approx(high, rel=1e-12)
     found = [(b["kind"], b["speed_rpm"]) for b in d["bifurcations"]]
-    for kind, speed in expected_events(rotor, d["steps_per_rev"], low, high):
+    expected = expected_events(rotor, d["steps_per_rev"], low, high)
+    assert [k for k, _ in expected] == ["grazing"] and [k for k, _ in found] == ["grazing"], (expected, found)
+    for kind, speed in expected:
         assert min(abs(s - speed) / speed for k, s in found if k == kind) < EVENT_RTOL, (kind, speed, found)
     assert all(math.isfinite(amps[0]) for amps in d["points"][-1]["velocity_amplitudes_mm_s_1X_to_5X"].values())
 
