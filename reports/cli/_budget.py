@@ -10,7 +10,16 @@ constant below names where it was measured), before anything is computed, and ca
 * above :data:`ANNOUNCE_S`: one line on stderr with the estimate, then the work starts.
 
 The estimates are upper bounds where the work has one (a steady-state point integrates at most ``--max-revs``
-revolutions; most stop far earlier), typical values otherwise (said in the message).
+revolutions; most stop far earlier), typical values otherwise (said in the message). ``orbit`` and ``branch``
+say both: "about X (at most Y: …)". Their step costs are measured on the system itself by a short probe
+(:func:`map_cost`: a revolution of the period map without and a share of one with its monodromy, after the
+compile, which is reported separately), a branch's orbit count follows the continuation's step control over
+the branch's scaled arclength (:func:`branch_orbits`, :func:`state_path`), and the bound counts the whole
+transient and ``--max-points`` orbits. They are refused on the typical value, or on the bound where it exceeds
+:data:`BOUND_REFUSAL` budgets: a bound counts work a smooth run never does (400 orbits where 25 cover a
+smooth branch; 2 000 transient revolutions where 24 usually do), so refusing on it refused 13-s branches, while a
+typical value cannot see restarts, so a bound of many hours is still refused. Measured against wall times in
+reports/published/perf-estimates.md (benchmarks/bench_estimates.py).
 """
 from __future__ import annotations
 
@@ -40,13 +49,6 @@ STEADY_BYTES_PER_STEP_DOF = 56
 #: a step of the run-up ramp (segments of constant speed, each prepared anew): 1 536 340 steps of 13.0 µs,
 #: reports/published/study-runup.md
 RUNUP_STEP_COST_S = 13.0e-6
-#: a step of the shooting Newton (period map with its exact monodromy, after a transient): orbit paper-table4
-#: at 10 500 rpm, 256 steps a revolution, 247 transient revolutions and 2 Newton iterations in 2.55 s
-#: (2026-11-27, load average 2.0)
-ORBIT_STEP_COST_S = 2.55 / (256 * 249)
-#: one orbit of a branch (corrector from its neighbour): 47 orbits in 189 s at 256 steps a revolution,
-#: branch paper-table4 10 500 -> 11 500 rpm (2026-11-27, load average 3-6)
-BRANCH_POINT_COST_S = 189.0 / 47
 #: one speed of a Campbell diagram (the dense eigenproblem of a rotor model of n DOFs, state space 2n, and its
 #: whirl sorting): 125 s at n = 1036 (paper-table4 with 64 elements a segment), 2.6 ms at n = 28, 3.7 s at
 #: n = 268; scaled with n^3, which joins both ends (rotor.linear.modes.campbell, 2026-11-27, load average 9)
@@ -57,12 +59,15 @@ EIG_COST_DOFS = 1036
 @dataclass(frozen=True)
 class Estimate:
     """What a job will cost: ``seconds`` of computing, ``nbytes`` held in memory, ``made_of`` (words: the
-    step count and the cost per step), ``bound`` (True: an upper bound, False: typical)."""
+    step count and the cost per step), ``bound`` (True: an upper bound, False: typical); ``upper_s``: with a
+    typical ``seconds``, the bound where the work has one (said in words; ``upper_of``: what it is the cost of)."""
 
     seconds: float
     nbytes: float
     made_of: str
     bound: bool = True
+    upper_s: float | None = None
+    upper_of: str = ""
 
 
 class WorkBudgetError(InputError):
@@ -83,9 +88,24 @@ def _time(seconds: float) -> str:
 
 
 def describe(est: Estimate) -> str:
-    """``estimated at most 2.1 h of computing and 3.2 GiB of records (…)``."""
-    return (f"estimated {'at most ' if est.bound else ''}{_time(est.seconds)} of computing and "
-            f"{est.nbytes / 2 ** 30:.3g} GiB of records ({est.made_of})")
+    """``estimated at most 2.1 h of computing and 3.2 GiB of records (…)``; with a typical value and its bound:
+    ``estimated about 12 s (at most 9.1 min: 400 orbits …) of computing …``."""
+    if est.upper_s is not None:
+        what = f"about {_time(est.seconds)} (at most {_time(est.upper_s)}: {est.upper_of})"
+    else:
+        what = f"{'at most ' if est.bound else ''}{_time(est.seconds)}"
+    return f"estimated {what} of computing and {est.nbytes / 2 ** 30:.3g} GiB of records ({est.made_of})"
+
+
+def _over(est: Estimate) -> str:
+    """Why ``est`` is beyond the budget ('' if it is not): its value (typical or bound), its records, or a bound
+    beyond :data:`BOUND_REFUSAL` budgets (a typical value far below a bound is not trusted that far)."""
+    if est.seconds > WORK_BUDGET_S or est.nbytes > MEMORY_BUDGET_BYTES:
+        return f"beyond the budget of {WORK_BUDGET_S / 60:g} min and {MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB"
+    if est.upper_s is not None and est.upper_s > BOUND_REFUSAL * WORK_BUDGET_S:
+        return (f"its bound beyond the budget of {WORK_BUDGET_S / 60:g} min {BOUND_REFUSAL:g} times over "
+                f"({_time(BOUND_REFUSAL * WORK_BUDGET_S)})")
+    return ""
 
 
 def check(prog: str, est: Estimate, accept_long: bool, cause: str, remedy: str, *,
@@ -96,10 +116,9 @@ def check(prog: str, est: Estimate, accept_long: bool, cause: str, remedy: str, 
     to change instead (``fewer steps per revolution``), ``override``: how the caller accepts it (the flag, or
     the API's keyword ``accept_long=True``). Raises :class:`WorkBudgetError`.
     """
-    over = est.seconds > WORK_BUDGET_S or est.nbytes > MEMORY_BUDGET_BYTES
+    over = _over(est)
     if over and not accept_long:
-        raise WorkBudgetError(f"{cause}: {describe(est)}, beyond the budget of {WORK_BUDGET_S / 60:g} min and "
-                              f"{MEMORY_BUDGET_BYTES / 2 ** 30:g} GiB; {remedy}, or {override} to run it anyway")
+        raise WorkBudgetError(f"{cause}: {describe(est)}, {over}; {remedy}, or {override} to run it anyway")
     if est.seconds >= ANNOUNCE_S or over:
         print(f"{prog}: {describe(est)}; starting", file=sys.stderr, flush=True)
 
@@ -162,20 +181,161 @@ def runup(spec) -> Estimate:
                     f"{_steps(steps)} of {RUNUP_STEP_COST_S * 1e6:.3g} µs, {records:.3g} records", bound=False)
 
 
-def orbit(system, steps_per_rev: int, period_revs: int | None, points: int = 0) -> Estimate:
-    """Shooting at one speed (and ``points`` further orbits of a branch): the transient rounds, at most
-    ``ShootingOptions.max_transient_revs`` revolutions, and the Newton iterations on the period map with its
-    monodromy, at the measured cost per step; a branch point at the measured cost per orbit."""
+#: corrector iterations of a smooth branch's orbit: 3 (Friswell 5.9.1 loose aluminium 2 300 -> 2 800 rpm, 81 maps
+#: with monodromy for 27 orbits) to 4.9 (a Jeffcott-ring branch through two grazings, 214 for 44), 2026-11-28
+BRANCH_ITERATIONS = 3
+#: a corrector iteration: the map with its monodromy, two without (∂R/∂λ), three systems built (λ, λ ± h); and
+#: per orbit two further periods without (its amplitudes, the scales' record)
+BRANCH_PLAIN_PER_ORBIT = 2 * BRANCH_ITERATIONS + 2
+#: a first orbit (:func:`rotor.periodic.shooting.shoot_from_transient`): the first transient round, and Newton
+#: iterations with monodromy on the period (typical: the first round's Newton converges)
+ORBIT_ITERATIONS = 3
+#: the estimate refuses on its typical value; on its bound only when the bound is this many budgets
+BOUND_REFUSAL = 4.0
+#: most steps the probe maps (a share of the revolution where it has more: the cost per step from them)
+PROBE_JAC_STEPS = 8192
+#: seconds the probe may spend on steps with the monodromy (16 steps at least)
+PROBE_JAC_S = 0.5
+#: revolutions without the monodromy before the probe's steps with it
+PROBE_SETTLE_REVS = 4
+
+
+@dataclass(frozen=True)
+class MapCost:
+    """Seconds measured on the system itself (:func:`map_cost`): one step of the period map without (``plain_s``)
+    and with its monodromy (``jac_s``), one system and flow built at a new speed (``build_s``), and the probe's own
+    wall time (``probe_s``)."""
+
+    plain_s: float
+    jac_s: float
+    build_s: float
+    probe_s: float
+
+
+def map_cost(system_at, steps_per_rev: int) -> MapCost:
+    """Measure the period map on the system: ``system_at()`` builds it (three times, the median counted), one
+    revolution without the monodromy from the linear periodic solution (after 16 steps without and 16 with it,
+    not counted: the first calls pay dispatch and buffers), then, after :data:`PROBE_SETTLE_REVS` more revolutions
+    where they are cheap (the linear start's impacts settle: the orbit's located events, not the start's), steps with
+    it: as many of :data:`PROBE_JAC_STEPS` as :data:`PROBE_JAC_S` allows. Run after the compile (:func:`rotor.dynamics.period_map.warm_up`)."""
+    import math
+    import time
+
+    from rotor.dynamics.initial import linear_initial_state
+    from rotor.periodic.period_flow import advance, make_flow, to_reduced
+
+    t_start = time.perf_counter()
+    n = int(steps_per_rev)
+    builds = []
+    for _ in range(3):
+        t = time.perf_counter()
+        system = system_at()
+        dt = 2.0 * math.pi / (system.omega_rad_s * n)
+        flow = make_flow(system, dt)
+        builds.append(time.perf_counter() - t)
+    build = sorted(builds)[1]
+    x = to_reduced(flow, *linear_initial_state(system, 0.0))
+    r = advance(flow, x, 0.0, 16, jacobian=False)            # first calls (dispatch, buffers): not counted
+    advance(flow, r.state, 16 * dt, 16, r.modes, jacobian=True)
+    k = min(n, PROBE_JAC_STEPS)
+    t = time.perf_counter()
+    r = advance(flow, x, 0.0, k, jacobian=False)
+    plain = (time.perf_counter() - t) / k
+    revs = PROBE_SETTLE_REVS if plain * n < 0.2 and k == n else 0   # the start's impacts settle where that is cheap
+    if revs:
+        r = advance(flow, r.state, k * dt, revs * n, r.modes, jacobian=False)
+    t0 = (k + revs * n) * dt
+    t = time.perf_counter()
+    advance(flow, r.state, t0, 16, r.modes, jacobian=True)
+    jac = (time.perf_counter() - t) / 16
+    m = min(k, int(PROBE_JAC_S / jac))          # as much of the revolution as fits: its cost per step grows with it
+    if m > 16:
+        t = time.perf_counter()
+        advance(flow, r.state, t0, m, r.modes, jacobian=True)
+        jac = (time.perf_counter() - t) / m
+    return MapCost(plain, jac, build, time.perf_counter() - t_start)
+
+
+def branch_orbits(path: float, opts=None) -> int:
+    """Orbits of a smooth branch over a scaled arclength ``path`` (the parameter's 10 speed scales and the state's
+    change in its own scales): ``ds`` from ``ContinuationOptions.ds``, ×1.5 after each easy corrector up to
+    ``ds_max`` (:mod:`rotor.periodic.continuation`), and one orbit landing on the end (``max_points`` at most)."""
+    from rotor.periodic.continuation import ContinuationOptions
+
+    o = opts or ContinuationOptions()
+    ds, done, count = o.ds, 0.0, 1
+    while done < path and count < o.max_points:
+        done += ds
+        ds = min(1.5 * ds, o.ds_max)
+        count += 1
+    return count + (1 if count < o.max_points else 0)
+
+
+def state_path(system_at_rpm, rpm_start: float, rpm_end: float, samples: int = 17) -> float:
+    """The scaled arclength of a branch from ``rpm_start`` to ``rpm_end`` (the parameter scaled by a tenth of the
+    range, as :func:`rotor.studies.orbit.branch` does): 10, plus the state's change where the linear periodic
+    solution (loose support locked, :func:`rotor.dynamics.initial.linear_initial_state`) moves, in the orbit's
+    own scales (its peak-to-peak displacement and velocity ranges, never below the start's, as
+    :func:`rotor.periodic.corrector.rescale` keeps them)."""
+    import numpy as np
+
+    from rotor.dynamics.initial import linear_initial_state
+
+    states, ranges = [], []
+    for rpm in np.linspace(rpm_start, rpm_end, samples):
+        system = system_at_rpm(float(rpm))
+        period = 2.0 * np.pi / system.omega_rad_s
+        qv = [np.concatenate(linear_initial_state(system, period * j / 8)) for j in range(8)]
+        n = system.n
+        states.append(qv[0])
+        ptp = np.ptp(np.array(qv), axis=0)
+        ranges.append(np.concatenate([np.full(n, max(ptp[:n].max(), 1e-12)), np.full(n, max(ptp[n:].max(), 1e-12))]))
+    floor = ranges[0]
+    path = 0.0
+    for a, b, s in zip(states, states[1:], ranges[1:]):
+        path += float(np.hypot(10.0 / (samples - 1), np.linalg.norm((b - a) / np.maximum(s, floor))))
+    return path
+
+
+def orbit(system, steps_per_rev: int, period_revs: int | None, points: int = 0, *, cost: MapCost | None = None,
+          path: float | None = None) -> Estimate:
+    """Shooting at one speed (and, with ``points`` = ``--max-points``, a branch): typically the first transient
+    round (``ShootingOptions.transient_revs``) and :data:`ORBIT_ITERATIONS` Newton iterations on the period map
+    with its monodromy, then the branch's orbits (:func:`branch_orbits` over ``path``, :func:`state_path`; 10:
+    the parameter alone) of :data:`BRANCH_ITERATIONS` corrector iterations each; at most the whole transient
+    (``max_transient_revs``) with every round's Newton attempts at full length, and ``points`` orbits. The step
+    costs are measured on ``system`` (``cost``; :func:`map_cost` when not given)."""
     from rotor.periodic.shooting import MAX_PERIOD_REVS, ShootingOptions
 
+    n = int(steps_per_rev)
+    c = cost or map_cost(lambda: system, n)
     o = ShootingOptions()
-    revs = o.max_transient_revs + o.max_iter * (period_revs or MAX_PERIOD_REVS)
-    steps = revs * steps_per_rev
-    secs = steps * ORBIT_STEP_COST_S + points * BRANCH_POINT_COST_S * steps_per_rev / 256
-    made = f"{_steps(steps)} of {ORBIT_STEP_COST_S * 1e6:.3g} µs"
+    k = period_revs or 1
+    typical = (o.transient_revs * n * c.plain_s + ORBIT_ITERATIONS * k * n * c.jac_s + k * n * c.plain_s)
+    rounds, done, chunk = 0, 0, o.transient_revs
+    while done < o.max_transient_revs:
+        done, rounds = done + chunk, rounds + 1
+        chunk = max(1, round(o.round_growth * chunk))
+    tries = 1 if period_revs else o.periods_per_round
+    bound = (o.max_transient_revs * n * c.plain_s
+             + rounds * tries * o.max_iter * (period_revs or MAX_PERIOD_REVS) * n * c.jac_s)
+    per_orbit = (BRANCH_ITERATIONS * (k * n * c.jac_s + 3 * c.build_s) + BRANCH_PLAIN_PER_ORBIT * k * n * c.plain_s)
+    made = (f"{_us(c.plain_s)} a step, {_us(c.jac_s)} with the monodromy, measured on the system"
+            + (f" in {c.probe_s:.2g} s" if c.probe_s >= 0.5 else ""))
     if points:
-        made += f" for the first orbit, then up to {points} orbits of {BRANCH_POINT_COST_S * steps_per_rev / 256:.3g} s"
-    return Estimate(secs, (period_revs or MAX_PERIOD_REVS) * steps_per_rev * system.n * 8 * 6, made)
+        orbits = branch_orbits(10.0 if path is None else path)
+        typical += orbits * per_orbit
+        bound += points * per_orbit
+        made = f"the first orbit and about {orbits} orbits of {per_orbit:.2g} s; {made}"
+        limit = f"{points} orbits and the longest first orbit"
+    else:
+        limit = f"the first orbit after {o.max_transient_revs} transient revolutions"
+    return Estimate(typical, (period_revs or MAX_PERIOD_REVS) * n * system.n * 8 * 6, made, bound=False,
+                    upper_s=bound, upper_of=limit)
+
+
+def _us(seconds: float) -> str:
+    return f"{seconds * 1e6:.3g} µs" if seconds < 1e-3 else f"{seconds * 1e3:.3g} ms"
 
 
 def campbell(n_dofs: int, speeds: int) -> Estimate:

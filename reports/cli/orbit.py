@@ -131,12 +131,19 @@ def _scene(args) -> tuple:
 
 def _check_work(args, prog: str, rpm: float, points: int = 0) -> None:
     """The shooting work at ``rpm`` (and ``points`` orbits of a branch) against the budget, before it starts
-    (:func:`reports.cli._budget.orbit`)."""
+    (:func:`reports.cli._budget.orbit`: step costs measured on the system after the compile, a branch's orbits
+    counted over its scaled arclength)."""
+    from rotor.dynamics.period_map import warm_up
     from rotor.studies.steady_state import SteadyStateOptions, point_system, step_per_rev
 
-    _, model, system = point_system(args.scene, rpm, **_overrides(args))
+    ov = _overrides(args)
+    _, model, system = point_system(args.scene, rpm, **ov)
     n = int(args.steps_per_rev or step_per_rev(system, SteadyStateOptions()))
-    est = _budget.orbit(system, n, getattr(args, "period_revs", None), points)
+    warm_up_shown(prog, args, warm_up)          # the compile first, reported on its own: the probe times the steps
+    cost = _budget.map_cost(lambda: point_system(args.scene, rpm, **ov)[2], n)
+    path = (_budget.state_path(lambda w: point_system(args.scene, w, **ov)[2], args.rpm_start, args.rpm_end)
+            if points else None)
+    est = _budget.orbit(system, n, getattr(args, "period_revs", None), points, cost=cost, path=path)
     cause = (f"--steps-per-rev = {n}" if args.steps_per_rev else
              f"{n} steps per revolution (the contact step limit at {rpm:g} rpm)")
     _budget.check(prog, est, args.accept_long, cause + (f" and --max-points = {points}" if points else ""),
