@@ -1,7 +1,10 @@
 """A :class:`~rotor.dynamics.system.RotorSystem` from the rotor model of a scene (``rotor.model``)."""
 from __future__ import annotations
 
+import dataclasses
 import math
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -74,6 +77,45 @@ def system_from_model(model, scene, speed_rad_s: float, *, law: SupportLaw | Non
             coupling = ((cp.a[2], cp.a[3]), (cp.b[2], cp.b[3]), float(cp.a1_n_m_rad3))
     return RotorSystem(model.M, model.C, model.G, model.K + model.K_c, float(speed_rad_s), force, off, L, sup,
                        tuple(model.dof_names), coupling)
+
+
+@dataclass(frozen=True)
+class SpeedFamily:
+    """The rotor of a scene at any spin speed from one build: ``family(speed_rad_s)`` is a :class:`RotorSystem`.
+
+    A system of :func:`system_from_model` depends on the speed in two places only (without speed-table bearings):
+    ``G`` multiplies ``omega_rad_s``, and every harmonic load is ``∝ Ω²`` (unbalance, skew and the misalignment
+    excitation: :func:`rotor.model.assembly.harmonic_loads`); matrices, static load and offset do not move. So the
+    system at another speed is ``base`` with that speed and its harmonic load scaled by ``(Ω/Ω_base)²``, the built
+    system's to round-off (``exact``; a harmonic-balance branch then takes its speed derivatives exactly:
+    :func:`rotor.periodic.hb_aft.speed_blocks`). A model with a speed-table bearing (``rebuild``: speed ->
+    system) is built at every speed asked for (``exact`` False).
+    """
+
+    base: RotorSystem
+    rebuild: Callable | None = None
+
+    @property
+    def exact(self) -> bool:
+        return self.rebuild is None
+
+    def __call__(self, speed_rad_s: float) -> RotorSystem:
+        if self.rebuild is not None:
+            return self.rebuild(speed_rad_s)
+        check_positive("speed_rad_s", speed_rad_s, "rad/s", upper=plausible.top("run_speed_rpm") * math.pi / 30)
+        return at_speed(self.base, float(speed_rad_s))
+
+
+def at_speed(system: RotorSystem, speed_rad_s: float) -> RotorSystem:
+    """``system`` (built at a speed > 0) at ``speed_rad_s`` (rad/s): the same matrices, its harmonic load scaled by
+    ``(speed_rad_s / system.omega_rad_s)²`` (see :class:`SpeedFamily`; no speed-table bearing)."""
+    f = system.force
+    if not system.omega_rad_s > 0.0:
+        raise InputError(f"omega_rad_s = {system.omega_rad_s:g} rad/s: a system at rest holds no harmonic load to "
+                         "scale; build it at a speed > 0")
+    s2 = (float(speed_rad_s) / system.omega_rad_s) ** 2
+    force = HarmonicForce(f.static, f.orders, f.cos * s2, f.sin * s2, float(speed_rad_s))
+    return dataclasses.replace(system, omega_rad_s=float(speed_rad_s), force=force)
 
 
 def _loose_support(model, ls, law, law_name, tilt_ignored, mu, preload_N, clearance_m) -> LooseSupport:

@@ -37,9 +37,11 @@ import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.dynamics.system import RotorSystem
-from rotor.periodic.hb_aft import (HarmonicSystem, default_n_time, full_coefficients,  # noqa: F401 (re-exported)
-                                   hb_not_applicable, largest_penetration, linear_blocks, linear_guess, newton,
-                                   peak_amplitudes, prepare, reduced_guess, residual, sample_series, solve)
+from rotor.periodic.hb_aft import (HarmonicSystem, default_n_time, fourier,  # noqa: F401 (re-exported)
+                                   full_coefficients, hb_not_applicable, hs_at_speed, largest_penetration, linear_blocks,
+                                   linear_guess, newton, peak_amplitudes, prepare, reduced_guess, residual,
+                                   sample_series, solve, speed_blocks, speed_derivatives)
+from rotor.periodic.hb_events import CORNER_DS, HBEvent, _advance, _corner, _events_between, _Point  # noqa: F401
 
 
 @dataclass(frozen=True)
@@ -138,8 +140,6 @@ def require_converged(orbit: HBOrbit) -> HBOrbit:
 CORRECTOR_MAX_ITER = 12
 CORRECTOR_TOL = 1e-10
 RESIDUAL_TOL = 1e-9
-#: scaled step below which a tangent turn above ``max_turn_deg`` is accepted (a corner)
-CORNER_DS = 1e-4
 
 
 @dataclass(frozen=True)
@@ -159,22 +159,6 @@ class HBContinuationOptions:
     ds_max: float = 1.0
     max_points: int = 5000
     max_turn_deg: float = 15.0
-
-
-@dataclass(frozen=True)
-class HBEvent:
-    """A located point of a branch between points ``index − 1`` and ``index``: ``kind`` "fold" (smooth turning
-    point), "grazing_fold" (the speed turns at a corner where the orbit grazes the ring), "corner" (the speed turns
-    at a kink off the ring) or "grazing" (the largest penetration changes sign); ``speed_rad_s`` (rad/s),
-    ``dspeed_ds`` (speed component of the unit scaled tangent there), ``penetration_m`` (m), ``coefficients``
-    (2H+1, n) (m, rad)."""
-
-    kind: str
-    index: int
-    speed_rad_s: float
-    dspeed_ds: float
-    penetration_m: float
-    coefficients: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -230,11 +214,16 @@ class _Tracer:
         self.at, self.H, self.N, self.P, self.opts = system_at_speed, harmonics, n_time, period_revs, opts
         self.cache: dict = {}
         self.dA_sys = self.dload = self.anchor = None
-        self.modelled = self.locate = True        # anchored model (see hs); events located
+        exact = getattr(system_at_speed, "exact", False)       # a SpeedFamily (rotor.dynamics.build) without tables
+        self.exact = speed_blocks(system_at_speed.base, fourier(harmonics, n_time), period_revs) if exact else None
+        self.modelled, self.locate = self.exact is None, True   # anchored model (see hs) unless exact; events located
+        self.free = False                                       # the support's force left out (_gap_grazing)
         self.w_factor = 1.0 / period_revs        # ∂ω/∂λ: the fundamental moves with the speed
 
     def true_hs(self, speed: float) -> HarmonicSystem:
-        """The system at ``speed`` built by ``system_at_speed`` (cached)."""
+        """The system at ``speed`` built by ``system_at_speed`` (cached), or exact from its speed blocks."""
+        if self.exact is not None:
+            return hs_at_speed(self.exact, speed)
         if speed not in self.cache:
             if len(self.cache) > 8:
                 self.cache.clear()
@@ -255,6 +244,8 @@ class _Tracer:
                      load=a.load + self.dload * d)
 
     def set_anchor(self, speed: float):
+        if self.exact is not None:          # exact at every speed: no anchor
+            return
         self.anchor = None
         self.sensitivities(speed)
         self.anchor = self.true_hs(speed)
@@ -279,8 +270,9 @@ class _Tracer:
         speed = float(y[-1]) * self.sw
         hs = self.hs(speed)
         z = y[:-1] * self.sz
-        R, J, dRw, sc = residual(hs, z)
-        dRs = self.w_factor * dRw + self.dA_sys @ z - self.dload
+        R, J, dRw, sc = residual(_with(hs, Bs=None) if self.free else hs, z)
+        dA_sys, dload = (self.dA_sys, self.dload) if self.exact is None else speed_derivatives(self.exact, speed)
+        dRs = self.w_factor * dRw + dA_sys @ z - dload
         Jy = np.hstack([J * self.sz, (dRs * self.sw)[:, None]]) / self.sr
         return R / self.sr, Jy, hs, z, float(np.max(np.abs(R))) / sc
 
@@ -360,125 +352,6 @@ def _homotopy(hs: HarmonicSystem, tol: float):
     return end.z, done, end.res, int(sum(p.its for p in pts))
 
 
-@dataclass
-class _Point:
-    y: np.ndarray
-    tau: np.ndarray
-    hs: HarmonicSystem
-    z: np.ndarray
-    res: float
-    its: int
-    pen: float
-
-
-def _make_point(tr: _Tracer, got, tau_prev) -> _Point:
-    y, Jy, hs, z, res, its = got
-    nh = 2 * hs.fourier.harmonics + 1
-    return _Point(y, tr.tangent(Jy, tau_prev), hs, z, res, its, largest_penetration(hs, z.reshape(nh, hs.n_r)))
-
-
-def _advance(tr: _Tracer, pt: _Point, ds: float):
-    """One accepted step from ``pt``: ``(point, ds used, rejected steps)``, or ``(None, ds, rejected)`` below
-    ``ds_min``. A step is retried with half the length when the corrector fails or the tangent turns more than
-    ``max_turn_deg`` (unless the step is already below :data:`CORNER_DS`)."""
-    o = tr.opts
-    rejected = 0
-    cos_max = math.cos(math.radians(o.max_turn_deg))
-    while ds >= o.ds_min:
-        got = tr.correct(pt.y + ds * pt.tau, pt.tau)
-        if got is not None:
-            new = _make_point(tr, got, pt.tau)
-            if float(new.tau @ pt.tau) >= cos_max or ds <= CORNER_DS:
-                return new, ds, rejected
-        ds *= 0.5
-        rejected += 1
-    return None, ds, rejected
-
-
-def _on_arc(tr: _Tracer, a: _Point, s: float, what: str):
-    """The orbit at scaled arclength ``s`` from ``a`` along its tangent, and the quantity ``what`` ("fold": the
-    speed component of its tangent, "grazing": its penetration over δ0) there."""
-    got = tr.correct(a.y + s * a.tau, a.tau)
-    if got is None:
-        return None, math.nan
-    p = _make_point(tr, got, a.tau)
-    return p, (float(p.tau[-1]) if what == "fold" else p.pen / p.hs.clearance_m)
-
-
-def _locate(tr: _Tracer, a: _Point, b: _Point, ds: float, what: str, index: int) -> HBEvent:
-    """Regula falsi (Illinois) on the arclength in ``(0, ds)`` between ``a`` and ``b`` for the zero of ``what``
-    (:func:`_on_arc`); a jump of the quantity (a corner) is bracketed down to 1e-12 of the step instead."""
-    g = {"fold": lambda p: float(p.tau[-1]), "grazing": lambda p: p.pen / p.hs.clearance_m}[what]
-    s0, s1, g0, g1 = 0.0, ds, g(a), g(b)
-    best = (a, g0) if abs(g0) < abs(g1) else (b, g1)
-    last = 0
-    for it in range(60 if tr.locate else 0):
-        s = (s0 * g1 - s1 * g0) / (g1 - g0) if g1 != g0 else 0.5 * (s0 + s1)
-        if not (s0 < s < s1) or it % 4 == 3:           # every fourth trial a bisection: a jump shrinks too
-            s = 0.5 * (s0 + s1)
-        p, gs = _on_arc(tr, a, s, what)
-        if p is None:
-            break
-        if abs(gs) < abs(best[1]):
-            best = (p, gs)
-        if gs * g0 > 0:
-            s0, g0 = s, gs
-            g1, last = (0.5 * g1 if last == -1 else g1), -1
-        else:
-            s1, g1 = s, gs
-            g0, last = (0.5 * g0 if last == 1 else g0), 1
-        if abs(gs) < 1e-12 or s1 - s0 < 1e-12 * ds:
-            break
-    p, gv = best
-    kind = what
-    if what == "fold" and abs(gv) > 1e-6:
-        kind = "grazing_fold" if abs(p.pen) <= 1e-6 * p.hs.clearance_m else "corner"
-    return HBEvent(kind, index, float(p.y[-1] * tr.sw), float(p.tau[-1]), p.pen, full_coefficients(p.hs, p.z))
-
-
-def _events_between(tr: _Tracer, a: _Point, b: _Point, ds: float, index: int) -> list[HBEvent]:
-    out = []
-    if a.tau[-1] * b.tau[-1] < 0:
-        out.append(_locate(tr, a, b, ds, "fold", index))
-    if np.isfinite(a.pen) and a.pen * b.pen < 0:
-        out.append(_locate(tr, a, b, ds, "grazing", index))
-    return sorted(out, key=lambda e: abs(e.speed_rad_s - a.y[-1] * tr.sw))
-
-
-def _one_sided(tr: _Tracer, c: _Point, side: float):
-    """The tangent at the grazing point ``c`` on one side of the ring: the Jacobian at ``c``'s coefficients
-    scaled so that the largest penetration is ``side`` × 1e-9 δ0 (gap side −1, contact side +1; the relative
-    displacement is linear in the coefficients), oriented with ``c.tau``."""
-    d0 = c.hs.clearance_m
-    y = c.y.copy()
-    y[:-1] *= d0 * (1.0 + side * 1e-9) / (d0 + c.pen)
-    return tr.tangent(tr.evaluate(y)[1], c.tau)
-
-
-def _corner(tr: _Tracer, pts: list) -> tuple[_Point, HBEvent] | None:
-    """Past a grazing corner where the corrector stalls (the curve turns by more than a right angle at the point
-    where the orbit touches the ring: the hyperplane orthogonal to the incoming tangent misses the outgoing
-    side): from the last point, within 1e-5 δ0 of grazing, along the other side's one-sided tangent, oriented
-    into that side. Returns the first point past it and the corner's event, or None."""
-    c = pts[-1]
-    d0 = c.hs.clearance_m
-    if len(pts) < 2 or not np.isfinite(c.pen) or abs(c.pen) > 1e-5 * d0:
-        return None
-    came_from = 1.0 if pts[-2].pen > 0 else -1.0
-    out = -came_from
-    t = _one_sided(tr, c, out)
-    nh = 2 * c.hs.fourier.harmonics + 1
-    z_probe = (c.y[:-1] + 1e-6 * t[:-1]) * tr.sz
-    if (largest_penetration(c.hs, z_probe.reshape(nh, c.hs.n_r)) - c.pen) * out < 0:
-        t = -t
-    start = _Point(c.y, t, c.hs, c.z, c.res, c.its, c.pen)
-    new, _, _ = _advance(tr, start, tr.opts.ds)
-    if new is None or new.pen * out <= 0:
-        return None
-    kind = "grazing_fold" if c.tau[-1] * t[-1] < 0 else "grazing"
-    return new, HBEvent(kind, len(pts), float(c.y[-1] * tr.sw), float(t[-1]), c.pen, full_coefficients(c.hs, c.z))
-
-
 def _finish_at(tr: _Tracer, a: _Point, b: _Point, speed1: float, tol: float) -> _Point | None:
     """The orbit at exactly ``speed1`` between ``a`` and ``b`` (Newton at that speed from the interpolation)."""
     wa, wb = a.y[-1] * tr.sw, b.y[-1] * tr.sw
@@ -546,18 +419,22 @@ def _trace(tr: _Tracer, start: _Point, lam0: float, lam1: float, tol: float):
     opts = tr.opts
     pts, events, rejected, ds, stop = [start], [], 0, opts.ds, f"{opts.max_points} points"
     direction = 1.0 if lam1 > lam0 else -1.0
+    cos_max = math.cos(math.radians(opts.max_turn_deg))
     while len(pts) < opts.max_points:
-        new, used, rej = _advance(tr, pts[-1], ds)
+        new, used, rej = _advance(tr, pts[-1], ds, corner_first=True)
         rejected += rej
-        cornered = new is None
-        if cornered:
+        cornered = False
+        if new is None:
             passed = _corner(tr, pts)
-            if passed is None:
+            if passed is not None:
+                (new, event), used, cornered = passed, opts.ds, True
+                events.append(event)
+            elif used >= opts.ds_min:              # not a corner's: on by halving
+                new, used, rej = _advance(tr, pts[-1], 0.5 * used)
+                rejected += rej + 1
+            if new is None:
                 stop = f"step below ds_min = {opts.ds_min:g} at {pts[-1].y[-1] * tr.sw:.6g} rad/s"
                 break
-            new, event = passed
-            events.append(event)
-            used = opts.ds
         lam = new.y[-1] * tr.sw
         if (lam - lam1) * direction >= 0.0:
             end = _finish_at(tr, pts[-1], new, lam1, tol)
@@ -569,11 +446,15 @@ def _trace(tr: _Tracer, start: _Point, lam0: float, lam1: float, tol: float):
             break
         if not cornered:
             events += _events_between(tr, pts[-1], new, used, len(pts))
+        turned = cornered or float(new.tau @ pts[-1].tau) < cos_max     # a corner: the step cut for it, not the curve
         pts.append(new)
         if (lam - lam0) * direction < 0.0:
             stop = "turned back beyond the start speed"
             break
-        ds = min(1.5 * used, opts.ds_max) if new.its <= 3 else (0.6 * used if new.its >= 7 else used)
+        if turned:
+            ds = max(ds, used)
+        else:
+            ds = min(1.5 * used, opts.ds_max) if new.its <= 3 else (0.6 * used if new.its >= 7 else used)
     return pts, events, stop, rejected
 
 

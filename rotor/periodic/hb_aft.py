@@ -18,6 +18,8 @@ Its derivative is the time-domain Jacobian of the law (``∂f/∂u``, ``∂f/∂
 """
 from __future__ import annotations
 
+import copy
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -28,7 +30,7 @@ from contact.compiled_cache import compiled_with
 from contact.errors import InputError, OutsideDomainError
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.kernels import contact_kernel, contact_point
-from rotor.dynamics.system import RotorSystem, coupling_map
+from rotor.dynamics.system import RotorSystem, SupportLaw, coupling_map
 
 # _law_samples inlines the law kernel (rotor.dynamics.kernels, which inlines contact._kernel).
 compiled_with(__file__, ["rotor.dynamics.kernels", "contact._kernel"])
@@ -209,6 +211,54 @@ def harmonic_system(system: RotorSystem, fourier_: Fourier, period_revs: int = 1
                           d0, width, tilt_ignored, Ec, a1, Mr, Dr, Kr)
 
 
+@dataclass(frozen=True)
+class SpeedBlocks:
+    """A system's harmonic-domain pieces as exact functions of the spin speed Ω, for a system whose only speed
+    dependence is ``D = C − Ω G`` and a harmonic load ``∝ Ω²`` (:class:`rotor.dynamics.build.SpeedFamily`,
+    ``exact``): with ``ω = Ω/P``, ``A(Ω) = A_K + ω² A_M + ω (A_C − Ω A_G)`` and ``load(Ω) = l_s + (Ω/Ω_0)² l_h``
+    (:func:`linear_blocks` taken apart by matrix). ``base``: the system at ``Ω_0`` in the harmonic domain."""
+
+    base: HarmonicSystem
+    AK: np.ndarray
+    AM: np.ndarray
+    AC: np.ndarray
+    AG: np.ndarray
+    load_static: np.ndarray
+    load_harmonic: np.ndarray
+    Cr: np.ndarray
+    Gr: np.ndarray
+
+
+def speed_blocks(system: RotorSystem, fourier_: Fourier, period_revs: int = 1) -> SpeedBlocks:
+    """:class:`SpeedBlocks` of ``system`` (at its own speed ``Ω_0 > 0``; every harmonic load scales as Ω²)."""
+    hs = harmonic_system(system, fourier_, period_revs)
+    T, Z = hs.T, np.zeros_like(hs.Mr)
+    Cr, Gr = T.T @ system.C @ T, T.T @ system.G @ T
+    f = system.force
+    quiet = dataclasses.replace(system, force=dataclasses.replace(f, cos=0.0 * f.cos, sin=0.0 * f.sin))
+    ls = _load(quiet, T, fourier_, hs.period_revs)
+    return SpeedBlocks(hs, linear_blocks(Z, Z, hs.Kr, fourier_, 1.0)[0], linear_blocks(hs.Mr, Z, Z, fourier_, 1.0)[0],
+                       linear_blocks(Z, Cr, Z, fourier_, 1.0)[0], linear_blocks(Z, Gr, Z, fourier_, 1.0)[0], ls,
+                       hs.load - ls, Cr, Gr)
+
+
+def hs_at_speed(sb: SpeedBlocks, speed: float) -> HarmonicSystem:
+    """The harmonic system of :class:`SpeedBlocks` at spin speed ``speed`` (rad/s), exact (see there)."""
+    b = sb.base
+    w = speed / b.period_revs
+    out = copy.copy(b)          # a shallow copy: the frozen __init__'s checks cost more than the evaluation here
+    for k, v in (("speed_rad_s", speed), ("omega_rad_s", w), ("A", sb.AK + w * w * sb.AM + w * (sb.AC - speed * sb.AG)),
+                 ("dA_domega", 2.0 * w * sb.AM + sb.AC - speed * sb.AG), ("Dr", sb.Cr - speed * sb.Gr),
+                 ("load", sb.load_static + (speed / b.speed_rad_s) ** 2 * sb.load_harmonic)):
+        object.__setattr__(out, k, v)
+    return out
+
+
+def speed_derivatives(sb: SpeedBlocks, speed: float) -> tuple[np.ndarray, np.ndarray]:
+    """``∂A/∂Ω`` at fixed ω (the gyroscopic term) and ``∂load/∂Ω`` at ``speed`` (rad/s), exact."""
+    return -(speed / sb.base.period_revs) * sb.AG, (2.0 * speed / sb.base.speed_rad_s ** 2) * sb.load_harmonic
+
+
 def _to_harmonics(fourier_: Fourier, Ju, Jv, omega: float, Bmap) -> np.ndarray:
     """``∂F/∂Z`` (n_h n_r, n_h n_r) of a force ``Bmapᵀ f(Bmap q, Bmap q̇)`` from its sample Jacobians
     ``Ju``, ``Jv`` (N, m, m) (Jv None: no velocity dependence)."""
@@ -255,6 +305,17 @@ def nonlinear_force(hs: HarmonicSystem, Z, jacobian: bool = True):
     if not jacobian:
         return F.reshape(-1), None, None
     return F.reshape(-1), J, dw.reshape(-1)
+
+
+def support_forces(law: SupportLaw, u, v) -> np.ndarray:
+    """The support law's force ``(Fy, Fz, My, Mz)`` (N, N m) at the rows of ``u``, ``v`` (N, 4): one compiled call
+    of the kernel HB solves with (:func:`_law_samples`) where the law has it, else ``law.force`` row by row."""
+    u, v = np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(v, dtype=float)
+    if law.kernel is not contact_kernel:
+        return np.array([law.force(a, b) for a, b in zip(u, v)]).reshape(len(u), 4)
+    F, J = np.empty((len(u), 4)), np.empty((len(u), 4, 8))
+    _law_samples(u, v, np.ascontiguousarray(law.params, dtype=float), F, J)
+    return F
 
 
 def largest_penetration(hs: HarmonicSystem, Z) -> float:

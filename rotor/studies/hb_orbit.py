@@ -23,9 +23,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact.errors import ConvergenceError
+from rotor.dynamics.build import SpeedFamily
 from rotor.dynamics.constraints import edge_offsets
 from rotor.dynamics.support_record import contact_summary
 from rotor.periodic.harmonic_balance import HBOrbit, hb_branch, hb_orbit, sample_series
+from rotor.periodic.hb_aft import support_forces
 from rotor.studies.steady_state import point_system
 
 ORDERS = (1, 2, 3, 4, 5)
@@ -114,7 +116,7 @@ def orbit_fields(system, model, coefficients, speed_rad_s: float, period_revs: i
         u, du = q @ B.T, v @ B.T
         r1, r2 = edge_offsets(u, sup.width_m)
         out["max_edge_penetration_mm"] = max(float(max(r1.max(), r2.max())) - sup.law.clearance_m, 0.0) * 1e3
-        f = np.array([sup.law.force(u[j], du[j]) for j in range(len(t))])
+        f = support_forces(sup.law, u, du)
         out.update(contact_summary(t, f, np.zeros((len(t), 2), int), None, sup.faces()[2]))
     return out
 
@@ -194,8 +196,10 @@ def hb_scene_branch(scene: str, rpm_start: float, rpm_end: float, *, harmonics: 
                                f"residual {start.orbit.residual:.2e})")
     H = start.orbit.harmonics
     _, model, system = point_system(scene, rpm_start, **overrides)     # the support and stations: as at any speed
-    br = hb_branch(lambda w: point_system(scene, w * TO_RPM, **overrides)[2], rpm_start / TO_RPM,
-                   rpm_end / TO_RPM, H, n_time, guess=start.orbit,
+    # built once: the gyroscopic term and the Ω² loads exact at every speed; speed-table bearings rebuilt per speed
+    family = SpeedFamily(system, (lambda w: point_system(scene, w * TO_RPM, **overrides)[2])
+                         if model.speed_bearings else None)
+    br = hb_branch(family, rpm_start / TO_RPM, rpm_end / TO_RPM, H, n_time, guess=start.orbit,
                    options=HBContinuationOptions(max_points=int(max_points)))
     pts = []
     for w, c, res in zip(br.speeds_rad_s, br.coefficients, br.residuals):
