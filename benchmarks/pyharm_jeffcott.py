@@ -87,9 +87,23 @@ def make_ring_class():
     return RingContact
 
 
+def run_frf(data: dict, repeat: int = 2):
+    """pyHarm's analysis "frf" of ``data`` run ``repeat`` times, each from a new Maestro (the first run compiles
+    pyHarm's kernels: jax, numba): ``(CPU s of each run, [[ω, x] of each accepted point of the last run])``."""
+    from pyHarm.Maestro import Maestro
+    cpus = []
+    for _ in range(int(repeat)):
+        m = Maestro(data)
+        c0 = time.process_time()
+        m.operate()
+        cpus.append(time.process_time() - c0)
+    out = [[float(np.asarray(s.x)[-1]), [float(v) for v in np.asarray(s.x)[:-1]]]
+           for s in m.nls["frf"].SolList if getattr(s, "flag_accepted", True)]
+    return cpus, out
+
+
 def main(params_path, out_path):
     p = json.load(open(params_path))
-    from pyHarm.Maestro import Maestro
     ring = make_ring_class()
     w_lo, w_hi = p["speed0_rad_s"], p["speed1_rad_s"]
     sub = {"rotor": [0]}
@@ -110,14 +124,7 @@ def main(params_path, out_path):
         "analysis": {"frf": {"study": "frf", "puls_inf": w_lo, "puls_sup": w_hi, "ds0": p["ds0"], "ds_max": p["ds_max"],
                              "ds_min": 1e-8, "sign_ds": 1, "verbose": False}},
     }
-    cpus = []
-    for _ in range(int(p.get("repeat", 2))):     # the first run compiles pyHarm's kernels (jax, numba)
-        m = Maestro(data)
-        c0 = time.process_time()
-        m.operate()
-        cpus.append(time.process_time() - c0)
-    out = [[float(np.asarray(s.x)[-1]), [float(v) for v in np.asarray(s.x)[:-1]]]
-           for s in m.nls["frf"].SolList if getattr(s, "flag_accepted", True)]
+    cpus, out = run_frf(data, p.get("repeat", 2))
     w = np.array([o[0] for o in out])
     d = np.diff(w)
     folds = [float(w[i]) for i in range(1, len(d)) if d[i - 1] * d[i] < 0]

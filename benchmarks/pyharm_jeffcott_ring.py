@@ -11,10 +11,8 @@ around the analysis (the first run in the process compiles and is reported apart
 import json
 import math
 import sys
-import time
 
-import numpy as np
-from pyharm_jeffcott import make_ring_class
+from pyharm_jeffcott import make_ring_class, run_frf
 
 
 def _node(sub, m, c, k):
@@ -25,7 +23,6 @@ def _node(sub, m, c, k):
 
 def main(params_path, out_path):
     p = json.load(open(params_path))
-    from pyHarm.Maestro import Maestro
     me = p["mass_kg"] * p["eccentricity_m"]
     rot = {"connect": {"rotor": [0]}, "dto": 2, "ho": 1, "amp": me}
     data = {
@@ -43,14 +40,7 @@ def main(params_path, out_path):
         "analysis": {"frf": {"study": "frf", "puls_inf": p["speed0_rad_s"], "puls_sup": p["speed1_rad_s"],
                              "ds0": p["ds0"], "ds_max": p["ds_max"], "ds_min": 1e-8, "sign_ds": 1, "verbose": False}},
     }
-    cpus = []
-    for _ in range(int(p.get("repeat", 2))):
-        m = Maestro(data)
-        c0 = time.process_time()
-        m.operate()
-        cpus.append(time.process_time() - c0)
-    out = [[float(np.asarray(s.x)[-1]), [float(v) for v in np.asarray(s.x)[:-1]]]
-           for s in m.nls["frf"].SolList if getattr(s, "flag_accepted", True)]
+    cpus, out = run_frf(data, p.get("repeat", 2))
     from importlib.metadata import version
     json.dump({"cpu_s": cpus[-1], "cold_cpu_s": cpus[0], "points": out, "version": version("pyHarm-os")},
               open(out_path, "w"))
