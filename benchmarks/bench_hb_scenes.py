@@ -61,7 +61,7 @@ def run_hb(rotor, scene: str, low: float, high: float) -> dict:
     system = point_system(scene, low)[2]
     br = res["branch"]
     err = [orbit_distance(rotor, float(w), relative_radius(system, c), None) for w, c in zip(br.speeds_rad_s, br.coefficients)]
-    # CPU of the continuation itself (hb_branch, systems built per speed included), as pyHarm's is its analysis;
+    # CPU of the continuation itself (hb_branch on the scene's system built once), as pyHarm's is its analysis;
     # "with_fields_cpu_s" adds the reported fields (amplitudes, contact summary) of every point
     return {"cpu_s": br.cpu_s, "with_fields_cpu_s": cpu, "points": len(err), "errors": err, "stop": res["stop"]}
 
@@ -201,10 +201,16 @@ def report(seed, count, fam, t4, loads) -> str:
     if ph:
         ratios = [h["cpu_s"] / p["cpu_s"] for h, p in zip(hb, ph) if math.isfinite(p["cpu_s"])] or [math.nan]
         ver = next((p["version"] for p in ph if "version" in p), "?")
+        npts = lambda rs: [r["points"] for r in rs if r["points"]]  # noqa: E731
         lines += ["", f"HB / pyHarm-os CPU per rotor: {min(ratios):.2f} to {max(ratios):.2f} (pyHarm-os {ver}, one "
                   "harmonic, 16 time samples, benchmarks/pyharm_jeffcott_ring.py). HB CPU: the continuation "
-                  "(hb_branch, the scene's system built at every speed it asks for); with every point's reported "
-                  f"fields {sum(r['with_fields_cpu_s'] for r in hb):.2f} s. Every HB stop: "
+                  "(hb_branch on the scene's system built once: rotor/dynamics/build.py SpeedFamily, its speed "
+                  "dependence exact), events located included; with every point's reported fields "
+                  f"{sum(r['with_fields_cpu_s'] for r in hb):.2f} s. Orbits per rotor over the same speed range: HB "
+                  f"{min(npts(hb))} to {max(npts(hb))} (median {np.median(npts(hb)):g}; step in scaled arclength, "
+                  "grazings, folds and grazing folds each located by their own solves), pyHarm-os "
+                  f"{min(npts(ph), default=0)} to {max(npts(ph), default=0)} (median {np.median(npts(ph) or [0]):g}; "
+                  "ds0 1, ds_max 5 rad/s, its step doubled after 5 accepted, no event located). Every HB stop: "
                   f"{sorted({r['stop'] for r in hb})}; pyHarm-os stops: {[p['stop'] for p in ph]}."]
     else:
         lines += ["", f"pyHarm-os was not run: {fam['pyharm_missing']}."]
