@@ -53,7 +53,8 @@ def _orbit_budget(func: str, sc, rpm: float, ov: dict, steps_per_rev, period_rev
     n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
     cause = (f"steps_per_rev = {n}" if steps_per_rev else
              f"{n} steps per revolution (the contact step limit at {rpm:g} rpm)")
-    _checks.budget(func, _budget.orbit(system, n, period_revs, points), accept_long,
+    est = _budget.beyond_at_table4_cost(system, n, period_revs, points)      # at once, before any probe
+    _checks.budget(func, est if est is not None else _budget.orbit(system, n, period_revs, points), accept_long,
                    cause + (f" and max_points = {points}" if points else ""),
                    "fewer steps per revolution" + (" or max_points" if points else ""))
 

@@ -212,6 +212,20 @@ class MapCost:
     probe_s: float
 
 
+#: the step costs of the Table 4 rotor (28 DOFs), for a first check before the compile and the system's own probe:
+#: a production step (reports/published/perf-period-map.md) and a shooting step with the monodromy (orbit
+#: paper-table4 at 10 500 rpm, 256 steps a revolution: 2.55 s for 249 revolutions, 2026-11-27, load 2.0)
+TABLE4_COST = MapCost(plain_s=STEP_COST_S, jac_s=2.55 / (256 * 249), build_s=0.0, probe_s=0.0)
+
+
+def beyond_at_table4_cost(system, steps_per_rev: int, period_revs: int | None, points: int = 0) -> Estimate | None:
+    """The estimate of :func:`orbit` at :data:`TABLE4_COST` where it is already beyond the budget (None if not): a
+    request such as ``--steps-per-rev 100000`` is refused at once, before the compile (up to 95 s on a first use)
+    and the probe that would measure the system's own costs."""
+    est = orbit(system, steps_per_rev, period_revs, points, cost=TABLE4_COST)
+    return est if _over(est) else None
+
+
 def map_cost(system_at, steps_per_rev: int) -> MapCost:
     """Measure the period map on the system: ``system_at()`` builds it (three times, the median counted), one
     revolution without the monodromy from the linear periodic solution (after 16 steps without and 16 with it,

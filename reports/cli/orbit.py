@@ -139,15 +139,19 @@ def _check_work(args, prog: str, rpm: float, points: int = 0) -> None:
     ov = _overrides(args)
     _, model, system = point_system(args.scene, rpm, **ov)
     n = int(args.steps_per_rev or step_per_rev(system, SteadyStateOptions()))
+    cause = (f"--steps-per-rev = {n}" if args.steps_per_rev else
+             f"{n} steps per revolution (the contact step limit at {rpm:g} rpm)")
+    cause += f" and --max-points = {points}" if points else ""
+    remedy = "fewer steps per revolution" + (" or --max-points" if points else "")
+    first = _budget.beyond_at_table4_cost(system, n, getattr(args, "period_revs", None), points)
+    if first is not None:                       # refused before the compile and the probe
+        _budget.check(prog, first, args.accept_long, cause, remedy)
     warm_up_shown(prog, args, warm_up)          # the compile first, reported on its own: the probe times the steps
     cost = _budget.map_cost(lambda: point_system(args.scene, rpm, **ov)[2], n)
     path = (_budget.state_path(lambda w: point_system(args.scene, w, **ov)[2], args.rpm_start, args.rpm_end)
             if points else None)
     est = _budget.orbit(system, n, getattr(args, "period_revs", None), points, cost=cost, path=path)
-    cause = (f"--steps-per-rev = {n}" if args.steps_per_rev else
-             f"{n} steps per revolution (the contact step limit at {rpm:g} rpm)")
-    _budget.check(prog, est, args.accept_long, cause + (f" and --max-points = {points}" if points else ""),
-                  "fewer steps per revolution" + (" or --max-points" if points else ""))
+    _budget.check(prog, est, args.accept_long, cause, remedy)
     _warn_unstable(args, prog, model, (args.rpm_start, args.rpm_end) if points else (rpm,))
 
 

@@ -151,6 +151,7 @@ class HBContinuationOptions:
         of ≤ 3 iterations, shrinks ×0.6 after ≥ 7, is halved and retried on failure or on a tangent turn above
         ``max_turn_deg`` (down to :data:`CORNER_DS`, below which the turn is accepted: a corner of the curve,
         where the conformal law grazes, turns the tangent by a finite angle at any step)
+
     max_points : int, accepted points at most
     """
 

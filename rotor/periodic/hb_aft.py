@@ -14,7 +14,7 @@ are sampled at ``N`` instants of one period (inverse DFT as a matrix ``E``), the
 the very compiled law the time integration steps with (:func:`rotor.dynamics.kernels.contact_point`, the
 production scheme's call), and projected back (forward DFT as the matrix ``Π``, ``Π E = I`` for ``N ≥ 2H+1``).
 Its derivative is the time-domain Jacobian of the law (``∂f/∂u``, ``∂f/∂u̇``, analytic in
-:mod:`contact._kernel`) carried through the same matrices: ``∂F/∂Z = Π (J_u E + ω J_v E') `` per sample.
+:mod:`contact._kernel`) carried through the same matrices: ``∂F/∂Z = Π (J_u E + ω J_v E')`` per sample.
 """
 from __future__ import annotations
 
