@@ -136,6 +136,10 @@ def _ladder(system, harmonics, n_time, period_revs, tail_tol, guess, max_cpu_s):
     rungs = [int(harmonics)] if harmonics else [h for h in (2 ** k for k in range(12)) if h <= MAX_AUTO_HARMONICS]
     rungs = rungs if harmonics else [h for h in rungs if h >= low] or [low]
     ladder, orbit, tail = [], None, math.inf
+    if not harmonics and math.isfinite(max_cpu_s):
+        # the first rung once before the clock: a first use compiles the AFT path (measured in a fresh clone: the
+        # compile made rung 1 look over 30/8 s, the ladder stopped at 1 harmonic and auto chose shooting)
+        hb_orbit(system, rungs[0], n_time, period_revs=period_revs, guess=guess)
     for H in rungs:
         if ladder and 8.0 * ladder[-1][3] > max_cpu_s:
             break
