@@ -13,12 +13,10 @@ within 1e-7 of the state, rotor/dynamics/period_map_events.py) and is replaced b
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
+from seeds import commit_seed
 
 from contact.errors import OutsideDomainError
 from rotor.dynamics import period_map_events as pme
@@ -35,13 +33,6 @@ N_SPEEDS = 3
 #: reports/published/perf-monodromy-random.md finds some speeds above it (the differenced event steps' noise)
 BOUND = 1e-6
 REFERENCE_CONVERGED = 5e-7
-
-
-def _seed() -> int:
-    if os.environ.get("RINGCONTACT_TEST_SEED"):
-        return int(os.environ["RINGCONTACT_TEST_SEED"])
-    head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=Path(__file__).parent, capture_output=True, text=True)
-    return int(head.stdout.strip()[:8], 16) if head.returncode == 0 and head.stdout.strip() else 20261129
 
 
 def _errors(rpm: float, scene: str = "paper-table4") -> tuple[float, float] | None:
@@ -61,7 +52,7 @@ def _errors(rpm: float, scene: str = "paper-table4") -> tuple[float, float] | No
 @pytest.mark.parametrize("scene, n_speeds", [("paper-table4", N_SPEEDS)])
 def test_located_monodromy_at_random_speeds_equals_central_differences_of_its_map(scene, n_speeds):
     """On the paper's rotor. Not yet on the steel-in-aluminium scene: 1 of 13 draws there misses (below)."""
-    seed = _seed()
+    seed = commit_seed()
     rng = np.random.default_rng(seed)
     print(f"seed {seed} (RINGCONTACT_TEST_SEED={seed} reruns these speeds)")
     checked, skipped = [], []
