@@ -7,9 +7,11 @@ The two pieces a speed sweep needs (DESIGN.md "Steady state is detected, not gue
    the same phase of the excitation, the lateral displacements of a few stations are sampled
    (a Poincaré section). The response is steady with period ``m`` revolutions when
    ``|P_k − P_{k−m}|`` — divided by the peak-to-peak dynamic amplitude — stays below ``tol``
-   over a window of revolutions *and* the decay of those differences, extrapolated
-   geometrically, leaves less than ``tol`` to go (so a slowly decaying transient with small
-   per-revolution change is not mistaken for a steady state). ``m = 1`` is a synchronous
+   over a window of revolutions *and* what may be left of a transient, estimated from the decay of
+   those differences or bounded by the change over long spans of revolutions, is below ``tol`` too
+   (so a slowly decaying transient with small per-revolution change is not mistaken for a steady
+   state, and a stuck linear state repeating within ``tol`` is not refused;
+   :func:`rotor.studies.periodicity.poincare_convergence`). ``m = 1`` is a synchronous
    (1X-periodic) response; ``m > 1`` a subharmonic one. A response that meets neither by
    ``max_revs`` (quasi-periodic or chaotic) is reported as ``converged = False``, never
    silently passed as steady.
@@ -38,6 +40,7 @@ from rotor.dynamics.production import prepare, simulate_production
 from rotor.dynamics.support_record import contact_summary
 from sweep.progress import report
 from rotor.periodic.shooting import TRANSIENT_SAMPLES_PER_REV
+from rotor.studies.periodicity import Convergence, poincare_convergence  # noqa: F401  (re-exported)
 from rotor.studies.scene_digest import check_digest, scene_digest
 
 # Stations come from the scene (RotorModel.response_stations): every disk, bearing and support station is
@@ -109,92 +112,6 @@ class SteadyStateOptions:
         check_positive("tol", self.tol, "-", upper=0.1)
         if self.min_revs > self.max_revs:
             raise InputError(f"min_revs = {self.min_revs} > max_revs = {self.max_revs}")
-
-
-@dataclass(frozen=True)
-class Convergence:
-    """Outcome of the Poincaré test on a sequence of once-per-revolution samples.
-
-    converged : bool; period : int, in revolutions (0 if not converged);
-    change : float, largest relative difference ``|P_k − P_{k−m}|/A`` over the window (–);
-    remaining : float, geometric estimate of the transient still to decay (relative, –);
-    ratio : float, fitted decay ratio of the differences per revolution (–).
-    """
-
-    converged: bool
-    period: int
-    change: float
-    remaining: float
-    ratio: float
-
-
-def poincare_convergence(P, scale: float, *, tol: float = 1e-4, max_period: int = 8,
-                         window: int | None = None) -> Convergence:
-    """Test once-per-revolution samples for a periodic steady state.
-
-    Parameters
-    ----------
-    P : (k, c) array
-        Poincaré samples (k revolutions, c channels, m).
-    scale : float
-        Peak-to-peak dynamic amplitude the tolerance is relative to (m).
-    tol : float
-        Relative tolerance (–).
-    max_period : int
-        Periods ``m = 1..max_period`` (revolutions) are tried, smallest first.
-    window : int, optional
-        Revolutions of differences examined (default ``max(16, 4 m)``).
-
-    Returns
-    -------
-    Convergence
-        For the smallest period that passes; otherwise the figures of the one-revolution test.
-
-    Notes
-    -----
-    The differences ``d_k = max_c |P_k − P_{k−m}|/scale`` of a decaying transient fall
-    roughly geometrically, ``d_k ≈ d_0 ρ^k``; what is left to decay after the last sample is
-    then about ``d_last ρ/(1 − ρ)``. ``ρ`` is fitted (least squares on ``log d``) over the window
-    and clipped to ``[0, 0.999]``, so a plateau of differences never passes unless it is a
-    thousand times below ``tol`` (round-off).
-    """
-    P = np.asarray(P, dtype=float)
-    if P.ndim == 1:
-        P = P[:, None]
-    if not (scale > 0 and math.isfinite(scale)):
-        # no dynamic motion at all: exactly steady
-        if np.all(np.isfinite(P)) and P.shape[0] >= 2 and np.ptp(P, axis=0).max() == 0.0:
-            return Convergence(True, 1, 0.0, 0.0, 0.0)
-        return Convergence(False, 0, math.inf, math.inf, 1.0)
-    best = Convergence(False, 0, math.inf, math.inf, 1.0)
-    rho1, change1 = None, 0.0
-    for m in range(1, int(max_period) + 1):
-        w = window if window is not None else max(16, 4 * m)
-        if P.shape[0] < w + m:
-            break
-        d = np.abs(P[m:] - P[:-m]).max(axis=1)[-w:] / scale
-        change = float(d.max())
-        k = np.arange(d.size, dtype=float)
-        logd = np.log(np.maximum(d, 1e-300))
-        slope = float(np.polyfit(k, logd, 1)[0]) if d.size > 2 else 0.0
-        rho = min(max(math.exp(min(slope, 50.0)), 0.0), 0.999)
-        # envelope of the last few differences (an oscillating transient has zeros in d)
-        last = float(d[-max(m, 3):].max())
-        remaining = last * rho / (1.0 - rho)
-        if m == 1:
-            rho1, change1 = rho, change
-        ok = change <= tol and remaining <= tol
-        if ok and m > 1 and (rho1 is None or rho1 ** w < 0.5 or change1 < 10 * tol):
-            # a subharmonic needs sustained one-revolution differences: large (> 10 tol) and
-            # not decaying; otherwise it is a transient near a sub-multiple of f that happens
-            # to pass the m-revolution test first. Keep integrating.
-            ok = False
-        c = Convergence(ok, m if ok else 0, change, remaining, rho)
-        if c.converged:
-            return c
-        if m == 1:
-            best = Convergence(False, 0, change, remaining, rho)
-    return best
 
 
 def harmonic_amplitudes(x, revolutions: int, orders=(1, 2, 3, 4, 5)) -> np.ndarray:
