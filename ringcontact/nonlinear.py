@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import ringcontact._checks as _checks
-from ringcontact.results import ResultMethods, internal
+from ringcontact.results import ResultMethods, internal, law_validity_attrs
 from ringcontact.scene import as_scene
 
 CONTACT_KEYS = ("peak_contact_force_N", "mean_contact_force_N", "peak_contact_moment_Nm", "contact_share",
@@ -59,6 +59,14 @@ def _orbit_budget(func: str, sc, rpm: float, ov: dict, steps_per_rev, period_rev
                    "fewer steps per revolution" + (" or max_points" if points else ""))
 
 
+def _law_allowed(sc, allowed):
+    """``sc`` when its law may run: a law its file flags is refused unless ``allowed``
+    (:func:`rotor.model.law_validity.check_allowed`)."""
+    from rotor.model.law_validity import ALLOW_KEYWORD, check_allowed
+    check_allowed(sc.loose_support, _checks.flag_of(ALLOW_KEYWORD, allowed), f"{ALLOW_KEYWORD}=True")
+    return sc
+
+
 class ContactSummary:
     """The contact-force summary of a result's ``contact`` dict as attributes (None without a loose support):
     ``peak_contact_force_N`` (N), ``contact_share`` (fraction of the time the ring touches its support),
@@ -96,7 +104,10 @@ class SimulationResult(ContactSummary, ResultMethods):
     ``r1_m``, ``r2_m`` the ring edges' offsets from the support's centre (m); ``contact_force_N`` (N,) the radial
     force magnitude on the bearing ring (N), ``contact_force_y_N``, ``contact_force_z_N``, ``contact_moment_Nm``;
     ``face_right_stuck``, ``face_left_stuck`` (1 stuck); the summary fields over the record (peak, shares);
-    ``steady_state`` None, or with ``steady=True`` what the detector found (see :func:`simulate`).
+    ``steady_state`` None, or with ``steady=True`` what the detector found (see :func:`simulate`);
+    ``law_validity`` the run's validity record, the ``law_validity`` of ``simulate``'s summary
+    (:mod:`rotor.model.law_validity`: law, file, sha256, verdict, fitted ranges, contact-time shares below,
+    inside and above the fitted penetrations, the largest tilt; empty without a loose support).
     """
 
     scene: str
@@ -117,6 +128,7 @@ class SimulationResult(ContactSummary, ResultMethods):
     face_left_stuck: np.ndarray
     clearance_m: float | None
     contact: dict
+    law_validity: dict
     steady_state: dict | None = None
     trajectory: object = internal()
     _dim = "time"
@@ -143,7 +155,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
              record_per_rev: int = 64, stations=None, clearance_m: float | None = None,
              misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
              tilt_ignored: bool = False, elements: int | None = None, steady: bool = False,
-             max_revs: int = 8000, accept_long: bool = False) -> SimulationResult:
+             max_revs: int = 8000, accept_long: bool = False, allow_flagged_law: bool = False) -> SimulationResult:
     """Integrate ``revolutions`` revolutions at ``speed_rpm`` (rpm) from rest, as ``ringcontact simulate``.
 
     ``steps_per_rev`` None: chosen as ``simulate`` and ``orbit`` choose it (256 or more where the contact step
@@ -157,11 +169,13 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     is returned with ``converged`` False, not refused.
 
     Every argument is checked with the range of the job's option (``revolutions`` as ``--revolutions`` …), and
-    the run's steps and records against the job's budget: beyond it refused unless ``accept_long``.
+    the run's steps and records against the job's budget: beyond it refused unless ``accept_long``. A law its
+    file flags is refused unless ``allow_flagged_law`` (``--allow-flagged-law``).
     """
     from rotor.dynamics.constraints import edge_offsets
     from rotor.dynamics.production import simulate_production
     from rotor.dynamics.support_record import contact_columns, contact_summary
+    from rotor.model.law_validity import record
     from contact.errors import InputError
     from rotor.dynamics.initial import linear_initial_state
     from rotor.studies.steady_record import record_after_steady
@@ -176,7 +190,8 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     steady = _checks.flag_of("steady", steady)
     if steady:
         max_revs = _checks.whole("max_revs", max_revs, "--max-revs", "max_revs")
-    sc, model, system = point_system(as_scene(scene), speed_rpm, **_overrides(
+    sc = _law_allowed(as_scene(scene), allow_flagged_law)
+    sc, model, system = point_system(sc, speed_rpm, **_overrides(
         clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements))
     if steps_per_rev is None:      # a multiple of record_per_rev; the detector's transient sampling too
         fives = SteadyStateOptions(samples_per_rev=int(record_per_rev)) if record_per_rev >= SAMPLES_FOR_5X else \
@@ -214,7 +229,8 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
         sc.name, float(speed_rpm), float(revolutions), n, dt, tuple(names), tr.t, tr.q[:, idx], r1, r2,
         cols["contact_force_N"], cols["contact_force_y_N"], cols["contact_force_z_N"], cols["contact_moment_Nm"],
         cols["face_right_stuck"], cols["face_left_stuck"], sup.law.clearance_m if sup is not None else None,
-        summary, steady_info, tr)
+        summary, record(sc.loose_support, np.maximum(r1, r2) - sup.law.clearance_m if sup is not None else r1,
+                        np.hypot(tr.u[:, 2], tr.u[:, 3])), steady_info, tr)
 
 
 def _simulate_budget(revolutions: float, n: int, record_per_rev: int, transient_revs: int, n_dofs: int,
@@ -234,7 +250,9 @@ class OrbitResult(ContactSummary, ResultMethods):
     stability, 1X-5X velocity amplitudes ``velocity_amplitude_m_s[c, k]`` of channel ``channels[c]`` at order
     k + 1 (m/s), and the loose support over one period (``contact``: the keys of ``simulate``'s summary).
     ``unique`` False: the orbit is one member of a family held by friction (multipliers at +1 from a face stuck
-    through the period; another start may settle on another member), as the CLI's "not unique" line says."""
+    through the period; another start may settle on another member), as the CLI's "not unique" line says.
+    ``law_validity``: the validity record over the period (:mod:`rotor.model.law_validity`, the JSON
+    ``law_validity`` of ``ringcontact orbit``)."""
 
     scene: str
     speed_rpm: float
@@ -252,6 +270,7 @@ class OrbitResult(ContactSummary, ResultMethods):
     velocity_amplitude_m_s: np.ndarray
     max_edge_penetration_m: float
     contact: dict
+    law_validity: dict
     unique: bool
     orbit: object = internal()
     _dim = "channel"
@@ -277,17 +296,18 @@ def _orbit_result(name: str, res) -> OrbitResult:
                        float(res.residual), int(res.newton_iterations), bool(res.stable),
                        float(res.floquet.spectral_radius), res.floquet.kind, np.asarray(res.floquet.multipliers),
                        tuple(amps), np.array([[a * 1e-3 for a in v] for v in amps.values()]),
-                       float(res.max_edge_penetration_m), dict(res.contact), bool(res.unique), res)
+                       float(res.max_edge_penetration_m), {k: v for k, v in res.contact.items() if k != "law_validity"},
+                       dict(res.contact.get("law_validity") or {}), bool(res.unique), res)
 
 
 def orbit(scene, speed_rpm: float, *, period_revs: int | None = None, steps_per_rev: int | None = None,
           clearance_m: float | None = None, misalignment_m: float | None = None, mu: float | None = None,
           preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None,
-          accept_long: bool = False) -> OrbitResult:
+          accept_long: bool = False, allow_flagged_law: bool = False) -> OrbitResult:
     """The periodic orbit at ``speed_rpm`` (rpm) by shooting, its stability and harmonics
     (:func:`rotor.studies.orbit.orbit`); ``converged`` False when no orbit of 1 to 8 revolutions was found.
     Arguments are checked with the ranges of ``ringcontact orbit``'s options, the work against its budget
-    (beyond it refused unless ``accept_long``)."""
+    (beyond it refused unless ``accept_long``); a law its file flags refused unless ``allow_flagged_law``."""
     from rotor.studies.orbit import orbit as shoot
     speed_rpm = _speed("speed_rpm", speed_rpm)
     if period_revs is not None:
@@ -295,7 +315,7 @@ def orbit(scene, speed_rpm: float, *, period_revs: int | None = None, steps_per_
     if steps_per_rev is not None:
         steps_per_rev = _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")
     ov = _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements)
-    sc = as_scene(scene)
+    sc = _law_allowed(as_scene(scene), allow_flagged_law)
     _orbit_budget("orbit", sc, speed_rpm, ov, steps_per_rev, period_revs, 0, accept_long)
     res = shoot(sc, speed_rpm, steps_per_rev=steps_per_rev, period_revs=period_revs, **ov)
     return _orbit_result(sc.name, res)
@@ -307,7 +327,8 @@ class BranchResult(ResultMethods):
     """Orbits followed over speed (pseudo-arclength continuation), as ``ringcontact branch``: per point the speed,
     stability, spectral radius and the contact summary, ``unique`` (False: one member of a family held by friction,
     :class:`OrbitResult`); ``bifurcations`` (kind, speed_rpm); ``stop`` why it ended (``end reached`` when it got
-    to ``rpm_end``)."""
+    to ``rpm_end``); ``law_validity`` the validity record over every orbit of the branch
+    (:func:`rotor.model.law_validity.merged`)."""
 
     scene: str
     rpm_start: float
@@ -323,6 +344,7 @@ class BranchResult(ResultMethods):
     bifurcations: tuple
     stop: str
     reached_end: bool
+    law_validity: dict
     start: OrbitResult = internal()
     branch: object = internal()
     _dim = "point"
@@ -366,11 +388,13 @@ def _column(points, key: str) -> np.ndarray:
 def branch(scene, rpm_start: float, rpm_end: float, *, max_points: int = 400, steps_per_rev: int | None = None,
            clearance_m: float | None = None, misalignment_m: float | None = None, mu: float | None = None,
            preload_n: float | None = None, tilt_ignored: bool = False, elements: int | None = None,
-           accept_long: bool = False) -> BranchResult:
+           accept_long: bool = False, allow_flagged_law: bool = False) -> BranchResult:
     """Follow the orbit found at ``rpm_start`` to ``rpm_end`` (rpm) (:func:`rotor.studies.orbit.branch`), at most
-    ``max_points`` orbits; arguments and work checked as ``ringcontact branch`` checks them (``accept_long``)."""
+    ``max_points`` orbits; arguments and work checked as ``ringcontact branch`` checks them (``accept_long``,
+    ``allow_flagged_law``)."""
     from contact.errors import InputError
     from rotor.periodic.continuation import ContinuationOptions
+    from rotor.model.law_validity import merged
     from rotor.studies.orbit import branch as follow
     rpm_start, rpm_end = _speed("rpm_start", rpm_start, "--rpm-start"), _speed("rpm_end", rpm_end, "--rpm-end")
     if rpm_start == rpm_end:
@@ -380,7 +404,7 @@ def branch(scene, rpm_start: float, rpm_end: float, *, max_points: int = 400, st
     if steps_per_rev is not None:
         steps_per_rev = _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")
     ov = _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements)
-    sc = as_scene(scene)
+    sc = _law_allowed(as_scene(scene), allow_flagged_law)
     _orbit_budget("branch", sc, rpm_start, ov, steps_per_rev, None, max_points, accept_long)
     res = follow(sc, rpm_start, rpm_end, steps_per_rev=steps_per_rev, options=ContinuationOptions(
         max_points=max_points), **ov)
@@ -390,6 +414,7 @@ def branch(scene, rpm_start: float, rpm_end: float, *, max_points: int = 400, st
                         _column(pts, "peak_contact_force_N"), _column(pts, "contact_share"),
                         _column(pts, "stick_share_right_face"), _column(pts, "stick_share_left_face"),
                         np.array([bool(p.get("unique", True)) for p in pts], dtype=bool), tuple(res.bifurcations), res.stop, res.stop == "end reached",
+                        merged([p.get("law_validity") for p in pts] + [res.start.contact.get("law_validity")]),
                         _orbit_result(sc.name, res.start), res)
 
 
@@ -399,7 +424,8 @@ class CascadeResult(ResultMethods):
     """Steady state at each speed, as ``ringcontact study cascade`` (one point each, in order, one process):
     ``velocity_amplitude_m_s[i, k, c]`` order k + 1 of channel ``channels[c]`` at ``speeds_rpm[i]`` (m/s),
     ``converged[i]`` whether the Poincaré test found a periodic steady state within ``max_revs``, and the
-    contact summary per speed."""
+    contact summary per speed; ``law_validity`` the validity record over the recorded revolutions of every speed
+    (:func:`rotor.model.law_validity.merged`)."""
 
     scene: str
     speeds_rpm: np.ndarray
@@ -414,6 +440,7 @@ class CascadeResult(ResultMethods):
     contact_share: np.ndarray
     stick_share_right_face: np.ndarray
     stick_share_left_face: np.ndarray
+    law_validity: dict
     points: tuple = internal()
     _dim = "speed"
 
@@ -443,7 +470,8 @@ class CascadeResult(ResultMethods):
         data["regime"] = (("speed_rpm",), np.array(self.regime, dtype=str))
         coords = {"speed_rpm": self.speeds_rpm, "order": np.arange(1, self.velocity_amplitude_m_s.shape[1] + 1),
                   "channel": list(self.channels)}
-        return xr.Dataset(data, coords=coords, attrs={"result": type(self).__name__, "scene": attr(self.scene)})
+        return xr.Dataset(data, coords=coords, attrs={"result": type(self).__name__, "scene": attr(self.scene),
+                                                      **law_validity_attrs(self)})
 
     def _draw(self, ax) -> None:
         ch = self.channels[0]
@@ -461,18 +489,20 @@ class CascadeResult(ResultMethods):
 
 def cascade(scene, rpms, *, max_revs: int = 1500, steps_per_rev: int = 256, clearance_m: float | None = None,
             misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
-            tilt_ignored: bool = False, elements: int | None = None, accept_long: bool = False) -> CascadeResult:
+            tilt_ignored: bool = False, elements: int | None = None, accept_long: bool = False,
+            allow_flagged_law: bool = False) -> CascadeResult:
     """The steady state at each speed of ``rpms`` (rpm, > 0) by integration (transient detected and discarded,
     :func:`rotor.studies.steady_state.run_point`, at most ``max_revs`` revolutions of transient a speed).
     Arguments are checked as ``study cascade`` checks its options (1 to 2000 speeds …), the work against its
-    budget (beyond it refused unless ``accept_long``)."""
+    budget (beyond it refused unless ``accept_long``); a law its file flags refused unless ``allow_flagged_law``."""
     from reports.cli import _budget
+    from rotor.model.law_validity import merged, stored_point_record
     from rotor.studies.steady_state import run_point
     speeds = _checks.speed_list("rpms", rpms, "--rpm-max", "run_speed_rpm", "study_speeds")
     options = {"max_revs": _checks.whole("max_revs", max_revs, "--max-revs", "max_revs"),
                "steps_per_rev": _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")}
     ov = _overrides(clearance_m, misalignment_m, mu, preload_n, tilt_ignored, elements)
-    sc = as_scene(scene)
+    sc = _law_allowed(as_scene(scene), allow_flagged_law)
     tasks = [_PointTask({"scene": sc, "speed_rpm": float(s), "options": options, **ov}) for s in speeds]
     _checks.budget("cascade", _budget.steady_points(tasks), accept_long,
                    f"{len(speeds)} speeds of at most max_revs = {options['max_revs']} revolutions",
@@ -485,4 +515,5 @@ def cascade(scene, rpms, *, max_revs: int = 1500, steps_per_rev: int = 256, clea
                          np.array([i["period_revs"] for i in infos]), np.array([i["transient_revs"] for i in infos]),
                          tuple(i["label"] for i in infos), _column(infos, "peak_contact_force_N"),
                          _column(infos, "contact_share"), _column(infos, "stick_share_right_face"),
-                         _column(infos, "stick_share_left_face"), tuple(pts))
+                         _column(infos, "stick_share_left_face"),
+                         merged(stored_point_record(sc.loose_support, a, i["clearance_m"]) for a, i in pts), tuple(pts))

@@ -87,7 +87,7 @@ class ResultMethods:
         ``pip install 'ringcontact[xarray]'``); the scalar fields as attributes."""
         from sweep.export import table_to_xarray
         scalars = {k: v for k, v in self.to_dict().items() if isinstance(v, (str, int, float, bool))}
-        return table_to_xarray(self.rows(), dim=self._dim, attrs=scalars)
+        return table_to_xarray(self.rows(), dim=self._dim, attrs={**scalars, **law_validity_attrs(self)})
 
     def to_dataframe(self):
         """The table as a ``pandas.DataFrame``, when pandas is installed (it is not a dependency of
@@ -135,6 +135,21 @@ class ResultMethods:
 
     def _draw(self, ax) -> None:
         raise NotImplementedError
+
+
+def law_validity_attrs(result) -> dict:
+    """A result's validity record (``law_validity``, :mod:`rotor.model.law_validity`) as netCDF attributes: the
+    whole record as JSON text ``law_validity``, and its verdict and contact-time shares as numbers and text of
+    their own (``law_validity_verdict``, ``law_validity_contact_time_share_below`` …; NaN where None)."""
+    rec = getattr(result, "law_validity", None)
+    if not rec:
+        return {}
+    out = {"law_validity": json.dumps(plain(rec), allow_nan=False), "law_validity_verdict": str(rec["verdict"])}
+    for key in ("contact_time_share_below", "contact_time_share_inside", "contact_time_share_above",
+                "largest_tilt_rad"):
+        if key in rec:
+            out[f"law_validity_{key}"] = math.nan if rec[key] is None else float(rec[key])
+    return out
 
 
 def _cell(value):

@@ -19,6 +19,7 @@ the parser (:func:`reports.cli._edge.quantity`). Command-line only: the Python A
 from __future__ import annotations
 
 import argparse
+import sys
 from dataclasses import dataclass, field
 
 from contact.errors import InputError
@@ -71,6 +72,24 @@ def add_scene_options(p: argparse.ArgumentParser, *, default: str = DEFAULT_SCEN
                        help=f"transient cap of the steady-state detection in revolutions (default "
                             f"{MAX_TRANSIENT_REVS}: at the paper's point A the end faces creep for about 2 000 "
                             "revolutions before the ring settles; at least 24, the detector's shortest transient)")
+
+
+def add_law_check_option(p: argparse.ArgumentParser) -> None:
+    """``--allow-flagged-law``: run on a law its own file flags (held-out error beyond the bound of
+    ``ringcontact bearing`` or ``calibrate``), refused without it (:func:`rotor.model.law_validity.check_allowed`)."""
+    p.add_argument("--allow-flagged-law", action="store_true",
+                   help="run even when the contact law's file flags it (its held-out error beyond the FEM's stated "
+                        "error by more than the bound); refused without it. The run's law_validity says so")
+
+
+def say_on_terminal(args, line: str) -> None:
+    """``line`` on stderr where progress goes (a terminal, or ``--progress``; not with ``--no-progress``: the rule
+    of :func:`sweep.progress.on_terminal`), so that a job's output and its one-line errors stay as they are in a
+    pipe or a log: the geometry and law a rotor job runs on (:func:`rotor.model.law_validity.law_line`)."""
+    from sweep.progress import on_terminal
+    force = False if getattr(args, "no_progress", False) else getattr(args, "progress", None)
+    if on_terminal(force=force):
+        print(line, file=sys.stderr, flush=True)
 
 
 def finish(parser: argparse.ArgumentParser, args: argparse.Namespace, sub: str | None = None) -> argparse.Namespace:

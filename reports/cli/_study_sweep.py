@@ -8,10 +8,10 @@ import sys
 import time
 from pathlib import Path
 
-from contact.errors import FailedPointsError, InputError
+from contact.errors import FailedPointsError, InputError, RingContactError
 from contact.units import check_positive
 from reports.cli import _budget
-from reports.cli._scene_options import max_revs, scene_from_args, warm_up_shown
+from reports.cli._scene_options import max_revs, say_on_terminal, scene_from_args, warm_up_shown
 
 
 def overrides(args) -> dict:
@@ -32,7 +32,9 @@ def run_study_sweep(tasks, out: Path, args, description: dict):
     from sweep.cluster import connect
     from rotor.studies.steady_state import _scene_model
 
+    from rotor.model.law_validity import ALLOW_OPTION, check_allowed, law_line
     sc, _ = _scene_model(args.scene, mesh(args).get("elements_per_segment"), overrides(args).get("law"))
+    check_allowed(sc.loose_support, getattr(args, "allow_flagged_law", False), ALLOW_OPTION)
     _same_law(out, sc)
     import dataclasses
     scene_doc = dataclasses.asdict(sc)
@@ -41,6 +43,7 @@ def run_study_sweep(tasks, out: Path, args, description: dict):
         if sc.loose_support.calibrated is not None:
             print(f"study {args.study}: law {sc.loose_support.law_file} (sha256 {sc.loose_support.law_sha256})")
     _check_work(tasks, args)
+    say_on_terminal(args, f"study {args.study}: {law_line(sc.loose_support, overrides(args))}")
     manifest = {"study": args.study, "description": description, "scene_name": sc.name, "scene": scene_doc,
                 **mesh(args)}
     compile_first(args)
@@ -58,6 +61,7 @@ def run_study_sweep(tasks, out: Path, args, description: dict):
         raise FailedPointsError(f"{len(s.failed)} of {n_points} points failed (FAILED lines above); no figures "
                                 f"written; the finished points stay in {out}, a rerun computes only the rest")
     _say_unsettled(out, point_tasks(tasks), args)
+    _law_validity(out, point_tasks(tasks), sc.loose_support, args)
     return s, wall
 
 
@@ -86,6 +90,33 @@ def _say_unsettled(out: Path, tasks, args) -> None:
               f"{max_revs(args)} revolutions (at {speeds}{' …' if len(keys) > 8 else ''} rpm): their amplitudes are "
               "those of the last revolutions, not of a steady state (converged = 0 in the CSV, marked in the "
               "figures); a higher --max-revs, or --method shooting for the periodic orbit")
+
+
+def _law_validity(out: Path, tasks, loose, args) -> dict:
+    """The study's validity record over the recorded revolutions of its points (:mod:`rotor.model.law_validity`)
+    into ``<out>/law-validity.json`` (the JSON key ``law_validity``), its warnings on stderr as every rotor job's."""
+    import json
+
+    from contact.files import atomic_write_text
+    from rotor.model.law_validity import merged, stored_point_record
+    from sweep.store import ResultStore
+
+    store = ResultStore(out)
+    recs = []
+    for t in tasks:
+        try:
+            pt = store.load(t.key)
+        except RingContactError:         # a point kept without its arrays: nothing to say of it
+            continue
+        clearance = (pt.record.get("info") or {}).get("clearance_m")
+        if clearance is not None:
+            recs.append(stored_point_record(loose, pt.arrays, float(clearance)))
+    rec = merged(recs)
+    if rec:
+        atomic_write_text(out / "law-validity.json", json.dumps({"law_validity": rec}, indent=1, allow_nan=False) + "\n")
+        for line in rec["warnings"]:
+            print(f"study {args.study}: warning: {line}", file=sys.stderr)
+    return rec
 
 
 def _check_work(tasks, args) -> None:

@@ -29,6 +29,10 @@ transient from the linear periodic solution reaches, or on a chosen one: ``--fro
     ringcontact simulate --scene paper-table4 --speed-rpm 9000 --revolutions 40 --out runs/s9000
     ringcontact branch paper-table4 --rpm-start 9000 --rpm-end 12000 --from-state runs/s9000
 
+Both carry the record of the law's validity over the orbits (``law_validity``, :mod:`rotor.model.law_validity`: the
+one ``simulate`` writes; a branch's merged over its orbits) and say its findings on stderr as ``simulate`` does; a
+law its file flags is refused unless ``--allow-flagged-law``.
+
 Exit status 1 (one line on stderr, after the results are written) when the orbit did not converge or the
 branch stopped before ``--rpm-end``: a failed point never exits 0.
 """
@@ -44,8 +48,8 @@ from pathlib import Path
 from contact.errors import ConvergenceError, InputError, OutsideDomainError, RingContactError
 from reports.cli import _budget
 from reports.cli._edge import Parser, count, fail, in_dir, in_file, out_file, out_prefix, quantity
-from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, override_words,
-                                        scene_from_args, warm_up_shown)
+from reports.cli._scene_options import (add_law_check_option, add_progress_option, add_scene_options, finish,
+                                        override_words, say_on_terminal, scene_from_args, warm_up_shown)
 from reports.cli._orbit_hb import check_method_args, hb_branch_run, hb_branch_table, hb_choice, hb_orbit_table
 
 
@@ -62,6 +66,7 @@ METHOD_NAMES = ("shooting", "hb", "auto")
 
 def _common(p: argparse.ArgumentParser) -> None:
     add_scene_options(p)
+    add_law_check_option(p)
     p.add_argument("--steps-per-rev", type=count(16, 100000), default=None,
                    help="time steps per revolution (default: 256, more where the contact step limit needs it)")
     p.add_argument("--method", type=_method, default="shooting",
@@ -121,11 +126,15 @@ def _overrides(args) -> dict:
     return {"tilt_ignored": False, **scene_from_args(args).overrides}
 
 
-def _scene(args) -> tuple:
-    """The scene's name, response channels and loose support (with ``--law``); a bad scene or law is refused here,
-    before any computing."""
+def _scene(args, prog: str) -> tuple:
+    """The scene's name, response channels and loose support (with ``--law``); a bad scene or law, or a flagged law
+    without ``--allow-flagged-law``, is refused here, before any computing; the line naming the geometry and law is
+    kept for :func:`_say_law`."""
+    from rotor.model.law_validity import ALLOW_OPTION, check_allowed, law_line
     from rotor.studies.steady_state import _scene_model
     sc, model = _scene_model(args.scene, None, _overrides(args).get("law"))
+    check_allowed(sc.loose_support, args.allow_flagged_law, ALLOW_OPTION)
+    args.law_line = f"{prog}: {law_line(sc.loose_support, _overrides(args))}"     # said once the work starts
     return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
 
 
@@ -177,17 +186,21 @@ def _stability(args) -> dict:
     return {"stability": stability_field(getattr(args, "unstable", None))}
 
 
-def law_fields(loose, max_edge_penetration_m: float, max_tilt_in_contact_arcmin: float | None = None) -> dict:
+def law_fields(loose, max_edge_penetration_m: float, max_tilt_in_contact_arcmin: float | None = None,
+               records=()) -> dict:
     """The scene's law in a result: ``law`` (as the scene names it), a calibrated law's ``law_file`` and
-    ``law_sha256``, and the validity checks of :func:`reports.cli.simulate.validity_summary` and, for a law
-    checked against a 3D reference up to a tilt, :func:`reports.cli.simulate.tilt_validity_summary`."""
+    ``law_sha256``, the validity checks of :func:`reports.cli.simulate.validity_summary` and, for a law
+    checked against a 3D reference up to a tilt, :func:`reports.cli.simulate.tilt_validity_summary`; and
+    ``law_validity``, the run's record (:mod:`rotor.model.law_validity`) merged from the orbits' ``records``
+    (the law's own fields only where no orbit recorded one: an HB orbit)."""
     import numpy as np
 
     from contact.units import ARCMIN
     from reports.cli.simulate import tilt_validity_summary, validity_summary
+    from rotor.model.law_validity import law_header, merged
     if loose is None:
         return {}
-    out = {"law": loose.law, **loose.law_note(),
+    out = {"law": loose.law, **loose.law_note(), "law_validity": merged(records) or law_header(loose),
            **validity_summary(max_edge_penetration_m, loose.validity_max_penetration_m)}
     if loose.calibrated is not None and max_tilt_in_contact_arcmin is not None:
         out.update(tilt_validity_summary(np.array([max_tilt_in_contact_arcmin * ARCMIN]), np.array([True]),
@@ -197,11 +210,15 @@ def law_fields(loose, max_edge_penetration_m: float, max_tilt_in_contact_arcmin:
 
 
 def _emit(args, result: dict, table: str) -> None:
+    _say_law(args)                  # not said yet where HB ran alone
     text = json.dumps(result, indent=2) + "\n"
     if args.out is not None:
         from contact.files import atomic_write_text
         atomic_write_text(Path(args.out), text)
     print(text if args.json else table, end="" if args.json else "\n")
+    prog = "ringcontact branch" if hasattr(args, "rpm_start") else "ringcontact orbit"
+    for line in result.get("law_validity", {}).get("warnings", []):     # every rotor job alike (simulate's words)
+        print(f"{prog}: warning: {line}", file=sys.stderr)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -267,12 +284,22 @@ def _support_line(d: dict) -> str:
             f"faces stuck {_share(d['stick_share_right_face'])} (right) / {_share(d['stick_share_left_face'])} (left)")
 
 
+def _say_law(args) -> None:
+    """The geometry and law of the run on stderr where progress goes, once (when the work starts, after every
+    refusal; :func:`reports.cli._scene_options.say_on_terminal`)."""
+    line = getattr(args, "law_line", None)
+    if line:
+        say_on_terminal(args, line)
+        args.law_line = None
+
+
 def _watched(label: str, args, compute):
     """``(compute(), Events)``: the step loop compiled first and the shooting's events shown on a terminal
     (:mod:`sweep.progress`); the events keep the Newton attempts for a failure message."""
     from rotor.dynamics.period_map import warm_up
     from sweep.progress import Events, reporting
 
+    _say_law(args)
     warm_up_shown(label, args, warm_up)
     events = Events(label, parameter_unit=("rpm", 30.0 / math.pi), enabled=args.progress)
     with reporting(events), events:
@@ -312,7 +339,7 @@ def no_orbit_text(args, speed_rpm: float, steps_per_rev: int, attempts: list[dic
 def _orbit(args) -> int:
     from rotor.studies.orbit_methods import cross_check
 
-    name, _, loose = _scene(args)
+    name, _, loose = _scene(args, "ringcontact orbit")
     check_method_args(args, "ringcontact orbit", args.speed_rpm, _overrides(args))
     pt, choice = (None, None) if args.method == "shooting" else hb_choice(args, args.speed_rpm, _overrides(args))
     if pt is None:                          # shooting: asked for, or chosen by auto (choice says why)
@@ -350,7 +377,8 @@ def _shooting_orbit(args, name: str, loose, choice: dict | None = None, hb=None)
         args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, **{"period_revs": args.period_revs, **start},
         richardson=args.richardson, **_overrides(args)))
     d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m,
-                                              res.contact.get("max_tilt_in_contact_arcmin")),
+                                              res.contact.get("max_tilt_in_contact_arcmin"),
+                                              [res.contact.get("law_validity")]),
          "attempts": events.attempts, "method": "shooting", **({"method_choice": choice} if choice else {}),
          **_stability(args)}
     return d, res, events
@@ -463,7 +491,7 @@ def _branch(args) -> int:
     from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
 
-    name, channels, loose = _scene(args)
+    name, channels, loose = _scene(args, "ringcontact branch")
     if args.station is not None and not args.station.strip():
         raise InputError(f"--station = {args.station!r}: names nothing; give <station>.y or <station>.z (have "
                          f"{', '.join(channels)}), or leave --station out for {channels[0]}")
@@ -495,7 +523,8 @@ def _branch(args) -> int:
     deepest_mm = max([p.get("max_edge_penetration_mm", 0.0) for p in d["points"]], default=0.0)
     tilt = max([p.get("max_tilt_in_contact_arcmin", 0.0) for p in d["points"]], default=0.0)
     d.update(law_fields(loose, max(deepest_mm * 1e-3, res.start.max_edge_penetration_m),    # deepest of the branch
-                        max(tilt, res.start.contact.get("max_tilt_in_contact_arcmin", 0.0))))
+                        max(tilt, res.start.contact.get("max_tilt_in_contact_arcmin", 0.0)),
+                        [p.get("law_validity") for p in d["points"]] + [res.start.contact.get("law_validity")]))
     _emit(args, d, _branch_table(d, station))
     if args.plot is not None and d["points"]:
         from reports.bifurcation import bifurcation_figure

@@ -33,6 +33,12 @@ with a force: they differ where the collision damping clips the force to zero on
 ``stick_fraction_right``/``_left`` (the same numbers as ``stick_share_*_face``, except that with the tilt
 ignored ``stick_share_left_face`` is None: there is one centred face). ``stick_right``/``stick_left`` stay in
 the CSV beside ``face_*_stuck``, ``f_contact``/``face_force`` in the NPZ beside the named arrays.
+
+The law's validity (:mod:`rotor.model.law_validity`, the record every rotor job writes): ``law_validity`` in the
+summary names the law, its file and sha256 and its verdict (``verified``, ``flagged``, ``analytic``), its fitted
+penetration and checked tilt ranges, the shares of the contact time below, inside and above the fitted penetrations
+and the largest tilt in contact; each finding is a warning line on stderr. A law its file flags is refused (exit
+2, one line) unless ``--allow-flagged-law``.
 """
 from __future__ import annotations
 
@@ -52,16 +58,18 @@ from contact.files import write_run_files
 from contact.units import ARCMIN, check_positive
 from reports.cli import _budget
 from reports.cli._edge import COUNTS, Parser, count, fail, out_dir, quantity
-from reports.cli._scene_options import (add_progress_option, add_scene_options, finish, max_revs, scene_from_args,
-                                        warm_up_shown)
+from reports.cli._scene_options import (add_law_check_option, add_progress_option, add_scene_options, finish,
+                                        max_revs, say_on_terminal, scene_from_args, warm_up_shown)
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
+from rotor.model.law_validity import ALLOW_OPTION, check_allowed, law_line, record
 
 
 def _parser() -> argparse.ArgumentParser:
     from rotor.studies.steady_state import SteadyStateOptions     # the detector's shortest transient: one bound
     p = Parser(prog="ringcontact simulate", description=__doc__.split("\n\n")[0])
     add_scene_options(p, transient=True)
+    add_law_check_option(p)
     p.add_argument("--speed-rpm", type=quantity("run_speed_rpm"), required=True, help="spin speed (rpm)")
     p.add_argument("--revolutions", type=quantity("revolutions"), default=20.0, help="duration in revolutions (default 20)")
     p.add_argument("--steps-per-rev", type=count(*COUNTS["steps_per_rev"]), default=None,
@@ -190,6 +198,7 @@ def _run(args) -> int:
     transient = int(args.max_revs or 8000) * args.steps_per_rev if args.steady else 0   # --steady: at most
     check_budget(args, n_steps + transient, n_steps // rec + 1, model.n_dofs)
     unstable = _warn_unstable(model, omega)
+    say_on_terminal(args, f"ringcontact simulate: {law_line(scene.loose_support, scene_from_args(args).overrides)}")
     run = simulate_production if args.scheme == "production" else simulate_reference
     # compile or load the step loop now (the --steady detector uses it too), the seconds shown on a terminal
     compiled = warm_up_shown("ringcontact simulate", args, warm_up)
@@ -217,7 +226,9 @@ def _run(args) -> int:
                **tilt_validity_summary(np.hypot(tr.u[:, 2], tr.u[:, 3]), (r1 > d0) | (r2 > d0),
                                        law_info.get("validity_tilt_rad")),
                **contact_summary(tr.t, tr.f_contact, tr.modes, tr.face_force, sup.faces()[2] if sup is not None else 0),
-               "contact_force_convention": CONVENTION, **extra}
+               "contact_force_convention": CONVENTION,
+               "law_validity": record(scene.loose_support, np.maximum(r1, r2) - d0, np.hypot(tr.u[:, 2], tr.u[:, 3])),
+               **extra}
     # one unit: the old run's files go, the new ones are renamed into place, the summary (with their
     # checksums) comes last; an interrupted run leaves no summary beside another run's CSV
     try:
@@ -231,14 +242,8 @@ def _run(args) -> int:
               f"{summary['max_omega_c_dt']:.3g} > {STEP_LIMIT_OMEGA_DT:g}: a contact event took fewer than about three "
               f"steps, impacts are under-resolved); run again with --steps-per-rev about "
               f"{summary['steps_per_rev_for_step_limit']} or more", file=sys.stderr)
-    if summary.get("beyond_law_tilt_validity"):
-        print(f"ringcontact simulate: warning: the largest tilt in contact {summary['max_tilt_in_contact_arcmin']:.4g} "
-              f"arcmin exceeds the tilt the calibrated law was checked at ({summary['law_tilt_checked_up_to_arcmin']:.4g} "
-              "arcmin): the law was extrapolated", file=sys.stderr)
-    if summary.get("beyond_law_validity"):
-        print(f"ringcontact simulate: warning: the largest edge penetration {summary['max_edge_penetration_mm']:.4g} mm "
-              f"exceeds the calibrated law's validity range ({summary['law_validity_max_penetration_mm']:.4g} mm): "
-              "the law was extrapolated", file=sys.stderr)
+    for line in summary["law_validity"].get("warnings", []):
+        print(f"ringcontact simulate: warning: {line}", file=sys.stderr)
     return 0
 
 
@@ -287,6 +292,7 @@ def _system(args):
         n = step_per_rev(system, SteadyStateOptions(samples_per_rev=k if k >= SAMPLES_FOR_5X else None))
         args.steps_per_rev = -(-n // k) * k          # a whole number of steps between samples
     ls = scene.loose_support
+    check_allowed(ls, args.allow_flagged_law, ALLOW_OPTION)
     cal = ls.calibrated if ls is not None else None
     info = {"note": ls.law_note() if ls is not None else {},
             "validity_max_m": ls.validity_max_penetration_m if ls is not None else None,

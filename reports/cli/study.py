@@ -42,11 +42,13 @@ from reports.cli import _budget
 from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, out_file, quantity
 from reports.cli._study_sweep import compile_first as _compile_first, mesh as _mesh, overrides as _ov
 from reports.cli._study_sweep import run_study_sweep
-from reports.cli._scene_options import DEFAULT_SCENE, add_scene_options, finish, max_revs, refuse_overrides
+from reports.cli._scene_options import (DEFAULT_SCENE, add_law_check_option, add_scene_options, finish, max_revs,
+                                        refuse_overrides)
 
 
 def _common(p: argparse.ArgumentParser, out: str, scene: str = DEFAULT_SCENE):
     add_scene_options(p, default=scene, transient=True)
+    add_law_check_option(p)
     p.add_argument("--out", type=out_dir, default=out, help=f"result directory (default {out})")
     p.add_argument("--figures", type=out_dir, default=None, help="figure directory (default <out>/figures)")
     p.add_argument("--workers", type=count(1, 64, "processes"), default=2, help="worker processes (default 2)")

@@ -26,6 +26,7 @@ from contact.units import ARCMIN, check_positive
 from rotor.dynamics.constraints import STICK, edge_offsets
 from rotor.dynamics.initial import linear_initial_state
 from rotor.dynamics.support_record import contact_summary
+from rotor.model.law_validity import record as validity_record
 from rotor.periodic.continuation import (COLD, GRID, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
                                         speed_problem, start_modes)
 from rotor.periodic.floquet import FloquetResult
@@ -110,6 +111,7 @@ class OrbitResult:
         ``peak_contact_moment_Nm``, ``contact_share``, ``separation_share``, ``stick_share_right_face``,
         ``stick_share_left_face``, ``peak_face_force_N``; empty without a loose support. A ring stuck on a
         linear orbit has ``contact_share`` 0 and both faces' stick share 1; a slipping, hitting one does not.
+        ``law_validity``: the record of :func:`rotor.model.law_validity.record` over the period.
     """
 
     speed_rpm: float
@@ -194,6 +196,9 @@ def period_response(flow: Flow, model, res_state, t0_s: float, modes, period_rev
         hit = (r1 > sup.law.clearance_m) | (r2 > sup.law.clearance_m)
         tilt = np.hypot(tr.u[:, 2], tr.u[:, 3])[hit]
         contact["max_tilt_in_contact_arcmin"] = float(tilt.max()) / ARCMIN if tilt.size else 0.0
+        # the law's validity over the period (rotor/model/law_validity.py: the record every rotor job carries)
+        contact["law_validity"] = validity_record(model.scene.loose_support, np.maximum(r1, r2)[one] - sup.law.clearance_m,
+                                                  np.hypot(tr.u[one, 2], tr.u[one, 3]))
     return {n: [float(a) * 1e3 for a in amps[:, j]] for j, n in enumerate(names)}, pen, contact
 
 
