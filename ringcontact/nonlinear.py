@@ -98,7 +98,7 @@ class ContactSummary:
 # ------------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class SimulationResult(ContactSummary, ResultMethods):
-    """A time history of the rotor from rest (the misalignment offset), as ``ringcontact simulate``.
+    """A time history of the rotor from its static equilibrium (or from rest), as ``ringcontact simulate``.
 
     ``duration_revs`` the revolutions integrated; ``t_s`` (N,) sample times (s); ``displacement_m`` (N, c) the channels ``channels`` (``<station>.y|z``, m);
     ``r1_m``, ``r2_m`` the ring edges' offsets from the support's centre (m); ``contact_force_N`` (N,) the radial
@@ -107,7 +107,8 @@ class SimulationResult(ContactSummary, ResultMethods):
     ``steady_state`` None, or with ``steady=True`` what the detector found (see :func:`simulate`);
     ``law_validity`` the run's validity record, the ``law_validity`` of ``simulate``'s summary
     (:mod:`rotor.model.law_validity`: law, file, sha256, verdict, fitted ranges, contact-time shares below,
-    inside and above the fitted penetrations, the largest tilt; empty without a loose support).
+    inside and above the fitted penetrations, the largest tilt; empty without a loose support); ``start`` how the
+    run started, the summary's ``start`` (:func:`rotor.dynamics.initial.start_record`).
     """
 
     scene: str
@@ -129,6 +130,7 @@ class SimulationResult(ContactSummary, ResultMethods):
     clearance_m: float | None
     contact: dict
     law_validity: dict
+    start: dict
     steady_state: dict | None = None
     trajectory: object = internal()
     _dim = "time"
@@ -155,8 +157,12 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
              record_per_rev: int = 64, stations=None, clearance_m: float | None = None,
              misalignment_m: float | None = None, mu: float | None = None, preload_n: float | None = None,
              tilt_ignored: bool = False, elements: int | None = None, steady: bool = False,
-             max_revs: int = 8000, accept_long: bool = False, allow_flagged_law: bool = False) -> SimulationResult:
-    """Integrate ``revolutions`` revolutions at ``speed_rpm`` (rpm) from rest, as ``ringcontact simulate``.
+             max_revs: int = 8000, accept_long: bool = False, allow_flagged_law: bool = False,
+             from_rest: bool = False) -> SimulationResult:
+    """Integrate ``revolutions`` revolutions at ``speed_rpm`` (rpm) as ``ringcontact simulate``: from the static
+    equilibrium under the scene's gravity, static loads, misalignment and preload with the ring's contact and the
+    end faces' friction (:func:`rotor.dynamics.initial.static_equilibrium`), or with ``from_rest`` from rest at the
+    misalignment offset (``--from-rest``).
 
     ``steps_per_rev`` None: chosen as ``simulate`` and ``orbit`` choose it (256 or more where the contact step
     limit needs it, a multiple of ``record_per_rev``; :func:`rotor.studies.steady_state.step_per_rev`).
@@ -177,10 +183,9 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     from rotor.dynamics.support_record import contact_columns, contact_summary
     from rotor.model.law_validity import record
     from contact.errors import InputError
-    from rotor.dynamics.initial import linear_initial_state
-    from rotor.studies.steady_record import record_after_steady
-    from rotor.studies.steady_state import (SAMPLES_FOR_5X, SteadyStateOptions, point_system, steady_state,
-                                            step_per_rev)
+    from rotor.dynamics.constraints import STICK
+    from rotor.dynamics.initial import start_record, static_equilibrium
+    from rotor.studies.steady_state import SAMPLES_FOR_5X, SteadyStateOptions, point_system, step_per_rev
 
     speed_rpm = _speed("speed_rpm", speed_rpm)
     revolutions = _checks.number("revolutions", revolutions, "--revolutions", "revolutions", si_unit="rev")
@@ -188,6 +193,9 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     if steps_per_rev is not None:
         steps_per_rev = _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")
     steady = _checks.flag_of("steady", steady)
+    if _checks.flag_of("from_rest", from_rest) and steady:
+        raise InputError("from_rest = True: steady = True starts from the linear periodic solution (support locked), "
+                         "not from rest; give one of them")
     if steady:
         max_revs = _checks.whole("max_revs", max_revs, "--max-revs", "max_revs")
     sc = _law_allowed(as_scene(scene), allow_flagged_law)
@@ -206,20 +214,13 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     dt = 2 * math.pi / (system.omega_rad_s * n)
     steady_info = None
     if steady:
-        if n % int(record_per_rev) or int(record_per_rev) < SAMPLES_FOR_5X or int(round(revolutions)) < 1:
-            raise InputError(f"simulate: steady = True needs revolutions >= 1 (got {revolutions:g} rev) and "
-                             f"record_per_rev >= {SAMPLES_FOR_5X} dividing steps_per_rev {n} (got {record_per_rev})")
-        opts = SteadyStateOptions(steps_per_rev=n, samples_per_rev=int(record_per_rev), spectrum_revs=1,
-                                  max_revs=int(max_revs))
-        q_start, v_start = linear_initial_state(system, 0.0)
-        ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
-        tr, dt, _, kept = record_after_steady(system, ss, int(round(revolutions)), int(record_per_rev))
-        n, revolutions = ss.steps_per_rev, kept
-        conv = ss.convergence
-        steady_info = {"converged": bool(conv.converged), "period_revs": int(conv.period),
-                       "transient_revs": int(ss.transient_revs + ss.revolutions), "poincare_change": float(conv.change)}
+        tr, dt, n, revolutions, steady_info = _steady_simulate(system, model, n, revolutions, record_per_rev, max_revs)
+        start = {"kind": "linear periodic solution (support locked)"}
     else:
-        tr = simulate_production(system, dt, max(1, int(round(revolutions * n))), q0=system.offset,
+        eq = None if from_rest else static_equilibrium(system)
+        start = start_record(system, eq)
+        tr = simulate_production(system, dt, max(1, int(round(revolutions * n))),
+                                 q0=system.offset if eq is None else eq.q_m, modes0=(STICK, STICK) if eq is None else eq.modes,
                                  record_every=max(1, n // int(record_per_rev)))
     sup = system.support
     r1, r2 = edge_offsets(tr.u, sup.width_m) if sup is not None else (np.zeros(len(tr.t)),) * 2
@@ -230,7 +231,29 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
         cols["contact_force_N"], cols["contact_force_y_N"], cols["contact_force_z_N"], cols["contact_moment_Nm"],
         cols["face_right_stuck"], cols["face_left_stuck"], sup.law.clearance_m if sup is not None else None,
         summary, record(sc.loose_support, np.maximum(r1, r2) - sup.law.clearance_m if sup is not None else r1,
-                        np.hypot(tr.u[:, 2], tr.u[:, 3])), steady_info, tr)
+                        np.hypot(tr.u[:, 2], tr.u[:, 3])), start, steady_info, tr)
+
+
+def _steady_simulate(system, model, n: int, revolutions: float, record_per_rev: int, max_revs: int):
+    """``simulate(steady=True)``: the transient from the linear periodic solution until the Poincaré detector finds
+    a period, then whole periods; ``(trajectory, dt, steps per revolution, kept revolutions, steady_state)``."""
+    from contact.errors import InputError
+    from rotor.dynamics.initial import linear_initial_state
+    from rotor.studies.steady_record import record_after_steady
+    from rotor.studies.steady_state import SAMPLES_FOR_5X, SteadyStateOptions, steady_state
+
+    if n % int(record_per_rev) or int(record_per_rev) < SAMPLES_FOR_5X or int(round(revolutions)) < 1:
+        raise InputError(f"simulate: steady = True needs revolutions >= 1 (got {revolutions:g} rev) and "
+                         f"record_per_rev >= {SAMPLES_FOR_5X} dividing steps_per_rev {n} (got {record_per_rev})")
+    opts = SteadyStateOptions(steps_per_rev=n, samples_per_rev=int(record_per_rev), spectrum_revs=1,
+                              max_revs=int(max_revs))
+    q_start, v_start = linear_initial_state(system, 0.0)
+    ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
+    tr, dt, _, kept = record_after_steady(system, ss, int(round(revolutions)), int(record_per_rev))
+    conv = ss.convergence
+    info = {"converged": bool(conv.converged), "period_revs": int(conv.period),
+            "transient_revs": int(ss.transient_revs + ss.revolutions), "poincare_change": float(conv.change)}
+    return tr, dt, ss.steps_per_rev, kept, info
 
 
 def _simulate_budget(revolutions: float, n: int, record_per_rev: int, transient_revs: int, n_dofs: int,

@@ -81,7 +81,7 @@ def main(full: bool = True) -> dict:
     print(f"unbalance response (loose support locked) at disk2: " + ", ".join(
         f"{s:g} rpm {a * 1e6:.1f} µm" for s, a in zip(u.speeds_rpm, u.semi_major_m[:, 1])))
     s = res["simulate"]
-    print(f"simulate {SPEED_RPM:g} rpm, {s.duration_revs:g} rev from rest: peak contact force {s.peak_contact_force_N:.1f} N, "
+    print(f"simulate {SPEED_RPM:g} rpm, {s.duration_revs:g} rev from {s.start['kind']}: peak contact force {s.peak_contact_force_N:.1f} N, "
           f"in contact {s.contact_share:.0%} of the time, faces stuck {s.stick_share_right_face:.0%} / "
           f"{s.stick_share_left_face:.0%}")
     if not full:

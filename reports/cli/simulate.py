@@ -34,6 +34,12 @@ with a force: they differ where the collision damping clips the force to zero on
 ignored ``stick_share_left_face`` is None: there is one centred face). ``stick_right``/``stick_left`` stay in
 the CSV beside ``face_*_stuck``, ``f_contact``/``face_force`` in the NPZ beside the named arrays.
 
+The run starts from the static equilibrium under the scene's gravity, ``[[static_loads]]``, misalignment offset and
+preload, the ring's contact and the end faces' friction solved statically
+(:func:`rotor.dynamics.initial.static_equilibrium`), so that a record is not a drop transient; ``--from-rest``
+starts at the offset with nothing carried, as before. The summary's ``start`` says which (``--steady``: the linear
+periodic solution with the support locked) and, from the equilibrium, the bearing's static deflection.
+
 The law's validity (:mod:`rotor.model.law_validity`, the record every rotor job writes): ``law_validity`` in the
 summary names the law, its file and sha256 and its verdict (``verified``, ``flagged``, ``analytic``), its fitted
 penetration and checked tilt ranges, the shares of the contact time below, inside and above the fitted penetrations
@@ -61,6 +67,7 @@ from reports.cli._edge import COUNTS, Parser, count, fail, out_dir, quantity
 from reports.cli._scene_options import (add_law_check_option, add_progress_option, add_scene_options, finish,
                                         max_revs, say_on_terminal, scene_from_args, warm_up_shown)
 from rotor.dynamics import constraints as cons
+from rotor.dynamics.initial import start_record, static_equilibrium
 from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
 from rotor.model.law_validity import ALLOW_OPTION, check_allowed, law_line, record
 
@@ -90,6 +97,11 @@ def _parser() -> argparse.ArgumentParser:
                         "with the projected tail of the decay, subharmonic periods up to 8 revolutions), then "
                         "--revolutions kept revolutions (rounded up to whole periods) with 1X-5X velocity "
                         "amplitudes of --dofs in the summary")
+    p.add_argument("--from-rest", action="store_true",
+                   help="start from rest at the misalignment offset, no load carried (before issue 38 the only start); "
+                        "default: the static equilibrium under the scene's gravity, static loads, misalignment and "
+                        "preload, the ring's contact and end-face friction solved statically "
+                        "(rotor.dynamics.initial.static_equilibrium); the summary's start says which")
     _budget.add_accept_long(p)
     p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
     add_progress_option(p)
@@ -133,6 +145,9 @@ def _check_options(args) -> None:
         if text is not None and not any(s.strip() for s in text.split(",")):
             raise InputError(f"{flag} = {text!r}: names nothing; give comma-separated names, or leave {flag} out "
                              "for the default")
+    if args.from_rest and args.steady:
+        raise InputError("--from-rest: --steady starts from the linear periodic solution (support locked), not from "
+                         "rest; give one of them")
     if args.max_revs is not None and not args.steady:
         raise InputError(f"--max-revs = {args.max_revs} rev: the transient cap of --steady, which is not given "
                          "(add --steady, or leave --max-revs out)")
@@ -170,8 +185,11 @@ def _integrate(args, run, system, model, dt: float, n_steps: int, rec: int, unst
             amp_names = _dof_names(args, model, primary_only=False)
             return interrupts.in_thread(_steady_run, args, system, model, amp_names,
                                         [model.dof_index(n) for n in amp_names])
+        start = None if args.from_rest else static_equilibrium(system)
+        q0, modes0 = (system.offset, (cons.STICK, cons.STICK)) if start is None else (start.q_m, start.modes)
         # in a thread: Ctrl-C is honoured at once, not after the compiled loop (measured: 20 s later)
-        return interrupts.in_thread(run, system, dt, n_steps, q0=system.offset, record_every=rec), dt, n_steps, {}
+        tr = interrupts.in_thread(run, system, dt, n_steps, q0=q0, modes0=modes0, record_every=rec)
+        return tr, dt, n_steps, {"start": start_record(system, start)}
     except (OutsideDomainError, ConvergenceError) as exc:
         if unstable is None:
             raise
@@ -322,7 +340,8 @@ def _steady_run(args, system, model, names: list[str], idx: list[int]):
     conv = ss.convergence
     tr, dt, n_steps, keep = record_after_steady(system, ss, keep, args.record_per_rev)
     amps = np.abs(harmonic_amplitudes(tr.v[:-1, idx] - tr.v[:-1, idx].mean(axis=0), keep))
-    extra = {"transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
+    extra = {"start": {"kind": "linear periodic solution (support locked)"},
+             "transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
              "period_revs": int(conv.period), "poincare_change": float(conv.change),
              "poincare_remaining": float(conv.remaining), "record_revs": keep,
              "velocity_amplitudes_mm_s_1X_to_5X": {n: [round(float(a) * 1e3, 6) for a in amps[:, j]]

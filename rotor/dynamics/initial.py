@@ -8,8 +8,11 @@ solution of the linear system, a start for steady-state runs.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
+from contact.errors import ConvergenceError
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.system import NewmarkOptions, RotorSystem, coupling_force, support_forces
 
@@ -79,3 +82,134 @@ def linear_initial_state(system: RotorSystem, t0: float = 0.0, lock_support: boo
         q += (X * e).real
         v += (1j * wk * X * e).real
     return q, v
+
+
+#: the share of its friction limit μN a face that could not hold the static load carries at the start
+HELD_SHARE = 0.999
+
+
+@dataclass(frozen=True)
+class StaticStart:
+    """The static equilibrium a run starts from (:func:`static_equilibrium`).
+
+    ``q_m`` (n,) displacements (m, rad) with the lock rows met; ``modes`` the end faces' start modes (all
+    :data:`~rotor.dynamics.constraints.STICK`: a face beyond its friction limit holds at the limit, ``at_limit``);
+    ``face_force_N`` (2, 2) each face's force on the bearing; ``contact_force`` (4,) the ring's contact force and
+    moment on the bearing (N, N m); ``iterations`` Newton iterations; ``residual_N`` the largest force residual.
+    """
+
+    q_m: np.ndarray
+    modes: tuple
+    at_limit: tuple
+    face_force_N: np.ndarray
+    contact_force: np.ndarray
+    iterations: int
+    residual_N: float
+
+
+def static_equilibrium(system: RotorSystem, *, max_iter: int = 400) -> StaticStart:
+    """The static equilibrium of ``system`` under its constant load: gravity, ``[[static_loads]]``, the
+    misalignment offset (``K (q − Δq_m) = f_static + …``), with the loose support's contact and end-face friction.
+
+    The end faces are first held where a run from rest starts them (the relative motion of the offset state): a
+    linear solve whose face multipliers are the holding forces. A face whose holding force exceeds its limit μN
+    slips: it then carries μN against the load (the direction of its holding force) and the ring moves until its
+    contact carries the rest: Newton on the equilibrium with the law's analytic Jacobian (the compiled kernel,
+    ``SupportLaw.kernel``), the ring's relative motion limited to a quarter of the clearance a step so that the
+    stiff law is entered gradually. A face that slipped holds :data:`HELD_SHARE` of its limit at the start (an
+    admissible static state: any force up to μN is; at exactly μN the regularised slip of the first steps would let
+    the ring creep) and starts stuck; the first step's stick test (:func:`initial_state`) decides whether it stays so.
+    """
+    n = system.n
+    sup = system.support
+    offset = np.asarray(system.offset, dtype=float)
+    load = system.force.static + system.K @ offset
+    if sup is None:
+        return StaticStart(_locked_static(system, load), (), (), np.zeros((2, 2)), np.zeros(4), 1, 0.0)
+    B = sup.relative_map(n)
+    P, limits, n_faces = sup.faces()
+    held = list(range(n_faces))
+    phi = np.zeros((2, 2))
+    q = offset.copy()
+    its = 0
+    for _ in range(n_faces + 1):              # faces that pass their limit leave the held set, one pass each
+        q, lam, k = _newton(system, load, B, P, held, phi, q, offset, max_iter)
+        its += k
+        over = [f for j, f in enumerate(held) if np.hypot(*lam[2 * j:2 * j + 2]) > limits[f] * (1 + 1e-9)]
+        for j, f in enumerate(held):
+            phi[f] = -lam[2 * j:2 * j + 2]
+        if not over:
+            break
+        for f in over:                          # slips: its limit against the load it could not hold
+            h = np.hypot(*phi[f])
+            phi[f] = phi[f] / h * limits[f] * HELD_SHARE if h > 0 else 0.0
+        held = [f for f in held if f not in over]
+    fc = np.asarray(sup.law.force(B @ q, np.zeros(4)), dtype=float)
+    res = cons.null_space_map(system.lock).T @ _residual(system, load, B, P, [], phi, q, fc)   # lock forces internal
+    at_limit = tuple(bool(f not in held) for f in range(n_faces))
+    return StaticStart(q, tuple([cons.STICK] * 2), at_limit, phi, fc, its, float(np.abs(res).max()))
+
+
+def _locked_static(system: RotorSystem, load) -> np.ndarray:
+    T = cons.null_space_map(system.lock)
+    return T @ np.linalg.solve(T.T @ system.K @ T, T.T @ load)
+
+
+def _residual(system, load, B, P, held, phi, q, fc) -> np.ndarray:
+    """``f_static + K Δq_m + Bᵀ(f_c + Σ_slipping Pᵀφ) + coupling − K q`` (N, N m): the force the statics leaves."""
+    g = fc.copy()
+    for f in range(len(phi)):
+        if f not in held:
+            g += P[f].T @ phi[f]
+    return load + B.T @ g + coupling_force(system, q) - system.K @ q
+
+
+def _newton(system, load, B, P, held, phi, q, offset, max_iter: int):
+    """Newton on the statics with the ``held`` faces fixed at the offset state's relative motion (their
+    multipliers returned) and the others carrying ``phi``; ``(q, face multipliers (2 per held face), iterations)``."""
+    sup = system.support
+    n = system.n
+    C = np.vstack([system.lock] + [P[f] @ B for f in held]) if (system.lock.shape[0] or held) else np.zeros((0, n))
+    c = np.concatenate([np.zeros(system.lock.shape[0])] + [P[f] @ B @ offset for f in held])
+    m, n_l = C.shape[0], system.lock.shape[0]
+    step_cap = 0.25 * sup.law.clearance_m
+    zero4 = np.zeros(4)
+    lam = np.zeros(m)
+    scale = max(float(np.abs(load).max()), 1.0)
+    for it in range(1, max_iter + 1):
+        u = B @ q
+        if sup.law.kernel is not None:
+            fc, Ju, _ = sup.law.kernel(u, zero4, sup.law.params)
+            fc, Ju = np.asarray(fc, dtype=float), np.asarray(Ju, dtype=float)
+        else:
+            fc = np.asarray(sup.law.force(u, zero4), dtype=float)
+            Ju = np.column_stack([(np.asarray(sup.law.force(u + h, zero4)) - np.asarray(sup.law.force(u - h, zero4)))
+                                  / (2e-10) for h in np.eye(4) * 1e-10])
+        r = _residual(system, load, B, P, held, phi, q, fc) - C.T @ lam
+        A = np.block([[system.K - B.T @ Ju @ B, C.T], [C, np.zeros((m, m))]])
+        z = np.linalg.solve(A, np.concatenate([r, c - C @ q]))
+        dq, dlam = z[:n], z[n:]
+        du = float(np.abs((B @ dq)[:2]).max())
+        a = min(1.0, step_cap / du) if du > 0 else 1.0
+        q, lam = q + a * dq, lam + a * dlam
+        if a == 1.0 and np.abs(r).max() <= 1e-9 * scale and np.all(np.abs(C @ q - c) <= 1e-14 * (1 + np.abs(q).max())):
+            return q, lam[n_l:], it
+    raise ConvergenceError(f"static equilibrium: Newton did not converge in {max_iter} iterations (largest force "
+                           f"residual {np.abs(r).max():.3g} N); start from rest instead (simulate --from-rest)")
+
+
+def start_record(system: RotorSystem, start: StaticStart | None) -> dict:
+    """The JSON field ``start`` of a run: ``kind`` (``static equilibrium`` or ``rest``: the misalignment offset,
+    no load carried) and, from the equilibrium, the loose bearing's static deflection ``bearing_deflection_m``
+    ((y, z), m), the ring's contact force ``contact_force_N`` (N), the faces held at their friction limit
+    ``faces_at_friction_limit``, ``newton_iterations`` and the largest force residual ``residual_N``."""
+    if start is None:
+        return {"kind": "rest"}
+    out = {"kind": "static equilibrium", "newton_iterations": int(start.iterations),
+           "residual_N": float(start.residual_N)}
+    if system.support is not None:
+        y, z = system.support.bearing_dofs[:2]
+        out.update(bearing_deflection_m=[float(start.q_m[y]), float(start.q_m[z])],
+                   contact_force_N=float(np.hypot(*start.contact_force[:2])),
+                   faces_at_friction_limit=list(start.at_limit))
+    return out

@@ -1,0 +1,103 @@
+"""Runs start from the static equilibrium (rotor/dynamics/initial.py: static_equilibrium), not from rest.
+
+The rotor is tests/rotor/scenes/friswell-591-loose-aluminium.toml (Friswell et al. 2010, Example 5.9.1, right
+bearing in a loose aluminium housing, 20 um clearance) with gravity on: its loose station sags about 0.6 mm, some
+30 clearances, mostly on the support's 1 MN/m spring; the faces' friction (mu 0.1 on 2 000 or 200 N of preload)
+cannot hold the bearing's share of the weight, so the ring rests on its bore. At rest, without unbalance, the
+equilibrium is exact: no motion at all. With the scene's unbalance at 300 rpm the first revolution moves the loose
+station by its forced response only (about 2 um, the unbalance force m e w^2 being about 1 N), under 1 % of the
+sag; from rest it falls the whole sag. The equilibrium itself is checked by the force balance of the rotor: the
+contact force on the ring, the faces' forces and the spring reactions carry the weight.
+"""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import ringcontact as rc
+from reports import cli
+from rotor.dynamics.build import system_from_model
+from rotor.dynamics.initial import static_equilibrium
+from rotor.dynamics.production import simulate_production
+from rotor.model.assembly import assemble
+from rotor.model.scene import loads_scene
+from rotor.studies.steady_state import SteadyStateOptions, step_per_rev
+
+SCENE = Path(__file__).resolve().parents[1] / "scenes" / "friswell-591-loose-aluminium.toml"
+G = 9.81
+
+
+def _text(preload_n: float = 2000, unbalance_g_mm: float = 1000) -> str:
+    text = SCENE.read_text(encoding="utf-8") + f"\n[gravity]\nacceleration_y_m_per_s2 = {-G}\n"
+    return (text.replace("preload_n = 2000 ", f"preload_n = {preload_n:g} ")
+            .replace("unbalance_g_mm = 1000", f"unbalance_g_mm = {unbalance_g_mm:g}"))
+
+
+def _first_revolution(text: str, rpm: float):
+    scene = loads_scene(text)
+    model = assemble(scene)
+    system = system_from_model(model, scene, rpm * math.pi / 30)
+    st = static_equilibrium(system)
+    n = step_per_rev(system, SteadyStateOptions())
+    dt = 60.0 / rpm / n
+    tr = simulate_production(system, dt, n, st.q_m, np.zeros(system.n), modes0=st.modes)
+    rest = simulate_production(system, dt, n, system.offset, record_every=1)
+    return model, system, st, tr, rest
+
+
+@pytest.mark.parametrize("preload_n", [2000, 200])
+def test_the_first_revolution_moves_the_loose_station_under_1_percent_of_its_sag(preload_n):
+    model, system, st, tr, rest = _first_revolution(_text(preload_n), 300)
+    i = model.dof_index("N6.y")
+    sag = abs(st.q_m[i])
+    assert sag > 20 * 20e-6                                        # many clearances
+    assert st.contact_force[0] > 0 and all(st.at_limit)            # the ring rests on its bore, the faces slipped
+    moved = np.abs(tr.q[:, i] - st.q_m[i]).max()
+    fell = np.abs(rest.q[:, i] - rest.q[0, i]).max()
+    print(f"preload {preload_n} N: sag {sag * 1e3:.4f} mm, first revolution from equilibrium {moved * 1e6:.3f} um "
+          f"({100 * moved / sag:.3f} %), from rest {fell * 1e6:.1f} um")
+    assert moved < 0.01 * sag and fell > 0.5 * sag
+
+
+def test_without_unbalance_the_equilibrium_does_not_move_and_balances_the_weight():
+    model, system, st, tr, _ = _first_revolution(_text(2000, 0), 300)
+    i = model.dof_index("N6.y")
+    assert np.abs(tr.q[:, i] - st.q_m[i]).max() < 1e-9 * abs(st.q_m[i])
+    # rigid-body statics: the left bearing's and the support's 1 MN/m springs carry the whole weight (rotor and
+    # 5 kg support); the support node carries its own weight and the ring's load (contact and faces, the opposite
+    # of their force on the bearing)
+    y = {name: st.q_m[model.dof_index(f"{name}.y")] for name in ("N0", "support")}
+    weight = -sum(system.force.static[k] for k, name in enumerate(model.dof_names) if name.endswith(".y"))
+    assert weight == pytest.approx(1099.87, rel=1e-4)               # 112.1 kg of steel and support
+    assert -1.0e6 * (y["N0"] + y["support"]) == pytest.approx(weight, rel=1e-9)
+    ring = st.contact_force[0] + st.face_force_N[:, 0].sum()
+    assert -1.0e6 * y["support"] == pytest.approx(5.0 * G + ring, rel=1e-9)
+    assert st.contact_force[0] > 0 and st.residual_N < 1e-9 * weight
+
+
+def test_simulate_cli_and_api_start_from_equilibrium_unless_from_rest(tmp_path, capsys):
+    scene = tmp_path / "friswell-gravity.toml"
+    scene.write_text(_text(), encoding="utf-8")
+    code = cli.main(["simulate", str(scene), "--speed-rpm", "300", "--revolutions", "1", "--out", str(tmp_path / "eq")])
+    assert code == 0, capsys.readouterr().err
+    s = json.loads((tmp_path / "eq" / "simulate-summary.json").read_text())
+    assert s["start"]["kind"] == "static equilibrium" and s["start"]["contact_force_N"] > 0
+    sag = abs(s["start"]["bearing_deflection_m"][0])
+    with np.load(tmp_path / "eq" / "simulate.npz") as z:
+        names = list(z["dof_names"])
+        y = z["q"][:, names.index("N6.y")]
+    assert np.abs(y - y[0]).max() < 0.01 * sag and y[0] == pytest.approx(s["start"]["bearing_deflection_m"][0])
+    res = rc.simulate(str(scene), 300, revolutions=1)
+    assert res.start == s["start"]
+    code = cli.main(["simulate", str(scene), "--speed-rpm", "300", "--revolutions", "1", "--from-rest",
+                     "--out", str(tmp_path / "rest")])
+    assert code == 0
+    assert json.loads((tmp_path / "rest" / "simulate-summary.json").read_text())["start"] == {"kind": "rest"}
+    capsys.readouterr()
+    assert cli.main(["simulate", str(scene), "--speed-rpm", "300", "--steady", "--from-rest"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--from-rest" in err
