@@ -138,8 +138,11 @@ def _size_field(rings: RingPair, spec: MeshSpec) -> str:
     return "min(" + ", ".join(terms) + ")"
 
 
-def _gmsh_triangles(rings: RingPair, spec: MeshSpec, size_expr: str):
+def _gmsh_triangles(rings: RingPair, spec: MeshSpec, size_expr: str, size_callback=None):
     """Run gmsh on both half annuli with the size field ``size_expr``.
+
+    ``size_callback(x, y)`` [m -> m], if given, is a further size at each point gmsh asks about (the
+    smaller of it and ``size_expr`` is used; :func:`build_mesh_sized`).
 
     Returns gmsh's node tags and coordinates (flat, 3 per node), and per body (bearing, then
     support) the triangles' node tags and the body code of each triangle.
@@ -170,6 +173,8 @@ def _gmsh_triangles(rings: RingPair, spec: MeshSpec, size_expr: str):
                 gmsh.option.setNumber(name, 0)
             gmsh.option.setNumber("Mesh.Algorithm", 6)
             gmsh.option.setNumber("General.NumThreads", 1)
+            if size_callback is not None:
+                gmsh.model.mesh.setSizeCallback(lambda dim, tag, x, y, z, lc: min(lc, size_callback(x, y)))
             gmsh.model.mesh.generate(2)
             if spec.order == 2:
                 gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
@@ -240,6 +245,21 @@ def build_mesh(rings: RingPair, spec: MeshSpec = MeshSpec()) -> RingMesh:
                          f"thickness {min(t_b, t_s):g} m (mesh too coarse)")
     tags, coords, conn, body = _gmsh_triangles(rings, spec, _size_field(rings, spec))
     mesh = _skfem_mesh(tags, coords, conn, spec.order)
+    body = np.concatenate(body)
+    mesh = mesh.with_boundaries(_named_boundaries(mesh, rings, body))
+    return RingMesh(mesh=mesh, body=body, rings=rings, spec=spec)
+
+
+def build_mesh_sized(rings: RingPair, size_callback, h_max_m: float, order: int = 2) -> RingMesh:
+    """Mesh both half annuli with the element size ``size_callback(x, y)`` [m] (at most ``h_max_m``).
+
+    The meshes of an error-driven sequence (:mod:`fem_reference.plane.adapt`): the size comes from
+    the previous mesh's error indicators, not from a family. ``spec`` of the result records
+    ``h_max_m`` as its contact size and the order; its other fields do not apply.
+    """
+    spec = MeshSpec(h_contact_m=h_max_m, order=order)
+    tags, coords, conn, body = _gmsh_triangles(rings, spec, repr(float(h_max_m)), size_callback)
+    mesh = _skfem_mesh(tags, coords, conn, order)
     body = np.concatenate(body)
     mesh = mesh.with_boundaries(_named_boundaries(mesh, rings, body))
     return RingMesh(mesh=mesh, body=body, rings=rings, spec=spec)

@@ -80,7 +80,14 @@ class ContactModel:
     @classmethod
     def build(cls, scene: Scene, spec: MeshSpec = MeshSpec()) -> "ContactModel":
         t0 = time.perf_counter()
-        rmesh = build_mesh(scene.rings, spec)
+        return cls.from_mesh(scene, build_mesh(scene.rings, spec), t0)
+
+    @classmethod
+    def from_mesh(cls, scene: Scene, rmesh: RingMesh, t0: float | None = None) -> "ContactModel":
+        """The model of ``scene`` on a given mesh (e.g. :func:`fem_reference.plane.mesh.build_mesh_sized`);
+        ``t0``: the :func:`time.perf_counter` its build time counts from (default: now)."""
+        t0 = time.perf_counter() if t0 is None else t0
+        spec = rmesh.spec
         basis = vector_basis(rmesh)
         K = stiffness(rmesh, basis, scene.plane)
         fixed, unit, Q = _dirichlet(scene, rmesh, basis)
