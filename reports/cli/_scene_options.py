@@ -19,6 +19,7 @@ the parser (:func:`reports.cli._edge.quantity`). Command-line only: the Python A
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from dataclasses import dataclass, field
 
@@ -195,3 +196,19 @@ def override_words(args) -> str:
 def _given(value) -> bool:
     """An override given: not None and not an unset flag (a value of 0 is given: ``--mu 0``)."""
     return value is not None and value is not False
+
+
+def warn_speeds_beyond_scene(prog: str, scene, speeds_rpm) -> float | None:
+    """One warning line on stderr when a job runs faster than its scene's speed range (``[analysis]
+    max_speed_rpm``: the range the scene's author modelled, its Campbell diagram's; 2 000 rpm where a scene gives
+    none); returns that top speed (rpm) when passed, else None."""
+    top = scene.analysis.max_speed_rad_s * 30.0 / math.pi
+    fastest = max((float(s) for s in speeds_rpm), default=0.0)
+    if fastest <= top * (1 + 1e-9):
+        return None
+    from rotor.model.scene import Analysis
+    said = " (the default: the scene gives no [analysis] max_speed_rpm)" if scene.analysis == Analysis() else ""
+    print(f"{prog}: warning: {fastest:g} rpm is beyond scene {scene.name!r}'s speed range, max_speed_rpm = {top:g} rpm"
+          f"{said}: check that the rotor's model holds there (bearings, speed tables, critical speeds)",
+          file=sys.stderr, flush=True)
+    return top

@@ -11,7 +11,8 @@ from pathlib import Path
 from contact.errors import FailedPointsError, InputError, RingContactError
 from contact.units import check_positive
 from reports.cli import _budget
-from reports.cli._scene_options import max_revs, say_on_terminal, scene_from_args, warm_up_shown
+from reports.cli._scene_options import (max_revs, say_on_terminal, scene_from_args, warm_up_shown,
+                                        warn_speeds_beyond_scene)
 
 
 def overrides(args) -> dict:
@@ -43,6 +44,7 @@ def run_study_sweep(tasks, out: Path, args, description: dict):
         if sc.loose_support.calibrated is not None:
             print(f"study {args.study}: law {sc.loose_support.law_file} (sha256 {sc.loose_support.law_sha256})")
     _check_work(tasks, args)
+    warn_speeds_beyond_scene(f"study {args.study}", sc, [t.params.get("speed_rpm", 0.0) for t in point_tasks(tasks)])
     say_on_terminal(args, f"study {args.study}: {law_line(sc.loose_support, overrides(args))}")
     manifest = {"study": args.study, "description": description, "scene_name": sc.name, "scene": scene_doc,
                 **mesh(args)}

@@ -101,3 +101,15 @@ def test_simulate_cli_and_api_start_from_equilibrium_unless_from_rest(tmp_path, 
     assert cli.main(["simulate", str(scene), "--speed-rpm", "300", "--steady", "--from-rest"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--from-rest" in err
+
+
+def test_a_speed_beyond_the_scenes_range_is_warned(tmp_path, capsys):
+    scene = tmp_path / "friswell-gravity.toml"
+    scene.write_text(_text(), encoding="utf-8")                  # [analysis] max_speed_rpm = 4000
+    for rpm, beyond in ((3900, False), (4100, True)):
+        out = tmp_path / f"r{rpm}"
+        assert cli.main(["simulate", str(scene), "--speed-rpm", str(rpm), "--revolutions", "0.05", "--out", str(out)]) == 0
+        err = capsys.readouterr().err
+        s = json.loads((out / "simulate-summary.json").read_text())
+        assert s["speed_beyond_scene_range"] is beyond and s["scene_max_speed_rpm"] == pytest.approx(4000)
+        assert ("beyond scene 'friswell-591-loose-aluminium''s speed range, max_speed_rpm = 4000 rpm" in err) is beyond
