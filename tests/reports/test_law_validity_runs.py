@@ -108,3 +108,29 @@ def test_orbit_and_branch_warn_alike_and_carry_the_record(tmp_path, capsys):
     assert d["law_validity"]["contact_samples"] >= rec["contact_samples"]
     assert all("law_validity" in p for p in d["points"]) and "ringcontact branch: warning:" in err
     assert np.isfinite(d["law_validity"]["contact_time_share_below"])
+
+
+def test_a_study_writes_the_record_of_its_points_and_warns(tmp_path, capsys):
+    """One cascade speed (24 transient revolutions at most): ``<out>/law-validity.json`` holds the shares counted
+    here from the stored point's last revolutions (the edges' offsets r1, r2 and the clearance), and stderr says
+    the findings as simulate does."""
+    from sweep.store import ResultStore
+
+    scene = _flagged_scene(tmp_path / "case")
+    out = tmp_path / "cascade"
+    code, _, err = _run(["study", "cascade", scene, "--points", 1, "--rpm-min", 10500, "--rpm-max", 10500,
+                         "--misalignment-mm", 3, "--max-revs", 24, "--workers", 1, "--no-progress",
+                         "--allow-flagged-law", "--out", out], capsys)
+    assert code == 0, err
+    rec = json.loads((out / "law-validity.json").read_text())["law_validity"]
+    store = ResultStore(out)
+    (key,) = store.keys()
+    pt = store.load(key)
+    pen = np.maximum(pt.arrays["r1"], pt.arrays["r2"]) - pt.info["clearance_m"]
+    seen = pen[pen > 0]
+    assert seen.size and rec["contact_samples"] == seen.size and rec["samples"] == pen.size
+    assert rec["contact_time_share_below"] == pytest.approx(np.mean(seen < 2e-6))
+    assert rec["contact_time_share_above"] == pytest.approx(np.mean(seen > 3e-6))
+    assert rec["verdict"] == "flagged" and rec["warnings"]
+    for line in rec["warnings"]:
+        assert f"study cascade: warning: {line}" in err
