@@ -124,7 +124,7 @@ def record(loose, penetration_m, tilt_rad) -> dict:
 
 
 def warning_lines(rec: dict) -> list[str]:
-    """The sentences of a record a job prints (each after ``<job>: warning: ``): contact time outside the fitted
+    """The sentences of a record a job prints (each after its name and ``warning:``): contact time outside the fitted
     penetration range, a tilt past the checked one, a flagged law that ran."""
     lines = []
     if rec.get("verdict") == FLAGGED:
