@@ -198,11 +198,16 @@ def _given(value) -> bool:
     return value is not None and value is not False
 
 
+def scene_top_rpm(scene) -> float:
+    """The scene's ``[analysis] max_speed_rpm`` (rpm) as typed (12 significant digits: stored in rad/s)."""
+    return float(f"{scene.analysis.max_speed_rad_s * 30.0 / math.pi:.12g}")
+
+
 def warn_speeds_beyond_scene(prog: str, scene, speeds_rpm) -> float | None:
     """One warning line on stderr when a job runs faster than its scene's speed range (``[analysis]
     max_speed_rpm``: the range the scene's author modelled, its Campbell diagram's; 2 000 rpm where a scene gives
     none); returns that top speed (rpm) when passed, else None."""
-    top = scene.analysis.max_speed_rad_s * 30.0 / math.pi
+    top = scene_top_rpm(scene)
     fastest = max((float(s) for s in speeds_rpm), default=0.0)
     if fastest <= top * (1 + 1e-9):
         return None

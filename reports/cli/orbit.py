@@ -49,8 +49,8 @@ from contact.errors import ConvergenceError, InputError, OutsideDomainError, Rin
 from reports.cli import _budget
 from reports.cli._edge import Parser, count, fail, in_dir, in_file, out_file, out_prefix, quantity
 from reports.cli._scene_options import (add_law_check_option, add_progress_option, add_scene_options, finish,
-                                        override_words, say_on_terminal, scene_from_args, warm_up_shown,
-                                        warn_speeds_beyond_scene)
+                                        override_words, say_on_terminal, scene_from_args, scene_top_rpm,
+                                        warm_up_shown, warn_speeds_beyond_scene)
 from reports.cli._orbit_hb import check_method_args, hb_branch_run, hb_branch_table, hb_choice, hb_orbit_table
 
 
@@ -137,7 +137,7 @@ def _scene(args, prog: str) -> tuple:
     check_allowed(sc.loose_support, args.allow_flagged_law, ALLOW_OPTION)
     args.law_line = f"{prog}: {law_line(sc.loose_support, _overrides(args))}"     # said once the work starts
     speeds = [args.speed_rpm] if hasattr(args, "speed_rpm") else [args.rpm_start, args.rpm_end]
-    args.beyond_scene = {"scene_max_speed_rpm": sc.analysis.max_speed_rad_s * 30 / math.pi,
+    args.beyond_scene = {"scene_max_speed_rpm": scene_top_rpm(sc),
                          "speed_beyond_scene_range": warn_speeds_beyond_scene(prog, sc, speeds) is not None}
     return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
 

@@ -65,8 +65,8 @@ from contact.units import ARCMIN, check_positive
 from reports.cli import _budget
 from reports.cli._edge import COUNTS, Parser, count, fail, out_dir, quantity
 from reports.cli._scene_options import (add_law_check_option, add_progress_option, add_scene_options, finish,
-                                        max_revs, say_on_terminal, scene_from_args, warm_up_shown,
-                                        warn_speeds_beyond_scene)
+                                        max_revs, say_on_terminal, scene_from_args, scene_top_rpm,
+                                        warm_up_shown, warn_speeds_beyond_scene)
 from rotor.dynamics import constraints as cons
 from rotor.dynamics.initial import start_record, static_equilibrium
 from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
@@ -248,7 +248,7 @@ def _run(args) -> int:
                **contact_summary(tr.t, tr.f_contact, tr.modes, tr.face_force, sup.faces()[2] if sup is not None else 0),
                "contact_force_convention": CONVENTION,
                "law_validity": record(scene.loose_support, np.maximum(r1, r2) - d0, np.hypot(tr.u[:, 2], tr.u[:, 3])),
-               "scene_max_speed_rpm": scene.analysis.max_speed_rad_s * 30 / math.pi, "speed_beyond_scene_range": beyond is not None,
+               "scene_max_speed_rpm": scene_top_rpm(scene), "speed_beyond_scene_range": beyond is not None,
                **extra}
     # one unit: the old run's files go, the new ones are renamed into place, the summary (with their
     # checksums) comes last; an interrupted run leaves no summary beside another run's CSV

@@ -43,7 +43,7 @@ from reports.cli._edge import PUBLISHED, Parser, count, fail, in_dir, out_dir, o
 from reports.cli._study_sweep import compile_first as _compile_first, mesh as _mesh, overrides as _ov
 from reports.cli._study_sweep import run_study_sweep
 from reports.cli._scene_options import (DEFAULT_SCENE, add_law_check_option, add_scene_options, finish, max_revs,
-                                        refuse_overrides)
+                                        refuse_overrides, scene_top_rpm)
 
 
 def _common(p: argparse.ArgumentParser, out: str, scene: str = DEFAULT_SCENE):
@@ -89,13 +89,18 @@ def _method_note(args) -> dict:
     return {"method": args.method} if args.method != "transient" else {}
 
 
+#: ``--rpm-max``'s help: its default is the scene's
+SCENE_RPM_MAX = ("highest speed (rpm; default: the scene's [analysis] max_speed_rpm, its modelled speed range: 18 000 "
+                 "for paper-table4, 2 000 where a scene gives none)")
+
+
 def _parser() -> argparse.ArgumentParser:
     from rotor.studies.runup import SHORTEST_DURATION_S
     p = Parser(prog="ringcontact study", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="study", required=True)
     c = sub.add_parser("cascade", help="steady-state spectrum cascade over speed (Figs. 12, 16, 17)")
     _common(c, "runs/cascade")
-    c.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0, help="highest speed (rpm, default 18000)")
+    c.add_argument("--rpm-max", type=quantity("rpm_max"), default=None, help=SCENE_RPM_MAX)
     c.add_argument("--rpm-min", type=quantity("speed_rpm"), default=0.0, help="lowest speed (rpm, default 0)")
     c.add_argument("--points", type=count(1, 2000), default=61, help="number of speeds (default 61)")
     _method(c)
@@ -108,7 +113,7 @@ def _parser() -> argparse.ArgumentParser:
     rg.add_argument("--to", type=out_dir, default=PUBLISHED, help=f"where section5-readings.* go (default {PUBLISHED})")
     pr = sub.add_parser("params", help="1X/2X/3X vs speed for several clearances and misalignments (Figs. 18-19)")
     _common(pr, "runs/params")
-    pr.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0)
+    pr.add_argument("--rpm-max", type=quantity("rpm_max"), default=None, help=SCENE_RPM_MAX)
     pr.add_argument("--points", type=count(1, 2000), default=31, help="speeds per curve (default 31)")
     pr.add_argument("--clearances-mm", default="0.03,0.08", help="comma list besides the scene's (mm)")
     pr.add_argument("--misalignments-mm", default="0.5,2", help="comma list besides the scene's (mm)")
@@ -124,7 +129,7 @@ def _parser() -> argparse.ArgumentParser:
     ru.add_argument("--down", action="store_true", help="run down: from the higher of the two speeds to the lower")
     mp = sub.add_parser("map", help="where the support sticks, slips and impacts over (speed, clearance)")
     _common(mp, "runs/map")
-    mp.add_argument("--rpm-max", type=quantity("rpm_max"), default=18000.0)
+    mp.add_argument("--rpm-max", type=quantity("rpm_max"), default=None, help=SCENE_RPM_MAX)
     mp.add_argument("--points", type=count(1, 2000), default=13, help="speeds (default 13)")
     mp.add_argument("--clearances-mm", default="0.01,0.02,0.05,0.1,0.2", help="comma list (mm)")
     se = sub.add_parser("sensitivity", help="do the paper's Section 5 findings hold for plausible values of the "
@@ -212,6 +217,8 @@ def _run(args) -> int:
     from sweep.store import ResultStore
     ResultStore(args.out).check_layout()   # a damaged or foreign run directory: refused by name, first
     scene, _ = _scene_model(args.scene, None, _ov(args).get("law"))  # a bad scene or law: refused here, not per point
+    if hasattr(args, "rpm_max") and args.rpm_max is None:       # the scene's own speed range (18 000 rpm: Table 4)
+        args.rpm_max = scene_top_rpm(scene)
     _paper_stations(args, scene)
     _law_clearances(args, scene)
     _warn_unstable(args, scene)

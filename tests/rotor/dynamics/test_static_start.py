@@ -113,3 +113,13 @@ def test_a_speed_beyond_the_scenes_range_is_warned(tmp_path, capsys):
         s = json.loads((out / "simulate-summary.json").read_text())
         assert s["speed_beyond_scene_range"] is beyond and s["scene_max_speed_rpm"] == pytest.approx(4000)
         assert ("beyond scene 'friswell-591-loose-aluminium''s speed range, max_speed_rpm = 4000 rpm" in err) is beyond
+
+
+def test_study_speeds_default_to_the_scenes_range(tmp_path, capsys):
+    """``study cascade`` without ``--rpm-max`` runs to the scene's ``max_speed_rpm`` (4 000 rpm here), not to the
+    paper's 18 000 rpm."""
+    out = tmp_path / "cascade"
+    assert cli.main(["study", "cascade", str(SCENE), "--points", "2", "--rpm-min", "3000", "--max-revs", "24",
+                     "--workers", "1", "--no-progress", "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert json.loads((out / "sweep.json").read_text())["description"]["speeds_rpm"] == [3000.0, 4000.0]
