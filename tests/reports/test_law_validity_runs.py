@@ -134,3 +134,16 @@ def test_a_study_writes_the_record_of_its_points_and_warns(tmp_path, capsys):
     assert rec["verdict"] == "flagged" and rec["warnings"]
     for line in rec["warnings"]:
         assert f"study cascade: warning: {line}" in err
+
+
+@pytest.mark.slow
+def test_the_api_cascade_carries_the_record_of_its_speeds(tmp_path):
+    scene = _flagged_scene(tmp_path / "case")
+    res = rc.cascade(scene, [10500], max_revs=24, misalignment_m=3e-3, allow_flagged_law=True)
+    arrays, info = res.points[0]
+    pen = np.maximum(arrays["r1"], arrays["r2"]) - info["clearance_m"]
+    seen = pen[pen > 0]
+    rec = res.law_validity
+    assert rec["verdict"] == "flagged" and rec["contact_samples"] == seen.size > 0
+    assert rec["contact_time_share_below"] == pytest.approx(np.mean(seen < 2e-6))
+    assert json.loads(res.to_xarray().attrs["law_validity"]) == json.loads(json.dumps(rec))
