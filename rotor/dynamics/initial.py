@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact.errors import ConvergenceError
+from contact.errors import ConvergenceError, OutsideDomainError
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.system import NewmarkOptions, RotorSystem, coupling_force, support_forces
+from rotor.dynamics.system import NewmarkOptions, RotorSystem, coupling_force, coupling_map, support_forces
 
 
 def initial_acceleration(system: RotorSystem, t0: float, q0, v0, modes, opts: NewmarkOptions):
@@ -133,7 +133,13 @@ def static_equilibrium(system: RotorSystem, *, max_iter: int = 400) -> StaticSta
     q = offset.copy()
     its = 0
     for _ in range(n_faces + 1):              # faces that pass their limit leave the held set, one pass each
-        q, lam, k = _newton(system, load, B, P, held, phi, q, offset, max_iter)
+        try:
+            q, lam, k = _newton(system, load, B, P, held, phi, q, offset, max_iter)
+        except OutsideDomainError as exc:
+            raise OutsideDomainError(
+                f"static equilibrium: the constant load (gravity, static loads, misalignment offset) presses the ring "
+                f"past its law's domain ({exc}); a run meets the same load: a larger clearance or a smaller load, or "
+                "start from rest anyway (simulate --from-rest, from_rest=True)") from None
         its += k
         over = [f for j, f in enumerate(held) if np.hypot(*lam[2 * j:2 * j + 2]) > limits[f] * (1 + 1e-9)]
         for j, f in enumerate(held):
@@ -176,6 +182,7 @@ def _newton(system, load, B, P, held, phi, q, offset, max_iter: int):
     zero4 = np.zeros(4)
     lam = np.zeros(m)
     scale = max(float(np.abs(load).max()), 1.0)
+    k_scale = max(float(np.abs(np.diag(system.K)).max()), 1.0)
     for it in range(1, max_iter + 1):
         u = B @ q
         if sup.law.kernel is not None:
@@ -186,9 +193,11 @@ def _newton(system, load, B, P, held, phi, q, offset, max_iter: int):
             Ju = np.column_stack([(np.asarray(sup.law.force(u + h, zero4)) - np.asarray(sup.law.force(u - h, zero4)))
                                   / (2e-10) for h in np.eye(4) * 1e-10])
         r = _residual(system, load, B, P, held, phi, q, fc) - C.T @ lam
-        A = np.block([[system.K - B.T @ Ju @ B, C.T], [C, np.zeros((m, m))]])
-        z = np.linalg.solve(A, np.concatenate([r, c - C @ q]))
-        dq, dlam = z[:n], z[n:]
+        # the constraint rows scaled to the stiffness (unit rows beside 1e9 N/m: a singular-looking system)
+        A = np.block([[system.K - B.T @ Ju @ B - _coupling_jacobian(system, q), k_scale * C.T],
+                      [k_scale * C, np.zeros((m, m))]])
+        z = np.linalg.solve(A, np.concatenate([r, k_scale * (c - C @ q)]))
+        dq, dlam = z[:n], k_scale * z[n:]
         du = float(np.abs((B @ dq)[:2]).max())
         a = min(1.0, step_cap / du) if du > 0 else 1.0
         q, lam = q + a * dq, lam + a * dlam
@@ -196,6 +205,16 @@ def _newton(system, load, B, P, held, phi, q, offset, max_iter: int):
             return q, lam[n_l:], it
     raise ConvergenceError(f"static equilibrium: Newton did not converge in {max_iter} iterations (largest force "
                            f"residual {np.abs(r).max():.3g} N); start from rest instead (simulate --from-rest)")
+
+
+def _coupling_jacobian(system: RotorSystem, q) -> np.ndarray:
+    """``∂/∂q`` of :func:`rotor.dynamics.system.coupling_force` (n, n): ``−a1 E_cᵀ (|d|² I + 2 d dᵀ) E_c``,
+    ``d = E_c q`` (the cubic remainder of the transition shaft's spring; zero without one)."""
+    if system.coupling is None or system.coupling[2] == 0.0:
+        return np.zeros((system.n, system.n))
+    Ec = coupling_map(system)
+    d = Ec @ q
+    return -float(system.coupling[2]) * Ec.T @ (float(d @ d) * np.eye(2) + 2.0 * np.outer(d, d)) @ Ec
 
 
 def start_record(system: RotorSystem, start: StaticStart | None) -> dict:
