@@ -128,76 +128,75 @@ def _verdicts(finding: str) -> dict[str, list[str]]:
     return rows
 
 
-def _partly(cell: str) -> tuple[int, int]:
-    k, n = _one(r"^partly \((\d+) of (\d+)\)$", cell).groups()
-    return int(k), int(n)
+def _findings_csv() -> list[dict]:
+    import csv
+    with open(PUBLISHED / "study-findings.csv", newline="", encoding="utf-8") as fh:
+        return list(csv.DictReader(fh))
 
 
-def _judged(mesh: str, finding: str, band: str) -> list[tuple[int, str, str]]:
-    """The periodic (judged) speeds of one finding and band in study-findings.md's "Numbers per speed":
-    (rpm, ✔ or ✘, the numbers)."""
-    md = _md("study-findings.md")
-    section = md.split(f"### {MESHES[mesh]}\n", 1)[1].split("\n#", 1)[0]
-    line = _one(rf"- \*\*{re.escape(finding)}[^*]*\*\*, {band}: [^\n]*", section).group(0)
-    judged = line.split(" Not periodic", 1)[0]
-    return [(int(s), mark, rest) for s, mark, rest in re.findall(r"(\d+) ([✔✘]) ([^;]*)", judged)]
+def _rows(finding: str, bands, mesh: str | None = None) -> list[dict]:
+    return [r for r in _findings_csv() if r["finding"] == finding and r["band"] in bands
+            and (mesh is None or r["mesh"] == mesh)]
 
 
 def test_findings_that_hold_are_the_findings_report_s():
-    """README "Point A (...) and the 3X–5X near the loose support at 9 000–12 000 rpm hold on both meshes":
-    study-findings.md's point A verdicts and the §5.1 H1 cells on both meshes."""
+    """README "Point A and the 3X–5X near the loose support agree on both meshes (61 of 62 high speeds), and 2X rises
+    with δ in every band on both meshes": study-findings.md's point A verdicts, its §5.1 and §5.3.2 2X cells, and
+    study-findings.csv's per-speed verdicts of §5.1."""
     md = _md("study-findings.md")
     for mesh in ("paper's mesh", "2 elements/segment"):
-        assert _one(rf"Point A \(Fig\. 13, 4 500 rpm\), {mesh}: (\w+)", md).group(1) == "yes"
-    assert all(cells[2] == "yes" for cells in _verdicts("§5.1 (Fig. 12)").values())
-    assert ("Point A (2X with 1X, highest at the support, support stuck) and the 3X–5X near the loose support at "
-            "9 000–12 000 rpm hold on both meshes") in FINDINGS_BULLET
+        assert _one(rf"Point A \(Fig\. 13, 4 500 rpm\), {mesh}: (\w+)", md).group(1) == "agrees"
+    assert all(c.startswith("agrees") for cells in _verdicts("§5.1 (Fig. 12)").values() for c in cells[2:])
+    assert all(c.startswith("agrees") for cells in _verdicts("§5.3.2 (Fig. 19): 2X rises").values() for c in cells)
+    near = _rows("near_support", ("H1", "H2", "H3"))
+    agree = sum(r["verdict"] == "agrees" for r in near)
+    assert (f"Point A and the 3X–5X near the loose support agree on both meshes ({agree} of {len(near)} high speeds), "
+            "and 2X rises with δ in every band on both meshes") in FINDINGS_BULLET
 
 
-def test_misalignment_numbers_are_the_findings_report_s():
-    """README "Larger misalignment raises 2X in every band with two or more periodic speeds; at 9 000–12 000 rpm on
-    the converged mesh 3X rises at 1 of 2 periodic speeds and the support's 1X moves by 49.0 % at 10 200 rpm":
-    study-findings.md's §5.3.2 rows, and the 1X changes (disk 1 / disk 2 / support) at the failing speed."""
-    for cells in _verdicts("§5.3.2 (Fig. 19): 2X rises with δ").values():
-        for cell in cells:
-            assert cell == "yes" or int(_one(r"^n/a \((\d+) periodic", cell).group(1)) < 2, cell
-    k, n = _partly(_verdicts("§5.3.2 (Fig. 19): 3X rises with δ")["2/segment"][2])
-    failing = [(rpm, rest) for rpm, mark, rest in _judged("2/segment", "§5.3.2 (Fig. 19): 1X essentially unchanged",
-                                                          "H1") if mark == "✘"]
-    assert len(failing) == 1, failing
-    rpm, rest = failing[0]
-    support = _one(r"1X change [\d.]+ / [\d.]+ / ([\d.]+) %", rest).group(1)
-    assert (f"Larger misalignment raises 2X in every band with two or more periodic speeds; at 9 000–12 000 rpm on the "
-            f"converged mesh 3X rises at {k} of {n} periodic speeds and the support's 1X moves by {support} % at "
-            f"{_spaced(rpm)} rpm") in FINDINGS_BULLET
+def test_slip_numbers_are_the_findings_report_s():
+    """README "The end faces slip from 5 400 rpm: 12 of the 14 speeds of 4 800–8 700 rpm on each mesh disagree with
+    'no relative displacement'": study-findings.csv's §5.3.1 (1) rows of band L2 and the first disagreeing speed."""
+    counts = set()
+    first = set()
+    for mesh in ("paper", "2/segment"):
+        rows = _rows("stuck_low", ("L2",), mesh)
+        bad = [float(r["speed_rpm"]) for r in rows if r["verdict"] == "disagrees"]
+        counts.add((len(bad), len(rows)))
+        first.add(min(bad))
+    assert len(counts) == 1 and len(first) == 1, (counts, first)
+    (k, n), = counts
+    assert (f"The end faces slip from {_spaced(first.pop())} rpm: {k} of the {n} speeds of 4 800–8 700 rpm on each "
+            "mesh disagree with \"no relative displacement\"") in FINDINGS_BULLET
 
 
 def test_tilt_numbers_are_the_findings_report_s():
-    """README "Ignoring the tilt lowers 3X–5X by ≥ 30 % at the three speeds of 9 000–12 000 rpm where both cases are
-    periodic on the paper's mesh (9 300, 9 900, 12 000 rpm; none on the converged)": study-findings.md's §5.2 row
-    (threshold, H1 verdicts) and the speeds it judges."""
-    finding = "§5.2 (Fig. 16): ignoring the tilt markedly"
-    threshold = _one(r"\| §5\.2 \(Fig\. 16\): ignoring the tilt markedly \(≥ (\d+) %\)[^|]*\| paper \|",
-                     _md("study-findings.md")).group(1)
-    verdicts = _verdicts(finding)
-    assert verdicts["paper"][2] == "yes" and verdicts["2/segment"][2].startswith("n/a (0 periodic;")
-    speeds = [rpm for rpm, mark, _ in _judged("paper", finding, "H1")]
-    assert all(mark == "✔" for _, mark, _ in _judged("paper", finding, "H1"))
-    assert _judged("2/segment", finding, "H1") == []
-    words = {2: "two", 3: "three", 4: "four", 5: "five"}
-    assert (f"Ignoring the tilt lowers 3X–5X by ≥ {threshold} % at the {words[len(speeds)]} speeds of 9 000–12 000 rpm "
-            f"where both cases are periodic on the paper's mesh ({', '.join(_spaced(s) for s in speeds)} rpm; none on "
-            f"the converged)") in FINDINGS_BULLET
+    """README "Above 12 300 rpm ... ignoring the tilt is "no effect" at 37 of 40 speeds there": study-findings.csv's
+    §5.2 rows of bands H2 and H3, both meshes, and their share of non-periodic speeds (most)."""
+    rows = _rows("tilt", ("H2", "H3"))
+    none = sum(r["verdict"] == "no effect" for r in rows)
+    assert sum(r["periodic"] == "0" for r in rows) > len(rows) / 2
+    assert (f"Above 12 300 rpm the response is mostly not periodic and its 3X–5X lie within the spectral floor: "
+            f"ignoring the tilt is \"no effect\" at {none} of {len(rows)} speeds there") in FINDINGS_BULLET
 
 
 def test_clearance_numbers_are_the_findings_report_s():
-    """README "at 9 000–12 000 rpm 2X falls as δ0 grows at 1 of 3 periodic speeds on the paper's mesh and 1 of 5 on
-    the converged, 3X at 1 of 3 and 2 of 5": study-findings.md's §5.3.1 (2) H1 cells."""
-    two = _verdicts("§5.3.1 (2, Fig. 18): at high speed 2X falls")
-    three = _verdicts("§5.3.1 (2, Fig. 18): at high speed 3X falls")
-    p2, c2, p3, c3 = (_partly(v[m][2]) for v in (two, three) for m in ("paper", "2/segment"))
-    assert (f"at 9 000–12 000 rpm 2X falls as δ0 grows at {p2[0]} of {p2[1]} periodic speeds on the paper's mesh and "
-            f"{c2[0]} of {c2[1]} on the converged, 3X at {p3[0]} of {p3[1]} and {c3[0]} of {c3[1]}") in FINDINGS_BULLET
+    """README "The clearance trend (Fig. 18) disagrees at 9 000–12 000 rpm on both meshes: 2X rises with δ0 by
+    0.9–4.7 % at 4 of 6 speeds on each mesh (threshold 0.8 %)": study-findings.md's §5.3.1 (2) 2X cells of band H1
+    and study-findings.csv's rows there (the effect is minus the rise)."""
+    assert all(cells[2].startswith("disagrees") for cells in _verdicts("§5.3.1 (2, Fig. 18): at high speed 2X falls").values())
+    counts, rises, thresholds = set(), [], set()
+    for mesh in ("paper", "2/segment"):
+        rows = _rows("clearance_2x", ("H1",), mesh)
+        bad = [r for r in rows if r["verdict"] == "disagrees"]
+        counts.add((len(bad), len(rows)))
+        rises += [-100 * float(r["effect"]) for r in bad]
+        thresholds |= {f"{100 * float(r['threshold']):.1f}" for r in bad}
+    assert len(counts) == 1 and len(thresholds) == 1, (counts, thresholds)
+    (k, n), = counts
+    assert (f"The clearance trend (Fig. 18) disagrees at 9 000–12 000 rpm on both meshes: 2X rises with δ0 by "
+            f"{min(rises):.1f}–{max(rises):.1f} % at {k} of {n} speeds on each mesh (threshold {thresholds.pop()} %)"
+            ) in FINDINGS_BULLET
 
 
 def test_point_b_numbers_are_the_findings_report_s():

@@ -155,7 +155,8 @@ def params_note(points) -> str:
             ok3 = med[lo_v][1:, 2].min() > med[hi_v][1:, 2].max()
             lines += ["", f"Paper: at high speed 2X and 3X decrease as the clearance increases. Ours (medians, "
                       f"smallest vs largest clearance, disk 2 and support): 2X {'decreases' if ok2 else 'does not decrease'}, "
-                      f"3X {'decreases' if ok3 else 'does not decrease'} → {'agrees' if ok2 and ok3 else 'does not agree'}.", ""]
+                      f"3X {'decreases' if ok3 else 'does not decrease'} → {'agrees' if ok2 and ok3 else 'does not agree'} (medians; "
+                      "each speed and band judged in study-findings.md).", ""]
         else:
             one = np.array([med[v][:, 0] for v in vals])
             spread = (one.max(axis=0) / one.min(axis=0) - 1) * 100
@@ -176,5 +177,6 @@ def params_note(points) -> str:
             lines += ["", f"Paper: as δ increases, 1X stays essentially unchanged while 2X and 3X increase. Ours: 1X "
                       f"median spread across δ {spread.max():.1f} % (largest location), 2X {'increases' if ok2 else 'does not increase monotonically'}, "
                       f"3X {'increases' if ok3 else 'does not increase monotonically'} → "
-                      f"{'agrees' if ok2 and ok3 and spread.max() < 5 else 'partly' if ok2 else 'does not agree'}.", ""]
+                      f"{'agrees' if ok2 and ok3 and spread.max() < 5 else 'does not agree'} (medians; each speed and "
+                      "band judged in study-findings.md).", ""]
     return "\n".join(lines)

@@ -6,7 +6,7 @@ from pathlib import Path
 from contact.files import atomic_write_text
 from reports.studies.cascade import CASCADE_TITLE, NOTILT_TITLE, cascade_figures, cascade_note
 from reports.studies.common import load_points
-from reports.studies.mesh import KINDS, findings_figure, findings_note
+from reports.studies.mesh import KINDS, findings_csv, findings_figure, findings_note
 from reports.studies.params import params_figures, params_note
 from reports.studies.point import point_figures, point_note
 from reports.studies.regime_map import map_figures, map_note
@@ -44,6 +44,7 @@ def publish(runs: dict, published, *, findings_extra: str = "") -> list[Path]:
         files += findings_figure(paper, conv, elements, published / "study-findings")
         files.append(atomic_write_text(published / "study-findings.md",
                                        findings_note(paper, conv, elements, extra=findings_extra)))
+        files.append(findings_csv(paper, conv, elements, published / "study-findings.csv"))
     return files
 
 

@@ -2,17 +2,26 @@
 
 Dai et al. (2025), §5.1–5.3, state their findings over speed ranges ("low speed range (0~9000 rpm)",
 "high (9000~18,000 rpm)"); a median over a range can hide a band where a finding fails. Here each
-finding is a *predicate on one speed* (:data:`FINDINGS`), applied at every speed of a band
-(:data:`BANDS`, edges stated) where every compared case reached a periodic steady state, and a band's
-verdict counts the speeds where it holds (:func:`band_verdict`). The report
-(reports/studies/findings.py, study-findings.md) and the tests (tests/rotor/studies/test_study_paper.py)
-call the same predicates, on the same points (:func:`rotor.studies.steady_state.run_point`).
+finding (:data:`FINDINGS`) is judged at *every* speed of a band (:data:`BANDS`, edges stated) by
+:meth:`Finding.judge`: an **effect** in the paper's sense (a relative change of an amplitude between the
+compared cases or stations, positive where the paper is right), a **threshold** tied to the model's numerical
+noise (the time step's error of the amplitudes, :data:`STEP_NOISE`, and at a non-periodic speed the spectral
+floor around each harmonic of its record, whichever is larger; summed over the two points compared), and a
+verdict from :data:`VERDICTS`: *agrees* (the effect beyond the threshold in the paper's sense), *disagrees*
+(beyond it against the paper's sense), *no effect* (within it). A statement of "at most x %" agrees where the
+change is at most x % plus the threshold. A speed where a compared case is not periodic is judged on the
+harmonics of its record of the last 32 revolutions (exact bins of that record: each harmonic averaged over the
+32 revolutions), said so per speed. A band's verdict is the most frequent one of its speeds, a tie going
+against the paper (:class:`BandVerdict`). The report (reports/studies/findings.py, study-findings.md) and the
+tests (tests/rotor/studies/test_study_paper.py) judge with the same code, on the same points
+(:func:`rotor.studies.steady_state.run_point`). The boolean predicates (``near_support`` …) are the
+statements' plain readings, used for the text of each speed.
 
-Inputs of a predicate (one speed): ``amps`` maps a case to ``(A, info)`` with ``A`` the (3, 5)
+Inputs of a judge (one speed): ``amps`` maps a case to ``(A, info)`` with ``A`` the (3, 5)
 amplitudes of 1X–5X at disk 1, disk 2 and the 3# bearing support (y velocity for the cascades,
 m/s; y displacement for Figs. 18–19, m) and ``info`` the point's info (``stick_fraction``,
-``contact_fraction``, ``converged``). Cases: ``base`` (δ0 = 0.05 mm, δ = 1 mm, tilt on), ``notilt``,
-``c0.03``/``c0.08`` (clearance, mm), ``d0.5``/``d2`` (misalignment, mm).
+``contact_fraction``, ``converged``, optionally ``noise_rel``). Cases: ``base`` (δ0 = 0.05 mm, δ = 1 mm,
+tilt on), ``notilt``, ``c0.03``/``c0.08`` (clearance, mm), ``d0.5``/``d2`` (misalignment, mm).
 """
 from __future__ import annotations
 
@@ -101,6 +110,122 @@ def misalignment_1x(amps) -> tuple[bool, str]:
     return bool(ch.max() <= UNCHANGED), f"1X change {100 * ch[0]:.1f} / {100 * ch[1]:.1f} / {100 * ch[2]:.1f} %"
 
 
+# ---------------------------------------------------------------------------------------------
+# verdicts: agrees / disagrees / no effect, with the effect size and the noise threshold
+# ---------------------------------------------------------------------------------------------
+
+AGREES, DISAGREES, NO_EFFECT = "agrees", "disagrees", "no effect"
+VERDICTS = (AGREES, NO_EFFECT, DISAGREES)
+#: relative error of a periodic point's harmonic amplitudes from the time step, 1X to 5X (–): 256 against 512
+#: steps per revolution moved 1X–3X by at most 0.4 % and 4X–5X by 2 % (rotor.studies.steady_state.SteadyStateOptions,
+#: measured at 4 500 and 10 500 rpm). A non-periodic point adds its spectral floor (``info["noise_rel"]``).
+STEP_NOISE = np.array([0.004, 0.004, 0.004, 0.02, 0.02])
+
+
+def amplitude_noise(info, loc: int, orders, A) -> float:
+    """Relative noise (–) of the amplitude of ``orders`` (1-based, summed when several) at location ``loc``: the
+    step error :data:`STEP_NOISE`, or where larger the point's spectral floor ``info["noise_rel"]`` ((3, 5):
+    the largest spectral amplitude within a quarter order of each harmonic over the harmonic's own, zero on a
+    periodic record's exact bins), weighted by the amplitudes of the orders summed."""
+    j = np.asarray(orders, int) - 1
+    n = np.maximum(STEP_NOISE, np.asarray(info.get("noise_rel", np.zeros((3, 5))), float)[loc])[j]
+    a = np.asarray(A, float)[loc, j]
+    return float((n * a).sum() / max(a.sum(), 1e-300))
+
+
+#: how a finding's effect reads (:func:`verdict_of`): 'directed' (a change in the paper's sense), 'limit' ("within
+#: x %": effect x minus the change), 'marked' (a reduction of at least 30 %), 'state' (minus the share slipping)
+KINDS = {"near_support": "directed", "tilt": "marked", "stuck_low": "state", "clearance_low": "limit",
+         "clearance_1x": "directed", "clearance_2x": "directed", "clearance_3x": "directed",
+         "misalignment_2x": "directed", "misalignment_3x": "directed", "misalignment_1x": "limit"}
+
+
+def verdict_of(name: str, effect: float, threshold: float) -> str:
+    """The verdict of finding ``name`` from its effect and threshold (relative, –): *directed*: agrees above the
+    threshold, disagrees below minus it, no effect between; *marked*: the same, agreeing only from a 30 %
+    reduction on (``1 − MARKED``); *limit*: agrees unless the change exceeds the limit by more than the threshold
+    (effect below minus it); *state*: agrees only at zero (faces stuck the whole record)."""
+    kind = KINDS[name]
+    if kind == "state":
+        return AGREES if effect == 0.0 else DISAGREES
+    if kind == "limit":
+        return AGREES if effect >= -threshold else DISAGREES
+    if abs(effect) <= threshold:
+        return NO_EFFECT
+    if effect < 0 or (kind == "marked" and effect < 1 - MARKED):
+        return DISAGREES
+    return AGREES
+
+
+def _decide(name: str, e, t) -> tuple[str, float, float]:
+    """Per-location effects ``e`` and thresholds ``t``: the verdict of the deciding location (the lowest verdict,
+    disagrees < no effect < agrees, then the smallest ``e − t``) with its effect and threshold."""
+    v = [verdict_of(name, float(a), float(b)) for a, b in zip(e, t)]
+    k = min(range(len(v)), key=lambda i: (VERDICTS[::-1].index(v[i]), e[i] - t[i]))
+    return v[k], float(e[k]), float(t[k])
+
+
+def _near_support_v(amps):
+    A, i = amps["base"]
+    s = A[:, 2:5].sum(axis=1)
+    e = [s[k] / max(s[0], 1e-300) - 1 for k in (1, 2)]
+    t = [amplitude_noise(i, 0, (3, 4, 5), A) + amplitude_noise(i, k, (3, 4, 5), A) for k in (1, 2)]
+    return (*_decide("near_support", e, t), near_support(amps)[1])
+
+
+def _tilt_v(amps):
+    (A, i), (B, j) = amps["base"], amps["notilt"]
+    e = [1 - B[k, 2:5].sum() / max(A[k, 2:5].sum(), 1e-300) for k in (1, 2)]
+    t = [amplitude_noise(i, k, (3, 4, 5), A) + amplitude_noise(j, k, (3, 4, 5), B) for k in (1, 2)]
+    return (*_decide("tilt", e, t), tilt_reduces(amps)[1])
+
+
+def _stuck_v(amps):
+    i = amps["base"][1]
+    e = float(i["stick_fraction"]) - 1.0         # minus the share of the record with a face slipping: exact
+    return (verdict_of("stuck_low", e, 0.0), e, 0.0, stuck(amps)[1])
+
+
+def _limit_v(name, amps, cases, orders, limit, text):
+    """"Changes by less than ``limit``": the largest relative change over the cases, every location and order."""
+    A = np.array([amps[c][0][:, [h - 1 for h in orders]] for c in cases])
+    ch = A.max(axis=0) / np.maximum(A.min(axis=0), 1e-300) - 1
+    t = max(amplitude_noise(amps[c][1], k, (h,), amps[c][0]) for c in cases for k in range(3) for h in orders) * 2
+    e = limit - float(ch.max())
+    return (verdict_of(name, e, t), e, t, text(amps)[1])
+
+
+def _trend_v(name, amps, cases, order, signs, text):
+    """Relative change of ``order`` from the first to the last case at disk 2 and the support, times ``signs`` (the
+    paper's sense per location: +1 rises, −1 falls); the threshold is the two points' noise."""
+    (A0, i0), (A1, i1) = amps[cases[0]], amps[cases[-1]]
+    e = [s * (A1[k, order - 1] / max(A0[k, order - 1], 1e-300) - 1) for k, s in zip((1, 2), signs)]
+    t = [amplitude_noise(i0, k, (order,), A0) + amplitude_noise(i1, k, (order,), A1) for k in (1, 2)]
+    return (*_decide(name, e, t), text(amps)[1])
+
+
+_C, _D = ("c0.03", "base", "c0.08"), ("d0.5", "base", "d2")
+
+
+def clearance_1x(amps):
+    """§5.3.1 (2): at high speed, as δ0 grows, 1X "increases at disk 2 but decreases at 3# bearing"."""
+    a = np.array([amps[c][0][:, 0] for c in _C])
+    return bool(a[-1, 1] > a[0, 1] and a[-1, 2] < a[0, 2]), ("1X disk 2 " + "/".join(f"{x * 1e6:.3g}" for x in a[:, 1])
+                                                          + "; support " + "/".join(f"{x * 1e6:.3g}" for x in a[:, 2]) + " µm")
+
+
+JUDGES = {
+    "near_support": _near_support_v, "tilt": _tilt_v, "stuck_low": _stuck_v,
+    "clearance_low": lambda a: _limit_v("clearance_low", a, _C, (1, 2), MINIMAL, clearance_minimal),
+    "clearance_1x": lambda a: _trend_v("clearance_1x", a, _C, 1, (+1, -1), clearance_1x),
+    "clearance_2x": lambda a: _trend_v("clearance_2x", a, _C, 2, (-1, -1), clearance_2x),
+    "clearance_3x": lambda a: _trend_v("clearance_3x", a, _C, 3, (-1, -1), clearance_3x),
+    "misalignment_2x": lambda a: _trend_v("misalignment_2x", a, _D, 2, (+1, +1), misalignment_2x),
+    "misalignment_3x": lambda a: _trend_v("misalignment_3x", a, _D, 3, (+1, +1), misalignment_3x),
+    "misalignment_1x": lambda a: _limit_v("misalignment_1x", a, _D, (1,), UNCHANGED, misalignment_1x),
+}
+
+
 @dataclass(frozen=True)
 class Finding:
     """A finding: its predicate, the cases and quantity it needs, the bands it speaks of, the paper's words."""
@@ -110,6 +235,11 @@ class Finding:
     quantity: str          # 'v' (cascade, y velocity) or 'q' (Figs. 18-19, y displacement)
     bands: tuple
     claim: str
+
+    def judge(self, amps) -> tuple[str, float, float, str]:
+        """``(verdict, effect, threshold, text)`` at one speed: the effect (relative, –) in the paper's sense
+        (positive agrees; for a "within x %" statement x minus the change), the noise threshold (relative, –)."""
+        return JUDGES[self.name](amps)
 
 
 FINDINGS = (
@@ -121,6 +251,8 @@ FINDINGS = (
             "§5.3.1 (1): below 9 000 rpm no relative displacement between bearing and support (faces stuck)"),
     Finding("clearance_low", clearance_minimal, ("base", "c0.03", "c0.08"), "q", LOW,
             "§5.3.1 (1): below 9 000 rpm δ0 has minimal impact (1X, 2X within 5 %)"),
+    Finding("clearance_1x", clearance_1x, ("base", "c0.03", "c0.08"), "q", HIGH,
+            "§5.3.1 (2, Fig. 18): at high speed, as δ0 grows, 1X rises at disk 2 and falls at the support"),
     Finding("clearance_2x", clearance_2x, ("base", "c0.03", "c0.08"), "q", HIGH,
             "§5.3.1 (2, Fig. 18): at high speed 2X falls as δ0 grows (disk 2, support)"),
     Finding("clearance_3x", clearance_3x, ("base", "c0.03", "c0.08"), "q", HIGH,
@@ -145,45 +277,59 @@ def in_band(speed_rpm: float, band: str) -> bool:
 
 
 @dataclass(frozen=True)
+class SpeedVerdict:
+    """One finding at one speed: ``verdict`` (:data:`VERDICTS`), ``effect`` and ``threshold`` (relative, –;
+    :meth:`Finding.judge`), ``periodic`` (every compared case periodic; otherwise judged on the harmonics of the
+    last 32 revolutions' record, their average over those revolutions), ``text`` (the numbers)."""
+    rpm: float
+    verdict: str
+    effect: float
+    threshold: float
+    periodic: bool
+    text: str
+
+
+@dataclass(frozen=True)
 class BandVerdict:
-    """One finding in one band: the periodic speeds judged (every compared case periodic), where it holds and the
-    numbers; and, apart, the same predicate at the band's non-periodic speeds (``loose``: (rpm, holds, text)),
-    whose amplitudes come from a record that does not repeat."""
+    """One finding in one band: the verdict at every speed of the band (``speeds``: :class:`SpeedVerdict`), and the
+    speeds without a record (``no_record_rpm``: a case beyond the contact law's domain)."""
     finding: str
     band: str
-    speeds_rpm: tuple
-    holds: tuple
-    texts: tuple
-    skipped_rpm: tuple     # speeds of the band left out: a case not periodic
-    loose: tuple = ()
+    speeds: tuple
+    no_record_rpm: tuple = ()
+
+    def counts(self) -> dict:
+        return {v: sum(s.verdict == v for s in self.speeds) for v in VERDICTS}
 
     @property
     def verdict(self) -> str:
-        n, k = len(self.holds), sum(self.holds)
-        if n < 2:
-            if not n and not self.skipped_rpm:
-                return "no data"
-            m, j = len(self.loose), sum(ok for _, ok, _ in self.loose)
-            return f"n/a ({n} periodic; {j} of {m} non-periodic meet it)"
-        return "yes" if k == n else "no" if k == 0 else f"partly ({k} of {n})"
+        """The most frequent verdict of the band's speeds; a tie goes against the paper (disagrees, then no
+        effect, then agrees)."""
+        if not self.speeds:
+            return "no data"
+        c = self.counts()
+        return max((DISAGREES, NO_EFFECT, AGREES), key=lambda v: (c[v], VERDICTS.index(v)))
+
+    def summary(self) -> str:
+        c, n = self.counts(), len(self.speeds)
+        per = sum(s.periodic for s in self.speeds)
+        return (f"{self.verdict} ({c[AGREES]} agree, {c[NO_EFFECT]} no effect, {c[DISAGREES]} disagree; "
+                f"{per} of {n} periodic)") if n else "no data"
 
 
 def band_verdict(f: Finding, band: str, by_speed: dict) -> BandVerdict:
-    """Judge ``f`` at every speed of ``band`` in ``by_speed`` (``{rpm: {case: (A, info)}}``)."""
-    speeds, holds, texts, skipped, loose = [], [], [], [], []
+    """Judge ``f`` at every speed of ``band`` in ``by_speed`` (``{rpm: {case: (A, info)}}``), periodic or not."""
+    out, none = [], []
     for rpm in sorted(s for s in by_speed if in_band(s, band)):
         amps = by_speed[rpm]
         if any(c not in amps for c in f.cases):
             continue
-        ok, text = f.predicate(amps)
-        if not all(amps[c][1]["converged"] for c in f.cases):
-            skipped.append(rpm)
-            loose.append((rpm, ok, text))
+        if any(not np.all(np.isfinite(amps[c][0][:, 0])) for c in f.cases):      # no 1X: no record
+            none.append(rpm)
             continue
-        speeds.append(rpm)
-        holds.append(ok)
-        texts.append(text)
-    return BandVerdict(f.name, band, tuple(speeds), tuple(holds), tuple(texts), tuple(skipped), tuple(loose))
+        v, e, t, text = f.judge(amps)
+        out.append(SpeedVerdict(float(rpm), v, e, t, all(amps[c][1]["converged"] for c in f.cases), text))
+    return BandVerdict(f.name, band, tuple(out), tuple(none))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -240,16 +386,6 @@ def contact_pattern(arrays, info) -> dict:
     return {"impacts_per_rev": onsets / max(revs, 1), "contact_share": float(on.mean()),
             "period_revs": int(info.get("period_revs", 0)), "force_1x_N": float(Fr[0]), "force_2x_N": float(Fr[1]),
             "force_3x_N": float(Fr[2])}
-
-
-#: §5.3.2, measured at the periodic speeds of band H1 on both meshes (study-findings.md, Mechanisms measured;
-#: tests/rotor/studies/test_study_paper.py): 3X stops rising with δ where the ring is on the bore more than this
-#: share of the revolution at δ = 2 mm (failing speeds 64–76 %, rising ones 29–47 %) ...
-SATURATED_SHARE = 0.55
-#: ... and 1X stays within 10 % where the contact is already established at δ = 0.5 mm, at least this share
-#: (holding speeds 48–77 %; the speeds where 1X moves 38–52 % have 0–34 %: the contact, absent without
-#: misalignment, then grows with δ and moves 1X with it)
-ENGAGED_SHARE = 0.40
 
 
 def misalignment_mechanism(points: dict) -> tuple[dict, str]:

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from rotor.model.scene import load_scene
-from rotor.studies.section5 import (BANDS, FINDINGS, BandVerdict, band_verdict, finding, first_slip, in_band,
-                                    law_secant_stiffness)
+from rotor.studies.section5 import (BANDS, FINDINGS, STEP_NOISE, band_verdict, finding, first_slip, in_band,
+                                    law_secant_stiffness, verdict_of)
 
 
 def test_conformal_stiffness_at_submicrometre_penetration_does_not_depend_on_the_clearance():
@@ -47,17 +47,51 @@ def test_misalignment_1x_within_ten_percent():
     assert not finding("misalignment_1x").predicate(_amps(**{"d0.5": one(1.0), "base": one(1.0), "d2": one(1.11)}))[0]
 
 
-def test_band_verdict_counts_periodic_speeds_only():
+def test_band_verdict_judges_every_speed_and_a_tie_goes_against_the_paper():
     f = finding("near_support")
     good = [[1, 0, 1, 1, 1], [1, 0, 2, 2, 2], [1, 0, 3, 3, 3]]
     bad = [[1, 0, 3, 3, 3], [1, 0, 2, 2, 2], [1, 0, 1, 1, 1]]
-    by = {9000.0: _amps(base=good), 9600.0: _amps(base=bad), 10200.0: _amps(base=good), 13000.0: _amps(base=bad)}
+    by = {9000.0: _amps(base=good), 9600.0: _amps(base=bad), 10200.0: _amps(base=good), 10800.0: _amps(base=bad),
+          13000.0: _amps(base=bad)}
     by[10200.0]["base"][1]["converged"] = False
     v = band_verdict(f, "H1", by)
-    assert v.speeds_rpm == (9000.0, 9600.0) and v.holds == (True, False) and v.skipped_rpm == (10200.0,)
-    assert v.verdict == "partly (1 of 2)"
-    assert BandVerdict("x", "H1", (9000.0,), (True,), ("",), ()).verdict.startswith("n/a")
+    assert [s.rpm for s in v.speeds] == [9000.0, 9600.0, 10200.0, 10800.0]
+    assert [s.verdict for s in v.speeds] == ["agrees", "disagrees", "agrees", "disagrees"]
+    assert [s.periodic for s in v.speeds] == [True, True, False, True]
+    assert v.verdict == "disagrees" and v.summary().startswith("disagrees (2 agree, 0 no effect, 2 disagree; 3 of 4")
+    assert v.speeds[0].effect == pytest.approx(1.0) and v.speeds[1].effect == pytest.approx(-2 / 3)
     assert in_band(9000.0, "H1") and in_band(12000.0, "H1") and not in_band(12300.0, "H1")
+
+
+def test_an_effect_within_the_step_noise_is_no_effect_not_a_trend():
+    """Fig. 18's 2X at disk 2 and the support changing by 0.5 % between δ0 = 0.03 and 0.08 mm: inside the two
+    points' step error (2 x 0.4 %), no effect; 1 % against the paper's sense: disagrees; 1 % with it: agrees."""
+    f = finding("clearance_2x")
+    row = lambda k: [[1, 1, 1, 0, 0], [1, k, 1, 0, 0], [1, k, 1, 0, 0]]  # noqa: E731
+    for k, want in ((1.005, "no effect"), (1.01, "disagrees"), (0.99, "agrees")):
+        v, e, t, _ = f.judge(_amps(**{"c0.03": row(1.0), "base": row(1.0), "c0.08": row(k)}))
+        assert (v, t) == (want, pytest.approx(2 * STEP_NOISE[1])) and e == pytest.approx(1 - k)
+        assert verdict_of("clearance_2x", e, t) == v
+
+
+def test_a_non_periodic_point_carries_its_spectral_floor_into_the_threshold():
+    f = finding("misalignment_2x")
+    row = lambda k: [[1, k, 1, 0, 0]] * 3  # noqa: E731
+    amps = _amps(**{"d0.5": row(1.0), "base": row(1.05), "d2": row(1.10)})
+    assert f.judge(amps)[0] == "agrees"                          # +10 % against 0.8 %
+    amps["d2"][1]["noise_rel"] = np.full((3, 5), 0.2)           # a floor of 20 % of 2X around 2X
+    v, e, t, _ = f.judge(amps)
+    assert v == "no effect" and t == pytest.approx(0.2 + STEP_NOISE[1])
+
+
+def test_tilt_reduced_but_not_markedly_disagrees_and_a_slipping_face_disagrees():
+    row = lambda k: [[1, 0, k, k, k]] * 3  # noqa: E731
+    assert finding("tilt").judge(_amps(base=row(1.0), notilt=row(0.5)))[0] == "agrees"
+    assert finding("tilt").judge(_amps(base=row(1.0), notilt=row(0.85)))[0] == "disagrees"
+    assert finding("tilt").judge(_amps(base=row(1.0), notilt=row(1.001)))[0] == "no effect"
+    amps = _amps(base=row(1.0))
+    amps["base"][1]["stick_fraction"] = 0.999
+    assert finding("stuck_low").judge(amps)[:3] == ("disagrees", pytest.approx(-0.001), 0.0)
 
 
 def test_bands_tile_the_paper_range_and_every_finding_names_its_bands():
