@@ -168,9 +168,10 @@ def force_bar(forces_n, x, expected_order: float = EXPECTED_ORDER, band: float =
     r21, r32 = x1 / x2, x2 / x3
     d1, d2 = f1 - f2, f2 - f3
     if not d1 * d2 > 0:
+        spread = (max(f1, f2, f3) - min(f1, f2, f3)) / abs(f3) if f3 else math.inf
         return ForceBar(f3, math.nan, math.nan, f3, False,
-                        f"not monotone: forces {f1:.6g}, {f2:.6g}, {f3:.6g} N (differences "
-                        f"{d1:.3g}, {d2:.3g} N)")
+                        f"not monotone: forces {f1:.8g}, {f2:.8g}, {f3:.8g} N (differences {d1:.3g}, {d2:.3g} N; "
+                        f"the levels spread over {spread:.1e} of the force, which is no bound)")
     p = _order(d1, d2, r21, r32)
     extrap = f3 - d2 / (r32 ** p - 1)
     if not expected_order / band <= p <= expected_order * band:
