@@ -196,8 +196,13 @@ BOUND_REFUSAL = 4.0
 PROBE_JAC_STEPS = 8192
 #: seconds the probe may spend on steps with the monodromy (16 steps at least)
 PROBE_JAC_S = 0.5
-#: revolutions without the monodromy before the probe's steps with it
-PROBE_SETTLE_REVS = 4
+#: seconds the probe may spend settling without the monodromy (up to the first transient round of
+#: ``ShootingOptions.transient_revs``) before its steps with it: the orbit's located events (contact onsets and
+#: losses, face switches) are what make a step with the monodromy dear, and the linear start has few of them.
+#: Measured on Table 4 at 7 000 rpm (256 steps a revolution): 22.6 µs a step with the monodromy after 4
+#: revolutions, 1.55 ms after 24 (contact 54 % of the period, each onset and loss differenced), the orbit 2.0-3.3 s
+#: against the estimate's 0.083 s
+PROBE_SETTLE_S = 1.0
 
 
 @dataclass(frozen=True)
@@ -229,14 +234,15 @@ def beyond_at_table4_cost(system, steps_per_rev: int, period_revs: int | None, p
 def map_cost(system_at, steps_per_rev: int) -> MapCost:
     """Measure the period map on the system: ``system_at()`` builds it (three times, the median counted), one
     revolution without the monodromy from the linear periodic solution (after 16 steps without and 16 with it,
-    not counted: the first calls pay dispatch and buffers), then, after :data:`PROBE_SETTLE_REVS` more revolutions
-    where they are cheap (the linear start's impacts settle: the orbit's located events, not the start's), steps with
+    not counted: the first calls pay dispatch and buffers), then, after up to the first transient round's
+    revolutions as :data:`PROBE_SETTLE_S` allows (the orbit's located events, not the linear start's), steps with
     it: as many of :data:`PROBE_JAC_STEPS` as :data:`PROBE_JAC_S` allows. Run after the compile (:func:`rotor.dynamics.period_map.warm_up`)."""
     import math
     import time
 
     from rotor.dynamics.initial import linear_initial_state
     from rotor.periodic.period_flow import advance, make_flow, to_reduced
+    from rotor.periodic.shooting import ShootingOptions
 
     t_start = time.perf_counter()
     n = int(steps_per_rev)
@@ -255,7 +261,8 @@ def map_cost(system_at, steps_per_rev: int) -> MapCost:
     t = time.perf_counter()
     r = advance(flow, x, 0.0, k, jacobian=False)
     plain = (time.perf_counter() - t) / k
-    revs = PROBE_SETTLE_REVS if plain * n < 0.2 and k == n else 0   # the start's impacts settle where that is cheap
+    # the rest of the transient's first round, as far as PROBE_SETTLE_S allows: the orbit's events, not the start's
+    revs = min(ShootingOptions().transient_revs - 1, int(PROBE_SETTLE_S / (plain * n))) if k == n else 0
     if revs:
         r = advance(flow, r.state, k * dt, revs * n, r.modes, jacobian=False)
     t0 = (k + revs * n) * dt
