@@ -108,7 +108,7 @@ class SimulationResult(ContactSummary, ResultMethods):
     ``law_validity`` the run's validity record, the ``law_validity`` of ``simulate``'s summary
     (:mod:`rotor.model.law_validity`: law, file, sha256, verdict, fitted ranges, contact-time shares below,
     inside and above the fitted penetrations, the largest tilt; empty without a loose support); ``start`` how the
-    run started, the summary's ``start`` (:func:`rotor.dynamics.initial.start_record`).
+    run started, the summary's ``start`` (:func:`rotor.dynamics.static_start.start_record`).
     """
 
     scene: str
@@ -161,7 +161,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
              from_rest: bool = False) -> SimulationResult:
     """Integrate ``revolutions`` revolutions at ``speed_rpm`` (rpm) as ``ringcontact simulate``: from the static
     equilibrium under the scene's gravity, static loads, misalignment and preload with the ring's contact and the
-    end faces' friction (:func:`rotor.dynamics.initial.static_equilibrium`), or with ``from_rest`` from rest at the
+    end faces' friction (:func:`rotor.dynamics.static_start.static_equilibrium`), or with ``from_rest`` from rest at the
     misalignment offset (``--from-rest``).
 
     ``steps_per_rev`` None: chosen as ``simulate`` and ``orbit`` choose it (256 or more where the contact step
@@ -184,7 +184,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     from rotor.model.law_validity import record
     from contact.errors import InputError
     from rotor.dynamics.constraints import STICK
-    from rotor.dynamics.initial import start_record, static_equilibrium
+    from rotor.dynamics.static_start import start_record, static_equilibrium
     from rotor.studies.steady_state import SAMPLES_FOR_5X, SteadyStateOptions, point_system, step_per_rev
 
     speed_rpm = _speed("speed_rpm", speed_rpm)

@@ -36,7 +36,7 @@ the CSV beside ``face_*_stuck``, ``f_contact``/``face_force`` in the NPZ beside 
 
 The run starts from the static equilibrium under the scene's gravity, ``[[static_loads]]``, misalignment offset and
 preload, the ring's contact and the end faces' friction solved statically
-(:func:`rotor.dynamics.initial.static_equilibrium`), so that a record is not a drop transient; ``--from-rest``
+(:func:`rotor.dynamics.static_start.static_equilibrium`), so that a record is not a drop transient; ``--from-rest``
 starts at the offset with nothing carried, as before. The summary's ``start`` says which (``--steady``: the linear
 periodic solution with the support locked) and, from the equilibrium, the bearing's static deflection.
 
@@ -68,7 +68,7 @@ from reports.cli._scene_options import (add_law_check_option, add_progress_optio
                                         max_revs, say_on_terminal, scene_from_args, scene_top_rpm,
                                         warm_up_shown, warn_speeds_beyond_scene)
 from rotor.dynamics import constraints as cons
-from rotor.dynamics.initial import start_record, static_equilibrium
+from rotor.dynamics.static_start import start_record, static_equilibrium
 from rotor.dynamics.support_record import CONVENTION, contact_columns, contact_summary
 from rotor.model.law_validity import ALLOW_OPTION, check_allowed, law_line, record
 
@@ -102,7 +102,7 @@ def _parser() -> argparse.ArgumentParser:
                    help="start from rest at the misalignment offset, no load carried (before issue 38 the only start); "
                         "default: the static equilibrium under the scene's gravity, static loads, misalignment and "
                         "preload, the ring's contact and end-face friction solved statically "
-                        "(rotor.dynamics.initial.static_equilibrium); the summary's start says which")
+                        "(rotor.dynamics.static_start.static_equilibrium); the summary's start says which")
     _budget.add_accept_long(p)
     p.add_argument("--out", type=out_dir, default="simulate-out", help="output directory")
     add_progress_option(p)
