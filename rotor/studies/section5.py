@@ -135,7 +135,7 @@ def amplitude_noise(info, loc: int, orders, A) -> float:
 
 #: how a finding's effect reads (:func:`verdict_of`): 'directed' (a change in the paper's sense), 'limit' ("within
 #: x %": effect x minus the change), 'marked' (a reduction of at least 30 %), 'state' (minus the share slipping)
-KINDS = {"near_support": "directed", "tilt": "marked", "stuck_low": "state", "clearance_low": "limit",
+KINDS = {"near_support": "directed", "low_harmonics": "limit", "tilt": "marked", "stuck_low": "state", "clearance_low": "limit",
          "clearance_1x": "directed", "clearance_2x": "directed", "clearance_3x": "directed",
          "misalignment_2x": "directed", "misalignment_3x": "directed", "misalignment_1x": "limit"}
 
@@ -207,6 +207,27 @@ def _trend_v(name, amps, cases, order, signs, text):
 _C, _D = ("c0.03", "base", "c0.08"), ("d0.5", "base", "d2")
 
 
+#: "significant" 3X–5X (§5.1): their sum at least this share of 1X (as reports/studies/readings.py VISIBLE)
+SIGNIFICANT = 0.05
+
+
+def low_harmonics(amps) -> tuple[bool, str]:
+    """§5.1 (Fig. 12): 3X–5X appear "when the rotational speed is high": below 9 000 rpm their sum stays under
+    :data:`SIGNIFICANT` of 1X at disk 2 and the support (y velocity)."""
+    A = amps["base"][0]
+    r = A[:, 2:5].sum(axis=1) / np.maximum(A[:, 0], 1e-300)
+    return bool(r[1:].max() < SIGNIFICANT), f"(3X+4X+5X)/1X {r[0]:.3g} / {r[1]:.3g} / {r[2]:.3g}"
+
+
+def _low_harmonics_v(amps):
+    A, i = amps["base"]
+    r = A[:, 2:5].sum(axis=1) / np.maximum(A[:, 0], 1e-300)
+    k = 1 + int(np.argmax(r[1:]))
+    t = float(r[k]) * (amplitude_noise(i, k, (3, 4, 5), A) + amplitude_noise(i, k, (1,), A))
+    e = SIGNIFICANT - float(r[k])
+    return (verdict_of("low_harmonics", e, t), e, t, low_harmonics(amps)[1])
+
+
 def clearance_1x(amps):
     """§5.3.1 (2): at high speed, as δ0 grows, 1X "increases at disk 2 but decreases at 3# bearing"."""
     a = np.array([amps[c][0][:, 0] for c in _C])
@@ -215,7 +236,7 @@ def clearance_1x(amps):
 
 
 JUDGES = {
-    "near_support": _near_support_v, "tilt": _tilt_v, "stuck_low": _stuck_v,
+    "near_support": _near_support_v, "low_harmonics": _low_harmonics_v, "tilt": _tilt_v, "stuck_low": _stuck_v,
     "clearance_low": lambda a: _limit_v("clearance_low", a, _C, (1, 2), MINIMAL, clearance_minimal),
     "clearance_1x": lambda a: _trend_v("clearance_1x", a, _C, 1, (+1, -1), clearance_1x),
     "clearance_2x": lambda a: _trend_v("clearance_2x", a, _C, 2, (-1, -1), clearance_2x),
@@ -245,6 +266,8 @@ class Finding:
 FINDINGS = (
     Finding("near_support", near_support, ("base",), "v", HIGH,
             "§5.1 (Fig. 12): at high speed 3X–5X at disk 2 and the 3# bearing, more than at disk 1"),
+    Finding("low_harmonics", low_harmonics, ("base",), "v", LOW,
+            "§5.1 (Fig. 12): 3X–5X appear at high speed: below 9 000 rpm their sum under 5 % of 1X (disk 2, support)"),
     Finding("tilt", tilt_reduces, ("base", "notilt"), "v", HIGH,
             "§5.2 (Fig. 16): ignoring the tilt markedly (≥ 30 %) reduces 3X–5X at disk 2 and the support"),
     Finding("stuck_low", stuck, ("base",), "v", LOW,

@@ -132,3 +132,14 @@ def test_contact_pattern_counts_impacts_and_takes_the_contact_force_harmonics():
     assert p["contact_share"] == pytest.approx(float(np.mean(np.cos(2 * phi) > 0.7)))
     assert p["force_1x_N"] == pytest.approx(math.hypot(300.0, 300.0), rel=1e-9)
     assert p["force_3x_N"] == pytest.approx(120.0, rel=1e-9) and p["force_2x_N"] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_low_speed_harmonics_are_judged_against_five_percent_of_1x():
+    """§5.1: 3X–5X "appear" at high speed; below 9 000 rpm their sum at disk 2 and the support must stay under 5 %
+    of 1X: 1 % agrees, 10 % disagrees, with the effect 5 % minus the larger share."""
+    f = finding("low_harmonics")
+    row = lambda k: [[1, 0, 0, 0, 0], [1, 0, k / 3, k / 3, k / 3], [1, 0, k / 6, k / 6, k / 6]]  # noqa: E731
+    v, e, t, _ = f.judge(_amps(base=row(0.01)))
+    assert v == "agrees" and e == pytest.approx(0.04)
+    v, e, t, _ = f.judge(_amps(base=row(0.10)))
+    assert v == "disagrees" and e == pytest.approx(-0.05) and 0 < t < 0.01
