@@ -240,6 +240,7 @@ def map_cost(system_at, steps_per_rev: int) -> MapCost:
     import math
     import time
 
+    from contact.errors import ConvergenceError, OutsideDomainError
     from rotor.dynamics.initial import linear_initial_state
     from rotor.periodic.period_flow import advance, make_flow, to_reduced
     from rotor.periodic.shooting import ShootingOptions
@@ -263,18 +264,30 @@ def map_cost(system_at, steps_per_rev: int) -> MapCost:
     plain = (time.perf_counter() - t) / k
     # the rest of the transient's first round, as far as PROBE_SETTLE_S allows: the orbit's events, not the start's
     revs = min(ShootingOptions().transient_revs - 1, int(PROBE_SETTLE_S / (plain * n))) if k == n else 0
-    if revs:
-        r = advance(flow, r.state, k * dt, revs * n, r.modes, jacobian=False)
-    t0 = (k + revs * n) * dt
+    try:
+        settled = advance(flow, r.state, k * dt, revs * n, r.modes, jacobian=False) if revs else r
+        jac = _jac_step_s(flow, settled, (k + revs * n) * dt, k)
+    except (OutsideDomainError, ConvergenceError):   # a transient that leaves the law (an unstable rotor grows):
+        jac = _jac_step_s(flow, r, k * dt, k)         # timed at the start; the job itself says why it fails
+    return MapCost(plain, jac, build, time.perf_counter() - t_start)
+
+
+def _jac_step_s(flow, r, t0_s: float, k: int) -> float:
+    """Seconds a step of the period map with its monodromy from ``r`` (a map's result) at ``t0_s``: 16 steps, then
+    as many of the ``k`` as :data:`PROBE_JAC_S` allows (its cost per step grows with the events it meets)."""
+    import time
+
+    from rotor.periodic.period_flow import advance
+
     t = time.perf_counter()
-    advance(flow, r.state, t0, 16, r.modes, jacobian=True)
+    advance(flow, r.state, t0_s, 16, r.modes, jacobian=True)
     jac = (time.perf_counter() - t) / 16
-    m = min(k, int(PROBE_JAC_S / jac))          # as much of the revolution as fits: its cost per step grows with it
+    m = min(k, int(PROBE_JAC_S / jac))
     if m > 16:
         t = time.perf_counter()
-        advance(flow, r.state, t0, m, r.modes, jacobian=True)
+        advance(flow, r.state, t0_s, m, r.modes, jacobian=True)
         jac = (time.perf_counter() - t) / m
-    return MapCost(plain, jac, build, time.perf_counter() - t_start)
+    return jac
 
 
 def branch_orbits(path: float, opts=None) -> int:
