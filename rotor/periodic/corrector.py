@@ -11,10 +11,13 @@ import numpy as np
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
 from rotor.periodic.branch_types import NEUTRAL_TOL, RESCALE_RATIO, BranchPoint, ContinuationOptions, Evaluator
 from rotor.periodic.floquet import floquet
-from rotor.periodic.shooting import min_norm_step, orbit_scales, record_reduced
+from rotor.periodic.shooting import lm_step, min_norm_step, orbit_scales, record_reduced
 
-#: halvings of a Newton step whose residual grew (:func:`correct`)
-BACKTRACKS = 3
+#: halvings of a corrector step that does not lower the merit (:func:`correct`)
+MAX_HALVINGS = 4
+#: stalled corrector steps in a row before the retrials follow the Levenberg–Marquardt curve, and as many more
+#: before the corrector gives up (:func:`correct`)
+STALL_ITERATIONS = 2
 
 
 def neutral_rows(J, tol: float = NEUTRAL_TOL) -> np.ndarray:
@@ -54,46 +57,89 @@ def unit_tangent(J, prev, rcond, phase=None):
 
 
 def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, anchor=None):
-    """Newton on ``[R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or None
-    (``ev.failure`` then says why, with the end-face switches in the last iterate's period where there were
+    """Newton on ``F(y) = [R; τ·(y − y_pred); P (y − anchor)]``; returns ``(y, J, M, iterations, residual)`` or
+    None (``ev.failure`` then says why, with the end-face switches in the last iterate's period where there were
     any). The phase rows ``P`` (:func:`neutral_rows`) keep the orbit's levels in a stuck face's continuum those
-    of ``anchor``.
+    of ``anchor``; ``iterations`` counts the maps evaluated with their Jacobian.
 
-    A step whose residual is larger than the last iterate's is halved (at most :data:`BACKTRACKS` times, each
-    an iteration): where a switch inside the period makes the map's derivative jump (a kink), the full Newton
-    step taken with the Jacobian of one side overshoots to the other and the plain iteration cycles."""
-    y = y_pred.copy()
+    Globalised as :func:`rotor.periodic.shooting.newton_periodic` is, on the bordered system: a step is taken
+    only if it lowers the merit ``‖F‖₂``; else it is halved (at most :data:`MAX_HALVINGS` times), each trial
+    mapped without its monodromy (the sensitivity pass and the two parameter-differenced maps are about 3/4 of
+    an evaluation's cost, and most retrials are rejected); where no halving lowers it, the retrials follow the
+    Levenberg–Marquardt curve (:func:`rotor.periodic.shooting.lm_step`), which turns the step towards the
+    merit's steepest descent as it shortens, and they follow it at once after :data:`STALL_ITERATIONS` stalled
+    steps in a row (halved, and leaving more than half of the merit). After as many more, or when no trial on
+    either path lowers the merit, the corrector gives up (the caller halves the arclength step). Where a switch inside the period makes the map's derivative jump (a kink), the full Newton step
+    taken with the Jacobian of one side overshoots to the other; the plain iteration cycles there, and an
+    iterate accepted with a larger residual (the rule before issue 36's Table 4 work) wandered off the branch."""
+    y = np.array(y_pred, float)
     has_phase = phase is not None and len(phase)
-    last = None              # (y, dy, residual) of the last accepted iterate
-    halvings, trail = 0, []
-    for it in range(1, opts.max_iter + 1):
-        x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+
+    def bordered(y, R):
+        rows = [R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else [])
+        return np.concatenate(rows)
+
+    def evaluate(y, jacobian: bool):
+        """``(R, J, M, F, merit)`` at the scaled ``y``; merit inf where the scheme cannot step or R is not finite."""
         try:
-            R, J, M = ev(x, lam)
-        except (OutsideDomainError, ConvergenceError, InputError) as e:   # an iterate the scheme cannot step
-            ev.failure = f"iterate {it} outside what the scheme can step ({type(e).__name__})"
-            return None
-        res = float(np.max(np.abs(R)))
-        if not math.isfinite(res):
-            ev.failure = f"iterate {it}: residual not finite"
-            return None
-        trail.append(res)
-        if last is not None and res > last[2] and halvings < BACKTRACKS:
-            halvings += 1
-            y = last[0] + 0.5 ** halvings * last[1]
-            continue
-        halvings = 0
+            R, J, M = ev(y[:-1] * ev.s, y[-1] * ev.ls, jacobian=jacobian)
+        except (OutsideDomainError, ConvergenceError, InputError):     # an iterate the scheme cannot step
+            return None, None, None, None, math.inf
+        if not np.all(np.isfinite(R)):
+            return None, None, None, None, math.inf
+        F = bordered(y, R)
+        return R, J, M, F, float(np.linalg.norm(F))
+
+    R, J, M, F, merit = evaluate(y, True)
+    if R is None:
+        ev.failure = "iterate 1 outside what the scheme can step, or its residual not finite"
+        return None
+    res = float(np.max(np.abs(R)))
+    trail, stalled = [res], 0
+    for it in range(1, opts.max_iter + 1):
         A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
-        rhs = -np.concatenate([R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else []))
-        dy, _ = min_norm_step(A, rhs, opts.rcond)
-        last = (y, dy, res)
-        y = y + dy
+        dy, _ = min_norm_step(A, -F, opts.rcond)
         if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
-            return y - dy, J, M, it, res
-    ev.failure = (f"no convergence in {opts.max_iter} iterations (residuals "
-                  + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")"
-                  + (f"; the faces switched {ev.events} times in the last iterate's period" if ev.events > 0 else ""))
+            return y, J, M, it, res
+        if it == opts.max_iter:
+            break
+        step, lam, merit_t = None, 1.0, math.inf
+        # the Newton line (halved), then, if no step on it lowers the merit or once stalled, the Levenberg–Marquardt
+        # curve (its steps turn towards the merit's steepest descent as they shorten)
+        paths = (False, True) if stalled < STALL_ITERATIONS else (True,)
+        for curve in paths:
+            lam = 0.5 if curve and len(paths) == 2 else 1.0        # the full step is the same on both
+            for trial in range(MAX_HALVINGS + 1):
+                step = lm_step(A, -F, opts.rcond, lam * float(np.linalg.norm(dy))) if curve and lam < 1.0 else lam * dy
+                R_t, J_t, M_t, F_t, merit_t = evaluate(y + step, lam == 1.0)
+                if merit_t < merit:
+                    break
+                lam *= 0.5
+            if merit_t < merit:
+                break
+        if not merit_t < merit:
+            ev.failure = (f"no step lowered the residual at iterate {it} (residuals "
+                          + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")" + _switches(ev))
+            return None
+        y = y + step
+        if J_t is None:                  # a halved trial accepted: its Jacobian now
+            R_t, J_t, M_t, F_t, merit_t = evaluate(y, True)
+            if R_t is None:
+                ev.failure = f"iterate {it + 1} outside what the scheme can step"
+                return None
+        stalled = stalled + 1 if lam < 1.0 and merit_t > 0.5 * merit else 0
+        R, J, M, F, merit = R_t, J_t, M_t, F_t, merit_t
+        res = float(np.max(np.abs(R)))
+        trail.append(res)
+        if stalled >= 2 * STALL_ITERATIONS:
+            break                         # not contracting on either path
+    ev.failure = (f"no convergence in {len(trail)} iterations (residuals "
+                  + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")" + _switches(ev))
     return None
+
+
+def _switches(ev) -> str:
+    return f"; the faces switched {ev.events} times in the last iterate's period" if ev.events > 0 else ""
 
 
 def make_point(ev, y, J, M, it, res, tau, opts, restarted: int = 0, why: str = "") -> BranchPoint:
