@@ -159,3 +159,50 @@ def test_held_step_carried_equals_its_central_differences():
         worst_without = max(worst_without, np.abs((J["without"] - D) * scales[None, :] / scales[:, None]).max() / size)
     assert worst < 1e-6
     assert worst_without > 1e3 * worst
+
+
+# benchmarks/bench_monodromy_ladder.py's states: T/256 in the default run, T/2240 slow
+LADDER_STATES = ([pytest.param(rpm, 256, id=f"{rpm:.0f}-256") for rpm in (7000.0, 9000.0, 12000.0)]
+                 + [pytest.param(rpm, 2240, id=f"{rpm:.0f}-2240", marks=pytest.mark.slow)
+                    for rpm in (7000.0, 9000.0, 12000.0)])
+
+
+@pytest.mark.parametrize("rpm, steps", LADDER_STATES)
+def test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder(rpm, steps, monkeypatch):
+    """Dai et al. (2025) Table 4 rotor, production options, one revolution from the state 24 revolutions after the
+    linear start (contact in about half of the period, every onset and loss differenced): the event steps' ladder
+    evaluated level by level (rotor/dynamics/period_map_events.py, ``_ladder`` and ``_refine``) against every level
+    for every column (``PROGRESSIVE`` False). Expected: the Richardson extrapolation of central differences of the
+    whole map at 1e-7 and 2e-7 of each component's largest magnitude (rotor/dynamics/monodromy_check.py), converged to
+    5e-7 against the one at 5e-8 and 1e-7. Both monodromies within the issue's 1e-6 of it, the level-by-level one
+    no further from it than the whole ladder's plus 1e-7 (the refinement's tolerance), with fewer replays."""
+    from rotor.dynamics import period_map_events as pme
+    from rotor.dynamics.initial import linear_initial_state
+    from rotor.dynamics.monodromy_check import central_differences, scaled_error, state_scales
+    from rotor.dynamics.period_map import reduced_state
+    from rotor.studies.steady_state import point_system
+
+    _, _, system = point_system("paper-table4", rpm)
+    pm = period_map_setup(system, 2 * math.pi / system.omega_rad_s / steps)
+    r = period_map(pm, reduced_state(pm, *linear_initial_state(system)), 0.0, 24 * steps, jacobian=False)
+    inner, M, replays = pme._differences, {}, {}
+    for progressive in (False, True):
+        count = [0]
+
+        def counting(*args, count=count):
+            count[0] += 2 * len(args[7]) * len(args[8]) * int(args[6])
+            return inner(*args)
+
+        monkeypatch.setattr(pme, "_differences", counting)
+        monkeypatch.setattr(pme, "PROGRESSIVE", progressive)
+        M[progressive] = period_map(pm, r.state, r.t, steps, modes0=r.modes).monodromy
+        replays[progressive] = count[0]
+    monkeypatch.setattr(pme, "_differences", inner)
+    plain = period_map(pm, r.state, r.t, steps, modes0=r.modes, jacobian=False, record_every=1)
+    s = state_scales(pm, plain.trajectory)
+    ref, check = central_differences(pm, r.state, r.t, steps, r.modes, s)
+    assert scaled_error(ref, check, s) < 5e-7                     # the reference converged
+    whole, progressive = scaled_error(M[False], ref, s), scaled_error(M[True], ref, s)
+    assert whole < 1e-6 and progressive < 1e-6
+    assert progressive <= whole + 1e-7
+    assert replays[True] < 0.8 * replays[False]
