@@ -108,7 +108,8 @@ def report(rows: list[dict], load0, load1, repeats: int, commit: str) -> str:
              f"{TRANSIENT_REVS} revolutions after the linear start. *whole*: every event-step column differenced at "
              "all 7 levels of the ladder (the earlier route); *progressive*: 3 levels for every column, then level by "
              "level only the columns whose best agreement is not yet within REFINE_TOL (1e-7) of their size "
-             "(rotor/dynamics/period_map_events.py, `_ladder`). Replays: single steps the ladders and refinements ran. "
+             "(rotor/dynamics/period_map_events.py, `_ladder`), the refinement's half levels the same way (`_refine`). "
+             "Replays: single steps the ladders and refinements ran. "
              "Error: against the Richardson extrapolation of central differences of the whole map at 1e-7 and 2e-7 "
              "of each component's largest magnitude (rotor/dynamics/monodromy_check.py), in its scaled norm; "
              "*apart*: the two routes' monodromies from each other in that norm. Interleaved, "
@@ -125,8 +126,8 @@ def report(rows: list[dict], load0, load1, repeats: int, commit: str) -> str:
     lines += ["", "Wall time of one period map with its monodromy (medians):", "",
               "| speed (rpm) | steps/rev | whole (s) | progressive (s) | whole / progressive |", "|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['speed_rpm']:.0f} | {r['steps_per_rev']} | {r['whole_s']:.3f} | {r['progressive_s']:.3f} "
-                     f"| {r['whole_s'] / r['progressive_s']:.2f}× |")
+        lines.append(f"| {r['speed_rpm']:.0f} | {r['steps_per_rev']} | {r['whole_s']:.3f} | "
+                     f"{r['progressive_s']:.3f} | {r['whole_s'] / r['progressive_s']:.2f}× |")
     return "\n".join(lines) + "\n"
 
 
