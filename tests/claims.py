@@ -319,6 +319,27 @@ CLAIMS = (
          test="tests/rotor/dynamics/test_period_map_events.py::test_table4_located_monodromy_through_stick_releases_and_contact_onsets",
          tier="default"),
 
+    # perf-monodromy-ladder.md: each state's errors (both routes within 1e-6, the level-by-level one within the whole's
+    # + 1e-7, fewer replays), checked by the ladder tests at T/256 (default) and T/2240 (slow)
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 11326 / 7222 | 7.0e-08 | 6.4e-08 | 1.3e-08 | 1.1e-07 |",
+         test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder",
+         tier="default"),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 11816 / 8496 | 1.6e-07 | 1.6e-07 | 1.2e-09 | 3.1e-07 |",
+         test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder_at_2240_steps",
+         tier="slow"),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 256 | 4438 / 3272 | 1.3e-07 | 9.4e-08 | 8.9e-08 | 1.4e-07 |",
+         test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder",
+         tier="default"),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 2240 | 4718 / 3766 | 1.4e-07 | 1.4e-07 | 1.3e-09 | 3.0e-07 |",
+         test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder_at_2240_steps",
+         tier="slow"),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 256 | 5628 / 3684 | 4.2e-08 | 4.2e-08 | 5.3e-09 | 8.6e-08 |",
+         test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder",
+         tier="default"),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 2240 | 7378 / 5408 | 7.3e-08 | 7.3e-08 | 2.9e-08 | 1.2e-07 |",
+         test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder_at_2240_steps",
+         tier="slow"),
+
     # perf-period-map.md
     dict(report="reports/published/perf-period-map.md",
          claim="differs from the exact one by 1.2e-06 of its largest entry in those scaled coordinates, through the revolution's 4 stick/slip switches",
@@ -518,7 +539,16 @@ NOT_CLAIMS = (
 #: were rewritten from study-findings.md and are guarded, its unpublished wall times and sizes removed)
 _CPU_RATIO = ("a CPU-time ratio of one benchmark run on a shared machine (it moves with the load); tests never assert "
               "timings, the benchmark measures them")
+_LADDER_TIME = ("wall times of the period map with its monodromy, the whole ladder against level by level, and their "
+                "ratio, from one benchmark run on a shared machine (they move with the load); tests never assert "
+                "timings (the replay counts beside the errors are checked by the ladder tests)")
 UNGUARDED = (
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 0.404 | 0.267 | 1.51× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 0.435 | 0.348 | 1.25× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 256 | 0.175 | 0.135 | 1.30× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 2240 | 0.193 | 0.166 | 1.17× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 256 | 0.278 | 0.184 | 1.51× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 2240 | 0.286 | 0.230 | 1.24× |", reason=_LADDER_TIME),
     dict(report="reports/published/fem2d-adaptive.md",
          claim="Outside the bar: 0 of 3 pairs with a bar; no bar (sequence not asymptotic): 7.",
          reason="one benchmark sample of generated pairs, drawn with a new seed each run (printed in the report); no "
