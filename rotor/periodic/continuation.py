@@ -139,9 +139,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         y_prev = y
         side, ahead, seen = _watched(opts, ev, y, tau, ds, seen)
         back = opts.turn_back is not None and (far.parameter / ev.ls - y[-1]) * direction > opts.turn_back
-        got = None if ahead or back else correct(ev, y + ds * tau, tau, opts, phase, y_prev)
-        if got is None and not (ahead or back) and len(phase):
-            got = _without_phase(ev, y + ds * tau, tau, opts, stalls)
+        got = None if ahead or back else _corrected(ev, y + ds * tau, tau, opts, phase, y_prev, stalls)
         if ahead or (side is not None and got is not None and (opts.watch(ev, got[0]) > 0.0) != side):
             stop = "grazing"
             break
@@ -242,8 +240,9 @@ def _at_end(ev, y_prev, y, lam_end: float, opts, phase, failures: list):
     return None
 
 
-def _without_phase(ev, y_pred, tau, opts, stalls: list):
-    """The corrector again from ``y_pred`` without the phase rows, after it failed with them: where the faces slip
+def _corrected(ev, y_pred, tau, opts, phase, anchor, stalls: list):
+    """The corrector from ``y_pred`` (:func:`rotor.periodic.corrector.correct`, the phase rows ``phase`` holding the
+    levels of ``anchor``), and where it fails with phase rows, again without them: where the faces slip
     in the next orbit's period (the continuum of the stuck orbits has ended there), that orbit is isolated and the
     phase rows over-determine it, and the least-squares steps stall. Measured on the Friswell rotor in a loose
     aluminium housing at 200 N of preload (tests/rotor/scenes/friswell-591-loose-aluminium.toml, ``--preload-n
@@ -251,6 +250,9 @@ def _without_phase(ev, y_pred, tau, opts, stalls: list):
     2.3e-3 and this retry converged (a cold restart before); at 2 320, 2 322 and 2 429 rpm both failed (3
     restarts, 4 before). Returns what :func:`rotor.periodic.corrector.correct` returns; the failure with the rows
     is kept in ``stalls`` with how it was passed."""
+    got = correct(ev, y_pred, tau, opts, phase, anchor)
+    if got is not None or not len(phase):
+        return got
     failed = ev.failure
     got = correct(ev, y_pred, tau, opts)
     if got is not None:
