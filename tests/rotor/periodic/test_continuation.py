@@ -320,6 +320,29 @@ def test_the_corrector_halves_a_step_whose_residual_grew():
     assert ev.seen[-1] < 0.5 * ev.seen[0]          # plain Newton: 2^(1/3) larger at every step
 
 
+def test_a_corrector_held_by_phase_rows_of_an_ended_continuum_converges_without_them():
+    """``R(x, λ) = x − 1``: an isolated orbit at x = 1, with a phase row that holds x at the last point's 0 (the
+    level of a stuck face's continuum that has ended: the faces slip). With the row the bordered system has no
+    solution and the corrector fails; the retry without it lands on x = 1 and says so
+    (rotor/periodic/continuation.py, ``_corrected``)."""
+    from rotor.periodic.continuation import ContinuationOptions, _corrected
+    from rotor.periodic.corrector import correct
+
+    class Isolated:
+        s, ls, events, failure = np.ones(1), 1.0, 0, ""
+
+        def __call__(self, x, lam, jacobian=True):
+            return x - 1.0, np.array([[1.0, 0.0]]), np.eye(1) * 0.0
+
+    ev, stalls = Isolated(), []
+    tau, y0 = np.array([0.0, 1.0]), np.array([0.0, 0.0])
+    phase = np.array([[1.0, 0.0]])
+    assert correct(Isolated(), y0, tau, ContinuationOptions(), phase, y0) is None      # the rows alone: no orbit
+    y, *_ = _corrected(ev, y0, tau, ContinuationOptions(), phase, y0, stalls)
+    assert abs(y[0] - 1.0) < 1e-9 and abs(y[1]) < 1e-12
+    assert len(stalls) == 1 and "converged without the phase rows" in stalls[0]
+
+
 def test_turn_back_follows_the_middle_branch_then_jumps_past_the_fold_as_a_run_up_does():
     """``turn_back``: past the jump-down fold (726.368 rad/s warped, closed form) the branch follows the unstable
     middle branch 30 rad/s back (0.3 of λ_s = 100 rad/s), then one restart lands on the lower-right branch just
