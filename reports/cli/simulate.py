@@ -204,7 +204,6 @@ def _run(args) -> int:
 
     _check_options(args)            # contradictions refused before building or compiling anything
     scene, model, system, law_info = _system(args)
-    beyond = warn_speeds_beyond_scene("ringcontact simulate", scene, [args.speed_rpm])
     names = _dof_names(args, model, primary_only=True)
     idx = [model.dof_index(n) for n in names]
     omega = args.speed_rpm * 2 * math.pi / 60
@@ -217,6 +216,8 @@ def _run(args) -> int:
     rec = max(1, args.steps_per_rev // args.record_per_rev)
     transient = int(args.max_revs or 8000) * args.steps_per_rev if args.steady else 0   # --steady: at most
     check_budget(args, n_steps + transient, n_steps // rec + 1, model.n_dofs)
+    # warned once the input is accepted: a refused input says one line, its reason
+    beyond = warn_speeds_beyond_scene("ringcontact simulate", scene, [args.speed_rpm])
     unstable = _warn_unstable(model, omega)
     say_on_terminal(args, f"ringcontact simulate: {law_line(scene.loose_support, scene_from_args(args).overrides)}")
     run = simulate_production if args.scheme == "production" else simulate_reference

@@ -44,6 +44,7 @@ def test_simulate_stations_option_and_unknown_station(tmp_path, capsys):
     assert rc == 0
     header = (tmp_path / "simulate.csv").read_text().splitlines()[0]
     assert header.startswith("t_s,housing.y_m,housing.z_m,r1_m")
+    assert "6000 rpm is beyond scene" in capsys.readouterr().err      # the scene's range is 2 000 rpm: warned
     rc = simulate.main(["--scene", USER, "--speed-rpm", "3000", "--stations", "disk1", "--out", str(tmp_path)])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1 and "disk1" in err[0] and "impeller" in err[0]
