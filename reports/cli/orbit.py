@@ -137,9 +137,16 @@ def _scene(args, prog: str) -> tuple:
     check_allowed(sc.loose_support, args.allow_flagged_law, ALLOW_OPTION)
     args.law_line = f"{prog}: {law_line(sc.loose_support, _overrides(args))}"     # said once the work starts
     speeds = [args.speed_rpm] if hasattr(args, "speed_rpm") else [args.rpm_start, args.rpm_end]
-    args.beyond_scene = {"scene_max_speed_rpm": scene_top_rpm(sc),
-                         "speed_beyond_scene_range": warn_speeds_beyond_scene(prog, sc, speeds) is not None}
+    args.beyond_scene = {"scene_max_speed_rpm": scene_top_rpm(sc), "speed_beyond_scene_range": False}
+    args.speeds_of_scene = (sc, speeds)          # warned by _check_work once the request is accepted
     return sc.name, [f"{s}.{c}" for s in model.response_stations() for c in ("y", "z")], sc.loose_support
+
+
+def _warn_beyond(args, prog: str) -> None:
+    """The speed-beyond-the-scene warning, once, after the request is accepted (a refused one says one line)."""
+    if getattr(args, "speeds_of_scene", None):
+        args.beyond_scene["speed_beyond_scene_range"] = warn_speeds_beyond_scene(prog, *args.speeds_of_scene) is not None
+        args.speeds_of_scene = None
 
 
 def _check_work(args, prog: str, rpm: float, points: int = 0) -> None:
@@ -165,6 +172,7 @@ def _check_work(args, prog: str, rpm: float, points: int = 0) -> None:
             if points else None)
     est = _budget.orbit(system, n, getattr(args, "period_revs", None), points, cost=cost, path=path)
     _budget.check(prog, est, args.accept_long, cause, remedy)
+    _warn_beyond(args, prog)
     _warn_unstable(args, prog, model, (args.rpm_start, args.rpm_end) if points else (rpm,))
 
 
@@ -347,6 +355,8 @@ def _orbit(args) -> int:
     name, _, loose = _scene(args, "ringcontact orbit")
     check_method_args(args, "ringcontact orbit", args.speed_rpm, _overrides(args))
     pt, choice = (None, None) if args.method == "shooting" else hb_choice(args, args.speed_rpm, _overrides(args))
+    if pt is not None:
+        _warn_beyond(args, "ringcontact orbit")
     if pt is None:                          # shooting: asked for, or chosen by auto (choice says why)
         d, res, events = _shooting_orbit(args, name, loose, choice)
         return _orbit_done(args, d, res, events, name)
@@ -509,6 +519,7 @@ def _branch(args) -> int:
     check_method_args(args, "ringcontact branch", min(args.rpm_start, args.rpm_end), _overrides(args))
     pt, choice = (None, None) if args.method == "shooting" else hb_choice(args, args.rpm_start, _overrides(args))
     if pt is not None:
+        _warn_beyond(args, "ringcontact branch")
         return _hb_branch(args, name, loose, station, pt, choice)
     chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}   # a bad --from-orbit first
     if args.from_state is not None:                                                  # and a bad --from-state
