@@ -483,14 +483,14 @@ def _runup(args, out: Path, figs: Path, opts: dict) -> list[Path]:
 def _readings(args, out: Path, figs: Path, opts: dict) -> list[Path]:
     """``study readings``: points B and A under every reading of Eq. 34 on two meshes, judged by the paper's text."""
     from reports.studies.readings import LOW_RPM, POINT_A_RPM, POINT_B_RPM, publish_readings
-    from rotor.studies.readings import READING_NAMES, reading_tasks
+    from rotor.studies.readings import COMPARED_NAMES, reading_tasks
 
     mesh = int(args.elements or 2)
     args.elements = None                  # _sweep's manifest: the scene's mesh; each task names its own
-    tasks = reading_tasks(args.scene, READING_NAMES, [POINT_B_RPM, POINT_A_RPM], (None, mesh), options=opts)
-    low = reading_tasks(args.scene, READING_NAMES, LOW_RPM, (None, mesh), options=opts, history_revs=1, prefix="low-")
+    tasks = reading_tasks(args.scene, COMPARED_NAMES, [POINT_B_RPM, POINT_A_RPM], (None, mesh), options=opts)
+    low = reading_tasks(args.scene, COMPARED_NAMES, LOW_RPM, (None, mesh), options=opts, history_revs=1, prefix="low-")
     run_study_sweep(tasks + low, out, args, {"speeds_rpm": [POINT_B_RPM, POINT_A_RPM], "low_speeds_rpm": list(LOW_RPM),
-                                    "readings": list(READING_NAMES), "elements_per_segment": [None, mesh]})
+                                    "readings": list(COMPARED_NAMES), "elements_per_segment": [None, mesh]})
     reading = shipped("reports", "notes", "section5-readings-reading.md")
     return publish_readings(out, Path(args.to), scene=args.scene, tasks=tasks, low_tasks=low,
                             extra=reading.read_text(encoding="utf-8") if reading.is_file() else "")

@@ -94,13 +94,22 @@ READINGS: tuple[Reading, ...] = (
 )
 READING_NAMES = tuple(r.name for r in READINGS)
 
+#: the no-excitation control compared beside the readings (reports/protocols/section5-readings.toml): the
+#: scene's placement with m_sp = 0, so Eq. 34's F and M are zero while the joint's geometric misalignment offset
+#: and everything else stay; what a model without the excitation of Eq. 34 already meets
+CONTROL = Reading("no-excitation", "opposed-at-joint", 0.0, 0.0,
+                  "control: no Eq. 34 excitation (m_sp = 0, so F = M = 0); the misalignment offset of the joint kept")
+#: the readings and the control, as ``study readings`` runs them
+COMPARED = READINGS + (CONTROL,)
+COMPARED_NAMES = tuple(r.name for r in COMPARED)
+
 
 def reading(name: str) -> Reading:
-    """The reading called ``name`` (one of :data:`READING_NAMES`)."""
-    for r in READINGS:
+    """The reading called ``name`` (one of :data:`COMPARED_NAMES`: a reading or the control)."""
+    for r in COMPARED:
         if r.name == name:
             return r
-    raise InputError(f"reading = {name!r}: unknown; allowed: {', '.join(READING_NAMES)}")
+    raise InputError(f"reading = {name!r}: unknown; allowed: {', '.join(COMPARED_NAMES)}")
 
 
 def reading_scene(scene, name: str):
