@@ -330,9 +330,24 @@ def _points(origin: str, key: str, given, lo: float, hi: float, unit: str, defau
     return pts
 
 
+def smallest_penetration_mm(c_mm: float, ro_mm: float, tilt: bool) -> float:
+    """The smallest penetration (mm) whose contact the FEM references resolve for a ring of outer radius ``ro_mm``
+    in a bore of radial clearance ``c_mm`` (mm): the 2D meshes' shortest half-arc and, with ``tilt``, the 3D levels'
+    smallest half-angle (the checks of :func:`from_document`)."""
+    eps = _ARC_ELEMENTS * _FINEST_FIRST_LEVEL_M / MM / (_ARC_SHRINK * (ro_mm + c_mm))
+    if tilt:
+        eps = max(eps, math.radians(_ARC_ELEMENTS * 180.0 / _PHI_ELEMENTS_3D))
+    return c_mm * (1 / math.cos(eps) - 1)
+
+
+def largest_penetration_mm(ro_mm: float) -> float:
+    """The largest penetration (mm) of a ring of outer radius ``ro_mm`` (mm) the small-strain model holds."""
+    return MAX_PENETRATION_TO_RADIUS * ro_mm
+
+
 def _check_resolution(origin: str, c_mm: float, ro_mm: float, pen_lo: float, pen_hi: float, tilt_hi: float) -> None:
     """Refuse a range the FEM meshes cannot resolve (the smallest arc) or the small-strain model cannot hold."""
-    if pen_hi > MAX_PENETRATION_TO_RADIUS * ro_mm:
+    if pen_hi > largest_penetration_mm(ro_mm):
         raise InputError(f"{_where(origin, 'range', 'penetration_mm')} = [{pen_lo:g}, {pen_hi:g}] mm: the largest "
                          f"must be <= {100 * MAX_PENETRATION_TO_RADIUS:g} % of the ring radius "
                          f"({MAX_PENETRATION_TO_RADIUS * ro_mm:g} mm; small-strain model)")
@@ -340,7 +355,7 @@ def _check_resolution(origin: str, c_mm: float, ro_mm: float, pen_lo: float, pen
     arc_mm = _ARC_SHRINK * (ro_mm + c_mm) * eps
     need_mm = _ARC_ELEMENTS * _FINEST_FIRST_LEVEL_M / MM
     if arc_mm < need_mm:
-        lo_ok = c_mm * (1 / math.cos(need_mm / (_ARC_SHRINK * (ro_mm + c_mm))) - 1)
+        lo_ok = smallest_penetration_mm(c_mm, ro_mm, tilt=False)
         raise InputError(f"{_where(origin, 'range', 'penetration_mm')} = [{pen_lo:g}, {pen_hi:g}] mm: at {pen_lo:g} mm "
                          f"the contact half-arc (about {arc_mm:.2g} mm) is too short for the 2D meshes to resolve "
                          f"({need_mm:g} mm at least); the smallest penetration this ring can have is about "

@@ -36,6 +36,7 @@ from contact.calibrate.fit import holdout_excess
 from contact.dataset import read_dataset, write_dataset
 from contact.files import atomic_write_text
 from fem_reference.ring_scene import RingScene
+from reports.bearing.holds import not_held, part_line
 from reports.bearing.names import LAW_ERROR_BOUND_REL, file_names
 from reports.bearing.report import write_report
 from sweep import utc_stamp
@@ -133,12 +134,13 @@ def calibrate(rs: RingScene, path2: Path, path3: Path | None) -> dict:
         warnings.append(f"family {chosen.family!r} is not in the compiled rotor kernel: the law file cannot drive "
                         "a rotor (families the rotor uses: " + ", ".join(cal.KERNEL_LAW_CODE) + ")")
     out.update(chosen=chosen, checks=checks, excess=excess, warnings=warnings)
+    out["not_held"] = not_held(out, rs.name)
     return out
 
 
-def law_file(rs: RingScene, fit: dict) -> cal.CalibratedLaw:
+def law_file(rs: RingScene, fit: dict, range_from: dict | None = None) -> cal.CalibratedLaw:
     """The law to ship: validity range (penetration of the fitted points, the largest tilt checked),
-    provenance (ring-pair file, code version) and the checks with their bound."""
+    provenance (ring-pair file, code version, the run the range was widened by) and the checks with their bound."""
     from reports.version import version_line
 
     tilt_max = max(rs.tilts_rad, default=0.0) if fit["law3"] is not None else 0.0
@@ -149,13 +151,18 @@ def law_file(rs: RingScene, fit: dict) -> cal.CalibratedLaw:
             "checks": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["checks"].items()},
             "checks_beyond_fem_error": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["excess"].items()},
             "error_bound_rel": LAW_ERROR_BOUND_REL, "warnings": list(fit["warnings"]),
-            "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE}
+            "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE, "not_held": fit["not_held"]}
+    if range_from is not None:
+        prov["range_from"] = range_from
     return dataclasses.replace(fit["chosen"], validity_tilt_max_rad=float(tilt_max), provenance=prov)
 
 
 def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: bool = False,
-        progress: bool | None = None, log=print) -> dict:
-    """Every stage for one ring pair into ``out``; returns the summary (also written as ``summary.json``)."""
+        progress: bool | None = None, log=print, range_from: dict | None = None) -> dict:
+    """Every stage for one ring pair into ``out``; returns the summary (also written as ``summary.json``).
+
+    ``range_from``: the note of :func:`reports.bearing.range_from.widened` when ``rs``'s range was widened to a rotor
+    run's (into the law's provenance, the report and the summary)."""
     import json
 
     out = Path(out)
@@ -172,7 +179,8 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
                            lambda: run_fem3d(rs, out, workers=workers, executor=executor, fresh=fresh,
                                              progress=progress))
     fit = stages.run("calibrate", "law families with hold-out", lambda: calibrate(rs, path2, path3))
-    law = law_file(rs, fit)
+    fit["range_from"] = range_from
+    law = law_file(rs, fit, range_from)
     files = [atomic_write_text(out / names["law"], law.to_json())]
     if fit["law3"] is not None:
         files.append(atomic_write_text(out / names["law2d"], fit["law2"].to_json()))
@@ -180,11 +188,14 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
     files += stages.run("report", "accuracy report", lambda: write_report(rs, fit, law, out, stages.rows))
     for w in fit["warnings"]:
         log(f"warning: {w}")
+    for part in fit["not_held"]:
+        log(f"warning: {part_line(part)}")
     summary = {"ring_scene": rs.name, "ring_scene_sha256": rs.sha256, "law_file": names["law"],
                "law_name": law.name, "family": law.family, "parameters": law.parameters,
                "validity_penetration_mm": [v * 1e3 for v in law.validity_penetration_m],
                "validity_tilt_max_arcmin": law.validity_tilt_max_rad / (math.pi / 10800),
-               "checks": law.provenance["checks"], "warnings": fit["warnings"],
+               "checks": law.provenance["checks"], "warnings": fit["warnings"], "not_held": fit["not_held"],
+               "range_from": range_from,
                "stages": stages.rows, "files": sorted({Path(f).name for f in files} | {path2.name}
                                                       | ({path3.name} if path3 else set()))}
     atomic_write_text(out / names["timings"], json.dumps({"stages": stages.rows}, indent=1) + "\n")

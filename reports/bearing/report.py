@@ -143,6 +143,19 @@ def _dundurs(law) -> str:
             "2.6-6.2 %, reports/published/fem-verification-dissimilar.md)")
 
 
+def _followed_lines(fit: dict) -> list[str]:
+    """The range taken from a rotor run (``--range-from``) and the parts of the range no family holds."""
+    from reports.bearing.holds import part_line
+    from reports.bearing.range_from import note_lines
+
+    lines = []
+    if fit.get("range_from"):
+        lines += ["## Range from a rotor run", "", *[f"- {t}." for t in note_lines(fit["range_from"])], ""]
+    if fit.get("not_held"):
+        lines += ["## Parts of the range no family holds", "", *[f"- {part_line(p)}." for p in fit["not_held"]], ""]
+    return lines
+
+
 def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]) -> str:
     names = file_names(rs.name)
     checks, warn = law.provenance["checks"], law.provenance["warnings"]
@@ -160,12 +173,14 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
              f"{100 * law.provenance['error_bound_rel']:g} %; beyond it here: " + "; ".join(
                  f"{k} {100 * v:+.3f} %" for k, v in law.provenance["checks_beyond_fem_error"].items() if v is not None) + ".",
              f"- **{'verified' if ok else 'flagged'}**" + ("" if ok else ": " + " ".join(warn)), "",
+             *_followed_lines(fit),
              "## Straight ring (2D, Table 2 style)", "",
              "Cells: `100 (P_law − P_FEM)/P_FEM` in %, signed; '–': the law has no solution there. Conformal law: "
              "composite modulus and Dundurs α of the two materials (Dai et al. 2025 Eq. 5) " + _dundurs(law)
              + "; Johnson and Pereira: plane-strain composite modulus (their sources).", "", *_straight_lines(t2), ""]
     fits = fit["fits3"] or fit["fits2"]
-    lines += ["Families tried on the law's reference (held-out RMS / max):", ""]
+    lines += ["Families tried on the law's reference (held-out RMS / max); chosen by the rule: "
+              + str((law.fit or {}).get("selection_rule", "")) + ".", ""]
     lines += [f"- {f.family}: {100 * f.holdout_rms:.3f} % / {100 * f.holdout_max:.3f} %"
               + ("  ← chosen" if f.family == law.family else "") for f in fits]
     lines += ["", f"![force]({Path(names['report']).stem}-force.png)", ""]

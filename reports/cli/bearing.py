@@ -1,6 +1,7 @@
 """``ringcontact bearing FILE``: a ring-pair file to a verified, checksummed contact law.
 
     ringcontact bearing my-bearing.toml [--out DIR] [--workers 2] [--scheduler ADDRESS] [--fresh] [--json]
+                                        [--range-from RUN]
 
 FILE is a ring-pair file (schema ``ringcontact.ring-scene/1``, docs/ring-scenes.rst) or a bundled one by
 name (``clamped``, ``steel-in-aluminium``, ...). Runs the 2D reference sweep, the 3D tilt sweep when the
@@ -8,6 +9,12 @@ range asks for tilt, calibration with held-out points, the accuracy report and t
 ``DIR`` (default ``bearing-<name>`` in the working directory); progress on a terminal; an interrupted
 run resumes where it stopped (``--fresh`` starts over). The law file ``DIR/<name>-law.json`` is what a
 rotor scene names in ``[loose_support] law``. Stages are in :mod:`reports.bearing.pipeline`.
+
+``--range-from RUN`` lets the law follow the rotor: the file's ``[range]`` is widened to the penetrations and tilt a
+rotor run visited in contact (its ``law_validity`` record: a ``simulate --out`` or ``study --out`` folder, or an
+``orbit``/``branch --out`` JSON file), with a margin, rounded outward (:mod:`reports.bearing.range_from`); what the
+FEM references cannot reach is said, and the parts of the range no law family holds are listed
+(:mod:`reports.bearing.holds`) in the summary, the report and on the terminal.
 """
 from __future__ import annotations
 
@@ -26,7 +33,7 @@ from reports.cli._edge import Parser, check_arg, count, fail, out_dir  # noqa: E
 PROG = "ringcontact bearing"
 
 
-def _run(args, rs, out) -> dict:
+def _run(args, rs, out, note) -> dict:
     """The pipeline into ``out``; an I/O error while writing (disk full, folder removed meanwhile) is one line
     naming the path: each file is whole or absent, the summary last."""
     from reports.bearing.pipeline import run
@@ -35,7 +42,8 @@ def _run(args, rs, out) -> dict:
     log = (lambda msg: print(msg, file=sys.stderr)) if args.json else print
     try:
         with connect(args.scheduler) as client:
-            return run(rs, out, workers=args.workers, executor=client, fresh=args.fresh, log=log)
+            return run(rs, out, workers=args.workers, executor=client, fresh=args.fresh, log=log,
+                       range_from=note)
     except OSError as exc:
         if isinstance(exc, RingContactError):
             raise
@@ -54,6 +62,9 @@ def main(argv: list[str] | None = None) -> int:
                     help="run the FEM points on the dask.distributed cluster at ADDRESS (the dask extra)")
     ap.add_argument("--fresh", action="store_true", help="recompute every point (ignore an interrupted run's points)")
     ap.add_argument("--json", action="store_true", help="print the summary as JSON")
+    ap.add_argument("--range-from", default=None, metavar="RUN",
+                    help="widen the file's range to what a rotor run visited in contact: a `simulate --out` or "
+                         "`study --out` folder, or an `orbit`/`branch --out` JSON file")
     add_accept_long(ap)
     args = ap.parse_args(sys.argv[1:] if argv is None else argv)
     if args.out is not None:
@@ -63,11 +74,17 @@ def main(argv: list[str] | None = None) -> int:
         from reports.bearing.work import estimate
 
         rs = load(args.scene)
+        note = None
+        if args.range_from is not None:
+            from reports.bearing.range_from import note_lines, read_visited, widened
+            rs, note = widened(rs, read_visited(args.range_from))
+            for line in note_lines(note):
+                print(line, file=sys.stderr if args.json else sys.stdout)
         out = check_arg(ap, "--out", out_dir, args.out if args.out is not None else f"bearing-{rs.name}")
         check(PROG, estimate(rs, args.workers), args.accept_long,
               f"FILE = {args.scene}: ring pair {rs.name!r}, bore radius {rs.scene.rings.bore_radius_m * 1e3:g} mm",
               "a smaller ring or fewer penetration and tilt points")
-        summary = _run(args, rs, out)
+        summary = _run(args, rs, out, note)
     except RingContactError as exc:
         return fail(PROG, exc)
     if args.json:
