@@ -144,12 +144,35 @@ class BearingResult(ResultMethods):
         self.evaluate(np.linspace(max(lo, 0.0), hi, 40))._draw(ax)
 
 
+def _widened(rs, range_from):
+    """``(rs, note)``: ``rs`` widened to the run ``range_from`` visited (a path or a result), or as it is."""
+    import hashlib
+    import json
+
+    from reports.bearing.range_from import read_visited, visited_from_record, widened
+    if range_from is None:
+        return rs, None
+    if isinstance(range_from, (str, os.PathLike)):
+        return widened(rs, read_visited(os.fspath(range_from)))
+    rec = getattr(range_from, "law_validity", None)
+    if not isinstance(rec, dict):
+        raise InputError(f"range_from = {type(range_from).__name__}: must be a run folder or JSON file, or a result of "
+                         "simulate, orbit, branch or cascade (with its law_validity)")
+    text = json.dumps(rec, sort_keys=True, allow_nan=False)
+    where = f"range_from = {type(range_from).__name__}"
+    return widened(rs, visited_from_record(rec, where, hashlib.sha256(text.encode()).hexdigest(), where))
+
+
 def bearing(ring_scene: str | os.PathLike, out: str | os.PathLike | None = None, *, workers: int = 1,
-            fresh: bool = False, progress: bool | None = None, log=print) -> BearingResult:
+            fresh: bool = False, progress: bool | None = None, log=print, range_from=None) -> BearingResult:
     """Calibrate the contact law of a ring-pair file (schema ``ringcontact.ring-scene/1``) or a bundled one by
     name (``clamped``, ``steel-in-aluminium`` …), as ``ringcontact bearing``: FEM reference points, law
     families fitted with held-out points, report and law file in ``out`` (default ``bearing-<name>``). An
     interrupted run resumes where it stopped (``fresh`` starts over). Minutes of FEM on ``workers`` processes.
+
+    ``range_from``: as ``--range-from``, the file's range widened to what a rotor run visited in contact
+    (:mod:`reports.bearing.range_from`): a run folder or JSON file, or a result of :func:`simulate`, :func:`orbit`,
+    :func:`branch` or :func:`cascade` (its ``law_validity``).
     """
     from contact.calibrate.store import load_law_file
     from fem_reference.ring_scene import load
@@ -158,8 +181,9 @@ def bearing(ring_scene: str | os.PathLike, out: str | os.PathLike | None = None,
     if int(workers) != workers or not 1 <= workers <= 64:
         raise InputError(f"workers = {workers}: must be a whole number of processes, 1 to 64")
     rs = load(ring_scene)
+    rs, note = _widened(rs, range_from)
     folder = Path(out) if out is not None else Path(f"bearing-{rs.name}")
-    summary = run(rs, folder, workers=int(workers), fresh=fresh, progress=progress, log=log)
+    summary = run(rs, folder, workers=int(workers), fresh=fresh, progress=progress, log=log, range_from=note)
     path = folder / summary["law_file"]
     cal = load_law_file(path)
     return BearingResult(rs.name, str(path.resolve()), cal.name, cal.family, dict(cal.parameters),

@@ -94,21 +94,27 @@ def read_visited(text: str) -> Visited:
     if not isinstance(rec, dict):
         raise InputError(f"{OPTION} = {text}: {path.name} has no law_validity record (the output of a rotor job: "
                          "simulate, orbit, branch or study)")
+    return visited_from_record(rec, str(path), hashlib.sha256(data).hexdigest(), f"{OPTION} = {text}")
+
+
+def visited_from_record(rec: dict, source: str, sha256: str, where: str) -> Visited:
+    """The visited range of a ``law_validity`` record (``source`` and its ``sha256`` name it; ``where`` starts a
+    refusal's one line: the option or keyword with the value as given)."""
     if not rec:
-        raise InputError(f"{OPTION} = {text}: the run has no loose support, so no contact to take a range from")
+        raise InputError(f"{where}: the run has no loose support, so no contact to take a range from")
     seen, tilt = rec.get("visited_penetration_range_m"), rec.get("largest_tilt_rad")
     if seen is None:
-        raise InputError(f"{OPTION} = {text}: the ring never touched its support in this run (contact_time_share "
+        raise InputError(f"{where}: the ring never touched its support in this run (contact_time_share "
                          f"{rec.get('contact_time_share')}): no visited range to take")
     try:
         lo, hi, tilt = float(seen[0]), float(seen[1]), float(tilt or 0.0)
     except (TypeError, ValueError, IndexError):
-        raise InputError(f"{OPTION} = {text}: visited_penetration_range_m = {seen!r} m, largest_tilt_rad = {tilt!r} "
+        raise InputError(f"{where}: visited_penetration_range_m = {seen!r} m, largest_tilt_rad = {tilt!r} "
                          "rad: must be numbers [low, high] and one number") from None
     if not (math.isfinite(lo) and math.isfinite(hi) and math.isfinite(tilt) and 0 < lo <= hi and tilt >= 0):
-        raise InputError(f"{OPTION} = {text}: visited_penetration_range_m = [{lo:g}, {hi:g}] m, largest_tilt_rad = "
+        raise InputError(f"{where}: visited_penetration_range_m = [{lo:g}, {hi:g}] m, largest_tilt_rad = "
                          f"{tilt:g} rad: must be 0 < low <= high and a tilt >= 0")
-    return Visited(str(path), hashlib.sha256(data).hexdigest(), str(rec.get("law_name")), (lo, hi), tilt)
+    return Visited(source, sha256, str(rec.get("law_name")), (lo, hi), tilt)
 
 
 def _round(v: float, up: bool) -> float:

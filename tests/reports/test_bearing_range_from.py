@@ -15,6 +15,7 @@ import math
 import re
 import shutil
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -82,6 +83,11 @@ def test_a_run_beyond_its_law_gives_a_law_that_covers_it(first, capsys):
     fitted = new.fit["penetration_m"]
     assert set(pts) <= set(fitted) and min(fitted) < lo and max(fitted) > hi
     assert "## Range from a rotor run" in (d / "out" / "accuracy-small-ring.md").read_text()
+    # the API takes the run's result (its law_validity) for the same widening
+    import ringcontact as rc
+    res = rc.bearing(d / "small.toml", d / "out", range_from=SimpleNamespace(law_validity=rec), log=lambda _: None)
+    assert res.validity_penetration_m == new.validity_penetration_m
+    assert res.summary["range_from"]["penetration_mm"] == s["range_from"]["penetration_mm"]
 
 
 def test_widening_only_moves_ends_outward_and_says_what_it_cannot_reach():
@@ -156,6 +162,17 @@ def test_bad_range_from_is_one_line(tmp_path, capsys, make, says):
     assert says in lines[0] and not (tmp_path / "o").exists()
 
 
+def test_api_range_from_without_contact_is_refused(tmp_path):
+    import ringcontact as rc
+    (tmp_path / "small.toml").write_text(SMALL)
+    for given, says in ((SimpleNamespace(law_validity={"visited_penetration_range_m": None}), "never touched"),
+                        (3, "must be a run folder")):
+        with pytest.raises(rc.InputError, match=says) as exc:
+            rc.bearing(tmp_path / "small.toml", tmp_path / "o", range_from=given)
+        assert str(exc.value).startswith("range_from = ") and "\n" not in str(exc.value)
+    assert not (tmp_path / "o").exists()
+
+
 def _mkdir(p: Path) -> Path:
     p.mkdir(parents=True, exist_ok=True)
     return p
@@ -173,7 +190,8 @@ def test_the_issues_rotor_rerun_on_the_law_of_its_own_range(tmp_path, capsys):
     ``bearing steel-in-aluminium --range-from`` that run gives a law; the same rotor rerun on it stays inside its
     fitted penetrations and checked tilt; a law flagged on the wider range says which parts no family holds.
     Measured 2026-11-29: 2.76-2.80 um and 5.19' on the published law -> range 0.0022-0.04 mm, 0-6.5', verified
-    (held-out 2.0 % at zero tilt, 1.6 % tilted); the rerun 2.75-2.78 um and 5.20', all inside. About 2.5 min."""
+    (held-out 2.0 % at zero tilt, 1.6 % tilted); the rerun 2.75-2.78 um and 5.20', all inside. About 2.5 min with
+    the 3D points computed (load 4), 10 s when the 3D level cache holds them."""
     law = ROOT / "reports" / "published" / "bearing-steel-in-aluminium" / "steel-in-aluminium-law.json"
     shutil.copy(law, tmp_path / "my-law.json")
     text = (ROOT / "tests/rotor/scenes/friswell-591-loose-aluminium.toml").read_text(encoding="utf-8")
