@@ -28,18 +28,22 @@ compiled_with(__file__, ["rotor.dynamics.production_loop", "rotor.dynamics.conta
 @njit(cache=True)
 def replay_steps(starts, modes0, phi0, ts, n_steps, dt, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N,
                  n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes,
-                 stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events):
+                 stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, split_events):
     """``n_steps`` steps of length ``dt`` (s) (one call of the loop, its memory between those steps kept: a
     block of steps whose face forces carry over, rotor/dynamics/period_map_events.py "Blocks") from each row of
     ``starts`` (``(K, 3 n_r)``), each with its own face modes
     ``modes0[r]`` (2,), face forces ``phi0[r]`` (2, 2; N) and time ``ts[r]`` (s): the ends (``(K, 3 n_r)``) and each
-    replay's ``status`` (``(K, 7)``, :func:`rotor.dynamics.production_loop.step_loop`'s): a record's candidate event
-    steps, or one step's central differences (rotor/dynamics/period_map_events.py), in one compiled call; the other
-    arguments are :func:`rotor.dynamics.production_loop.step_loop`'s."""
+    replay's ``status`` (``(K, 7)``, :func:`rotor.dynamics.production_loop.step_loop`'s), end face modes
+    (``(K, 2)``) and end face forces (``(K, 2, 2)``, N): a record's candidate event steps, one step's central
+    differences (rotor/dynamics/period_map_events.py), or the passes of a located step one by one (``split_events``
+    False, ``dt`` a pass's length and ``Ainv, W, S`` its matrices: rotor/dynamics/contact_step_derivative.py), in one
+    compiled call; the other arguments are :func:`rotor.dynamics.production_loop.step_loop`'s."""
     K, n3 = starts.shape
     nr = n3 // 3
     ends = np.empty((K, n3))
     statuses = np.zeros((K, 7), dtype=np.int64)
+    end_modes = np.zeros((K, 2), dtype=np.int64)
+    end_phi = np.zeros((K, 2, 2))
     rec_t = np.zeros(2)
     rec_p = np.zeros((2, nr))
     rec_v = np.zeros((2, nr))
@@ -64,11 +68,13 @@ def replay_steps(starts, modes0, phi0, ts, n_steps, dt, Ainv, Dr, Kr, Bt, W, S, 
         status[:] = 0
         step_loop(p, v, a, modes, phi, ts[r], dt, k, k, Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm,
                   omega_f, P, mu_N, n_faces, s_yy, a1, has_support, params, beta, gamma, tol, max_iter, w_reg,
-                  w_stick, max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, rec_t,
+                  w_stick, max_passes, stick_mean_weight, onset_projection, Minv, WM, SM, Mr, locate_events, split_events, rec_t,
                   rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
                   status)
         ends[r, :nr] = p
         ends[r, nr:2 * nr] = v
         ends[r, 2 * nr:] = a
         statuses[r] = status
-    return ends, statuses
+        end_modes[r] = modes
+        end_phi[r] = phi
+    return ends, statuses, end_modes, end_phi

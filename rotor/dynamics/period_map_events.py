@@ -53,6 +53,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotor.dynamics.contact_events import edge_crossing
+from rotor.dynamics.contact_step_derivative import contact_step_sensitivity
 from rotor.dynamics.event_replays import replay_steps
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
@@ -83,6 +84,9 @@ FIRST_LEVELS = 3
 #: :data:`REFINE_TOL` of its size; False: every column at every level (the earlier route, kept for side-by-side
 #: runs in benchmarks/bench_monodromy_ladder.py)
 PROGRESSIVE = True
+#: a step split at a contact onset or loss alone is differentiated exactly (rotor/dynamics/contact_step_derivative.py)
+#: instead of differenced; False: differenced as every event step (the earlier route, for side-by-side runs)
+EXACT_CONTACT = True
 
 
 def event_steps(pm, tr) -> list[int]:
@@ -151,7 +155,7 @@ def _replays_at(pm, starts, modes, phi, ts, locate: bool, n_steps: int = 1):
                         pre.limits, pre.n_faces, pre.s_yy, pre.a1, pm.reduced.support is not None, pm.params,
                         opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick, opts.max_passes,
                         float(opts.stick_mean_weight), bool(opts.consistent_stick_onset), pre.Minv, pre.WM, pre.SM,
-                        pre.Mr, bool(locate))
+                        pre.Mr, bool(locate), True)[:2]
 
 
 def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True):
@@ -167,7 +171,7 @@ def _one_step(pm, p, v, a, modes, phi, t, locate: bool = True):
               pre.orders, pre.cos, pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1,
               pm.reduced.support is not None, pm.params, opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg,
               opts.w_stick, opts.max_passes, float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
-              pre.Minv, pre.WM, pre.SM, pre.Mr, bool(locate), rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"],
+              pre.Minv, pre.WM, pre.SM, pre.Mr, bool(locate), True, rec["t"], rec["p"], rec["v"], rec["a"], rec["u"], rec["w"],
               rec["fc"], rec["fel"], rec["face"], rec["modes"], rec["its"], rec["passes"], status)
     return np.concatenate([p, v, a])
 
@@ -332,21 +336,30 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
     # analytically with the held forces' derivative (carry's rec_held); the others differenced
     differenced, held = _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held)
     face = np.ascontiguousarray(tr.face_force, dtype=float)
+    zero_load = np.zeros((nr, 2 * nr))
     for first, last in blocks(differenced, held, modes) + [(n_steps, n_steps)]:
         if first > start:
             carry(np.ascontiguousarray(rec_p[start:first + 1]), np.ascontiguousarray(rec_v[start:first + 1]),
                   np.ascontiguousarray(modes[start:first + 1]), Spv, Sa, *args,
-                  np.ascontiguousarray(held[start:first + 1]), face[start:first + 1])
+                  np.ascontiguousarray(held[start:first + 1]), face[start:first + 1], zero_load)
         if first == n_steps:
             break
         x0 = np.concatenate([rec_p[first], rec_v[first], rec_a[first]])
+        ref = np.concatenate([rec_p[last + 1], rec_v[last + 1], rec_a[last + 1]])
+        start = last + 1
+        exact = None
+        if EXACT_CONTACT and first == last:
+            exact = contact_step_sensitivity(pm, x0, modes[first], tr.face_force[first], tr.t[first], ref, Spv, Sa,
+                                             scales)
+        if exact is not None:
+            Spv, Sa, miss = exact
+            mismatch = max(mismatch, miss)
+            continue
         J, end, bad = _step_jacobian(pm, x0, modes[first], tr.face_force[first], tr.t[first], scales, last + 1 - first)
         unsmooth += bad
-        ref = np.concatenate([rec_p[last + 1], rec_v[last + 1], rec_a[last + 1]])
         mismatch = max(mismatch, float(np.max(np.abs(end - ref) / scales)))
         S = J @ np.vstack([Spv, Sa])
         Spv, Sa = np.ascontiguousarray(S[:2 * nr]), np.ascontiguousarray(S[2 * nr:])
-        start = last + 1
     return Spv, mismatch, unsmooth
 
 

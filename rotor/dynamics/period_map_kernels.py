@@ -216,13 +216,13 @@ def sensitivity_pass(rec_p, rec_v, rec_modes, dt, beta, gamma, AK, AD, MK, MD, B
         Sa[:, nr:] = -MD
     carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N, a1,
           has_support, params, w_reg, onset_projection, np.zeros((rec_p.shape[0], 2), dtype=np.int64),
-          np.zeros((rec_p.shape[0], 2, 2)))
+          np.zeros((rec_p.shape[0], 2, 2)), np.zeros((nr, ncol)))
     return Spv
 
 
 @njit(cache=True)
 def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt, W, S, WM, SM, P, mu_N, a1,
-          has_support, params, w_reg, onset_projection, rec_held, rec_face):
+          has_support, params, w_reg, onset_projection, rec_held, rec_face, dload):
     """Carry the sensitivities ``Spv = ∂(p, v)/∂x0`` (2nr × ncol) and ``Sa = ∂a/∂x0`` (nr × ncol), given at the
     record's first sample, along its plain steps (in place; arguments as :func:`sensitivity_pass`). The
     located period map (:mod:`rotor.dynamics.period_map_events`) runs it between its event steps.
@@ -232,7 +232,11 @@ def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt,
     ``f = −μN w/|w|`` along the face's slip velocity ``w = P_k Bt v_n`` at the step's start, differentiated
     (``∂f/∂w = −μN (I − ŵŵᵀ)/|w|``); 2 a face at rest held at ``μN`` along its start force ``rec_face[n, k]``
     (N), a constant of the step. Such a step is smooth in its start (the hold is decided from the start alone),
-    so it is carried here, not differenced."""
+    so it is carried here, not differenced.
+
+    ``dload`` (nr × ncol): ``A⁻¹ ∂Q`` of each column, added to the sensitivity of every step's linear acceleration
+    ``a_lin = A⁻¹(Q − D v_pre − K p_pre)``; zeros, except for the derivative of a step with respect to its length
+    (rotor/dynamics/contact_step_derivative.py), in which the load's time moves with the step's end."""
     nr = rec_p.shape[1]
     n_steps = rec_p.shape[0] - 1
     ncol = Spv.shape[1]
@@ -300,6 +304,7 @@ def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt,
                 Pre[i, c] = Spv[i, c] + dt * Spv[nr + i, c] + c1 * sa
                 Pre[nr + i, c] = Spv[nr + i, c] + c2 * sa
         np.dot(AKD, Pre, Sal)
+        Sal -= dload
         if has_support:
             modes[0] = rec_modes[n + 1, 0]
             modes[1] = rec_modes[n + 1, 1]

@@ -165,7 +165,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
                                   pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1, sup is not None,
                                   params, opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick,
                                   opts.max_passes, float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
-                                  pre.Minv, pre.WM, pre.SM, pre.Mr, bool(opts.locate_events), rec["t"], rec["p"],
+                                  pre.Minv, pre.WM, pre.SM, pre.Mr, bool(opts.locate_events), True, rec["t"], rec["p"],
                                   rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"], rec["face"], rec["modes"], rec["its"], rec["passes"], status)
     except OutsideDomainError as e:
         raise OutsideDomainError(
@@ -206,7 +206,7 @@ def warm_up() -> dict:
            np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32), np.zeros(7, dtype=np.int64)]
     t0 = time.perf_counter()
     step_loop(f1, f1.copy(), f1.copy(), i1, f2.copy(), 0.0, 1.0, 0, 1, f2, f2, f2, f2, f2, f2, f1, f1, f2, f2, 0.0, f3,
-              f1, 0, 0.0, 0.0, True, np.zeros(N_PARAMS), 0.25, 0.5, 1e-10, 1, 0.0, 0.0, 1, 0.0, True, f2, f2, f2, f2, False, *rec)
+              f1, 0, 0.0, 0.0, True, np.zeros(N_PARAMS), 0.25, 0.5, 1e-10, 1, 0.0, 0.0, 1, 0.0, True, f2, f2, f2, f2, False, True, *rec)
     return {"compile_s": time.perf_counter() - t0, "from_cache": bool(sum(step_loop.stats.cache_hits.values()))}
 
 

@@ -64,13 +64,15 @@ def _faces_from_start(modes, modes0, phi_face, phi0, just_released, jr0):
 def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
               Ainv, Dr, Kr, Bt, W, S, static, orders, cosm, sinm, omega_f, P, mu_N, n_faces, s_yy, a1,
               has_support, params, beta, gamma, tol, max_iter, w_reg, w_stick, max_passes, stick_mean_weight,
-              onset_projection, Minv, WM, SM, Mr, locate_events,
+              onset_projection, Minv, WM, SM, Mr, locate_events, split_events,
               rec_t, rec_p, rec_v, rec_a, rec_u, rec_w, rec_fc, rec_fel, rec_face, rec_modes, rec_its, rec_passes,
               status):
     """The ``n_steps`` steps of :func:`rotor.dynamics.production.simulate_production` on the reduced
     coordinates ``p = Tᵀ q``: predictor, condensed Newton with the active-set loop, correction,
     stick-onset re-projection, friction events located if ``locate_events``, recording every
-    ``record_every`` steps into ``rec_*``. ``p, v, a, modes, phi_face`` are updated in place. ``status`` (7,):
+    ``record_every`` steps into ``rec_*``. ``p, v, a, modes, phi_face`` are updated in place. ``split_events``
+    False (with ``locate_events``): each step is the located step body's first pass alone, never split at an event
+    (the passes replayed one by one for an event step's derivative, rotor/dynamics/contact_step_derivative.py). ``status`` (7,):
     [0 ok / 2 non-finite, failing step, least-residual steps, stick-onset re-projections, located friction
     events, and for each face how its force was held in the last step body (0 not held, 1 a slow slip held at
     Coulomb's force along its start velocity, 2 a face at rest held at its force; friction_events, "Slow slips")].
@@ -104,6 +106,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
     g = vec[VG, :NC]
     # event location: the step's start state, its plain result, the held friction
     locate = locate_events and has_support
+    split = locate and split_events
     hold = np.zeros(2, dtype=np.bool_)
     hold_dir = np.zeros((2, 2))
     ev = np.zeros(2, dtype=np.bool_)
@@ -374,9 +377,9 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
         step_passes += passes
         # ---------------------------------------------------------------- event location (passes of the step)
         if phase == PLAIN:
-            if locate:
+            if split:
                 matvec_into(Bt, vn, w_end)          # (wv = Bt v, the step's start, from the step body)
-            if locate and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N,
+            if split and _velocity_events(wv, w_end, modes0, modes, jr0, P, n_faces, w_reg, ev, mu_N,
                                              EVENT_SPEED * w_reg) > 0:
                 p_pl[:] = pn                                        # the plain result, kept
                 v_pl[:] = vn
@@ -390,7 +393,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 _held_friction(v, alpha, ev, Bt, P, mu_N, e_dir, s0, d0, hold, hold_dir)
                 phase = HELD
                 continue
-            if locate and (rel_ev[0] or rel_ev[1]):
+            if split and (rel_ev[0] or rel_ev[1]):
                 # a release: the step redone up to the instant the holding force reached mu_N, the faces kept
                 # stuck (hold), released there (friction_events, "Release")
                 # the holding force at the start: the consistent one at the start's (p, v) (a function of the
@@ -416,7 +419,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                 vn[:] = v
                 an[:] = a
                 phase = TO_EVENT
-            if locate and phase == PLAIN:
+            if split and phase == PLAIN:
                 # contact onset or loss: an edge penetration that changed sign over the step (contact_events); the
                 # step redone up to the crossing with the start's friction state, the rest of the step follows
                 matvec_into(Bt, p, u_s)

@@ -150,7 +150,7 @@ def test_held_step_carried_equals_its_central_differences():
                   np.ascontiguousarray(tr.modes[n:n + 2].astype(np.int64)), Spv, Sa, pm.dt, o.beta, o.gamma, pm.AK,
                   pm.AD, pm.MK, pm.MD, pre.Bt, pre.W, pre.S, pre.WM, pre.SM, pre.P, pre.limits, pre.a1, True,
                   pm.params, o.w_reg, bool(o.consistent_stick_onset), np.ascontiguousarray(h),
-                  np.ascontiguousarray(tr.face_force[n:n + 2], dtype=float))
+                  np.ascontiguousarray(tr.face_force[n:n + 2], dtype=float), np.zeros((nr, 3 * nr)))
             J[label] = np.vstack([Spv, Sa])
         x0 = np.concatenate([rec_p[n], rec_v[n], rec_a[n]])
         D = pme._step_jacobian(pm, x0, tr.modes[n], tr.face_force[n], tr.t[n], scales)[0]
@@ -171,7 +171,9 @@ def test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder(rpm, monkeypat
     whole map at 1e-7 and 2e-7 of each component's largest magnitude (rotor/dynamics/monodromy_check.py), converged to
     5e-7 against the one at 5e-8 and 1e-7. Both monodromies within the issue's 1e-6 of it, the level-by-level one
     no further from it than the whole ladder's plus 1e-7 (the refinement's tolerance), with fewer replays (measured
-    in reports/published/perf-monodromy-ladder.md)."""
+    in reports/published/perf-monodromy-ladder.md). The contact steps are differenced here (``EXACT_CONTACT`` False),
+    as before their exact derivative (rotor/dynamics/contact_step_derivative.py): the ladder still differences the
+    friction events and any step that route declines."""
     _check_ladder_routes(rpm, 256, monkeypatch)
 
 
@@ -193,6 +195,7 @@ def _check_ladder_routes(rpm, steps, monkeypatch):
     pm = period_map_setup(system, 2 * math.pi / system.omega_rad_s / steps)
     r = period_map(pm, reduced_state(pm, *linear_initial_state(system)), 0.0, 24 * steps, jacobian=False)
     inner, M, replays = pme._differences, {}, {}
+    monkeypatch.setattr(pme, "EXACT_CONTACT", False)
     for progressive in (False, True):
         count = [0]
 
