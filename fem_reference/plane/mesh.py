@@ -287,3 +287,37 @@ def facets_on_symmetry_line(mesh, rel_tol: float = 1e-9) -> np.ndarray:
     x = mesh.p[0, mesh.facets[:, f]]
     scale = np.abs(mesh.p).max()
     return f[np.all(np.abs(x) <= rel_tol * scale, axis=0)]
+
+
+def refined_uniformly(rmesh: RingMesh) -> RingMesh:
+    """``rmesh`` (linear triangles) with every triangle split into four, the new nodes on the rings'
+    circles moved radially onto them.
+
+    The nested uniform refinement of the independent references (:mod:`fem_reference.plane.uniform_reference`):
+    the element sizes halve everywhere and any a priori grading of the first mesh is kept. A new node
+    on a boundary edge whose two ends lie on one of the four circles goes to that circle (the chord's
+    midpoint sags ``h²/(8R)`` inside it), so the polygonal boundary converges to the circle.
+
+    Raises
+    ------
+    InputError
+        If ``rmesh`` is not linear (``order`` 2).
+    """
+    if rmesh.order != 1:
+        raise InputError(f"order = {rmesh.order!r}: uniform refinement is for linear triangles (order 1) only")
+    old = rmesh.mesh
+    fine = MeshTri1(old.p, old.t).refined()
+    p = fine.p.copy()
+    f = old.boundary_facets()
+    ends = old.p[:, old.facets[:, f]]                          # (2, 2, nf)
+    r_ends = np.sqrt((ends ** 2).sum(axis=0))                  # (2, nf)
+    mid = old.p.shape[1] + f                                   # skfem numbers facet k's new node n_old + k
+    rings = rmesh.rings
+    for radius in (rings.inner_radius_m, rings.outer_radius_m, rings.bore_radius_m, rings.support_outer_radius_m):
+        on = np.all(np.abs(r_ends - radius) <= 1e-6 * radius, axis=0)
+        q = p[:, mid[on]]
+        p[:, mid[on]] = q * (radius / np.sqrt((q ** 2).sum(axis=0)))
+    fine = MeshTri1(np.ascontiguousarray(p), np.ascontiguousarray(fine.t))
+    body = np.tile(rmesh.body, 4)                              # skfem's children: four blocks in element order
+    fine = fine.with_boundaries(_named_boundaries(fine, rings, body))
+    return RingMesh(mesh=fine, body=body, rings=rings, spec=rmesh.spec)

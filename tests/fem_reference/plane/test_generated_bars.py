@@ -1,0 +1,134 @@
+"""The error-driven bars on generated ring pairs (issue 37): fem_reference/plane/adapt.py (fitted_bar),
+uniform_reference.py (the independent P1 reference on nested uniform refinements), mesh.py
+(refined_uniformly) and generated.py (the seeded pairs and their check).
+
+Expected values come from closed forms: the area of the two half annuli (pi/2 (R_o^2 - R_i^2) each), the
+order 2 of Richardson's extrapolation for linear triangles, and synthetic sequences F = F_inf + C x^2 (+ noise)
+whose limit is known. benchmarks/bench_fem2d_adaptive.py runs the family at full size
+(reports/published/fem2d-adaptive.md).
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from skfem import Basis, ElementTriP1
+
+from contact.errors import InputError
+from fem_reference import ring_scene
+from fem_reference.plane.adapt import fitted_bar, reference_mesh
+from fem_reference.plane.generated import check_pair, draw_pair
+from fem_reference.plane.mesh import refined_uniformly
+from seeds import commit_seed
+
+PAIR = Path(__file__).resolve().parents[1] / "ring_scenes" / "cast-iron-lower-half.toml"
+X5 = 0.01 / math.sqrt(2.0) ** np.arange(5)            # five levels' estimated errors, / sqrt(2) each
+
+
+# ---------------------------------------------------------------------------------------------
+# the fitted bar on synthetic sequences
+
+
+def test_fitted_bar_of_a_noiseless_sequence_is_its_distance_from_the_limit():
+    f = 1000.0 + 3e5 * X5 ** 2
+    bar = fitted_bar(f, X5)
+    assert bar.given and bar.method == "fit" and not bar.asymptotic
+    assert bar.extrapolated_n == pytest.approx(1000.0, rel=1e-12)
+    true = (f[-1] - 1000.0) / f[-1]
+    assert true <= bar.error_rel <= true * (1 + 1e-6)
+
+
+def test_fitted_bar_covers_the_limit_of_noisy_sequences():
+    """F = F_inf + C x^2 + noise, the noise up to 5x the finest level's discretisation error: the bar covers
+    |F_n - F_inf| in at least 95 % of 400 draws (its limit's confidence is 95 %, and |F_n - F0| is added)."""
+    seed = commit_seed()
+    print(f"seed {seed}")
+    rng = np.random.default_rng(seed)
+    covered = 0
+    for _ in range(400):
+        c = rng.uniform(-3e5, 3e5)
+        sigma = abs(c) * X5[-1] ** 2 * rng.uniform(0.0, 5.0) + 1e-9
+        f = 1000.0 + c * X5 ** 2 + rng.normal(0.0, sigma, 5)
+        bar = fitted_bar(f, X5)
+        covered += abs(f[-1] - 1000.0) <= bar.error_rel * abs(f[-1])
+    print(f"covered {covered} of 400")
+    assert covered >= 380
+
+
+def test_fitted_bar_refuses_too_few_levels_or_errors_that_do_not_fall():
+    with pytest.raises(InputError, match="4 or more"):
+        fitted_bar([1.0, 1.0, 1.0], X5[:3])
+    with pytest.raises(InputError, match="must decrease"):
+        fitted_bar([1.0] * 5, X5[::-1])
+
+
+# ---------------------------------------------------------------------------------------------
+# nested uniform refinement and the P1 reference
+
+
+def _area(rmesh):
+    return float(Basis(rmesh.mesh, ElementTriP1()).dx.sum())
+
+
+def test_refined_uniformly_puts_new_boundary_nodes_on_the_circles_and_converges_to_the_area():
+    sc = ring_scene.load(str(PAIR)).scene
+    r = sc.rings
+    exact = math.pi / 2 * (r.outer_radius_m ** 2 - r.inner_radius_m ** 2
+                           + r.support_outer_radius_m ** 2 - r.bore_radius_m ** 2)
+    meshes = [reference_mesh(sc, 5e-3, order=1)]
+    for _ in range(2):
+        meshes.append(refined_uniformly(meshes[-1]))
+    errs = [abs(_area(m) / exact - 1) for m in meshes]
+    print(f"area errors {errs}")
+    assert errs[0] / errs[1] > 3.5 and errs[1] / errs[2] > 3.5        # h^2: the chords' sag
+    fine = meshes[-1]
+    assert fine.mesh.nelements == 16 * meshes[0].mesh.nelements
+    for name, radius in (("bearing_inner", r.inner_radius_m), ("support_outer", r.support_outer_radius_m)):
+        nodes = np.unique(fine.mesh.facets[:, fine.mesh.boundaries[name]])
+        assert len(fine.mesh.boundaries[name]) == 4 * len(meshes[0].mesh.boundaries[name])
+        assert np.abs(np.hypot(*fine.mesh.p[:, nodes]) / radius - 1).max() < 1e-12
+    with pytest.raises(InputError, match="order 1"):
+        refined_uniformly(reference_mesh(sc, 5e-3, order=2))
+
+
+# ---------------------------------------------------------------------------------------------
+# generated pairs: the bar against the reference
+
+
+def test_reduced_generated_pair_within_its_bar():
+    """One generated pair (seed 7, printed), its lower penetration: the reference (P1, a first mesh at the
+    thinner ring's thickness / 2, three nested refinements: the benchmark's) converges at order 2 and
+    the error-driven force lies within its stated bar of it, the reference's own uncertainty under half
+    that bar."""
+    rng = np.random.default_rng(7)
+    sc, pens = draw_pair(rng, 0)
+    pc, = check_pair(sc, pens[:1])
+    b, ref = pc.adaptive.bar, pc.reference
+    print(f"seed 7: {sc.support_hold}, {sc.bearing_drive}, {sc.plane}, {pens[0] * 1e3:.4f} mm; reference "
+          f"{ref.forces_n} -> {ref.force_n:.6f} N (unc. {ref.uncertainty_rel:.1e}, order {ref.observed_order:.2f}); "
+          f"error-driven {pc.adaptive.forces_n}, bar {b.method} {b.error_rel:.2e}, difference {pc.difference_rel:+.2e}")
+    assert 1.8 < ref.observed_order < 2.2
+    assert b.given, b.reason
+    assert ref.uncertainty_rel < b.error_rel / 2
+    assert pc.verdict == "within"
+
+
+@pytest.mark.slow
+def test_generated_pairs_within_their_bars():
+    """Three generated pairs (the commit's seed, printed), both penetrations, at the benchmark's size: every
+    point gets a bar, and the share of points outside their bar is at most 5 % (with six points: none)."""
+    seed = commit_seed()
+    print(f"seed {seed}")
+    rng = np.random.default_rng(seed)
+    checks = []
+    for i in range(3):
+        sc, pens = draw_pair(rng, i)
+        for pc in check_pair(sc, pens):
+            print(f"{i} {sc.support_hold} {sc.bearing_drive} {sc.plane} {pc.penetration_m * 1e3:.4f} mm: "
+                  f"{pc.verdict}, bar {pc.adaptive.bar.method} {pc.adaptive.bar.error_rel:.2e}, difference "
+                  f"{pc.difference_rel:+.2e}, reference unc. {pc.reference.uncertainty_rel:.1e}")
+            checks.append(pc)
+    assert all(pc.adaptive.bar.given for pc in checks), [pc.adaptive.bar.reason for pc in checks]
+    assert sum(pc.verdict == "outside" for pc in checks) <= 0.05 * len(checks)
