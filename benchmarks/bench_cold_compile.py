@@ -83,7 +83,7 @@ def child(report: str, argv: list[str]) -> int:
                 self.count += 1
                 fn = ev.data["dispatcher"].py_func
                 self.top.append({"function": f"{fn.__module__}.{fn.__qualname__}", "t0": time.perf_counter(),
-                                 "nested": 0})
+                                 "c0": time.process_time(), "nested": 0})
             else:
                 self.top[-1]["nested"] += 1
             super().on_start(ev)
@@ -92,6 +92,7 @@ def child(report: str, argv: list[str]) -> int:
             super().on_end(ev)
             if self._depth == 0:
                 self.top[-1]["compile_s"] = time.perf_counter() - self.top[-1].pop("t0")
+                self.top[-1]["compile_cpu_s"] = time.process_time() - self.top[-1].pop("c0")
 
     timer = Counting()
     event.register("numba:compile", timer)
@@ -100,7 +101,8 @@ def child(report: str, argv: list[str]) -> int:
     code = cli.main(argv)
     wall = time.perf_counter() - t0
     import contact
-    doc = {"exit": code, "module": contact.__file__, "in_process_s": wall, "compile_s": timer.duration if timer.done else 0.0,
+    doc = {"exit": code, "module": contact.__file__, "in_process_s": wall, "process_cpu_s": time.process_time(),
+           "compile_cpu_s": sum(f["compile_cpu_s"] for f in timer.top), "compile_s": timer.duration if timer.done else 0.0,
            "compiles": timer.count, "by_function": timer.top}
     Path(report).write_text(json.dumps(doc))
     return code
@@ -157,8 +159,32 @@ def measure(repeats: int) -> tuple[list[dict], str]:
     return rows, commit
 
 
+RUNS = ("simulate cold", "simulate warm", "orbit after simulate", "orbit cold", "orbit warm")
+TARGET_S = 30.0      # issue 38: a first compile of at most 30 s on an idle 2-core machine
+
+
+def _median(rows: list[dict], run: str, key: str) -> float:
+    return statistics.median(r[key] for r in rows if r["run"] == run)
+
+
+def _breakdown(rows: list[dict]) -> list[str]:
+    """Per outermost compiled function of the cold runs: median wall and CPU seconds, nested compiles."""
+    lines = ["| run | function | compile wall (s) | compile CPU (s) | nested compiles |", "|---|---|---|---|---|"]
+    for run in ("simulate cold", "orbit after simulate", "orbit cold"):
+        per: dict[str, list] = {}
+        for r in rows:
+            if r["run"] == run:
+                for f in r["by_function"]:
+                    per.setdefault(f["function"], []).append(f)
+        for name, fs in sorted(per.items(), key=lambda kv: -statistics.median(f["compile_s"] for f in kv[1])):
+            lines.append(f"| {run} | `{name}` | {statistics.median(f['compile_s'] for f in fs):.1f} | "
+                         f"{statistics.median(f['compile_cpu_s'] for f in fs):.1f} | "
+                         f"{statistics.median(f['nested'] for f in fs):.0f} |")
+    return lines
+
+
 def markdown(rows: list[dict], repeats: int, load0, load1, commit: str) -> str:
-    med = lambda run, key: statistics.median(r[key] for r in rows if r["run"] == run)  # noqa: E731
+    med = lambda run, key: _median(rows, run, key)  # noqa: E731
     lines = ["# A newcomer's first simulate and first orbit: the empty numba cache",
              "",
              f"`benchmarks/bench_cold_compile.py` (re-run it to replace these numbers), on commit {commit[:12]} (a "
@@ -167,39 +193,34 @@ def markdown(rows: list[dict], repeats: int, load0, load1, commit: str) -> str:
              "steel-in-aluminium law, 300 rpm; `simulate --revolutions 2` and `orbit`, each a fresh process. Cold: "
              "an empty cache folder (`RINGCONTACT_CACHE`); warm: the same command on the folder the cold run "
              "filled; orbit after simulate: the first orbit on the folder a first simulate filled. Compile: numba's "
-             "`numba:compile` events inside the child (compiles only, not cache loads), outermost ones timed. "
+             "`numba:compile` events inside the child (compiles only, not cache loads), outermost ones timed in wall "
+             "and in the process's CPU time (numba compiles on one thread: the CPU time is what the compile costs "
+             "without other work on the core, the wall time what it cost here). "
              f"Alternating, {repeats} repeats, medians. Load average (1/5/15 min) at start "
              f"{load0[0]:.2f}/{load0[1]:.2f}/{load0[2]:.2f}, at end {load1[0]:.2f}/{load1[1]:.2f}/{load1[2]:.2f} "
-             f"(shared machine, 2 cores); {platform.processor() or platform.machine()}, "
-             f"Python {platform.python_version()}.",
+             f"(shared machine, 2 cores: above 2 the cores are oversubscribed); "
+             f"{platform.processor() or platform.machine()}, Python {platform.python_version()}.",
              "",
-             "| run | process wall (s) | compile (s) | compiles | wall against warm | load average (1 min, start → end, medians) |",
-             "|---|---|---|---|---|---|"]
-    for run in ("simulate cold", "simulate warm", "orbit after simulate", "orbit cold", "orbit warm"):
+             "| run | process wall (s) | process CPU (s) | compile wall (s) | compile CPU (s) | compiles | wall against "
+             "warm | load average (1 min, start → end) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for run in RUNS:
         warm = med(run.split()[0] + " warm", "wall_s")
-        lines.append(f"| {run} | {med(run, 'wall_s'):.1f} | {med(run, 'compile_s'):.1f} | {med(run, 'compiles'):.0f} | "
+        lines.append(f"| {run} | {med(run, 'wall_s'):.1f} | {med(run, 'process_cpu_s'):.1f} | "
+                     f"{med(run, 'compile_s'):.1f} | {med(run, 'compile_cpu_s'):.1f} | {med(run, 'compiles'):.0f} | "
                      f"{med(run, 'wall_s') / warm:.1f}× | {med(run, 'load_start'):.2f} → {med(run, 'load_end'):.2f} |")
-    target = 30.0
-    worst = max(med("simulate cold", "compile_s"), med("orbit cold", "compile_s"))
-    lines += ["", "Where the cold compiles go (outermost compiles, each with the compiles nested in it; median over the "
-              "repeats, s):", "", "| run | function | compile (s) | nested compiles |", "|---|---|---|---|"]
-    for run in ("simulate cold", "orbit after simulate", "orbit cold"):
-        per: dict[str, list] = {}
-        for r in rows:
-            if r["run"] == run:
-                for f in r["by_function"]:
-                    per.setdefault(f["function"], []).append((f["compile_s"], f["nested"]))
-        for name, vals in sorted(per.items(), key=lambda kv: -statistics.median(v[0] for v in kv[1])):
-            lines.append(f"| {run} | `{name}` | {statistics.median(v[0] for v in vals):.1f} | "
-                         f"{statistics.median(v[1] for v in vals):.0f} |")
-    lines += ["", f"Target (issue 38): a first compile of at most {target:g} s on an idle 2-core machine. Measured "
-              f"here: {med('simulate cold', 'compile_s'):.1f} s for the first simulate and "
-              f"{med('orbit cold', 'compile_s'):.1f} s for the first orbit; "
-              f"{'within' if worst <= target else 'beyond'} the target at the load stated above "
-              "(not an idle machine: the figure on an idle one is lower by an unknown factor).", "",
-              "Every run (wall s, compile s, compiles, load start → end):", ""]
-    lines += [f"- repeat {r['repeat']}, {r['run']}: {r['wall_s']:.1f}, {r['compile_s']:.1f}, {r['compiles']}, "
-              f"{r['load_start']:.2f} → {r['load_end']:.2f}" for r in rows]
+    worst = max(med("simulate cold", "compile_cpu_s"), med("orbit cold", "compile_cpu_s"))
+    lines += ["", "Where the cold compiles go (outermost compiles, each with the compiles nested in it; medians):", "",
+              *_breakdown(rows), "",
+              f"Target (issue 38): a first compile of at most {TARGET_S:g} s on an idle 2-core machine. Measured here: "
+              f"the first simulate compiles for {med('simulate cold', 'compile_s'):.0f} s of wall time "
+              f"({med('simulate cold', 'compile_cpu_s'):.0f} s of CPU), the first orbit for "
+              f"{med('orbit cold', 'compile_s'):.0f} s ({med('orbit cold', 'compile_cpu_s'):.0f} s of CPU); the CPU "
+              f"time, the nearest this machine gives to an idle one, is {'within' if worst <= TARGET_S else 'beyond'} "
+              "the target.", "",
+              "Every run (wall s, CPU s, compile wall s, compile CPU s, compiles, load start → end):", ""]
+    lines += [f"- repeat {r['repeat']}, {r['run']}: {r['wall_s']:.1f}, {r['process_cpu_s']:.1f}, {r['compile_s']:.1f}, "
+              f"{r['compile_cpu_s']:.1f}, {r['compiles']}, {r['load_start']:.2f} → {r['load_end']:.2f}" for r in rows]
     return "\n".join(lines) + "\n"
 
 
@@ -214,9 +235,9 @@ def main(argv=None) -> int:
     rows, commit = measure(args.repeats)
     load1 = os.getloadavg()
     text = markdown(rows, args.repeats, load0, load1, commit)
-    csv = ["repeat,run,wall_s,compile_s,compiles,load_start,load_end"]
-    csv += [f"{r['repeat']},{r['run']},{r['wall_s']:.3f},{r['compile_s']:.3f},{r['compiles']},{r['load_start']:.2f},"
-            f"{r['load_end']:.2f}" for r in rows]
+    csv = ["repeat,run,wall_s,process_cpu_s,compile_s,compile_cpu_s,compiles,load_start,load_end"]
+    csv += [f"{r['repeat']},{r['run']},{r['wall_s']:.3f},{r['process_cpu_s']:.3f},{r['compile_s']:.3f},"
+            f"{r['compile_cpu_s']:.3f},{r['compiles']},{r['load_start']:.2f},{r['load_end']:.2f}" for r in rows]
     atomic_write_text(OUT / "perf-cold-compile.md", text)
     atomic_write_text(OUT / "perf-cold-compile.csv", "\n".join(csv) + "\n")
     print(text)
