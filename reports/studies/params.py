@@ -90,15 +90,56 @@ CLEARANCE_TITLE = "Harmonic amplitudes vs speed, several clearances (paper Fig. 
 MISALIGNMENT_TITLE = "Harmonic amplitudes vs speed, several misalignments (paper Fig. 19)"
 
 
+def ratio_grid(groups: dict, ref: float, label, title: str):
+    """3 × 3 grid as :func:`amplitude_grid` of each group's amplitude over the reference group's (``ref``: the scene's
+    value) at the same speed, so that changes of a few per cent show; the reference is the line at 1. Speeds where
+    either amplitude is at or below :data:`FLOOR_UM` or missing are left out; not periodic: open circles."""
+    plt = pyplot()
+    fig, axes = plt.subplots(3, 3, figsize=(13, 9.5), constrained_layout=True, sharex=True)
+    r_rpm, r_A, r_per = groups[ref]
+    at = {float(s): k for k, s in enumerate(r_rpm)}
+    for n, (val, (rpm, A, per)) in enumerate(sorted(groups.items(), key=lambda kv: kv[0])):
+        idx = [(k, at[float(s)]) for k, s in enumerate(rpm) if float(s) in at]
+        if val == ref or not idx:
+            continue
+        k, j = (np.array(x) for x in zip(*idx))
+        for i in range(3):
+            for loc, (_, lab) in enumerate(LOCATIONS):
+                a, b = np.asarray(A[k, loc, i], float), np.asarray(r_A[j, loc, i], float)
+                ok = (a > FLOOR_UM) & (b > FLOOR_UM)
+                ratio = np.where(ok, a / np.where(ok, b, 1.0), np.nan)
+                ax = axes[i, loc]
+                ax.semilogy(rpm[k], ratio, "-o", ms=2.5, lw=1, color=f"C{n}", label=f"{label(val)} / {label(ref)}")
+                odd = ok & ~(np.asarray(per, bool)[k] & np.asarray(r_per, bool)[j])
+                ax.semilogy(rpm[k][odd], ratio[odd], "o", ms=6, mfc="none", mec=f"C{n}", mew=1.1)
+                ax.axhline(1.0, color="0.4", lw=0.7)
+                ax.set_title(f"{i + 1}X, {lab}", fontsize=9)
+                ax.set_ylabel(f"{i + 1}X amplitude / reference (–)", fontsize=8)
+                if i == 2:
+                    ax.set_xlabel("rotor speed (rpm)")
+    axes[0, 0].plot([], [], "o", ms=6, mfc="none", mec="0.3", label="either point not periodic")
+    for ax in axes.flat:
+        ax.legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    return fig
+
+
 def params_grids(rows: list[dict], figs: Path, prefix: str = "study-params") -> list[Path]:
-    """``<prefix>-clearance`` and ``<prefix>-misalignment`` figures from ``study-params.csv`` rows."""
+    """``<prefix>-clearance`` and ``<prefix>-misalignment`` figures from ``study-params.csv`` rows, and each as a
+    ratio to the scene's clearance / misalignment (``-ratio``)."""
     byc, bym = grids_from_rows(rows)
+    ref = next((r for r in rows if r["key"].startswith("base-")), rows[0]) if rows else None
     files = []
     if byc:
-        files += save(amplitude_grid(byc, lambda v: f"δ0 = {v * 1e3:g} mm", CLEARANCE_TITLE), Path(figs) / f"{prefix}-clearance")
+        lab = lambda v: f"δ0 = {v * 1e3:g} mm"                                   # noqa: E731
+        files += save(amplitude_grid(byc, lab, CLEARANCE_TITLE), Path(figs) / f"{prefix}-clearance")
+        files += save(ratio_grid(byc, float(ref["clearance_mm"]) * 1e-3, lab, CLEARANCE_TITLE + ": ratio to the scene's δ0"),
+                      Path(figs) / f"{prefix}-clearance-ratio")
     if bym:
-        files += save(amplitude_grid(bym, lambda v: f"δ = {v * 1e3:g} mm", MISALIGNMENT_TITLE),
-                      Path(figs) / f"{prefix}-misalignment")
+        lab = lambda v: f"δ = {v * 1e3:g} mm"                                    # noqa: E731
+        files += save(amplitude_grid(bym, lab, MISALIGNMENT_TITLE), Path(figs) / f"{prefix}-misalignment")
+        files += save(ratio_grid(bym, float(ref["misalignment_mm"]) * 1e-3, lab,
+                                 MISALIGNMENT_TITLE + ": ratio to the scene's δ"), Path(figs) / f"{prefix}-misalignment-ratio")
     return files
 
 

@@ -32,7 +32,7 @@ SENSITIVITY_SCENE = "paper-table4-inertial"
 #: committed CSV -> what is drawn from it
 SOURCES = {
     "study-sensitivity-points.csv": "study-sensitivity.png/.svg",
-    "study-params.csv": "study-params-clearance, study-params-misalignment",
+    "study-params.csv": "study-params-clearance, study-params-misalignment and their -ratio figures",
     "study-cascade.csv": "study-cascade, study-cascade-tilt",
     "study-cascade-notilt.csv": "study-cascade-notilt, study-cascade-notilt-tilt",
 }

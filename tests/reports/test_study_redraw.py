@@ -28,6 +28,7 @@ from rotor.studies import sensitivity as sens
 ROOT = Path(__file__).resolve().parents[2]
 PUBLISHED = ROOT / "reports" / "published"
 FIGURES = [f"{stem}.{ext}" for stem in ("study-sensitivity", "study-params-clearance", "study-params-misalignment",
+                                        "study-params-clearance-ratio", "study-params-misalignment-ratio",
                                         "study-cascade", "study-cascade-tilt", "study-cascade-notilt",
                                         "study-cascade-notilt-tilt") for ext in ("png", "svg")]
 
