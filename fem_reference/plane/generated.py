@@ -77,20 +77,26 @@ class PointCheck:
     verdict: str
 
 
-def check_pair(scene: Scene, penetrations_m, *, reference_levels: int = 4,
+def check_pair(scene: Scene, penetrations_m, *, reference_levels: int = 4, max_reference_levels: int = 5,
                reference_h0_per_thickness: float = REFERENCE_H0_PER_THICKNESS, adaptive_levels: int = 3,
                extra_levels: int = 2) -> tuple[PointCheck, ...]:
     """Each penetration [m] of ``scene``: error-driven force and bar against the reference (module docstring).
 
     ``reference_levels``: the reference's levels (the first at the thinner ring's thickness /
-    ``reference_h0_per_thickness``, each refinement halving it); ``adaptive_levels`` and ``extra_levels``: as :func:`adaptive_point`'s
+    ``reference_h0_per_thickness``, each refinement halving it), one more (up to ``max_reference_levels``)
+    while a reference's own uncertainty exceeds half the bar it checks; ``adaptive_levels`` and ``extra_levels``: as :func:`adaptive_point`'s
     ``n_levels`` and ``extra_levels``.
     """
     h0 = thinner_thickness_m(scene) / reference_h0_per_thickness
-    refs = uniform_reference(scene, penetrations_m, h0, reference_levels)
+    adaptive = [adaptive_point(scene, dr, n_levels=adaptive_levels, extra_levels=extra_levels) for dr in penetrations_m]
+    levels = reference_levels
+    refs = uniform_reference(scene, penetrations_m, h0, levels)
+    while levels < max_reference_levels and any(a.bar.given and r.uncertainty_rel > a.bar.error_rel / 2
+                                                 for a, r in zip(adaptive, refs)):
+        levels += 1
+        refs = uniform_reference(scene, penetrations_m, h0, levels)
     out = []
-    for dr, ref in zip(penetrations_m, refs):
-        a = adaptive_point(scene, dr, n_levels=adaptive_levels, extra_levels=extra_levels)
+    for dr, ref, a in zip(penetrations_m, refs, adaptive):
         diff = a.bar.force_n / ref.force_n - 1.0
         verdict = "refused" if not a.bar.given else ("within" if abs(diff) <= a.bar.error_rel else "outside")
         out.append(PointCheck(float(dr), a, ref, float(diff), verdict))

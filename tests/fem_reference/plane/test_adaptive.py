@@ -119,18 +119,20 @@ def _reference(sc, pens_m, sizes_m):
 
 def test_reduced_case_new_bar_holds_where_the_graded_family_bar_fails():
     """Δr = 0.03 mm: the graded family's Richardson bar misses the reference by several times (issue 37:
-    0.068 % stated, 0.55 % off); the error-driven levels' bar holds, at most 0.2 %."""
+    0.068 % stated, 0.55 % off); the error-driven levels' three-level Richardson bar (``extra_levels=0``: the
+    default's five-level bar is smaller than this coarse reference can check; the slow test below and
+    benchmarks/bench_fem2d_adaptive.py check it against finer references) holds, at most 0.2 %."""
     from fem_reference.plane.sweep import Levels, reference_point
 
     sc, dr = _scene(), 0.03e-3
     ref = _reference(sc, [dr], (2e-3, 1.414e-3))[:, 0]
     ref_unc = abs(ref[1] - ref[0]) / ref[1]
     old = reference_point(Levels(sc), dr)
-    new = adaptive_point(sc, dr)
+    new = adaptive_point(sc, dr, extra_levels=0)
     print(f"reference {ref} N (levels differ by {ref_unc:.2e}); graded family {old['force_n']:.2f} N "
           f"+- {old['force_error_rel']:.2e}; error-driven {new.forces_n} N, {new.ndofs} DOFs, est. {new.rel_errors}, "
           f"bar {new.bar}")
-    assert new.bar.asymptotic, new.bar.reason
+    assert new.bar.given, new.bar.reason
     assert new.bar.error_rel <= 2e-3
     assert ref_unc < new.bar.error_rel / 4              # the reference is converged well inside the bar
     assert abs(new.bar.force_n / ref[1] - 1) <= new.bar.error_rel
@@ -151,7 +153,7 @@ def test_cast_iron_pair_within_its_bar_at_every_penetration():
         unc = abs(ref[0, k] / ref[1, k] - 1)
         print(f"{dr * 1e3:g} mm: {new.bar.force_n:.3f} N vs reference {ref[1, k]:.3f} N ({diff:+.3%}, reference levels "
               f"{unc:.1e}), bar {new.bar.error_rel:.3%}, order {new.bar.observed_order:.2f}, DOFs {new.ndofs}")
-        assert new.bar.asymptotic, new.bar.reason
+        assert new.bar.given, new.bar.reason
         assert new.bar.error_rel <= 2e-3
         assert unc < new.bar.error_rel / 4
         assert abs(diff) <= new.bar.error_rel
