@@ -18,7 +18,7 @@ from skfem import Basis, ElementTriP1
 
 from contact.errors import InputError
 from fem_reference import ring_scene
-from fem_reference.plane.adapt import fitted_bar, reference_mesh
+from fem_reference.plane.adapt import AdaptiveResult, _combined_bar, fitted_bar, force_bar, reference_mesh
 from fem_reference.plane.generated import check_pair, draw_pair
 from fem_reference.plane.mesh import refined_uniformly
 from seeds import commit_seed
@@ -62,6 +62,27 @@ def test_fitted_bar_refuses_too_few_levels_or_errors_that_do_not_fall():
         fitted_bar([1.0, 1.0, 1.0], X5[:3])
     with pytest.raises(InputError, match="must decrease"):
         fitted_bar([1.0] * 5, X5[::-1])
+
+
+def test_stated_bar_is_the_larger_of_richardson_and_the_fit_and_refused_without_a_sequence():
+    """adapt._combined_bar, the bar of five error-driven levels: the larger of the last three levels' Richardson
+    bar (where asymptotic) and the fitted one; the fit alone where Richardson refuses; none where the estimates rise."""
+    smooth = 1000.0 + 3e5 * X5 ** 2
+    wobbly = smooth + np.array([0.0, 0.4, -0.4, 0.3, -0.2])        # not monotone at the last three
+    scattered = smooth + np.array([4.0, -4.0, 0.0, 0.0, 0.0])      # asymptotic last three, a wide scatter
+    for f in (smooth, scattered, wobbly):
+        bar = _combined_bar(AdaptiveResult(0.0, forces_n=list(f), rel_errors=list(X5)))
+        rich, fit = force_bar(f[-3:], X5[-3:]), fitted_bar(f, X5)
+        expected = max(rich.error_rel, fit.error_rel) if rich.asymptotic else fit.error_rel
+        assert bar.error_rel == pytest.approx(expected, rel=1e-12)
+        assert bar.method == ("richardson" if rich.asymptotic and rich.error_rel >= fit.error_rel else "fit")
+        assert bar.asymptotic == rich.asymptotic
+    assert "no Richardson bar" in _combined_bar(AdaptiveResult(0.0, forces_n=list(wobbly),
+                                                               rel_errors=list(X5))).reason
+    rising = list(X5)
+    rising[1] = rising[0] * 1.1
+    refused = _combined_bar(AdaptiveResult(0.0, forces_n=list(smooth), rel_errors=rising))
+    assert not refused.given and refused.method == "none" and "do not decrease" in refused.reason
 
 
 # ---------------------------------------------------------------------------------------------
