@@ -39,8 +39,9 @@ levels' Richardson bar (where they are asymptotic) and a bar from all of them by
 (:func:`fitted_bar`); three levels alone were not enough on generated pairs: a noisy sequence looks
 asymptotic by chance (seed 3019196743: 2 of the first 12 points outside their Richardson bars, 1.12 and
 1.15 times). The fit is ``F_k = F_0 + C x_k²`` at the expected order, the scatter of
-the forces about that line being the contact's noise (the arc's edge falls between nodes differently on
-each mesh: on generated pairs the levels jump by 1e-5 to 5e-4 of the force while the estimate falls), and
+the forces about that line being the levels' noise (on generated pairs they jump by 1e-5 to 5e-4 of the
+force while the estimate falls; the contact QP is solved to a KKT residual of 1e-10, so the scatter comes
+from the meshes, each a new unstructured one, as on near-uniform P2 meshes, not from the solver), and
 the bar ``|F_n − F_0| + t·se(F_0)``, the distance of the finest level from the fitted limit plus the 95 %
 confidence half-width of that limit (Student's t at n − 2 degrees of freedom; the fit's own scatter
 widens it). The noise is treated as random, which is an assumption, checked against the independent
