@@ -404,14 +404,33 @@ CLAIMS = (
          claim="| 2: localized at disk 1 | 5184 | 7405 (+42.8%) | 7208 (+39.0%) | 5184 (fitted) |",
          test="tests/test_published_rotor.py::test_testrig_critical_speeds_under_the_three_readings", tier="default"),
 
-    # section5-readings.md
+    # section5-readings.md (the comparison protocol, reports/protocols/section5-readings.toml)
     dict(report="reports/published/section5-readings.md",
-         claim="`opposed-at-joint-long-sleeve` meets the most rows (17) and is the scene's reading",
-         test="tests/reports/test_section5_readings.py::test_point_b_contact_and_separation_only_with_the_default_reading",
+         claim="`opposed-at-joint-long-sleeve` scores highest under the primary weighting (equal: 15), the scene's reading.",
+         test="tests/reports/test_readings_protocol.py::test_published_scores_are_the_protocols_on_the_published_verdicts",
+         tier="default"),
+    dict(report="reports/published/section5-readings.md",
+         claim="scores highest under 4 (point B x2, A1-A3 one symptom (tied), paper's mesh only, converged mesh only) "
+               "and not under 2: point B only (`inertial-at-joint-long-sleeve`); rows the control fails "
+               "(`inertial-at-joint-long-sleeve`).",
+         test="tests/reports/test_readings_protocol.py::test_published_scores_are_the_protocols_on_the_published_verdicts",
+         tier="default"),
+    dict(report="reports/published/section5-readings.md",
+         claim="The no-excitation control scores 8 under the primary weighting.",
+         test="tests/reports/test_readings_protocol.py::test_published_scores_are_the_protocols_on_the_published_verdicts",
+         tier="default"),
+    dict(report="reports/published/section5-readings.md",
+         claim="Rows left unscored (met by every reading and the control on both meshes): B4.",
+         test="tests/reports/test_readings_protocol.py::test_published_scores_are_the_protocols_on_the_published_verdicts",
+         tier="default"),
+    dict(report="reports/published/section5-readings.md",
+         claim="(contact 45 %, r1 and r2 cross δ0: B1 and B2 met)",
+         test="tests/reports/test_readings_protocol.py::test_every_case_recomputed_gives_the_published_verdicts",
          tier="slow"),
-    dict(report="reports/published/section5-readings.md", claim="(contact 100 %, r2 never reaches δ0)",
-         test="tests/reports/test_section5_readings.py::test_point_b_contact_and_separation_only_with_the_default_reading",
-         tier="slow"),
+    dict(report="reports/published/section5-readings.md",
+         claim="`inertial-at-joint-long-sleeve` scores 9 against 7",
+         test="tests/reports/test_readings_protocol.py::test_published_scores_are_the_protocols_on_the_published_verdicts",
+         tier="default"),
 
     # study-bifurcation.md (a 40-minute run: its reading against its published data)
     dict(report="reports/published/study-bifurcation.md", claim="It reached 18 000 rpm (1 202 orbits, 2 282 s",

@@ -9,8 +9,9 @@ certain range near clearance δ0, indicating that there is periodic contact and 
 Each statement is a row (:data:`STATEMENTS`) with a measured number and a stated threshold; the
 readings are :data:`rotor.studies.readings.READINGS`; the points come from ``ringcontact study
 readings`` (:func:`rotor.studies.readings.reading_tasks`). :func:`readings_table` judges them,
-:func:`chosen_reading` picks the reading that meets the most rows, :func:`readings_note` and
-:func:`readings_csv` write reports/published/section5-readings.md and .csv.
+:func:`protocol_scores` scores them as the comparison protocol (reports/protocols/section5-readings.toml,
+reports/studies/protocol.py) states, :func:`readings_note` and :func:`readings_csv` write
+reports/published/section5-readings.md and .csv.
 """
 from __future__ import annotations
 
@@ -84,7 +85,21 @@ def point_measures(p) -> dict:
             "orbit_ratio": orbit_radius_ratios(p), "disk2_radius_um": (float(rad2.min() * 1e6), float(rad2.max() * 1e6)),
             "v2_over_v1": v[:, 1] / v[:, 0], "v35_over_v1": v[:, 2:].sum(axis=1) / v[:, 0],
             "largest_order": np.argmax(v, axis=1) + 1,
-            "periodic": bool(p.info["converged"]), "period_revs": int(p.info["period_revs"])}
+            "periodic": bool(p.info["converged"]), "period_revs": int(p.info["period_revs"]),
+            **_noise_inputs(p)}
+
+
+def _noise_inputs(p) -> dict:
+    """What the protocol's noise needs (reports/studies/protocol.py): the (3, 5) amplitudes of 1X–5X of y velocity
+    and y displacement at disk 1, disk 2 and the support (SI), their spectral floors (zero on a periodic record;
+    reports.studies.findings.spectral_floor) and the record's samples per revolution."""
+    from reports.studies.findings import spectral_floor
+
+    out = {"samples_per_rev": int(p.info.get("samples_per_rev", 0))}
+    for qty in ("v", "q"):
+        out[f"amps_{qty}"] = harmonic_table([p], qty)[1][0]
+        out[f"floor_{qty}"] = np.zeros((3, 5)) if p.info.get("converged") else spectral_floor(p, qty)
+    return out
 
 
 def judge(m: dict) -> list[tuple[str, bool]]:
@@ -118,9 +133,17 @@ def _label(mesh) -> str:
     return "paper's mesh" if mesh is None else f"{mesh} elements/segment"
 
 
+def _mesh_tag(mesh) -> str:
+    """The protocol's name of a mesh: ``paper`` (the scene's own, 1 element per segment) or ``converged``."""
+    return "paper" if mesh is None else "converged"
+
+
 def readings_table(points) -> dict:
-    """``{(reading, mesh): (measures at B, [(text, holds)] for B then A)}`` of finished points (mesh None = the
-    paper's); the point A rows are left out when no 4 500 rpm point is there."""
+    """``{(reading, mesh): (measures at B, [(text, holds)] for B then A, {row id: (verdict, effect, noise)})}`` of
+    finished points (mesh None = the paper's; the verdicts of reports/studies/protocol.py); the point A rows are
+    left out when no 4 500 rpm point is there."""
+    from reports.studies.protocol import judged_rows
+
     by = {}
     for p in points:
         key = (p.params["reading_name"], p.params.get("elements_per_segment"))
@@ -132,9 +155,12 @@ def readings_table(points) -> dict:
             continue
         mb, ma = m[round(POINT_B_RPM)], m.get(round(POINT_A_RPM), "none")
         rows = judge(mb) if mb is not None else [(BEYOND, False)] * len(STATEMENTS)
+        judged = judged_rows(mb, None if ma == "none" else ma)
         if ma != "none":
             rows += judge_a(ma) if ma is not None else [(BEYOND, False)] * len(STATEMENTS_A)
-        out[key] = (mb, rows)
+        else:
+            judged = {k: v for k, v in judged.items() if k.startswith("B")}
+        out[key] = (mb, rows, judged)
     return out
 
 
@@ -142,14 +168,31 @@ def readings_table(points) -> dict:
 BEYOND = "beyond the contact law's domain (neat-fit limit)"
 
 
-def chosen_reading(table: dict, current: str) -> tuple[str, dict]:
-    """The reading meeting the most rows over both meshes, and every reading's count; a tie keeps ``current``."""
-    counts: dict = {}
-    for (name, _), (_, rows) in table.items():
-        counts[name] = counts.get(name, 0) + sum(ok for _, ok in rows)
-    best = max(counts.values())
-    top = [n for n, k in counts.items() if k == best]
-    return (current if current in top else top[0]), counts
+def protocol_scores(table: dict, current: str) -> tuple:
+    """``(protocol, {weighting name: {case: score}}, {weighting name: highest reading}, unscored row ids)`` of
+    :func:`readings_table` under reports/protocols/section5-readings.toml; the control is scored but never
+    chosen (it is not a reading of Eq. 34); a tie keeps ``current``."""
+    from reports.studies.protocol import load_protocol, score, unscored_rows, winner
+    from rotor.studies.readings import CONTROL
+
+    proto = load_protocol()
+    judged = {(n, _mesh_tag(m)): j for (n, m), (_, _, j) in table.items()}
+    readings = [n for n in dict.fromkeys(n for n, _ in judged) if n != CONTROL.name]
+    scores = {w.name: score(proto, judged, w, CONTROL.name) for w in proto.weightings}
+    best = {w: winner(s, readings, current) for w, s in scores.items()}
+    return proto, scores, best, unscored_rows(judged)
+
+
+_SYMBOL = {"meets": "✔", "within noise": "≈", "fails": "✘"}
+
+
+def _cells(table: dict, keys, i: int, rid: str) -> list[str]:
+    out = []
+    for k in keys:
+        text = table[k][1][i][0]
+        v, e, n = table[k][2][rid]
+        out.append(f"{_SYMBOL[v]} {text}" + ("" if np.isnan(e) else f"; e {e:+.3g}, noise {n:.2g}"))
+    return out
 
 
 def readings_note(table: dict, current: str, speed_rpm: float, integrator: str = "") -> str:
@@ -157,19 +200,25 @@ def readings_note(table: dict, current: str, speed_rpm: float, integrator: str =
     time integrator's options the points were computed with (:func:`reports.studies.common.integrator_text`)."""
     from rotor.studies.readings import reading
 
-    keys = sorted(table, key=lambda k: (k[0] != current, k[0], k[1] is not None, k[1] or 0))
-    best, counts = chosen_reading(table, current)
+    keys = sorted(table, key=lambda k: (k[0] == "no-excitation", k[0] != current, k[0], k[1] is not None, k[1] or 0))
+    proto, scores, best, skip = protocol_scores(table, current)
     head = "| statement of the paper (B: Figs. 14–15; A: Fig. 13) | " + " | ".join(f"`{n}`, {_label(m)}" for n, m in keys) + " |"
     lines = [f"# Point B ({speed_rpm:.0f} rpm): which reading of Eq. 34", "",
-             "Generated by `ringcontact study readings` (rotor.studies.readings, reports.studies.readings). Scene "
-             "`paper-table4` (δ0 = 0.05 mm, δ = 1 mm, μ = 0.3, preload 5 000 N, tilt on) with each reading's "
-             "placement, m_sp and L; the paper's mesh (1 element per segment) and the converged mesh. Point B is the "
-             "paper's high-speed point (§5.1: \"point B (10,500 rpm)\"). Each row is a sentence of the paper's text of "
-             "Figs. 14–15 (B) or, as a cross-check, of Fig. 13 at point A (4 500 rpm), with the number it is judged on "
-             "and the threshold; ✔ holds, ✘ does not. Three numbers are disk 1 / disk 2 / support (y velocity for "
-             "spectra). The default is the reading that meets the most rows over both points and meshes.", "",
+             "Generated by `ringcontact study readings` (rotor.studies.readings, reports.studies.readings, "
+             "reports.studies.protocol). Scene `paper-table4` (δ0 = 0.05 mm, δ = 1 mm, μ = 0.3, preload 5 000 N, tilt "
+             "on) with each reading's placement, m_sp and L, and the no-excitation control (m_sp = 0: Eq. 34's F = M = "
+             "0, the joint's misalignment offset kept); the paper's mesh (1 element per segment) and the converged "
+             "mesh. Point B is the paper's high-speed point (§5.1: \"point B (10,500 rpm)\"). Each row is a sentence of "
+             "the paper's text of Figs. 14–15 (B) or, as a cross-check, of Fig. 13 at point A (4 500 rpm), judged as "
+             "the comparison protocol reports/protocols/section5-readings.toml states (committed before this run): "
+             "the effect e is the signed margin to the row's threshold (positive: it holds; relative unless the "
+             "protocol says absolute), the noise the model's numerical noise of that margin (the time step's "
+             "amplitude error, or a non-periodic point's spectral floor; one sample for the contact share; stick "
+             "shares exact); ✔ meets (e > noise), ≈ within noise, ✘ fails (e < −noise). Three numbers are disk 1 / "
+             "disk 2 / support (y velocity for spectra). Scores: meets 1, within noise 0.5, fails 0, times the "
+             "row's weight, over both meshes.", "",
              *([integrator, ""] if integrator else []),
-             "| reading | placement | m_sp (kg) | L (mm) | m_sp L² vs the 150 mm sleeve | the sentences it rests on |",
+             "| case | placement | m_sp (kg) | L (mm) | m_sp L² vs the 150 mm sleeve | the sentences it rests on |",
              "|---|---|---|---|---|---|"]
     for n in dict.fromkeys(k[0] for k in keys):
         r = reading(n)
@@ -177,47 +226,66 @@ def readings_note(table: dict, current: str, speed_rpm: float, integrator: str =
                      f"{r.rests_on} |")
     lines += ["", head, "|---|" + "---|" * len(keys)]
     n_rows = min(len(table[k][1]) for k in keys)
-    for i, (title, rule) in enumerate((STATEMENTS + STATEMENTS_A)[:n_rows]):
-        cells = [f"{'✔' if table[k][1][i][1] else '✘'} {table[k][1][i][0]}" for k in keys]
-        lines.append(f"| {title}: {rule} | " + " | ".join(cells) + " |")
+    for i, ((title, rule), row) in enumerate(list(zip(STATEMENTS + STATEMENTS_A, proto.rows))[:n_rows]):
+        lines.append(f"| {row.id} {title}: {rule}{' (unscored)' if row.id in skip else ''} | "
+                     + " | ".join(_cells(table, keys, i, row.id)) + " |")
     per = ["✘ no record" if table[k][0] is None else
            f"{'✔' if table[k][0]['periodic'] else '✘'} period {table[k][0]['period_revs']} rev" for k in keys]
-    lines.append("| (point B periodic) | " + " | ".join(per) + " |")
-    lines.append("| rows met | " + " | ".join(f"{sum(ok for _, ok in table[k][1][:n_rows])} of {n_rows}"
-                                        for k in keys) + " |")
-    lines += ["", "Rows met over both meshes: " + ", ".join(f"`{n}` {k}" for n, k in counts.items()) + ".", "",
-              _verdict(best, current, counts), ""]
+    lines.append("| (point B periodic; not a row) | " + " | ".join(per) + " |")
+    lines += ["", *_score_lines(proto, scores, best, skip, current), ""]
     return "\n".join(lines)
 
 
-def _verdict(best: str, current: str, counts: dict) -> str:
-    top = max(counts.values())
-    tied = [n for n, k in counts.items() if k == top]
-    if len(tied) > 1:
-        return (f"Readings {', '.join(f'`{n}`' for n in tied)} meet the same number of rows ({top}); the default stays "
-                f"`{current}` (the point-A evidence, reports/published/rotor-misalignment.md, decides the tie).")
-    if best == current:
-        return (f"`{current}` meets the most rows ({top}) and is the scene's reading (its `[misalignment] excitation` "
-                f"and `[[couplings]]` m_sp, L).")
-    return (f"`{best}` meets the most rows ({top}, against {counts.get(current, 0)} for the scene's `{current}`): "
-            f"the scene should carry it.")
+def _score_lines(proto, scores: dict, best: dict, skip, current: str) -> list[str]:
+    """The weightings' table and what it says about the scene's reading."""
+    names = sorted(scores[proto.primary], key=lambda n: (n == "no-excitation", n))      # the control last
+    lines = [f"Rows left unscored (met by every reading and the control on both meshes): "
+             f"{', '.join(skip) or 'none'}.", "",
+             "| weighting | why (protocol) | " + " | ".join(f"`{n}`" for n in names) + " | highest reading |",
+             "|---|---|" + "---|" * len(names) + "---|"]
+    for w in proto.weightings:
+        tag = " (primary)" if w.name == proto.primary else ""
+        sc = scores[w.name]
+        tied = [n for n in names if n != "no-excitation" and abs(sc[n] - sc[best[w.name]]) < 1e-9]
+        top = f"`{best[w.name]}`" if len(tied) == 1 else "tie: " + ", ".join(f"`{n}`" for n in tied)
+        lines.append(f"| {w.name}{tag} | {w.why} | " + " | ".join(f"{sc[n]:.4g}" for n in names) + f" | {top} |")
+    alt = [w.name for w in proto.weightings if w.name != proto.primary]
+    held = [w + (" (tied)" if _tied(scores[w], best[w]) else "") for w in alt if best[w] == current]
+    lost = [w for w in alt if best[w] != current]
+    p = proto.primary
+    top = f"`{best[p]}` scores highest under the primary weighting ({p}: {scores[p][best[p]]:.4g}"
+    top += (f"; the scene's `{current}` {scores[p][current]:.4g})" if best[p] != current else ")")
+    lines += ["", top + (", the scene's reading." if best[p] == current else ": the scene should carry it, or the "
+                         "choice be argued on other grounds."),
+              f"Under the {len(alt)} other weightings the protocol states, `{current}` scores highest under "
+              f"{len(held)} ({', '.join(held) or 'none'}) and not under {len(lost)}"
+              + (": " + "; ".join(f"{w} (`{best[w]}`)" for w in lost) if lost else "") + ".",
+              "The no-excitation control scores " + f"{scores[p]['no-excitation']:.4g}" + " under the primary weighting."
+              if "no-excitation" in scores[p] else ""]
+    return lines
+
+
+def _tied(sc: dict, best: str) -> bool:
+    return sum(abs(v - sc[best]) < 1e-9 for n, v in sc.items() if n != "no-excitation") > 1
 
 
 def readings_csv(table: dict, path: Path) -> Path:
-    """One row per (reading, mesh) with every measured number."""
+    """One row per (case, mesh) with every measured number, each row's verdict, effect and noise (protocol)."""
+    from reports.studies.protocol import load_protocol
+    ids = [r.id for r in load_protocol().rows]
     head = ["reading", "elements_per_segment", "contact_share", "stick_share", "r1_min_over_d0", "r1_max_over_d0",
             "r2_min_over_d0", "r2_max_over_d0", "orbit_ratio_disk1", "orbit_ratio_disk2", "orbit_ratio_support",
             "disk2_radius_min_um", "disk2_radius_max_um", "v2_over_v1_disk1", "v2_over_v1_disk2",
             "v2_over_v1_support", "v345_over_v1_disk1", "v345_over_v1_disk2", "v345_over_v1_support", "periodic",
-            "period_revs", "rows_met"]
+            "period_revs", *[f"{i}_{c}" for i in ids for c in ("verdict", "effect", "noise")]]
     rows = []
-    for (n, mesh), (m, judged) in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
+    for (n, mesh), (m, _, judged) in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
         if m is None:
             continue
         rows.append([n, mesh or 1, m["contact_share"], m["stick_share"], m["r1_min_over_d0"], m["r1_max_over_d0"],
                      m["r2_min_over_d0"], m["r2_max_over_d0"], *m["orbit_ratio"], *m["disk2_radius_um"],
                      *m["v2_over_v1"], *m["v35_over_v1"], int(m["periodic"]), m["period_revs"],
-                     sum(ok for _, ok in judged)])
+                     *[x for i in ids for x in (judged[i][0], float(judged[i][1]), float(judged[i][2]))]])
     return write_csv(path, head, rows)
 
 

@@ -9,8 +9,8 @@ measured, on the paper's mesh, 100 % contact and r1 never below δ0 for `inertia
 import numpy as np
 import pytest
 
-from reports.studies.readings import STATEMENTS, STATEMENTS_A, chosen_reading, judge, judge_a
-from rotor.studies.readings import READING_NAMES, reading, reading_scene, scene_reading
+from reports.studies.readings import STATEMENTS, STATEMENTS_A, judge, judge_a
+from rotor.studies.readings import CONTROL, READING_NAMES, reading, reading_scene, scene_reading
 
 
 def _measures(**over):
@@ -36,20 +36,14 @@ def test_point_a_rows():
     assert not judge_a(_measures(largest_order=np.array([1, 2, 2])))[2][1]     # 2X above 1X: not "dominated by f"
 
 
-def test_default_is_the_reading_with_most_rows_and_a_tie_keeps_the_scene_reading():
-    t = {("a", None): (None, [("", True)] * 3), ("a", 2): (None, [("", True)] * 2),
-         ("b", None): (None, [("", True)] * 4), ("b", 2): (None, [("", False)] * 4)}
-    assert chosen_reading(t, "a") == ("a", {"a": 5, "b": 4})
-    t[("b", 2)] = (None, [("", True)])
-    assert chosen_reading(t, "a")[0] == "a" and chosen_reading(t, "b")[0] == "b"      # 5 : 5
-
-
 def test_readings_put_their_placement_and_sleeve_on_the_scene():
     from rotor.model.scene import load_scene
     sc = load_scene("paper-table4")
     for name in READING_NAMES:
         r, s = reading(name), reading_scene(sc, name)
         assert scene_reading(s) == name and s.misalignment.excitation == r.excitation
+    ctrl = reading_scene(sc, CONTROL.name)          # the control: no Eq. 34 excitation, never a scene's reading
+    assert scene_reading(ctrl) is None and ctrl.couplings[0].shaft_mass_kg == 0.0
     assert reading("opposed-at-joint-long-sleeve").moment_factor == pytest.approx(25.2 * 0.21 ** 2 / (9 * 0.075 ** 2))
 
 
@@ -78,5 +72,7 @@ def test_a_point_beyond_the_law_domain_meets_no_row():
     class P:
         params = {"reading_name": "inertial-at-joint-long-sleeve", "speed_rpm": 10500.0}
         info = {"outside_law_domain": "loose support: penetration beyond the conformal law's neat-fit limit"}
-    (m, rows), = readings_table([P()]).values()
+    (m, rows, judged), = readings_table([P()]).values()
     assert m is None and rows == [(BEYOND, False)] * len(STATEMENTS)
+    assert sorted(judged) == [f"B{i + 1}" for i in range(len(STATEMENTS))]
+    assert all(v == "fails" and np.isnan(e) for v, e, _ in judged.values())
