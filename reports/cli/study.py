@@ -118,7 +118,8 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--clearances-mm", default="0.03,0.08", help="comma list besides the scene's (mm)")
     pr.add_argument("--misalignments-mm", default="0.5,2", help="comma list besides the scene's (mm)")
     _method(pr)
-    tr = sub.add_parser("testrig", help="Table 5 test rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/3 mm")
+    tr = sub.add_parser("testrig", help="Table 5 test rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/2/3 mm, "
+                                        "and whether its loose support can slip (stick-margin scan)")
     _common(tr, "runs/testrig", scene="paper-table5-testrig")
     ru = sub.add_parser("runup", help="run-up/run-down with time-varying speed and a time-frequency cascade")
     _common(ru, "runs/runup")
@@ -424,21 +425,30 @@ def _params(args, out: Path, figs: Path, opts: dict) -> list[Path]:
 
 
 def _testrig(args, out: Path, figs: Path, opts: dict) -> list[Path]:
-    """``study testrig``: the Table 5 rig at 3600/5500 rpm, clearance 0.01/0.05 mm, misalignment 1/3 mm."""
-    from reports.studies.testrig import testrig_figures
+    """``study testrig``: the Table 5 rig at 3600/5500 rpm (δ0 0.05/0.01 mm at δ 2 mm, δ 1/3 mm at δ0 0.05 mm), the
+    stick-margin scan over the paper's rig data, and the fitted rig (case C) where the scan says its faces slip."""
+    from reports.studies.testrig import testrig_figures, write_scan
+    from rotor.studies.section6 import STEPS_RPM
     from rotor.studies.steady_state import sweep_tasks
+    from rotor.studies.testrig_scan import SCENE, scan, slip_check_speed, write_variant_scene
 
     refuse_overrides(args, ("--clearance-mm", "--misalignment-mm"), "study testrig runs the rig's own clearances "
-                     "(0.01, 0.05 mm) and misalignments (1, 3 mm); the other scene overrides apply")
+                     "(0.01, 0.05 mm) and misalignments (1, 2, 3 mm); the other scene overrides apply")
     ov, tasks = _ov(args), []
-    for rpm in (3600.0, 5500.0):
+    for rpm in STEPS_RPM:
+        for c, d in ((0.05, 2.0), (0.01, 2.0), (0.05, 1.0), (0.05, 3.0)):
+            tasks += sweep_tasks(args.scene, [rpm], prefix=f"c{c:g}mm-d{d:g}mm-rpm", clearance_m=c * 1e-3,
+                                 misalignment_m=d * 1e-3, options=opts, history_revs=8, **ov)
+    about = {"speeds_rpm": list(STEPS_RPM), "clearances_mm": [0.01, 0.05], "misalignments_mm": [1, 2, 3]}
+    run_study_sweep(tasks, out, args, about)          # the scene's points first: a bad --out is refused before the scan
+    if args.scene == SCENE:       # the scan and the fitted rig are readings of the Table 5 scene only
+        points = scan(mu=ov.get("mu"), preload_n=ov.get("preload_n"))
+        write_scan(points, out)
+        fitted, rpm_c = write_variant_scene(out), slip_check_speed(points)
         for c in (0.01, 0.05):
-            tasks += sweep_tasks(args.scene, [rpm], prefix=f"c{c:g}mm-d1mm-rpm", clearance_m=c * 1e-3,
-                                 misalignment_m=1e-3, options=opts, history_revs=8, **ov)
-        tasks += sweep_tasks(args.scene, [rpm], prefix="c0.05mm-d3mm-rpm", clearance_m=0.05e-3,
-                             misalignment_m=3e-3, options=opts, history_revs=8, **ov)
-    run_study_sweep(tasks, out, args, {"speeds_rpm": [3600, 5500], "clearances_mm": [0.01, 0.05],
-                              "misalignments_mm": [1, 3]})
+            tasks += sweep_tasks(str(fitted), [rpm_c], prefix=f"C-c{c:g}mm-d2mm-rpm", clearance_m=c * 1e-3,
+                                 misalignment_m=2e-3, options=opts, history_revs=8, **ov)
+        run_study_sweep(tasks, out, args, {**about, "fitted_rig_rpm": rpm_c})
     return testrig_figures(out, figs, tasks=tasks)
 
 

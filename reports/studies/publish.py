@@ -11,7 +11,7 @@ from reports.studies.params import params_figures, params_note
 from reports.studies.point import point_figures, point_note
 from reports.studies.regime_map import map_figures, map_note
 from reports.studies.runup import runup_figures, runup_note
-from reports.studies.testrig import testrig_figures, testrig_note
+from reports.studies.testrig import read_scan, testrig_figures, testrig_note
 
 
 def publish(runs: dict, published, *, findings_extra: str = "") -> list[Path]:
@@ -31,7 +31,8 @@ def publish(runs: dict, published, *, findings_extra: str = "") -> list[Path]:
         files += _family(runs, suffix, tag, published, elements)
     if "testrig" in runs:
         files += testrig_figures(runs["testrig"], published)
-        files.append(atomic_write_text(published / "study-testrig.md", testrig_note(load_points(runs["testrig"]))))
+        files.append(atomic_write_text(published / "study-testrig.md",
+                                       testrig_note(load_points(runs["testrig"]), read_scan(runs["testrig"]))))
     if "map" in runs:
         files += map_figures(runs["map"], published)
         files.append(atomic_write_text(published / "study-map.md", map_note(load_points(runs["map"]))))
