@@ -156,7 +156,8 @@ def part2(lines, n_pairs, seed):
         "thickness 0.6-2.5, moduli ratio 0.3-3, clearance 0.01-0.06 mm) and two penetrations, 0.2-0.7 and 0.7-2 "
         "clearances. Reference: linear triangles (P1, another element than the error-driven P2) on a first "
         "mesh at the thinner ring's thickness / 2 (graded a priori at any clamp end) and three nested uniform "
-        "refinements (a fourth where the reference's uncertainty exceeds half the bar it checks), the finest two "
+        "refinements (a fourth, up to 200k DOFs, where the reference's uncertainty exceeds half the bar it checks), "
+        "the finest two "
         "extrapolated at order 2 (fem_reference/plane/uniform_reference.py); "
         "'ref. unc.' is the distance of that extrapolation from the one a level coarser, 'ref. order' the "
         "order of its last three levels. 'bar from': which of the two bars (above) was the larger.",

@@ -25,6 +25,7 @@ from fem_reference.scenes import BEARING_DRIVES, SUPPORT_HOLDS, Scene
 
 HOLDS_2D = tuple(h for h in SUPPORT_HOLDS if "axially" not in h)
 DRIVES_2D = tuple(d for d in BEARING_DRIVES if "axially" not in d)
+MAX_REFERENCE_DOFS = 200_000        # no further reference level past this many DOFs (its dense contact columns)
 REFERENCE_H0_PER_THICKNESS = 2.0     # the reference's first mesh: the thinner ring's thickness / 2
 
 
@@ -83,16 +84,17 @@ def check_pair(scene: Scene, penetrations_m, *, reference_levels: int = 4, max_r
     """Each penetration [m] of ``scene``: error-driven force and bar against the reference (module docstring).
 
     ``reference_levels``: the reference's levels (the first at the thinner ring's thickness /
-    ``reference_h0_per_thickness``, each refinement halving it), one more (up to ``max_reference_levels``)
-    while a reference's own uncertainty exceeds half the bar it checks; ``adaptive_levels`` and ``extra_levels``: as :func:`adaptive_point`'s
+    ``reference_h0_per_thickness``, each refinement halving it), one more (up to ``max_reference_levels``,
+    and while it stays within ``MAX_REFERENCE_DOFS``: a level of 450k DOFs took 7.5 GB) while a reference's
+    own uncertainty exceeds half the bar it checks; ``adaptive_levels`` and ``extra_levels``: as :func:`adaptive_point`'s
     ``n_levels`` and ``extra_levels``.
     """
     h0 = thinner_thickness_m(scene) / reference_h0_per_thickness
     adaptive = [adaptive_point(scene, dr, n_levels=adaptive_levels, extra_levels=extra_levels) for dr in penetrations_m]
     levels = reference_levels
     refs = uniform_reference(scene, penetrations_m, h0, levels)
-    while levels < max_reference_levels and any(a.bar.given and r.uncertainty_rel > a.bar.error_rel / 2
-                                                 for a, r in zip(adaptive, refs)):
+    while (levels < max_reference_levels and 4 * refs[0].ndofs[-1] <= MAX_REFERENCE_DOFS
+           and any(a.bar.given and r.uncertainty_rel > a.bar.error_rel / 2 for a, r in zip(adaptive, refs))):
         levels += 1
         refs = uniform_reference(scene, penetrations_m, h0, levels)
     out = []
