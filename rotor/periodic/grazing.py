@@ -317,9 +317,15 @@ def continue_through_grazing(problem: Problem, state0, lam0: float, lam_end: flo
     floor = np.asarray(scales, float)
     points, bifs, wall, restarts, failures = [], [], 0.0, 0, []
     x, lam, tangent, stop = np.asarray(state0, float), float(lam0), None, "max_points"
+    direction = 1.0 if lam_end >= lam0 else -1.0
     for k in range(max_grazings + 1):
-        # the back margin stays the whole range's: a segment after a grazing fold starts turned back
-        back = opts.back_margin * abs(lam_end - lam0) / max(abs(lam_end - lam), 1e-12 * ls)
+        # "turned back beyond the start" measured from the branch's own start, as the plain continuation does: a
+        # segment starts where the last grazing left off, and its margin is the whole range's plus the way made
+        # (from the segment's start, the margin alone stopped the middle branch of seed 1243944534's rotor 4 of
+        # rotor/periodic/jeffcott_scene.random_family, 645 rpm long from its grazing fold against 612 rpm, 7 rpm
+        # short of its fold)
+        made = (lam - lam0) * direction
+        back = (opts.back_margin * abs(lam_end - lam0) + made) / max(abs(lam_end - lam), 1e-12 * ls)
         seg_opts = replace(opts, watch=contact_watch, back_margin=back,
                            max_points=max(2, opts.max_points - len(points)))
         br = continue_branch(problem, x, lam, lam_end, scales=floor, lam_scale=ls, options=seg_opts, tangent0=tangent)

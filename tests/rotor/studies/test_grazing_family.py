@@ -51,6 +51,17 @@ def test_one_random_rotor_one_way_through_every_corner_and_fold(tmp_path):
     _assert_sweep(check_branch(rotor, low, high, direction, tmp_path))
 
 
+def test_a_down_sweep_whose_middle_branch_runs_back_further_than_the_margin(tmp_path):
+    """Rotor 4 of the family of seed 1243944534 (benchmarks/bench_grazing_family.py drew it): down from 1 803.6 rpm,
+    its middle branch runs 645 rpm back up from the grazing fold (994.5 rpm) to the fold (1 639.6 rpm), more than
+    the back margin (half the range, 612 rpm). The margin is measured from the branch's start (rotor/periodic/
+    grazing.py); measured from the grazing fold, the branch stopped "turned back beyond the start" 7 rpm short of
+    the fold, with neither the fold nor the grazing found."""
+    rotor = random_family(1243944534, 5)[4]
+    low, high = sweep_range(rotor)
+    _assert_sweep(check_branch(rotor, low, high, "down", tmp_path))
+
+
 def test_ringcontact_branch_reports_the_closed_form_grazing(tmp_path):
     """The command line over the first grazing only (the whole curve is the API tests' above, the same code)."""
     rotor = _family(1)[0]
