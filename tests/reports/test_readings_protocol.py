@@ -22,7 +22,10 @@ from reports.studies.readings import STATEMENTS, STATEMENTS_A, judge, judge_a
 ROOT = Path(__file__).resolve().parents[2]
 CSV = ROOT / "reports" / "published" / "section5-readings.csv"
 MD = ROOT / "reports" / "published" / "section5-readings.md"
-OPTIONS = {"steps_per_rev": 256, "max_revs": 1500}        # the study's (reports/cli/study.py)
+#: the CSV's cells carry six significant digits (reports.studies.common.write_csv): an exact effect (noise 0, the
+#: stick-share rows) is compared to that precision
+_PRINTED = 1e-6
+OPTIONS = {"steps_per_rev": 256, "max_revs": 8000}        # the study's defaults (reports/cli/study.py)
 
 
 def test_protocol_rows_are_the_reports_statements_and_its_weights_name_them():
@@ -150,7 +153,7 @@ def test_point_a_recomputed_gives_the_published_verdicts(name):
     got, pub = effects_a(_point(name, 4500.0)), _published_case(name, None)
     for rid, (v, e, n) in got.items():
         assert v == pub[rid][0], (rid, v, pub[rid])
-        assert abs(e - pub[rid][1]) <= max(n, 1e-9), (rid, e, pub[rid])
+        assert abs(e - pub[rid][1]) <= max(n, _PRINTED * abs(pub[rid][1])), (rid, e, pub[rid])
     assert [got[r][0] for r in ("A1", "A2", "A3")] == [MEETS] * 3
     assert got["A4"][0] == (MEETS if name != "no-excitation" else FAILS)
 
@@ -171,4 +174,4 @@ def test_every_case_recomputed_gives_the_published_verdicts(case):
     pub = _published_case(name, mesh)
     for rid, (v, e, n) in got.items():
         assert v == pub[rid][0], (rid, v, pub[rid])
-        assert abs(e - pub[rid][1]) <= max(n, 1e-9), (rid, e, pub[rid])
+        assert abs(e - pub[rid][1]) <= max(n, _PRINTED * abs(pub[rid][1])), (rid, e, pub[rid])
