@@ -232,7 +232,9 @@ def readings_note(table: dict, current: str, speed_rpm: float, integrator: str =
     per = ["✘ no record" if table[k][0] is None else
            f"{'✔' if table[k][0]['periodic'] else '✘'} period {table[k][0]['period_revs']} rev" for k in keys]
     lines.append("| (point B periodic; not a row) | " + " | ".join(per) + " |")
-    lines += ["", *_score_lines(proto, scores, best, skip, current), ""]
+    lines += ["", *_score_lines(proto, scores, best, skip, current), "",
+              "Figure `section5-readings-scores.png/.svg`: the verdict of every row per case and mesh, and every case's "
+              "score under each weighting.", ""]
     return "\n".join(lines)
 
 
@@ -331,4 +333,44 @@ def publish_readings(out, published, *, scene, tasks=None, low_tasks=None, extra
                  "record):\n\n" + "\n".join(slip_lines(low)) + "\n")
     note += "\n" + extra if extra else ""
     return [atomic_write_text(published / "section5-readings.md", note),
-            readings_csv(table, published / "section5-readings.csv")]
+            readings_csv(table, published / "section5-readings.csv"),
+            *scores_figure(table, current, published / "section5-readings-scores")]
+
+
+def scores_figure(table: dict, current: str, prefix: Path) -> list[Path]:
+    """Left: each row's verdict per case and mesh (meets / within noise / fails, unscored rows marked); right: each
+    case's score under every weighting of the protocol, the scene's reading and the control marked."""
+    from reports.studies.common import pyplot, save
+    from reports.studies.protocol import FAILS, MEETS, WITHIN
+
+    plt = pyplot()
+    proto, scores, best, skip = protocol_scores(table, current)
+    keys = sorted(table, key=lambda k: (k[0] == "no-excitation", k[0], k[1] or 0))
+    ids = [r.id for r in proto.rows]
+    code = {MEETS: 2, WITHIN: 1, FAILS: 0}
+    grid = np.array([[code[table[k][2][i][0]] if i in table[k][2] else np.nan for i in ids] for k in keys])
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(14, 5.5), constrained_layout=True,
+                                 gridspec_kw={"width_ratios": [1.1, 1.4]})
+    from matplotlib.colors import ListedColormap
+    ax.imshow(grid, cmap=ListedColormap(["#d62728", "#ffbf00", "#2ca02c"]), vmin=0, vmax=2, aspect="auto")
+    ax.set_xticks(range(len(ids)), [f"{i}{' (unscored)' if i in skip else ''}" for i in ids], rotation=60, fontsize=8)
+    ax.set_yticks(range(len(keys)), [f"{n}, {'paper' if m is None else f'{m}/segment'}" for n, m in keys], fontsize=8)
+    ax.set_xlabel("row of the protocol (B: Figs. 14–15, A: Fig. 13)")
+    ax.set_title("verdict per row (reports/protocols/section5-readings.toml)", fontsize=9)
+    from matplotlib.patches import Patch
+    ax.legend(handles=[Patch(color=c, label=l) for c, l in (("#2ca02c", MEETS), ("#ffbf00", WITHIN), ("#d62728", FAILS))],
+              fontsize=7, loc="upper left", bbox_to_anchor=(0.0, -0.28), ncol=3)
+    names = sorted(scores[proto.primary], key=lambda n: (n == "no-excitation", n))
+    width = 0.8 / len(names)
+    for j, n in enumerate(names):
+        vals = [scores[w.name][n] for w in proto.weightings]
+        style = {"hatch": "//", "edgecolor": "k"} if n == current else {"alpha": 0.5} if n == "no-excitation" else {}
+        bx.bar(np.arange(len(proto.weightings)) + (j - len(names) / 2 + 0.5) * width, vals, width, label=n, **style)
+    bx.set_xticks(range(len(proto.weightings)), [w.name + (" (primary)" if w.name == proto.primary else "")
+                                                 for w in proto.weightings], rotation=25, ha="right", fontsize=8)
+    bx.set_ylabel("score, both meshes (–)")
+    bx.set_title(f"score per weighting (meets 1, within noise 0.5, fails 0, × weight); hatched: the scene's reading",
+                 fontsize=9)
+    bx.legend(fontsize=7)
+    fig.suptitle("Which reading of Eq. 34: points B and A, every reading and the no-excitation control", fontsize=10)
+    return save(fig, prefix)

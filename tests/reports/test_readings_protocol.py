@@ -175,3 +175,24 @@ def test_every_case_recomputed_gives_the_published_verdicts(case):
     for rid, (v, e, n) in got.items():
         assert v == pub[rid][0], (rid, v, pub[rid])
         assert abs(e - pub[rid][1]) <= max(n, _PRINTED * abs(pub[rid][1])), (rid, e, pub[rid])
+
+
+def test_scores_figure_shows_the_verdicts_and_every_weighting(monkeypatch):
+    """section5-readings-scores: the verdict grid (one row per case and mesh, one column per protocol row) and one bar
+    group per weighting, both panels with legends, from the published CSV's verdicts."""
+    from reports.studies import common
+    from reports.studies.readings import scores_figure
+
+    figs = []
+    monkeypatch.setattr(common, "save", lambda fig, prefix: figs.append(fig) or [])
+    rows = _published()
+    ids = [r.id for r in load_protocol().rows]
+    table = {(r["reading"], None if r["elements_per_segment"] == "1" else int(r["elements_per_segment"])):
+             (None, [], {i: (r[f"{i}_verdict"], float(r[f"{i}_effect"]), float(r[f"{i}_noise"])) for i in ids})
+             for r in rows}
+    scores_figure(table, "opposed-at-joint-long-sleeve", Path("unused"))
+    (fig,) = figs
+    grid_ax, bar_ax = fig.axes[:2]
+    assert grid_ax.images[0].get_array().shape == (len(table), len(ids))
+    assert len(bar_ax.get_xticklabels()) == len(load_protocol().weightings)
+    assert grid_ax.get_legend() is not None and bar_ax.get_legend() is not None
