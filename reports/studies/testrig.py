@@ -240,7 +240,12 @@ def testrig_note(points, scan=None) -> str:
                   "×21.95 moment factor, and three readings of what Table 5 leaves out (A: the scene, the 15 kg frame "
                   "moving on k3; B: the frame still, k3 to ground, which puts the disk-2 mode at the paper's "
                   "3 319 rpm; C: B with the front shaft fitted to the paper's 5 184 rpm, rotor-testrig.md). A face "
-                  "slips where the demand reaches μN = 3 000 N.", "", *_scan_lines(scan), "",
+                  "slips where the demand reaches μN = 3 000 N. Near a critical speed the demand grows about inversely with the "
+                  "damping, which Table 5 does not give (the scene's assumed 200 N s/m at each bearing and the frame): the "
+                  "slip bands below are that damping's. At the paper's steps, off resonance, it matters little: with half or "
+                  "twice that damping the largest demand there is 0.385 or 0.379 of μN (rotor.studies.testrig_scan, "
+                  "damping_factor).", "",
+                  *_scan_lines(scan), "",
                   *_fitted_lines(points, scan)]
     return "\n".join(lines)
 

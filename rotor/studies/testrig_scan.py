@@ -76,11 +76,16 @@ class ScanPoint:
         return self.peak_face_force_N / self.limit_N
 
 
-def variant_scene(variant: str, placement: str, sleeve: str):
-    """The rig's scene under one reading of what Table 5 leaves out."""
+def variant_scene(variant: str, placement: str, sleeve: str, damping_factor: float = 1.0):
+    """The rig's scene under one reading of what Table 5 leaves out; ``damping_factor`` (–) scales the assumed
+    lateral damping of every bearing and of the frame (Table 5 gives none)."""
     from rotor.model.scene import load_scene
 
     sc = VARIANTS[variant][1](load_scene(SCENE))
+    if damping_factor != 1.0:
+        sc = dataclasses.replace(
+            sc, bearings=tuple(dataclasses.replace(b, damping_n_s_m=b.damping_n_s_m * damping_factor) for b in sc.bearings),
+            supports=tuple(dataclasses.replace(b, damping_n_s_m=b.damping_n_s_m * damping_factor) for b in sc.supports))
     f = SLEEVES[sleeve]
     mis = sc.misalignment
     cps = tuple(dataclasses.replace(c, shaft_mass_kg=c.shaft_mass_kg * f, lever_m=c.lever_m * f)
@@ -89,14 +94,14 @@ def variant_scene(variant: str, placement: str, sleeve: str):
 
 
 def scan_case(variant: str, placement: str, sleeve: str, misalignment_mm: float, speeds_rpm=SPEEDS_RPM,
-              preload_n: float | None = None, mu: float | None = None) -> list[ScanPoint]:
+              preload_n: float | None = None, mu: float | None = None, damping_factor: float = 1.0) -> list[ScanPoint]:
     """:class:`ScanPoint` at every speed of one reading and misalignment (``preload_n`` (N), ``mu`` (–): None keeps
     Table 5's 10 000 N and the scene's μ)."""
     from rotor.dynamics.build import at_speed, system_from_model
     from rotor.model.assembly import assemble
     from rotor.studies.stick_margin import stick_margin
 
-    sc = variant_scene(variant, placement, sleeve)
+    sc = variant_scene(variant, placement, sleeve, damping_factor)
     base = system_from_model(assemble(sc), sc, 1000 * math.pi / 30, misalignment_m=misalignment_mm * 1e-3,
                              preload_N=PRELOAD_N if preload_n is None else preload_n, mu=mu)            # the rig has no speed-table bearing: one build
     out = []
@@ -107,14 +112,15 @@ def scan_case(variant: str, placement: str, sleeve: str, misalignment_mm: float,
     return out
 
 
-def scan(speeds_rpm=SPEEDS_RPM, preload_n: float | None = None, mu: float | None = None) -> list[ScanPoint]:
+def scan(speeds_rpm=SPEEDS_RPM, preload_n: float | None = None, mu: float | None = None,
+         damping_factor: float = 1.0) -> list[ScanPoint]:
     """Every reading (:data:`VARIANTS` × :data:`PLACEMENTS` × :data:`SLEEVES`) × :data:`MISALIGNMENTS_MM` × speeds."""
     out = []
     for v in VARIANTS:
         for p in PLACEMENTS:
             for s in SLEEVES:
                 for d in MISALIGNMENTS_MM:
-                    out += scan_case(v, p, s, d, speeds_rpm, preload_n, mu)
+                    out += scan_case(v, p, s, d, speeds_rpm, preload_n, mu, damping_factor)
     return out
 
 
