@@ -584,9 +584,12 @@ NOT_CLAIMS = (
     ("reports/published/perf-test-suite.md", "wall times and load of the test command's runs; their pass or fail is "
                                              "the suite itself"),
     ("reports/published/perf-monodromy-random-steel-in-aluminium.md",
-     "one benchmark sample of 20 speeds (16 of 18 orbits within 1e-6, 8 781 and 8 804.5 rpm at 1.2e-6 and 1.3e-6 "
-     "with references agreeing to 5.5e-7 and 8.3e-7); not a claim for the scene: a transient state at 15 287.5 rpm "
-     "misses by 3.4e-3, asserted as a disagreement (test_monodromy_random_speeds.py, the steel-in-aluminium xfail)"),
+     "one benchmark sample of 20 speeds, contact steps differentiated exactly (15 of 16 orbits within 1e-6; 8 667.7 "
+     "rpm at 1.3e-6 with a reference converged to 3.1e-7: its friction events are differenced, and a fixed-step "
+     "Richardson of them instead of the ladder gives 8e-6 to 5e-5; 4 orbits without a converged reference); not a "
+     "claim for the scene: a transient state at 15 287.5 rpm misses by 3.4e-3, asserted as a disagreement "
+     "(test_monodromy_random_speeds.py, the steel-in-aluminium xfail); the exact contact step itself is checked on "
+     "this scene at random speeds (test_contact_step_derivative.py)"),
 )
 
 #: numbers still stated that no test guards: dict(report=, claim=, reason=) each (the README's stale §5 findings
