@@ -2,7 +2,7 @@
 
 Sources: the rows are Dai et al. (2025)'s text of Figs. 14–15 (point B, 10 500 rpm, §5.1) and Fig. 13 (point A,
 4 500 rpm); their thresholds, noise and weights are the protocol file's, committed before the run it scores
-(issue 39). The published table (reports/published/section5-readings.md/.csv) is checked against the protocol
+(issue 39). The published table (reports/published/section5-readings.md and its .csv) is checked against the protocol
 here in the default run; point A is recomputed for the scene's reading and the no-excitation control (seconds);
 every case at both points on both meshes is recomputed in the slow tier.
 """
