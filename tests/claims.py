@@ -600,9 +600,9 @@ _LADDER_TIME = ("wall times of the period map with its monodromy, the whole ladd
                 "ratio, from one benchmark run on a shared machine (they move with the load); tests never assert "
                 "timings (the replay counts beside the errors are checked by the ladder tests)")
 _GENERATED_SAMPLE = ("one benchmark sample of generated ring pairs, drawn with a new seed each run (printed in the "
-                     "report); no test draws them, so the count is not reproduced by the suite (the slow test "
-                     "tests/fem_reference/plane/test_generated_bars.py::test_generated_pairs_within_their_bars checks "
-                     "three pairs of the commit's seed)")
+                     "report); no test draws all 30, so the count is not reproduced by the suite (the slow test "
+                     "tests/fem_reference/plane/test_generated_bars.py::test_generated_pairs_within_their_bars "
+                     "re-solves the first three pairs of the published seed)")
 UNGUARDED = (
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 0.404 | 0.267 | 1.51× |", reason=_LADDER_TIME),
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 0.435 | 0.348 | 1.25× |", reason=_LADDER_TIME),
