@@ -193,8 +193,8 @@ def main() -> int:
     load0, t0 = os.getloadavg()[0], time.perf_counter()
     lines = ["# Error-driven 2D meshes and their force bars (issue 37)", "",
              "Written by benchmarks/bench_fem2d_adaptive.py. Error-driven levels: fem_reference/plane/adapt.py "
-             "(recovery estimate of fem_reference/plane/estimate.py, Zienkiewicz & Zhu 1987; three levels, the "
-             "target error / sqrt(2) each, five levels; the stated bar is the larger of the last three levels' "
+             "(recovery estimate of fem_reference/plane/estimate.py, Zienkiewicz & Zhu 1987; five levels, the "
+             "target error / sqrt(2) each; the stated bar is the larger of the last three levels' "
              "Richardson bar in the estimated error at the expected order 2, where they are monotone at an order "
              "within [1.33, 3], and a bar fitted over the five (F = F0 + C x^2 by least squares: |finest - F0| plus "
              "the 95 % confidence half-width of F0); refused when the levels' estimates do not fall). The graded family: "
