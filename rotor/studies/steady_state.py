@@ -25,7 +25,9 @@ Everything is SI; speeds are rad/s inside (rpm only in names ending ``_rpm``). D
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import math
+import os
 import time
 from dataclasses import dataclass
 
@@ -359,13 +361,24 @@ def steady_state(system: RotorSystem, model, *, options: SteadyStateOptions | No
 _MODEL_CACHE: dict = {}
 
 
+def _scene_key(scene):
+    """What :func:`_scene_model` caches a scene under: a scene file by its resolved path and its bytes' sha256 (a
+    file written again at the same path in the same process is read again: measured, the second rotor of
+    tests/rotor/studies/test_grazing_family.py's ten, each written to the same file, was followed with the first
+    one's model), a bundled name or a :class:`rotor.model.scene.Scene` as itself."""
+    if isinstance(scene, (str, os.PathLike)) and os.path.isfile(scene):
+        with open(scene, "rb") as fh:
+            return os.path.realpath(scene), hashlib.sha256(fh.read()).hexdigest()
+    return scene
+
+
 def _scene_model(scene, elements_per_segment: int | None = None, law: str | None = None):
     """Scene and assembled model, cached per process (workers reuse them across points).
     ``scene``: a scene file's path, a bundled scene's name or a :class:`rotor.model.scene.Scene` (a
     scene built in Python, the public API's). ``elements_per_segment`` refines every shaft segment
     (None: the scene's own mesh); ``law`` replaces the scene's ``[loose_support]`` law
     (:func:`rotor.model.loose_support_scene.with_law`; None: the scene's)."""
-    key = (scene, elements_per_segment, law)
+    key = (_scene_key(scene), elements_per_segment, law)
     if key not in _MODEL_CACHE:
         from rotor.model.assembly import assemble
         from rotor.model.loose_support_scene import with_law
