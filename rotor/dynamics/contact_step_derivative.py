@@ -31,7 +31,7 @@ start: the period map with its monodromy 0.118 s CPU against 0.430 s differenced
 8 781 and 8 804.5 rpm: the monodromy 5.7e-7 and 1.19e-6 from central differences of its map (their references
 converged to 3.7e-7 and 7.0e-7), 6.0e-7 and 3.05e-6 differenced.
 
-:func:`contact_step_sensitivity` returns None (the caller differences the step) where the passes replayed one by
+:func:`contact_step_plan` returns None (the caller differences the step) where the passes replayed one by
 one do not reproduce the recorded step (a friction event located in it instead, or a face released in the first
 sub-step, whose memory a replay lacks) or where a face sticks in a pass (the stick-onset re-projection's load rate is
 not carried).
@@ -163,12 +163,11 @@ def _length_column(pm, xs, xe, t_s: float, h: float, mats) -> tuple[np.ndarray, 
     return spv[:, None], sa[:, None], dload[:, None]
 
 
-def contact_step_sensitivity(pm, x0, modes0, phi0, t, ref_end, Spv, Sa, scales):
-    """Carry ``Spv = ∂(p, v)/∂x_seed`` (2 n_r × ncol) and ``Sa = ∂a/∂x_seed`` over the recorded step from ``x0``
-    (``(p, v, a)`` at time ``t``, s, with face ``modes0`` and forces ``phi0``, N) to ``ref_end`` if it is a step
-    split at a contact onset or loss (module docstring). Returns the new ``(Spv, Sa)`` and the replay's relative
-    mismatch against the record, or None (``Spv``, ``Sa`` untouched) where it is not such a step or its passes
-    replayed one by one do not reproduce the record."""
+def contact_step_plan(pm, x0, modes0, phi0, t, ref_end, scales):
+    """The passes of the recorded step from ``x0`` (``(p, v, a)`` at time ``t``, s, with face ``modes0`` and forces
+    ``phi0``, N) to ``ref_end`` replayed one by one, if it is a step split at a contact onset or loss whose passes
+    reproduce the record and in which no face sticks (module docstring): a dict for
+    :func:`contact_step_sensitivity`, else None (the caller differences the step)."""
     nr, dt, Bt = pm.nr, pm.dt, pm.prepared.Bt
     plain, st_pl, m_pl, _ = _one_pass(pm, x0, modes0, phi0, t, dt)
     u_s, w_s = Bt @ x0[:nr], Bt @ x0[nr:2 * nr]
@@ -185,16 +184,32 @@ def contact_step_sensitivity(pm, x0, modes0, phi0, t, ref_end, Spv, Sa, scales):
     mismatch = float(np.max(np.abs(end - ref_end) / scales))
     if mismatch > REPRODUCE_TOL:
         return None
-    # dθ: the plain pass carried from copies; the start's relative motion from the sensitivities before the step
-    Spv_pl, Sa_pl = Spv.copy(), Sa.copy()
-    _carry_pass(pm, x0, plain, modes0, m_pl, st_pl[5:7], phi0, Spv_pl, Sa_pl, dt, _matrices(pm, dt))
-    row, _, _ = _theta_row(pm, theta, u_s, w_s, u_e, w_e, (Bt @ Spv[:nr])[:4], (Bt @ Spv[nr:])[:4],
-                                 (Bt @ Spv_pl[:nr])[:4], (Bt @ Spv_pl[nr:])[:4])
     if any(m_mid[k] == 1 and modes0[k] != 1 for k in range(2)) or any(m_end[k] == 1 and m_mid[k] != 1
                                                                        for k in range(2)):
         return None
+    return dict(x0=x0, modes0=modes0, phi0=phi0, t=t, plain=plain, st_pl=st_pl, m_pl=m_pl, theta=theta, mid=mid,
+                st1=st1, m_mid=m_mid, f_mid=f_mid, end=end, st2=st2, m_end=m_end, m1=m1, m2=m2, mismatch=mismatch)
+
+
+def contact_step_sensitivity(pm, plan, Spv, Sa):
+    """Carry ``Spv = ∂(p, v)/∂x_seed`` (2 n_r × ncol) and ``Sa = ∂a/∂x_seed`` over the recorded step that ``plan``
+    (:func:`contact_step_plan`) replayed: a step split at a contact onset or loss (module docstring). Returns the
+    new ``(Spv, Sa)`` and the replay's relative mismatch against the record."""
+    nr, dt, Bt = pm.nr, pm.dt, pm.prepared.Bt
+    x0, modes0, phi0, t, theta = plan["x0"], plan["modes0"], plan["phi0"], plan["t"], plan["theta"]
+    plain, mid, end, m_mid, m_end = plan["plain"], plan["mid"], plan["end"], plan["m_mid"], plan["m_end"]
+    m1, m2, h1 = plan["m1"], plan["m2"], theta * dt
+    h2 = dt - h1
+    u_s, w_s = Bt @ x0[:nr], Bt @ x0[nr:2 * nr]
+    u_e, w_e = Bt @ plain[:nr], Bt @ plain[nr:2 * nr]
+    # dθ: the plain pass carried from copies; the start's relative motion from the sensitivities before the step
+    Spv_pl, Sa_pl = Spv.copy(), Sa.copy()
+    _carry_pass(pm, x0, plain, modes0, plan["m_pl"], plan["st_pl"][5:7], phi0, Spv_pl, Sa_pl, dt, _matrices(pm, dt))
+    row, _, _ = _theta_row(pm, theta, u_s, w_s, u_e, w_e, (Bt @ Spv[:nr])[:4], (Bt @ Spv[nr:])[:4],
+                           (Bt @ Spv_pl[:nr])[:4], (Bt @ Spv_pl[nr:])[:4])
     # ∂x_m/∂h1 carried through the second pass with the sensitivities; ∂x/∂h2 from the end of the first pass
     Spv, Sa = Spv.copy(), Sa.copy()
+    st1, st2, f_mid = plan["st1"], plan["st2"], plan["f_mid"]
     _carry_pass(pm, x0, mid, modes0, m_mid, st1[5:7], phi0, Spv, Sa, h1, m1)
     c_pv, c_a, c_load = _length_column(pm, x0, mid, t, h1, m1)
     _carry_pass(pm, x0, mid, modes0, m_mid, st1[5:7], phi0, c_pv, c_a, h1, m1, c_load)
@@ -207,4 +222,4 @@ def contact_step_sensitivity(pm, x0, modes0, phi0, t, ref_end, Spv, Sa, scales):
     dphi = dt * (np.concatenate([Spv[:, ncol], Sa[:, ncol]]) - np.concatenate([e_pv[:, 0], e_a[:, 0]]))
     Spv = Spv[:, :ncol] + np.outer(dphi[:2 * nr], row)
     Sa = Sa[:, :ncol] + np.outer(dphi[2 * nr:], row)
-    return np.ascontiguousarray(Spv), np.ascontiguousarray(Sa), mismatch
+    return np.ascontiguousarray(Spv), np.ascontiguousarray(Sa), plan["mismatch"]

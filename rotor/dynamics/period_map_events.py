@@ -53,7 +53,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotor.dynamics.contact_events import edge_crossing
-from rotor.dynamics.contact_step_derivative import contact_step_sensitivity
+from rotor.dynamics.contact_step_derivative import contact_step_plan, contact_step_sensitivity
 from rotor.dynamics.event_replays import replay_steps
 from rotor.dynamics.period_map_kernels import carry, consistent_acceleration_jacobian
 from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
@@ -87,6 +87,18 @@ PROGRESSIVE = True
 #: a step split at a contact onset or loss alone is differentiated exactly (rotor/dynamics/contact_step_derivative.py)
 #: instead of differenced; False: differenced as every event step (the earlier route, for side-by-side runs)
 EXACT_CONTACT = True
+#: a differenced event step is differenced from the start of the step before it (:func:`blocks`), so that its
+#: start's perturbations are the ones a step makes (its acceleration consistent with its position and velocity, a
+#: stuck face's velocity zero) and not any direction of ``(p, v, a)``: a threshold of the step near its start in a
+#: direction no step reaches (the slow-slip hold's rectilinear test, a stuck face's start velocity) left the ladder's
+#: long levels on a smooth piece of their own, agreeing with each other to 1e-9 and not with the derivative at the
+#: start. Measured on Table 4 at 12 130.9 rpm (T/256, the state 60 revolutions after the linear start, step 29: a
+#: release, the other face in a rectilinear slow slip since its release in step 28): ten of the step's columns
+#: 1.5 to 53 of their size from its central differences at 1e-6 and 1e-7, the located monodromy 6.3e-3 from central
+#: differences of the whole map (converged to 4.2e-8); from the step before, 2.3e-8. Checking each column against its
+#: central difference at 5e-7 and choosing again on the short levels where it missed left 1.7e-6. False: every block
+#: starts at its first differenced step (the earlier route)
+ENTER_BEFORE = True
 
 
 def event_steps(pm, tr) -> list[int]:
@@ -337,33 +349,40 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
     differenced, held = _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held)
     face = np.ascontiguousarray(tr.face_force, dtype=float)
     zero_load = np.zeros((nr, 2 * nr))
-    for first, last in blocks(differenced, held, modes) + [(n_steps, n_steps)]:
+    x_at = lambda n: np.concatenate([rec_p[n], rec_v[n], rec_a[n]])   # noqa: E731
+    plans = {}
+    if EXACT_CONTACT:     # the contact steps differentiated exactly (contact_step_derivative), the rest differenced
+        for first, last in blocks(differenced, held, modes):
+            if first == last:
+                plan = contact_step_plan(pm, x_at(first), modes[first], face[first], tr.t[first], x_at(first + 1),
+                                         scales)
+                if plan is not None:
+                    plans[first] = plan
+    segments = blocks([n for n in differenced if n not in plans], held, modes, ENTER_BEFORE)
+    inside = {n for a, b in segments for n in range(a, b + 1)}
+    segments = sorted(segments + [(n, n) for n in plans if n not in inside])
+    for first, last in segments + [(n_steps, n_steps)]:
         if first > start:
             carry(np.ascontiguousarray(rec_p[start:first + 1]), np.ascontiguousarray(rec_v[start:first + 1]),
                   np.ascontiguousarray(modes[start:first + 1]), Spv, Sa, *args,
                   np.ascontiguousarray(held[start:first + 1]), face[start:first + 1], zero_load)
         if first == n_steps:
             break
-        x0 = np.concatenate([rec_p[first], rec_v[first], rec_a[first]])
-        ref = np.concatenate([rec_p[last + 1], rec_v[last + 1], rec_a[last + 1]])
         start = last + 1
-        exact = None
-        if EXACT_CONTACT and first == last:
-            exact = contact_step_sensitivity(pm, x0, modes[first], tr.face_force[first], tr.t[first], ref, Spv, Sa,
-                                             scales)
-        if exact is not None:
-            Spv, Sa, miss = exact
+        if first in plans and first not in inside:
+            Spv, Sa, miss = contact_step_sensitivity(pm, plans[first], Spv, Sa)
             mismatch = max(mismatch, miss)
             continue
-        J, end, bad = _step_jacobian(pm, x0, modes[first], tr.face_force[first], tr.t[first], scales, last + 1 - first)
+        J, end, bad = _step_jacobian(pm, x_at(first), modes[first], face[first], tr.t[first], scales, last + 1 - first)
         unsmooth += bad
-        mismatch = max(mismatch, float(np.max(np.abs(end - ref) / scales)))
+        mismatch = max(mismatch, float(np.max(np.abs(end - x_at(last + 1)) / scales)))
         S = J @ np.vstack([Spv, Sa])
         Spv, Sa = np.ascontiguousarray(S[:2 * nr]), np.ascontiguousarray(S[2 * nr:])
     return Spv, mismatch, unsmooth
 
 
-def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = None) -> list[tuple[int, int]]:
+def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = None,
+           enter_before: bool = False) -> list[tuple[int, int]]:
     """The steps to difference, as blocks ``(first, last)`` of consecutive steps replayed in one call.
 
     The step loop remembers more than ``(p, v, a)`` from one step to the next: the face forces, and a face just
@@ -380,6 +399,9 @@ def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = 
     * the held steps of a face right after its release (``modes`` 1 then 0 for the face; ``held`` not 0 for it)
       join the release step. Measured on Table 4 at 9 916.2 rpm (T/512, 60 revolutions after the linear start): one
       held slow slip after a release, carried, 6.5e-2; differenced alone, 6.5e-2; in the release's block 1.7e-7.
+
+    With ``enter_before`` (:data:`ENTER_BEFORE`) every block also starts one step earlier, so consecutive
+    differenced steps are one block.
 
     Blocks that touch or overlap merge; every other differenced step is a block of its own."""
     held = np.asarray(held)
@@ -398,6 +420,10 @@ def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = 
                     marks.add(m)
                     chained.add(m)
                     m += 1
+    if enter_before:
+        for n in list(marks):
+            marks.add(n - 1)
+            chained.add(n)
     out: list[list[int]] = []
     for n in sorted(m for m in marks if m >= 0):
         if out and n == out[-1][1] + 1 and n in chained:

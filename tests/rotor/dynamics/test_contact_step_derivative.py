@@ -78,10 +78,11 @@ def _step_errors(pm, tr) -> list[tuple[int, float | None]]:
         modes, phi = tr.modes[n].astype(np.int64), tr.face_force[n]
         Spv = np.hstack([np.eye(2 * nr), np.zeros((2 * nr, nr))])
         Sa = np.hstack([np.zeros((nr, 2 * nr)), np.eye(nr)])
-        got = csd.contact_step_sensitivity(pm, x0, modes, phi, tr.t[n], ref_end, Spv, Sa, scales)
-        if got is None:
+        plan = csd.contact_step_plan(pm, x0, modes, phi, tr.t[n], ref_end, scales)
+        if plan is None:
             out.append((n, None))
             continue
+        got = csd.contact_step_sensitivity(pm, plan, Spv, Sa)
         J = np.vstack([got[0], got[1]])
         D1, D2 = (_central(pm, x0, modes, phi, tr.t[n], scales, h) for h in (1e-6, 2e-6))
         R = (4.0 * D1 - D2) / 3.0
