@@ -194,7 +194,8 @@ def main() -> int:
     lines = ["# Error-driven 2D meshes and their force bars (issue 37)", "",
              "Written by benchmarks/bench_fem2d_adaptive.py. Error-driven levels: fem_reference/plane/adapt.py "
              "(recovery estimate of fem_reference/plane/estimate.py, Zienkiewicz & Zhu 1987; five levels, the "
-             "target error / sqrt(2) each; the stated bar is the larger of the last three levels' "
+             "target error / sqrt(2) each and the largest element / 2^(1/4) each, from the thinner ring's "
+             "thickness / 4, so the bulk is refined with the singular points; the stated bar is the larger of the last three levels' "
              "Richardson bar in the estimated error at the expected order 2, where they are monotone at an order "
              "within [1.33, 3], and a bar fitted over the five (F = F0 + C x^2 by least squares: |finest - F0| plus "
              "the 95 % confidence half-width of F0); refused when the levels' estimates do not fall). The graded family: "
