@@ -38,10 +38,12 @@ def scene_text(name: str) -> str:
     return Path(name).read_text() if is_file_argument(name) else RING_SCENE_DIR.joinpath(f"{name}.toml").read_text()
 
 
-def run_job(toml: Path, out: Path, cache: Path, workers: int) -> dict:
-    """One cold ``ringcontact bearing`` in a child process; its stages and the wall time around it."""
+def run_job(toml: Path, out: Path, cache: Path, workers: int, *extra: str) -> dict:
+    """One cold ``ringcontact bearing`` in a child process (``extra``: more options); its stages and the wall time
+    around it."""
     env = dict(os.environ, RINGCONTACT_CACHE=str(cache), MPLBACKEND="Agg")
-    cmd = [sys.executable, "-m", "reports.cli", "bearing", str(toml), "--out", str(out), "--workers", str(workers)]
+    cmd = [sys.executable, "-m", "reports.cli", "bearing", str(toml), "--out", str(out), "--workers", str(workers),
+           *extra]
     load0 = os.getloadavg()[0]
     t0 = time.perf_counter()
     res = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)

@@ -6,7 +6,7 @@ is held and the ring is driven, and the range of penetrations and tilts the law 
 
     schema = "ringcontact.ring-scene/1"
     name = "my-bearing"
-    plane = "strain"                       # 2D assumption: strain | stress
+    plane = "strain"                       # 2D assumption: auto (the default, by the 3D ring) | strain | stress
     [bearing_ring]
     inner_radius_mm = 48.0
     outer_radius_mm = 55.0
@@ -24,6 +24,12 @@ is held and the ring is driven, and the range of penetrations and tilts the law 
     [range]
     penetration_mm = [0.005, 0.05]
     tilt_arcmin = [0, 2]                   # [0, 0]: no 3D work at all
+
+``plane = "auto"`` (the default when the key is left out) leaves the 2D assumption to evidence: ``ringcontact
+bearing`` solves the 3D ring (free end faces, the file's hold and drive) at zero tilt at two penetrations and uses the
+plane model whose force lies closer (:mod:`fem_reference.plane_check`; the FEM jobs resolve it the same way through
+:func:`fem_reference.plane_check.scene_2d`). An ``auto`` file's :attr:`RingScene.scene` carries plane strain only as
+a placeholder: :func:`with_plane` gives the resolved one, and the 2D sweep refuses an unresolved file.
 
 Optional keys: ``description``; in ``[range]`` the explicit point lists ``penetration_points_mm`` (2D),
 ``penetration_points_3d_mm`` and ``tilt_points_arcmin`` (default grids: :func:`default_grid`). The
@@ -57,6 +63,8 @@ SCHEMA = "ringcontact.ring-scene/1"
 #: the bundled ring-pair files (read through importlib.resources, see contact.package_data)
 RING_SCENE_DIR = shipped("fem_reference", "ring_scenes")
 MAX_FILE_BYTES = 64_000
+#: the ``plane`` key's values: ``auto`` (the default) leaves it to the 3D check of fem_reference.plane_check
+PLANES = ("auto", "strain", "stress")
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]{0,59}\Z")     # \Z: no newline after the name
 
 #: 3D boundary-condition scene (fem_reference.solid.compliance.SCENES) of each (hold, drive); the 3D
@@ -130,6 +138,11 @@ class RingScene:
     def needs_3d(self) -> bool:
         """The range asks for tilt: the 3D reference is run."""
         return self.tilt_range_rad[1] > 0.0
+
+    @property
+    def plane_auto(self) -> bool:
+        """The file leaves the 2D assumption to the 3D check (``plane = "auto"``, the default): not resolved yet."""
+        return self.document["plane"] == "auto"
 
     @property
     def bc_3d(self) -> str | None:
@@ -400,7 +413,7 @@ def from_document(doc: dict, origin: str = "<string>") -> RingScene:
     if not _NAME.match(top["name"]):
         raise InputError(f"{_where(origin, '', 'name')} = {top['name']!r}: use 1-60 letters, digits, '_', '.', "
                          "'+', '-' (it names files)")
-    plane = _choice(origin, "", "plane", top.get("plane", "strain"), ("strain", "stress"))
+    plane = _choice(origin, "", "plane", top.get("plane", "auto"), PLANES)
     ring, housing, rng = sec["bearing_ring"], sec["housing"], sec["range"]
     hold = _choice(origin, "housing", "hold", housing.get("hold", "clamped-outer"), tuple(SUPPORT_HOLDS))
     drive = _choice(origin, "drive", "bearing", sec["drive"].get("bearing", "rigid-inner"), tuple(BEARING_DRIVES))
@@ -428,8 +441,9 @@ def from_document(doc: dict, origin: str = "<string>") -> RingScene:
     except InputError as exc:
         raise InputError(f"{origin}: {exc}") from None
     name = top["name"]
-    scene = Scene(name, rings, plane, drive, hold, top.get("description", "") or
-                  f"ring pair {name}: {SUPPORT_HOLDS[hold]}; {BEARING_DRIVES[drive]}; plane {plane}")
+    said = "auto (decided by the 3D check, fem_reference.plane_check)" if plane == "auto" else plane
+    scene = Scene(name, rings, "strain" if plane == "auto" else plane, drive, hold, top.get("description", "") or
+                  f"ring pair {name}: {SUPPORT_HOLDS[hold]}; {BEARING_DRIVES[drive]}; plane {said}")
     document = {"schema": SCHEMA, "name": name, "plane": plane, "description": top.get("description", ""),
                 "bearing_ring": ring, "housing": {**housing, "hold": hold}, "drive": {"bearing": drive},
                 "range": {"penetration_mm": [pen_lo, pen_hi], "tilt_arcmin": [t_lo, t_hi], "penetration_points_mm": p2,
@@ -440,12 +454,24 @@ def from_document(doc: dict, origin: str = "<string>") -> RingScene:
                      document=document, source=origin)
 
 
+def with_plane(rs: RingScene, plane: str, name: str | None = None) -> RingScene:
+    """``rs`` with its 2D assumption set to ``plane`` ("strain" or "stress"; and its name to ``name`` if given): the
+    resolved file of an ``auto`` one (its checksum is that of the resolved content, what the results depend on)."""
+    if plane not in ("strain", "stress"):
+        raise InputError(f"plane = {plane!r}: a resolved file has plane 'strain' or 'stress'")
+    return from_document({**rs.document, "plane": plane, **({"name": name} if name else {})}, rs.source)
+
+
 def scene_2d(name_or_path: str) -> Scene:
     """The 2D :class:`fem_reference.scenes.Scene` of a ``--scene`` value: a ring-pair file, a bundled one, or a generated name
     (``persson-<ratio>``, ``paper-…``; :func:`fem_reference.scenes.by_name`)."""
     text = str(name_or_path)
     if is_file_argument(text) or text in bundled():
-        return load(text).scene
+        rs = load(text)
+        if rs.plane_auto:
+            raise InputError(f"{text}: plane = 'auto' (the default) is decided by the 3D check: resolve it with "
+                             "fem_reference.plane_check.scene_2d, or set plane = \"strain\" or \"stress\"")
+        return rs.scene
     try:
         return by_name(text)
     except InputError as exc:
@@ -485,7 +511,7 @@ def json_schema() -> dict:
 
     root = obj("")
     root["properties"]["schema"] = {"const": SCHEMA}
-    root["properties"]["plane"] = {"enum": ["strain", "stress"]}
+    root["properties"]["plane"] = {"enum": list(PLANES)}
     for s in KEYS:
         if s:
             root["properties"][s] = obj(s)

@@ -164,7 +164,8 @@ def _widened(rs, range_from):
 
 
 def bearing(ring_scene: str | os.PathLike, out: str | os.PathLike | None = None, *, workers: int = 1,
-            fresh: bool = False, progress: bool | None = None, log=print, range_from=None) -> BearingResult:
+            fresh: bool = False, progress: bool | None = None, log=print, range_from=None,
+            plane_check: bool | None = None) -> BearingResult:
     """Calibrate the contact law of a ring-pair file (schema ``ringcontact.ring-scene/1``) or a bundled one by
     name (``clamped``, ``steel-in-aluminium`` …), as ``ringcontact bearing``: FEM reference points, law
     families fitted with held-out points, report and law file in ``out`` (default ``bearing-<name>``). An
@@ -172,7 +173,9 @@ def bearing(ring_scene: str | os.PathLike, out: str | os.PathLike | None = None,
 
     ``range_from``: as ``--range-from``, the file's range widened to what a rotor run visited in contact
     (:mod:`reports.bearing.range_from`): a run folder or JSON file, or a result of :func:`simulate`, :func:`orbit`,
-    :func:`branch` or :func:`cascade` (its ``law_validity``).
+    :func:`branch` or :func:`cascade` (its ``law_validity``). ``plane_check``: as ``--plane-check`` (True) or
+    ``--no-plane-check`` (False); None: the 3D check of the plane runs for a file left at ``plane = "auto"`` and for
+    a tilt range (the summary's ``plane``: the plane used, why, and the 3D numbers).
     """
     from contact.calibrate.store import load_law_file
     from fem_reference.ring_scene import load
@@ -183,7 +186,8 @@ def bearing(ring_scene: str | os.PathLike, out: str | os.PathLike | None = None,
     rs = load(ring_scene)
     rs, note = _widened(rs, range_from)
     folder = Path(out) if out is not None else Path(f"bearing-{rs.name}")
-    summary = run(rs, folder, workers=int(workers), fresh=fresh, progress=progress, log=log, range_from=note)
+    summary = run(rs, folder, workers=int(workers), fresh=fresh, progress=progress, log=log, range_from=note,
+                  plane_check=plane_check)
     path = folder / summary["law_file"]
     cal = load_law_file(path)
     return BearingResult(rs.name, str(path.resolve()), cal.name, cal.family, dict(cal.parameters),

@@ -126,6 +126,21 @@ CLAIMS = (
          claim="foundation_modulus_Pa_per_m = 3.89956e+12 ± 7.8e+09 Pa/m",
          test="tests/test_published_fem.py::test_steel_in_aluminium_law_refits_from_its_committed_fem", tier="default"),
 
+    # bearing-plane-choice.md (plane stress or strain by the 3D ring; the check's wall times are not claims)
+    dict(report="reports/published/bearing-plane-choice.md",
+         claim="| newcomer (issue 38) | 4 | clamped-axially-free | auto | 0.0126 | 44 749 ± 0.037 | -0.04 | +22.86 | stress (decisive) | stress |",
+         test="tests/fem_reference/test_plane_check.py::test_the_newcomers_ring_follows_plane_stress_and_the_table1_rings_lie_between",
+         tier="slow"),
+    dict(report="reports/published/bearing-plane-choice.md",
+         claim="| clamped | 3 | clamped | strain | 0.00707 | 167 810 ± 0.002 | -7.45 | +12.89 | stress (decisive) | strain |",
+         test="tests/fem_reference/test_plane_check.py::test_the_newcomers_ring_follows_plane_stress_and_the_table1_rings_lie_between",
+         tier="slow"),
+    dict(report="README.md", claim="(axially free: plane stress within 0.04 %, plane strain 23 %",
+         test="tests/fem_reference/test_plane_check.py::test_the_newcomers_ring_follows_plane_stress_and_the_table1_rings_lie_between",
+         tier="slow"),
+    dict(report="README.md", claim="plane stress 7.5 % below, plane strain 13.2 % above",
+         test="tests/fem_reference/test_plane_check.py::test_the_newcomers_ring_follows_plane_stress_and_the_table1_rings_lie_between",
+         tier="slow"),
     # perf-bearing.md (the stage times are wall times; the law's checks are recomputed)
     dict(report="reports/published/perf-bearing.md",
          claim="Law of the tilted run: `steel-in-aluminium-3d-foundation` (foundation); checks: holdout_max_rel_2d 0.895 %",

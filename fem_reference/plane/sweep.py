@@ -292,12 +292,20 @@ def scene_task(scene: str, penetrations_m: list[float], levels_m: list[float], o
     normalised document of a ring-pair file (:attr:`~fem_reference.ring_scene.RingScene.document`),
     defines it. The scene's mesh levels are built once (:class:`Levels`) and reused along its penetrations.
     """
-    sc = from_document(ring_scene, scene).scene if ring_scene is not None else scene_2d(scene)
+    sc = _resolved(from_document(ring_scene, scene)).scene if ring_scene is not None else scene_2d(scene)
     levels = Levels(sc, tuple(levels_m), order)
     points = [reference_point(levels, dr) for dr in penetrations_m]
     log = levels.build_log
     build = {"total_s": sum(b[2] for b in log), "meshes_built": len(log), "largest_ndofs": max(b[1] for b in log)}
     return {}, {"points": points, "build": build}
+
+
+def _resolved(rs: RingScene) -> RingScene:
+    """``rs`` if its plane is set; a file left at ``plane = "auto"`` is refused (its placeholder is not an answer)."""
+    if rs.plane_auto:
+        raise InputError(f"ring pair {rs.name!r}: plane = 'auto' not resolved: the 2D sweep needs the plane the 3D check "
+                         "chose (fem_reference.plane_check.resolve)")
+    return rs
 
 
 def _scene_key(name: str) -> str:
@@ -345,7 +353,7 @@ def sweep_dataset(scene_names=DEFAULT_SCENES, penetrations_m=None, levels_m=DEFA
         penetrations_m = [v * 1e-3 for v in DEFAULT_PENETRATIONS_MM]
     t0 = time.perf_counter()
     load_start = round(os.getloadavg()[0], 2)
-    scenes = [n.scene if isinstance(n, RingScene) else scene_2d(n) for n in scene_names]
+    scenes = [_resolved(n).scene if isinstance(n, RingScene) else scene_2d(n) for n in scene_names]
     common = {"penetrations_m": [float(d) for d in penetrations_m], "levels_m": [float(h) for h in levels_m],
               "order": int(order)}
     def params(n, sc, pens):

@@ -2,6 +2,11 @@
 
 Stages (each timed, with the load average, into ``timings.json``):
 
+0. ``plane``: plane stress or strain by evidence (:mod:`fem_reference.plane_check`): the 3D ring at zero tilt at
+   two penetrations against both 2D assumptions, for a file left at ``plane = "auto"`` (the default; the closer
+   plane is used) and for one with a tilt range (its 3D levels are built anyway); a plane stated in a straight-only
+   file is used unchecked unless ``plane_check`` (``--plane-check``) asks. The choice, the rule and the 3D numbers
+   go into the summary (``plane``), the law file's provenance and the report;
 1. ``fem2d``: the 2D reference sweep at the file's penetration points, every point with its
    Richardson error estimate (:mod:`fem_reference.plane.sweep`), one task per point on the local
    pool or a dask cluster, kept in ``<out>/.sweep-fem2d`` so an interrupted run resumes;
@@ -152,23 +157,41 @@ def law_file(rs: RingScene, fit: dict, range_from: dict | None = None) -> cal.Ca
             "checks_beyond_fem_error": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["excess"].items()},
             "error_bound_rel": LAW_ERROR_BOUND_REL, "warnings": list(fit["warnings"]),
             "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE, "not_held": fit["not_held"]}
+    if fit.get("plane") is not None:
+        prov["plane"] = fit["plane"]
     if range_from is not None:
         prov["range_from"] = range_from
     return dataclasses.replace(fit["chosen"], validity_tilt_max_rad=float(tilt_max), provenance=prov)
 
 
+def _plane(rs: RingScene, stages: Stages, plane_check: bool | None, **kw) -> tuple[RingScene, dict]:
+    """Stage 0: the plane the 2D reference uses, and its evidence (:func:`fem_reference.plane_check.resolve`)."""
+    from fem_reference.plane_check import check_penetrations_m, resolve
+
+    runs = plane_check if plane_check is not None else (rs.plane_auto or rs.needs_3d)
+    if not runs or rs.bc_3d is None:
+        return resolve(rs, run_check=False)
+    pens = ", ".join(f"{p * 1e3:.3g}" for p in check_penetrations_m(rs))
+    return stages.run("plane", f"3D ring at zero tilt at {pens} mm against plane stress and strain",
+                      lambda: resolve(rs, run_check=True, **kw))
+
+
 def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: bool = False,
-        progress: bool | None = None, log=print, range_from: dict | None = None) -> dict:
+        progress: bool | None = None, log=print, range_from: dict | None = None,
+        plane_check: bool | None = None) -> dict:
     """Every stage for one ring pair into ``out``; returns the summary (also written as ``summary.json``).
 
     ``range_from``: the note of :func:`reports.bearing.range_from.widened` when ``rs``'s range was widened to a rotor
-    run's (into the law's provenance, the report and the summary)."""
+    run's (into the law's provenance, the report and the summary). ``plane_check``: stage 0 (None: as the module
+    docstring says; True: always; False: never, an ``auto`` file then on plane strain, said so)."""
     import json
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     names = file_names(rs.name)
     stages = Stages(log)
+    rs, plane = _plane(rs, stages, plane_check, workers=workers, executor=executor, fresh=fresh, progress=progress)
+    log(f"plane {plane['used']}: {plane['why']}")
     n2 = len(rs.penetrations_2d_m)
     path2 = stages.run("fem2d", f"2D reference, {n2} penetrations x 3+ mesh levels",
                        lambda: run_fem2d(rs, out, workers=workers, executor=executor, fresh=fresh, progress=progress))
@@ -179,7 +202,7 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
                            lambda: run_fem3d(rs, out, workers=workers, executor=executor, fresh=fresh,
                                              progress=progress))
     fit = stages.run("calibrate", "law families with hold-out", lambda: calibrate(rs, path2, path3))
-    fit["range_from"] = range_from
+    fit["range_from"], fit["plane"] = range_from, plane
     law = law_file(rs, fit, range_from)
     files = [atomic_write_text(out / names["law"], law.to_json())]
     if fit["law3"] is not None:
@@ -190,12 +213,14 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
         log(f"warning: {w}")
     for part in fit["not_held"]:
         log(f"warning: {part_line(part)}")
+    for w in plane["warnings"]:
+        log(f"warning: plane: {w}")
     summary = {"ring_scene": rs.name, "ring_scene_sha256": rs.sha256, "law_file": names["law"],
                "law_name": law.name, "family": law.family, "parameters": law.parameters,
                "validity_penetration_mm": [v * 1e3 for v in law.validity_penetration_m],
                "validity_tilt_max_arcmin": law.validity_tilt_max_rad / (math.pi / 10800),
                "checks": law.provenance["checks"], "warnings": fit["warnings"], "not_held": fit["not_held"],
-               "range_from": range_from,
+               "range_from": range_from, "plane": plane,
                "stages": stages.rows, "files": sorted({Path(f).name for f in files} | {path2.name}
                                                       | ({path3.name} if path3 else set()))}
     atomic_write_text(out / names["timings"], json.dumps({"stages": stages.rows}, indent=1) + "\n")

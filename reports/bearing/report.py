@@ -143,6 +143,34 @@ def _dundurs(law) -> str:
             "2.6-6.2 %, reports/published/fem-verification-dissimilar.md)")
 
 
+def _plane_lines(fit: dict) -> list[str]:
+    """Plane stress or strain: the plane used, why, and the 3D evidence (:mod:`fem_reference.plane_check`)."""
+    rec = fit.get("plane")
+    if rec is None:
+        return []
+    lines = ["## Plane stress or strain (3D evidence)", "",
+             f"2D assumption used: **plane {rec['used']}** ({rec['why']}; the file says `plane = \"{rec['requested']}\"`)."]
+    ev = rec["check"]
+    if ev is None:
+        lines += ["", "No 3D check was run" + (": " + rec["warnings"][0] if rec["warnings"] else
+                                              " (a plane stated in a straight-only file; `--plane-check` runs it).")]
+        return lines + [""]
+    lines += ["", f"The 3D ring (`{ev['boundary_conditions_3d']}`: the file's hold and drive, free end faces) at zero "
+              "tilt, three levels with their Richardson error, against the 2D reference under both assumptions. "
+              f"Rule: {ev['rule']}. Closer: plane {ev['closer']} ({'decisive' if ev['decisive'] else 'not decisive'}); "
+              f"check wall {ev['wall_s']:.1f} s.", "",
+              "| Δr (mm) | 3D force (N) ± % | 2D plane stress (N) ± % | stress − 3D (%) | 2D plane strain (N) ± % "
+              "| strain − 3D (%) |", "|---|---|---|---|---|---|"]
+    for r in ev["points"]:
+        lines.append(f"| {r['penetration_mm']:.4g} | {r['force_3d_N']:,.0f} ± {100 * r['force_3d_error_rel']:.3f} "
+                     f"| {r['force_2d_stress_N']:,.0f} ± {100 * r['force_2d_stress_error_rel']:.3f} "
+                     f"| {100 * r['stress_minus_3d_rel']:+.2f} "
+                     f"| {r['force_2d_strain_N']:,.0f} ± {100 * r['force_2d_strain_error_rel']:.3f} "
+                     f"| {100 * r['strain_minus_3d_rel']:+.2f} |".replace(",", " "))
+    lines += [""] + [f"- warning: {w}." for w in rec["warnings"]] + ([""] if rec["warnings"] else [])
+    return lines
+
+
 def _followed_lines(fit: dict) -> list[str]:
     """The range taken from a rotor run (``--range-from``) and the parts of the range no family holds."""
     from reports.bearing.holds import part_line
@@ -173,7 +201,7 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
              f"{100 * law.provenance['error_bound_rel']:g} %; beyond it here: " + "; ".join(
                  f"{k} {100 * v:+.3f} %" for k, v in law.provenance["checks_beyond_fem_error"].items() if v is not None) + ".",
              f"- **{'verified' if ok else 'flagged'}**" + ("" if ok else ": " + " ".join(warn)), "",
-             *_followed_lines(fit),
+             *_followed_lines(fit), *_plane_lines(fit),
              "## Straight ring (2D, Table 2 style)", "",
              "Cells: `100 (P_law − P_FEM)/P_FEM` in %, signed; '–': the law has no solution there. Conformal law: "
              "composite modulus and Dundurs α of the two materials (Dai et al. 2025 Eq. 5) " + _dundurs(law)

@@ -1,7 +1,7 @@
 """``ringcontact bearing FILE``: a ring-pair file to a verified, checksummed contact law.
 
     ringcontact bearing my-bearing.toml [--out DIR] [--workers 2] [--scheduler ADDRESS] [--fresh] [--json]
-                                        [--range-from RUN]
+                                        [--range-from RUN] [--plane-check | --no-plane-check]
 
 FILE is a ring-pair file (schema ``ringcontact.ring-scene/1``, docs/ring-scenes.rst) or a bundled one by
 name (``clamped``, ``steel-in-aluminium``, ...). Runs the 2D reference sweep, the 3D tilt sweep when the
@@ -15,6 +15,11 @@ rotor run visited in contact (its ``law_validity`` record: a ``simulate --out`` 
 ``orbit``/``branch --out`` JSON file), with a margin, rounded outward (:mod:`reports.bearing.range_from`); what the
 FEM references cannot reach is said, and the parts of the range no law family holds are listed
 (:mod:`reports.bearing.holds`) in the summary, the report and on the terminal.
+
+Plane stress or strain: a file left at ``plane = "auto"`` (the default) gets the plane whose force lies closer to the
+3D ring's at zero tilt (:mod:`fem_reference.plane_check`, stage 0 of :mod:`reports.bearing.pipeline`); a file with a
+tilt range is checked too; ``--plane-check`` checks a plane stated in a straight-only file (the 3D levels' build,
+about 20 s cold), ``--no-plane-check`` checks nothing (``auto`` then means plane strain, said so).
 """
 from __future__ import annotations
 
@@ -43,7 +48,7 @@ def _run(args, rs, out, note) -> dict:
     try:
         with connect(args.scheduler) as client:
             return run(rs, out, workers=args.workers, executor=client, fresh=args.fresh, log=log,
-                       range_from=note)
+                       range_from=note, plane_check=args.plane_check)
     except OSError as exc:
         if isinstance(exc, RingContactError):
             raise
@@ -65,6 +70,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--range-from", default=None, metavar="RUN",
                     help="widen the file's range to what a rotor run visited in contact: a `simulate --out` or "
                          "`study --out` folder, or an `orbit`/`branch --out` JSON file")
+    pc = ap.add_mutually_exclusive_group()
+    pc.add_argument("--plane-check", dest="plane_check", action="store_const", const=True, default=None,
+                    help="check the file's plane against the 3D ring even for a straight-only file with its plane "
+                         "stated (default: checked for plane = \"auto\" and for a tilt range)")
+    pc.add_argument("--no-plane-check", dest="plane_check", action="store_const", const=False,
+                    help="no 3D check of the plane (plane = \"auto\" then means plane strain, said so)")
     add_accept_long(ap)
     args = ap.parse_args(sys.argv[1:] if argv is None else argv)
     if args.out is not None:

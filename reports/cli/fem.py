@@ -46,7 +46,7 @@ def point_main(argv: list[str]) -> int:
     ap.add_argument("--json", action="store_true", help="print the full point record as JSON (SI units)")
     args = ap.parse_args(argv)
     from fem_reference.plane.solve import ContactModel
-    from fem_reference.ring_scene import scene_2d
+    from fem_reference.plane_check import scene_2d
     from fem_reference.plane.sweep import Levels, arc_zone_rad, reference_point, spec_for
 
     try:
@@ -104,8 +104,10 @@ def sweep_main(argv: list[str]) -> int:
         from fem_reference.plane.sweep import DEFAULT_SCENES
         from fem_reference.ring_scene import is_file_argument, load
 
+        from fem_reference.plane_check import resolved
+
         names = args.scene or list(DEFAULT_SCENES)
-        scenes = [load(n) if is_file_argument(n) else n for n in names]
+        scenes = [resolved(load(n)) if is_file_argument(n) else n for n in names]
         kw = {}
         if len(scenes) == 1 and not isinstance(scenes[0], str):
             kw["penetrations_m"] = list(scenes[0].penetrations_2d_m)
@@ -187,7 +189,7 @@ def vtu_main(argv: list[str]) -> int:
     """``fem-vtu``: write one solved point as VTU."""
     from fem_reference.plane.export import write_vtu
     from fem_reference.plane.solve import ContactModel
-    from fem_reference.ring_scene import scene_2d
+    from fem_reference.plane_check import scene_2d
     from fem_reference.plane.sweep import spec_for
 
     ap = _point_parser("ringcontact fem-vtu", "export a solved point to VTU (ParaView)")
