@@ -20,9 +20,11 @@ from __future__ import annotations
 
 import argparse
 import math
+import multiprocessing
 import os
 import sys
 import time
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -125,18 +127,33 @@ def _row(i, sc, pc):
             f"{pc.adaptive.wall_s:.0f} |")
 
 
-def part2(lines, n_pairs, seed):
+def _check(sc, pens):
+    """check_pair's points, or why the solver refused the pair (reported and counted, not hidden)."""
+    try:
+        return check_pair(sc, pens)
+    except Exception as exc:
+        return f"{type(exc).__name__}: {' '.join(str(exc).split())[:100]}"
+
+
+def _checked(pairs, jobs):
+    """Each pair's check in order: in this process, or in ``jobs`` worker processes (the same results)."""
+    if jobs <= 1:
+        yield from (_check(sc, pens) for sc, pens in pairs)
+        return
+    with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn")) as pool:
+        yield from pool.map(_check, *zip(*pairs))
+
+
+def part2(lines, n_pairs, seed, jobs=1):
     rng = np.random.default_rng(seed)
     rows, counts, ref_wall, ref_loose, beyond = [], {"within": 0, "outside": 0, "refused": 0}, 0.0, 0, 0
-    for i in range(n_pairs):
-        sc, pens = draw_pair(rng, i)
-        try:
-            checks = check_pair(sc, pens)
-        except Exception as exc:          # a pair the solver refuses is reported and counted, not hidden
+    pairs = [draw_pair(rng, i) for i in range(n_pairs)]
+    for i, ((sc, pens), checks) in enumerate(zip(pairs, _checked(pairs, jobs))):
+        if isinstance(checks, str):
             counts["refused"] += len(pens)
             rows.append(f"| {i} | {sc.support_hold} | {sc.bearing_drive} | {sc.plane} | {_pair_text(sc)} | "
                         f"{' / '.join(f'{d * 1e3:.4f}' for d in pens)} | – | – | – | – | – | – | – | none | – | – | "
-                        f"refused: {type(exc).__name__}: {' '.join(str(exc).split())[:100]} | – |")
+                        f"refused: {checks} | – |")
             print(rows[-1], flush=True)
             continue
         ref_wall += checks[0].reference.wall_s
@@ -183,6 +200,7 @@ def main() -> int:
     ap.add_argument("--pairs", type=int, default=30)
     ap.add_argument("--seed", type=int, default=None)
     ap.add_argument("--skip-cast-iron", action="store_true", help="generated pairs only (a trial run)")
+    ap.add_argument("--jobs", type=int, default=1, help="worker processes for the generated pairs (same results)")
     ap.add_argument("--out", type=Path, default=OUT, help="the report's path")
     args = ap.parse_args()
     if args.pairs < 0:
@@ -203,7 +221,7 @@ def main() -> int:
     if not args.skip_cast_iron:
         part1(lines)
     if args.pairs:
-        part2(lines, args.pairs, seed)
+        part2(lines, args.pairs, seed, args.jobs)
     lines += [f"Wall time {time.perf_counter() - t0:.0f} s; load average (1 min) {load0:.2f} at the start, "
               f"{os.getloadavg()[0]:.2f} at the end, on {os.cpu_count()} cores shared with other work.", ""]
     atomic_write_text(args.out, "\n".join(lines))
