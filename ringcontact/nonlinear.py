@@ -194,7 +194,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
         steps_per_rev = _checks.whole("steps_per_rev", steps_per_rev, "--steps-per-rev", "steps_per_rev")
     steady = _checks.flag_of("steady", steady)
     if _checks.flag_of("from_rest", from_rest) and steady:
-        raise InputError("from_rest = True: steady = True starts from the linear periodic solution (support locked), "
+        raise InputError("from_rest = True: steady = True starts from the static equilibrium with its forced response, "
                          "not from rest; give one of them")
     if steady:
         max_revs = _checks.whole("max_revs", max_revs, "--max-revs", "max_revs")
@@ -215,7 +215,7 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
     steady_info = None
     if steady:
         tr, dt, n, revolutions, steady_info = _steady_simulate(system, model, n, revolutions, record_per_rev, max_revs)
-        start = {"kind": "linear periodic solution (support locked)"}
+        start = steady_info.pop("start")
     else:
         eq = None if from_rest else static_equilibrium(system)
         start = start_record(system, eq)
@@ -235,10 +235,11 @@ def simulate(scene, speed_rpm: float, *, revolutions: float = 20.0, steps_per_re
 
 
 def _steady_simulate(system, model, n: int, revolutions: float, record_per_rev: int, max_revs: int):
-    """``simulate(steady=True)``: the transient from the linear periodic solution until the Poincaré detector finds
-    a period, then whole periods; ``(trajectory, dt, steps per revolution, kept revolutions, steady_state)``."""
+    """``simulate(steady=True)``: the transient from :func:`rotor.dynamics.static_start.periodic_start` until the
+    Poincaré detector finds a period, then whole periods; ``(trajectory, dt, steps per revolution, kept revolutions,
+    steady_state)``."""
     from contact.errors import InputError
-    from rotor.dynamics.initial import linear_initial_state
+    from rotor.dynamics.static_start import periodic_start
     from rotor.studies.steady_record import record_after_steady
     from rotor.studies.steady_state import SAMPLES_FOR_5X, SteadyStateOptions, steady_state
 
@@ -247,12 +248,13 @@ def _steady_simulate(system, model, n: int, revolutions: float, record_per_rev: 
                          f"record_per_rev >= {SAMPLES_FOR_5X} dividing steps_per_rev {n} (got {record_per_rev})")
     opts = SteadyStateOptions(steps_per_rev=n, samples_per_rev=int(record_per_rev), spectrum_revs=1,
                               max_revs=int(max_revs))
-    q_start, v_start = linear_initial_state(system, 0.0)
+    q_start, v_start, start = periodic_start(system, model, 0.0)
     ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
     tr, dt, _, kept = record_after_steady(system, ss, int(round(revolutions)), int(record_per_rev))
     conv = ss.convergence
     info = {"converged": bool(conv.converged), "period_revs": int(conv.period),
-            "transient_revs": int(ss.transient_revs + ss.revolutions), "poincare_change": float(conv.change)}
+            "transient_revs": int(ss.transient_revs + ss.revolutions), "poincare_change": float(conv.change),
+            "start": start}
     return tr, dt, ss.steps_per_rev, kept, info
 
 

@@ -22,7 +22,9 @@ bifurcations met (a multiplier that jumps across the unit circle where the switc
 ``discontinuous`` bifurcation, with both sides in its ``detail``); every stall of the corrector is in
 ``corrector_failures`` (speed, why, how it was passed) and each restarted point has its ``restart_reason``;
 ``--plot`` draws the bifurcation diagram (:mod:`reports.bifurcation`). The branch starts on the orbit a
-transient from the linear periodic solution reaches, or on a chosen one: ``--from-orbit FILE`` (an ``orbit
+transient from :func:`rotor.dynamics.static_start.periodic_start` reaches (the static equilibrium with its linear
+forced response under gravity or static loads the faces cannot hold, else the linear periodic solution; the orbit's
+``transient_start`` says which), or on a chosen one: ``--from-orbit FILE`` (an ``orbit
 --out`` file: that orbit, stable or not) or ``--from-state DIR`` (a ``simulate --out DIR`` run at
 ``--rpm-start`` ending after whole revolutions: the orbit a transient from its last state reaches)::
 

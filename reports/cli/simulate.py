@@ -37,8 +37,10 @@ the CSV beside ``face_*_stuck``, ``f_contact``/``face_force`` in the NPZ beside 
 The run starts from the static equilibrium under the scene's gravity, ``[[static_loads]]``, misalignment offset and
 preload, the ring's contact and the end faces' friction solved statically
 (:func:`rotor.dynamics.static_start.static_equilibrium`), so that a record is not a drop transient; ``--from-rest``
-starts at the offset with nothing carried, as before. The summary's ``start`` says which (``--steady``: the linear
-periodic solution with the support locked) and, from the equilibrium, the bearing's static deflection.
+starts at the offset with nothing carried, as before. The summary's ``start`` says which (``--steady``:
+:func:`rotor.dynamics.static_start.periodic_start`, the equilibrium with the linear forced response about it under
+gravity or static loads the faces cannot hold, else the linear periodic solution) and, from the equilibrium, the
+bearing's static deflection.
 
 The law's validity (:mod:`rotor.model.law_validity`, the record every rotor job writes): ``law_validity`` in the
 summary names the law, its file and sha256 and its verdict (``verified``, ``flagged``, ``analytic``), its fitted
@@ -147,7 +149,7 @@ def _check_options(args) -> None:
             raise InputError(f"{flag} = {text!r}: names nothing; give comma-separated names, or leave {flag} out "
                              "for the default")
     if args.from_rest and args.steady:
-        raise InputError("--from-rest: --steady starts from the linear periodic solution (support locked), not from "
+        raise InputError("--from-rest: --steady starts from the static equilibrium with its forced response, not from "
                          "rest; give one of them")
     if args.max_revs is not None and not args.steady:
         raise InputError(f"--max-revs = {args.max_revs} rev: the transient cap of --steady, which is not given "
@@ -327,7 +329,7 @@ def _steady_run(args, system, model, names: list[str], idx: list[int]):
 
     Returns ``(trajectory, dt, n_steps, summary fields)``.
     """
-    from rotor.dynamics.initial import linear_initial_state
+    from rotor.dynamics.static_start import periodic_start
     from rotor.studies.steady_record import record_after_steady
     from rotor.studies.steady_state import SteadyStateOptions, harmonic_amplitudes, steady_state
     from sweep.progress import Events, reporting
@@ -338,13 +340,13 @@ def _steady_run(args, system, model, names: list[str], idx: list[int]):
     # integrated below from its end state so that every field of the trajectory is written
     opts = SteadyStateOptions(steps_per_rev=args.steps_per_rev, samples_per_rev=args.record_per_rev,
                               spectrum_revs=1, max_revs=max_revs(args))
-    q_start, v_start = linear_initial_state(system, 0.0)
+    q_start, v_start, start = periodic_start(system, model, 0.0)
     with reporting(Events("ringcontact simulate --steady", enabled=args.progress)) as events, events:  # on a terminal
         ss = steady_state(system, model, options=opts, q0=q_start, v0=v_start)
     conv = ss.convergence
     tr, dt, n_steps, keep = record_after_steady(system, ss, keep, args.record_per_rev)
     amps = np.abs(harmonic_amplitudes(tr.v[:-1, idx] - tr.v[:-1, idx].mean(axis=0), keep))
-    extra = {"start": {"kind": "linear periodic solution (support locked)"},
+    extra = {"start": start,
              "transient_revs": int(ss.transient_revs + ss.revolutions), "steady_converged": bool(conv.converged),
              "period_revs": int(conv.period), "poincare_change": float(conv.change),
              "poincare_remaining": float(conv.remaining), "record_revs": keep,

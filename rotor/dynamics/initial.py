@@ -54,14 +54,16 @@ def initial_state(system: RotorSystem, t0: float, q0, v0, modes0, opts: NewmarkO
     return a0, lam, modes
 
 
-def linear_initial_state(system: RotorSystem, t0: float = 0.0, lock_support: bool = True):
+def linear_initial_state(system: RotorSystem, t0: float = 0.0, lock_support: bool = True, static: bool = True):
     """``(q0, v0)``: the exact periodic solution at ``t0`` of the *linear* system with the loose
     support locked (bearing and support moving together, both end faces stuck) or free. With the
     tilt ignored (§5.2) only the lateral relative motion is locked: no moment passes.
 
     A good start for a steady-state run: the 1X/2X response of the rotor is already there,
     so only the (much smaller) nonlinear correction has to decay. Static part
-    ``K (q − Δq_m) = static``, harmonics ``(K − (kΩ)² M + i kΩ D) X_k = c_k − i s_k``.
+    ``K (q − Δq_m) = static``, harmonics ``(K − (kΩ)² M + i kΩ D) X_k = c_k − i s_k``. ``static`` False: the
+    harmonics alone (the forced response about a static state found otherwise,
+    :func:`rotor.dynamics.static_start.forced_start`).
     """
     n = system.n
     rows = [system.lock]
@@ -70,7 +72,7 @@ def linear_initial_state(system: RotorSystem, t0: float = 0.0, lock_support: boo
     T = cons.null_space_map(np.vstack(rows))
     Mr, Dr, Kr = T.T @ system.M @ T, T.T @ system.D @ T, T.T @ system.K @ T
     f = system.force
-    q = T @ np.linalg.solve(Kr, T.T @ (f.static + system.K @ system.offset))
+    q = T @ np.linalg.solve(Kr, T.T @ (f.static + system.K @ system.offset)) if static else np.zeros(n)
     v = np.zeros(n)
     for k, c, s in zip(f.orders, f.cos, f.sin):
         wk = k * f.omega_rad_s

@@ -1,8 +1,11 @@
 """Periodic orbits and branches of a scene's rotor, as the command line asks for them.
 
 :func:`orbit` is one operating point: the periodic orbit by shooting (:mod:`rotor.periodic.shooting`) from a
-short transient that starts at the linear periodic solution (:func:`rotor.dynamics.initial.linear_initial_state`,
-as ``simulate --steady``), its Floquet multipliers and stability (:mod:`rotor.periodic.floquet`) and the
+short transient from :func:`rotor.dynamics.static_start.periodic_start`: under gravity or static loads the faces
+cannot hold out of contact, the static equilibrium (the ring's contact and the faces' friction solved statically) with
+the linear forced response about it; otherwise the linear periodic solution, as measured there (the JSON's
+``transient_start`` says which and why), its Floquet
+multipliers and stability (:mod:`rotor.periodic.floquet`) and the
 1X-5X velocity amplitudes at every response station, the same quantity and key as ``simulate --steady``
 (``velocity_amplitudes_mm_s_1X_to_5X``, mm/s, exact DFT bins over the whole period,
 :func:`rotor.studies.steady_state.harmonic_amplitudes`). :func:`branch` follows the orbit over a speed range
@@ -25,6 +28,7 @@ from contact import plausible
 from contact.units import ARCMIN, check_positive
 from rotor.dynamics.constraints import STICK, edge_offsets
 from rotor.dynamics.initial import linear_initial_state
+from rotor.dynamics.static_start import FORCED_KIND, LINEAR_KIND, forced_start, periodic_start, start_record
 from rotor.dynamics.support_record import contact_summary
 from rotor.model.law_validity import record as validity_record
 from rotor.periodic.continuation import (COLD, GRID, SECANT, TRANSIENT, Branch, ContinuationOptions, continue_branch,
@@ -135,6 +139,7 @@ class OrbitResult:
     max_edge_penetration_m: float = 0.0
     contact: dict = field(default_factory=dict)
     richardson: dict | None = None
+    start: dict | None = None
 
     @property
     def switch_free(self) -> bool:
@@ -163,7 +168,8 @@ class OrbitResult:
                 "max_edge_penetration_mm": self.max_edge_penetration_m * 1e3, **self.contact,
                 "wall_s": self.wall_s, "backend": self.backend,
                 "phase0_state": {"q_m_rad": [float(x) for x in self.q_m], "v_m_s_rad_s": [float(x) for x in self.v_m_s]},
-                **({} if self.richardson is None else {"richardson": self.richardson})}
+                **({} if self.richardson is None else {"richardson": self.richardson}),
+                **({} if self.start is None else {"transient_start": self.start})}
 
 
 def velocity_amplitudes(flow: Flow, model, res_state, t0_s: float, modes, period_revs: int, steps_per_rev: int,
@@ -215,7 +221,8 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     ``overrides``: ``clearance_m``, ``misalignment_m``, ``tilt_ignored``, ``mu``, ``preload_n``,
     ``elements_per_segment``, ``law`` (as :func:`rotor.studies.steady_state.point_system`). ``steps_per_rev`` None:
     :func:`rotor.studies.steady_state.step_per_rev`. ``period_revs`` None: found (1..8). ``start``: full
-    ``(q0, v0)`` at t = 0 instead of the linear periodic solution (e.g. a neighbouring speed's orbit).
+    ``(q0, v0)`` at t = 0 (e.g. a neighbouring speed's orbit), or ``"linear"`` (the linear periodic solution, support
+    locked), ``"equilibrium"``; None: :func:`transient_start`'s rule.
     ``period_hint``: a period (revolutions) to try in every transient round besides those the Poincaré
     returns support (a neighbouring speed's, :func:`cascade`). ``richardson``: also the orbit with twice the steps
     from this one and the amplitudes extrapolated to continuous time (:func:`richardson_fields`, JSON
@@ -228,7 +235,7 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     _, model, system = point_system(scene, speed_rpm, **_overrides(overrides))
     n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
     flow = make_flow(system, 2.0 * math.pi / (system.omega_rad_s * n), backend)
-    q0, v0 = linear_initial_state(system, 0.0) if start is None else start
+    q0, v0, start_info = transient_start(system, model, start)
     res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options,
                                period_hint=period_hint)
     if not res.converged and flow.handle.options.locate_events:
@@ -245,7 +252,26 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
                        res.floquet, amps, res.newton_iterations, res.residual, res.transient_revs, res.events,
                        res.singular_directions, time.perf_counter() - t_start, flow.backend, res, q, v, pen, contact,
-                       rich)
+                       rich, start_info)
+
+
+def transient_start(system, model, start=None) -> tuple:
+    """``(q0, v0, record)`` of an orbit's transient: ``start`` None: :func:`rotor.dynamics.static_start.periodic_start`
+    (the static equilibrium with the linear forced response about it under gravity or static loads the faces cannot
+    hold out of contact, else the linear periodic solution); ``"equilibrium"``: that equilibrium start always
+    (:func:`rotor.dynamics.static_start.forced_start`); ``"linear"``: the linear periodic solution (support locked,
+    :func:`rotor.dynamics.initial.linear_initial_state`); else a given full ``(q0, v0)``. ``record``: the JSON
+    ``transient_start``."""
+    if isinstance(start, str) and start not in ("equilibrium", "linear"):
+        raise InputError(f"start = {start!r}: 'equilibrium', 'linear' or a full (q0, v0) state")
+    if start is None:
+        return periodic_start(system, model, 0.0)
+    if start == "linear":
+        return (*linear_initial_state(system, 0.0), {"kind": LINEAR_KIND, "why": "asked for"})
+    if start == "equilibrium":
+        q0, v0, eq = forced_start(system, 0.0)
+        return q0, v0, {**start_record(system, eq), "kind": FORCED_KIND, "why": "asked for"}
+    return start[0], start[1], {"kind": "given state"}
 
 
 def richardson_fields(n: int, amps: dict, pen_m: float, fine_converged: bool, fine_amps: dict, fine_pen_m: float,

@@ -3,7 +3,9 @@
 ``study cascade|params --method shooting`` computes its speeds as one :class:`sweep.Task` per block of
 :data:`BLOCK_SPEEDS` contiguous speeds (:func:`shooting_block_tasks`). Within a block the speeds are run
 upwards as :func:`rotor.studies.orbit.cascade` runs them: the first speed of the block, and the speed after
-one where shooting failed (or after zero speed), from the linear periodic solution ("cold"); every other
+one where shooting failed (or after zero speed), from :func:`rotor.dynamics.static_start.periodic_start` ("cold":
+the linear periodic solution, or the equilibrium with its forced response under gravity or static loads the faces cannot
+hold); every other
 speed from the phase-0 state of its lower neighbour's orbit with that orbit's period as a hint
 (:func:`rotor.studies.orbit.warm_options`). Each speed is stored under its own key (``rpm<speed>``) with
 the arrays and info of :func:`rotor.studies.shooting_point.run_shooting_point` plus

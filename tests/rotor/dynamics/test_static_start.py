@@ -187,3 +187,36 @@ def test_the_issues_bearing_law_on_the_friswell_rotor_is_let_down_onto_its_ring(
     assert np.abs(res.displacement_m[:, i] - res.displacement_m[0, i]).max() < 0.01 * sag
     rec = res.law_validity
     assert rec["verdict"] == "verified" and rec["contact_time_share_below"] > 0.5 and rec["beyond_tilt_range"] is True
+
+
+def test_a_periodic_orbits_transient_starts_at_the_equilibrium_with_its_forced_response():
+    """orbit, branch and ``simulate --steady`` start from :func:`rotor.dynamics.static_start.periodic_start`. On the
+    Friswell rotor with gravity (faces slipped, ring on its bore) that is the equilibrium plus the locked linear
+    forced response: the ring rests at its clearance, where the locked linear start floats it in the middle (relative
+    position 0). Without gravity or static loads it is the linear periodic solution itself, the start the published
+    orbits came from, bit for bit: on Table 4 (faces hold the offset's load, ring free) and on Table 4 without
+    friction (the offset presses the ring on its bore; from the equilibrium no orbit was found at 10 500 rpm)."""
+    from rotor.dynamics.initial import linear_initial_state
+    from rotor.dynamics.static_start import FORCED_KIND, LINEAR_KIND, periodic_start
+    from rotor.studies.steady_state import point_system
+
+    scene = loads_scene(_text())
+    model = assemble(scene)
+    system = system_from_model(model, scene, 3000 * math.pi / 30)
+    q0, v0, rec = periodic_start(system, model)
+    st = static_equilibrium(system)
+    q_h, v_h = linear_initial_state(system, 0.0, static=False)
+    assert rec["kind"] == FORCED_KIND and rec["faces_at_friction_limit"] == [True, True] and rec["contact_force_N"] > 0
+    assert np.array_equal(q0, st.q_m + q_h) and np.array_equal(v0, v_h) and np.abs(v_h).max() > 0
+    from rotor.dynamics.constraints import edge_offsets
+
+    sup = system.support
+    B = sup.relative_map(system.n)
+    q_lin = linear_initial_state(system, 0.0)[0]
+    assert max(edge_offsets(B @ st.q_m, sup.width_m)) >= sup.law.clearance_m      # an edge of the ring on its bore
+    assert np.abs(B @ q_lin).max() < 1e-12                                         # the locked start floats it
+    for mu in (None, 0.0):
+        _, m4, t4 = point_system("paper-table4", 10500, mu=mu)
+        q4, v4, rec4 = periodic_start(t4, m4)
+        ql, vl = linear_initial_state(t4, 0.0)
+        assert rec4["kind"] == LINEAR_KIND and np.array_equal(q4, ql) and np.array_equal(v4, vl)
