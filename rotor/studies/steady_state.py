@@ -425,7 +425,8 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
     ``f_contact`` (N, N m), ``q_all`` (all DOFs, m/rad) with ``dof_names`` and the misalignment
     offset ``offset`` (m, rad). Info: convergence, regime (stick/slip/impact), revolutions, timing, and the
     contact force and face stick over the whole record (:func:`rotor.dynamics.support_record.contact_summary`:
-    ``peak_contact_force_N``, ``mean_contact_force_N``, ``contact_share``, ``stick_share_right_face`` …).
+    ``peak_contact_force_N``, ``mean_contact_force_N``, ``contact_share``, ``stick_share_right_face`` …), and
+    ``start``, how the transient started (:func:`study_start`).
     """
     opts = SteadyStateOptions(**(options or {}))
     sc, model, system = point_system(scene, speed_rpm, clearance_m=clearance_m, misalignment_m=misalignment_m,
@@ -433,13 +434,31 @@ def run_point(scene: str, speed_rpm: float, clearance_m: float | None = None, mi
                                      elements_per_segment=elements_per_segment, law=law)
     check_digest(scene_sha256, sc, elements_per_segment, what=f"study point at {speed_rpm:g} rpm")
     try:
-        res = steady_state(system, model, options=opts)
+        q0, v0, start = study_start(system, model)
+        res = steady_state(system, model, options=opts, q0=q0, v0=v0)
     except OutsideDomainError as exc:
         return beyond_law_record(model, system, exc, speed_rpm=speed_rpm, misalignment_m=misalignment_m,
                                  tilt_ignored=tilt_ignored, elements_per_segment=elements_per_segment)
-    return point_record(res, sc, model, system, opts, speed_rpm=speed_rpm, misalignment_m=misalignment_m,
-                        tilt_ignored=tilt_ignored, max_order=max_order, history_revs=history_revs,
-                        elements_per_segment=elements_per_segment)
+    arrays, info = point_record(res, sc, model, system, opts, speed_rpm=speed_rpm, misalignment_m=misalignment_m,
+                                tilt_ignored=tilt_ignored, max_order=max_order, history_revs=history_revs,
+                                elements_per_segment=elements_per_segment)
+    return arrays, {**info, "start": start}
+
+
+def study_start(system, model) -> tuple:
+    """``(q0, v0, kind)`` of a transient study point: under gravity or ``[[static_loads]]`` the end faces cannot hold
+    out of contact, the static equilibrium with the linear forced response about it
+    (:func:`rotor.dynamics.static_start.periodic_start`); otherwise ``(None, None)``: rest at the misalignment offset,
+    the start every published study ran from (none of the bundled scenes has gravity or static loads; the start of a
+    non-periodic point's record, and of a continuum held by friction, changes its numbers)."""
+    from rotor.dynamics.static_start import FORCED_KIND, periodic_start
+    from rotor.model.static_load import static_load
+
+    if np.any(static_load(model)):
+        q0, v0, rec = periodic_start(system, model, 0.0)
+        if rec["kind"] == FORCED_KIND:
+            return q0, v0, FORCED_KIND
+    return None, None, "rest at the misalignment offset"
 
 
 def point_record(res: SteadyResult, sc, model, system, opts: SteadyStateOptions, *, speed_rpm: float,
