@@ -220,3 +220,9 @@ def test_a_periodic_orbits_transient_starts_at_the_equilibrium_with_its_forced_r
         q4, v4, rec4 = periodic_start(t4, m4)
         ql, vl = linear_initial_state(t4, 0.0)
         assert rec4["kind"] == LINEAR_KIND and np.array_equal(q4, ql) and np.array_equal(v4, vl)
+    # a transient study point: the same equilibrium start under gravity, else rest at the offset (the published start)
+    from rotor.studies.steady_state import study_start
+
+    qs, vs, kind = study_start(system, model)
+    assert kind == FORCED_KIND and np.array_equal(qs, q0) and np.array_equal(vs, v0)
+    assert study_start(t4, m4)[:2] == (None, None)
