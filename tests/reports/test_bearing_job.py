@@ -79,6 +79,20 @@ def test_job_writes_a_verified_checksummed_law(run, capsys):
     assert "**verified**" in md and "Johnson" in md and "Pereira" in md and "FEM error estimate" in md
 
 
+def test_a_stated_plane_of_a_straight_ring_is_used_unchecked_and_said_so(run):
+    """plane = "strain" stated, tilt [0, 0]: no 3D check by default (fem_reference/plane_check.py; --plane-check runs
+    it): the summary, the law's provenance and the report say the plane used and that no 3D check was run."""
+    _, _, out = run
+    rec = json.loads((out / "summary.json").read_text())["plane"]
+    assert rec["requested"] == rec["used"] == "strain" and rec["check"] is None and rec["warnings"] == []
+    assert "no 3D check run" in rec["why"]
+    assert CalibratedLaw.from_json((out / "small-ring-law.json").read_text()).provenance["plane"] == rec
+    stages = [s["stage"] for s in json.loads((out / "timings.json").read_text())["stages"]]
+    assert stages[-3:] == ["fem2d", "calibrate", "report"] and "plane" not in stages     # nothing solved in 3D
+    md = (out / "accuracy-small-ring.md").read_text()
+    assert "## Plane stress or strain (3D evidence)" in md and "**plane strain**" in md and "No 3D check was run" in md
+
+
 def test_rerun_resumes_from_the_kept_points(run, capsys):
     """A second run finds every FEM point in the store: nothing recomputed, the same law."""
     rc, f, out = run
