@@ -131,19 +131,26 @@ def interpolated(kind: str, a: BranchPoint, b: BranchPoint) -> float:
     return a.parameter + w * (b.parameter - a.parameter)
 
 
-def confirmed_folds(points, bifs) -> list:
+def confirmed_folds(points, bifs, open_end: bool = False) -> list:
     """The bifurcations with each fold kept only where the branch truly turns: the parameter components of
     the tangents at points ``i − 1`` and ``i`` have opposite signs *and* the parameter moved along each of them,
     into ``i − 1`` (from ``i − 2``; the first point has no secant in) and out of ``i`` (to ``i + 1``). A fold
     between a branch's last two points, or one the secants contradict (a tangent turned by a switch, the
-    next corrector stepping on in the old direction), is not reported."""
+    next corrector stepping on in the old direction), is not reported, except with ``open_end``: the branch
+    stopped where a watch saw its next predictor, along the last point's tangent, cross to another piece of the
+    map (a grazing, :mod:`rotor.periodic.grazing`, whose crossing goes on that way), so the last point's tangent
+    is the secant out of it. Measured on the rotor 5 of rotor/periodic/jeffcott_scene.random_family(2276323539)
+    up: its fold (2 034.4 rpm) lies 61 rpm above its grazing fold; the segment's last two points straddled it
+    (2 032.9 and 2 033.7 rpm, the second unstable) and the crossing went from there to the grazing fold, so the
+    fold was dropped and the middle branch not counted."""
     lam = [p.parameter for p in points]
     out = []
     for b in bifs:
         i = b.index
         if b.kind == "fold":
             into = i < 2 or (lam[i - 1] - lam[i - 2]) * points[i - 1].dlam_ds > 0
-            onward = i + 1 < len(points) and (lam[i + 1] - lam[i]) * points[i].dlam_ds > 0
+            onward = (open_end and i == len(points) - 1) or (
+                i + 1 < len(points) and (lam[i + 1] - lam[i]) * points[i].dlam_ds > 0)
             if not (into and onward) or points[i].restarted or (i + 1 < len(points) and points[i + 1].restarted):
                 continue
         out.append(b)

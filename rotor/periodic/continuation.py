@@ -186,7 +186,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         ds = ds if restarted else _next_step(ds, it, pt.events != points[-2].events, opts)
         if (stop := _ended(pt.parameter, lam0, lam_end, direction, opts)) != "max_points":
             break
-    return Branch(tuple(points), tuple(confirmed_folds(points, bifs)), problem.period_revs, stop,
+    return Branch(tuple(points), tuple(confirmed_folds(points, bifs, stop == "grazing")), problem.period_revs, stop,
                   time.perf_counter() - t_start, restarts, tuple(failures))
 
 

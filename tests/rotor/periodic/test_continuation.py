@@ -228,6 +228,11 @@ def test_a_fold_is_reported_only_where_the_branch_turns():
     assert confirmed_folds(goes_on, fold) == []
     last = turns[:4]                                                    # nothing after: not confirmed
     assert confirmed_folds(last, fold) == []
+    # ... unless the branch stopped where its next predictor, along the last tangent, crossed to another piece of
+    # the map (a grazing: the crossing goes on that way): the rotor 5 of random_family(2276323539) up, its fold 61 rpm
+    # above its grazing fold, straddled by a segment's last two points
+    assert confirmed_folds(last, fold, open_end=True) == fold
+    assert confirmed_folds(goes_on, fold, open_end=True) == []         # an open end confirms only the last pair
     jump = turns[:3] + [_fake(2.1, -0.5, True)] + turns[4:]             # reached by a restart: no tangent to compare
     assert confirmed_folds(jump, fold) == []
     other = [Bifurcation("period_doubling", 3, 2.05, -1.0)]

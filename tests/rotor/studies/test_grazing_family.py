@@ -62,6 +62,18 @@ def test_a_down_sweep_whose_middle_branch_runs_back_further_than_the_margin(tmp_
     _assert_sweep(check_branch(rotor, low, high, "down", tmp_path))
 
 
+@pytest.mark.slow
+def test_an_up_sweep_whose_fold_a_segment_ends_beside(tmp_path):
+    """Rotor 5 of the family of seed 2276323539 (drawn by the slow ten-rotor test), up: its fold (2 034.4 rpm) lies
+    61 rpm above its grazing fold (1 973.0 rpm). The segment before the grazing ended on the middle branch's first
+    point (2 033.7 rpm, unstable), so the fold lay between its last two points and was dropped for want of a point
+    after it; the grazing crossing is that point (rotor/periodic/branch_events.py ``confirmed_folds``, ``open_end``).
+    Measured: fold 8e-12 from the closed form, the middle branch's point unstable; 5 s CPU."""
+    rotor = random_family(2276323539, 6)[5]
+    low, high = sweep_range(rotor)
+    _assert_sweep(check_branch(rotor, low, high, "up", tmp_path))
+
+
 @pytest.mark.xfail(strict=True, raises=AssertionError,
                    reason="measured: 'no orbit at the start' of the down sweep, with the contact steps exact or "
                           "differenced alike")
