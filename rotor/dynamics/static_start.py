@@ -236,6 +236,9 @@ def forced_start(system: RotorSystem, t0: float = 0.0, start: StaticStart | None
 #: the same within this share of the clearance (:func:`periodic_start`)
 SAME_RING_POSITION = 1e-3
 LINEAR_KIND = "linear periodic solution (support locked)"
+FREE_KIND = "linear periodic solution (support free)"
+#: phases per revolution at which :func:`_free_orbit_inside` checks the free linear orbit's ring edges
+FREE_PHASES = 64
 FORCED_KIND = "static equilibrium + linear forced response"
 
 
@@ -247,6 +250,31 @@ def _held_out_of_contact(system: RotorSystem, start: StaticStart, q_static) -> b
     d = system.support.relative_map(system.n)[:2] @ (start.q_m - q_static)
     return (not any(start.at_limit) and start.let_down_steps == 0 and not np.any(start.contact_force[:2])
             and float(np.hypot(*d)) <= SAME_RING_POSITION * system.support.law.clearance_m)
+
+
+def _free_orbit_inside(system: RotorSystem, t0: float):
+    """``(q0, v0)`` of the linear periodic solution with the loose support free (no contact) at ``t0`` (s), where the
+    support has no friction (every end face's ``μN`` zero: nothing holds the ring, so the locked state is not a state
+    of the rotor) and both ring edges stay inside the clearance at :data:`FREE_PHASES` phases of a revolution; else
+    None. Such an orbit touches nothing, so it is the periodic orbit of the nonlinear rotor (up to the scheme's
+    step). Measured on the first rotor of rotor/periodic/jeffcott_scene.random_family(2536238657) at 1 907.9 rpm
+    (the free orbit at 0.8 of the clearance): from the locked start the transient found no orbit in 4 000
+    revolutions (it met the ring and an isolated contact branch's motion), so ``ringcontact branch`` down from there
+    had no start."""
+    from rotor.dynamics.initial import linear_initial_state
+
+    sup = system.support
+    omega = float(system.force.omega_rad_s)
+    if sup is None or np.any(np.asarray(sup.faces()[1]) > 0.0) or omega <= 0.0:
+        return None
+    B = sup.relative_map(system.n)
+    period = 2.0 * np.pi / omega
+    u = np.array([B @ linear_initial_state(system, t0 + k * period / FREE_PHASES, lock_support=False)[0]
+                  for k in range(FREE_PHASES)])
+    radii = np.hypot(u[:, 0], u[:, 1]) if sup.tilt_ignored else np.array(cons.edge_offsets(u, sup.width_m))
+    if np.max(radii) >= sup.law.clearance_m:
+        return None
+    return linear_initial_state(system, t0, lock_support=False)
 
 
 def periodic_start(system: RotorSystem, model, t0: float = 0.0) -> tuple:
@@ -262,7 +290,9 @@ def periodic_start(system: RotorSystem, model, t0: float = 0.0) -> tuple:
     equilibrium up to the coupling's cubic remainder, and on a continuum of orbits held by friction the member a
     transient settles on depends on the start (paper-table4-inertial at 10 500 rpm: the equilibrium with its cubic
     remainder, 1.6e-7 rad away in one joint rotation, settles on a member whose harmonics differ by 2.6e-3 from the
-    published one). Where only the misalignment offset loads faces that cannot hold it (paper-table4 with mu = 0 at
+    published one). With neither, on a frictionless ring (no face holds anything) whose free linear orbit stays inside
+    the clearance, that free orbit (:func:`_free_orbit_inside`). Where only the misalignment offset loads faces that
+    cannot hold it (paper-table4 with mu = 0 at
     10 500 rpm: the ring pressed on its bore), the linear start reaches the published unstable orbit in 1 185
     revolutions and the equilibrium start finds none in 4 000. Where no equilibrium is found, the linear start, said
     so. ``record``: ``kind`` (:data:`LINEAR_KIND` or :data:`FORCED_KIND`), ``why``, and the equilibrium's fields
@@ -272,6 +302,10 @@ def periodic_start(system: RotorSystem, model, t0: float = 0.0) -> tuple:
 
     q_lin, v_lin = linear_initial_state(system, t0)
     if not np.any(static_load(model)):
+        free = _free_orbit_inside(system, t0)
+        if free is not None:
+            return (*free, {"kind": FREE_KIND, "why": "a frictionless ring whose free linear orbit stays inside its "
+                            "clearance: that orbit touches nothing, so it is the orbit"})
         return q_lin, v_lin, {"kind": LINEAR_KIND, "why": "no gravity or static load"}
     try:
         start = static_equilibrium(system)

@@ -226,3 +226,30 @@ def test_a_periodic_orbits_transient_starts_at_the_equilibrium_with_its_forced_r
     qs, vs, kind = study_start(system, model)
     assert kind == FORCED_KIND and np.array_equal(qs, q0) and np.array_equal(vs, v0)
     assert study_start(t4, m4)[:2] == (None, None)
+
+
+def test_a_frictionless_ring_whose_free_orbit_stays_inside_starts_from_that_orbit(tmp_path):
+    """rotor/dynamics/static_start.py ``_free_orbit_inside``: the first rotor of the Jeffcott-ring family of seed
+    2536238657 (rotor/periodic/jeffcott_scene.py) at 1 907.9 rpm, its free linear orbit at 0.8 of the clearance (the
+    closed form of that file): the start is that free orbit, the ring inside its clearance at every phase; the locked
+    start (support and bearing together) is not it. With friction (mu 0.1, 100 N preload) the locked start is kept."""
+    from rotor.dynamics.constraints import edge_offsets
+    from rotor.dynamics.initial import linear_initial_state
+    from rotor.dynamics.static_start import FREE_KIND, LINEAR_KIND, periodic_start
+    from rotor.periodic.jeffcott_scene import random_family, scene_toml
+    from rotor.studies.steady_state import point_system
+
+    rotor = random_family(2536238657, 1)[0]
+    path = tmp_path / "jeffcott-ring.toml"
+    path.write_text(scene_toml(rotor), encoding="utf-8")
+    _, model, system = point_system(str(path), 1907.9)
+    q0, v0, rec = periodic_start(system, model)
+    assert rec["kind"] == FREE_KIND
+    q_free, v_free = linear_initial_state(system, 0.0, lock_support=False)
+    assert np.array_equal(q0, q_free) and np.array_equal(v0, v_free)
+    B = system.support.relative_map(system.n)
+    radius = float(np.hypot(*(B @ q0)[:2]))
+    assert 0.7 * rotor.clearance_m < radius < rotor.clearance_m          # closed form: 0.80 of the clearance
+    assert not np.array_equal(q0, linear_initial_state(system, 0.0)[0])
+    _, model_mu, system_mu = point_system(str(path), 1907.9, mu=0.1, preload_n=100.0)
+    assert periodic_start(system_mu, model_mu)[2]["kind"] == LINEAR_KIND
