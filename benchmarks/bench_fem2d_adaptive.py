@@ -11,9 +11,13 @@ Part 2, generated pairs (``--pairs N``, 30 by default; seeded: ``--seed S``, els
 printed): fem_reference/plane/generated.py draws ring and housing radii, moduli (ratio 0.3-3), Poisson
 ratios, clearance, every 2D hold and drive and both plane assumptions, and two penetrations each; the
 error-driven bar against the independent reference (linear triangles on nested uniform refinements).
-About 1 min per pair on 2 shared cores (nice -n 10).
+About 1 min per pair on 2 shared cores at load 1-7 with the levels of commit b3846fe; the bulk-refined
+levels (47facc7) cost more per point (seed 2988782516's pair 20 at 0.0206 mm: 45k against 13k DOFs at the
+fifth level; seven levels took 13 s at load 4 against 3 s at load 0.3), and at load 14-16 one worker took
+15-18 min per pair
+(``--jobs N``: N pairs at a time in worker processes, the same table).
 
-    nice -n 10 .venv/bin/python benchmarks/bench_fem2d_adaptive.py [--pairs 30] [--seed S] [--skip-cast-iron]
+    nice -n 10 .venv/bin/python benchmarks/bench_fem2d_adaptive.py [--pairs 30] [--seed S] [--skip-cast-iron] [--jobs N]
     # writes reports/published/fem2d-adaptive.md
 """
 from __future__ import annotations
