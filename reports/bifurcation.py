@@ -42,40 +42,49 @@ def branch_curve(branch: dict, channel: str, order: int = 1):
     return rpm, amp, rad, np.array([bool(p["stable"]) for p in pts])
 
 
-def bifurcation_figure(branch, channel: str, prefix, order: int = 1) -> list[Path]:
+def bifurcation_figure(branch, channel, prefix, order: int = 1, labels: dict | None = None) -> list[Path]:
     """Draw ``prefix.png`` and ``prefix.svg`` of ``branch`` (the JSON of ``ringcontact branch``, or a list of
-    them: segments of one speed range, each drawn on its own)."""
+    them: segments of one speed range, each drawn on its own). ``channel``: one channel (``disk1.y``) or a
+    sequence of them, one amplitude panel each, the first on top; ``labels``: a channel's name in words."""
     plt = pyplot()
+    channels = (channel,) if isinstance(channel, str) else tuple(channel)
+    labels = labels or {}
     segments = branch if isinstance(branch, (list, tuple)) else [branch]
-    fig, (ax, axr) = plt.subplots(2, 1, figsize=(7.5, 6.2), sharex=True, height_ratios=(3, 1.4),
-                                  constrained_layout=True)
-    seen: set = set()                 # legend labels drawn, and (kind, speed) of the bifurcations labelled
-    for seg in segments:
-        if seg["points"]:
-            _draw(ax, axr, seg, channel, order, seen)
-    axr.axhline(1.0, color="k", lw=0.8)
+    fig, axes = plt.subplots(len(channels) + 1, 1, figsize=(7.5, 3.4 + 2.8 * len(channels)), sharex=True,
+                             height_ratios=(3,) * len(channels) + (1.4,), constrained_layout=True)
+    *amp_axes, axr = axes
+    for k, (ax, ch) in enumerate(zip(amp_axes, channels)):
+        seen: set = set()             # legend labels drawn, and (kind, speed) of the bifurcations labelled
+        for seg in segments:
+            if seg["points"]:
+                _draw(ax, axr if k == 0 else None, seg, ch, order, seen)
+        ax.set_ylabel(f"{order}X velocity amplitude (mm/s)")
+        ax.set_title(f"at {labels.get(ch, ch)}", fontsize=9, loc="left")
+        ax.legend(fontsize=8, loc="best")
+    axr.axhline(1.0, color="k", lw=0.8, label="unit circle")
     axr.set_yscale("log")            # from well inside the circle to far outside on one axis
-    ax.set_ylabel(f"{order}X velocity amplitude at {channel} (mm/s)")
     axr.set_ylabel("largest |multiplier| (log)")
     axr.set_xlabel("rotor speed (rpm)")
+    axr.legend(fontsize=8, loc="upper left")
     periods = sorted({s.get("period_revs", 1) for s in segments})
-    ax.set_title(f"{segments[0].get('scene', '')}: periodic orbits by shooting, continued in speed "
+    fig.suptitle(f"{segments[0].get('scene', '')}: periodic orbits by shooting, continued in speed "
                  f"(period {', '.join(map(str, periods))} rev)", fontsize=9)
-    ax.legend(fontsize=8, loc="best")
-    for a in (ax, axr):
+    for a in axes:
         a.grid(True, lw=0.3, alpha=0.5)
     return save(fig, Path(prefix))
 
 
 def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
-    """One branch: its stability runs and its bifurcations (``seen``: legend labels already drawn)."""
+    """One branch: its stability runs and its bifurcations (``seen``: legend labels already drawn); the
+    multipliers on ``axr`` unless it is None (drawn once, with the first channel)."""
     rpm, amp, rad, stable = branch_curve(branch, channel, order)
     for a, b, st in stability_runs(stable):
         lab = "stable" if st else "unstable"
         sl = slice(a, b + 1)
         ax.plot(rpm[sl], amp[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.6,
                 label=lab if lab not in seen else None)
-        axr.plot(rpm[sl], rad[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.2)
+        if axr is not None:
+            axr.plot(rpm[sl], rad[sl], "-" if st else "--", color="tab:blue" if st else "tab:gray", lw=1.2)
         seen.add(lab)
     for bif in branch["bifurcations"]:
         mark, colour, name = KINDS.get(bif["kind"], ("x", "k", bif["kind"]))
@@ -93,7 +102,8 @@ def _draw(ax, axr, branch: dict, channel: str, order: int, seen: set) -> None:
         k = sum(1 for t in seen if isinstance(t, tuple))
         ax.annotate(f"{name}\n{x:.0f} rpm", (x, y), textcoords="offset points", xytext=(-40 + 14 * (k % 2), 10 + 16 * (k % 3)),
                     fontsize=7, color=colour)
-        axr.axvline(x, color=colour, lw=0.8, ls=":")
+        if axr is not None:
+            axr.axvline(x, color=colour, lw=0.8, ls=":")
 
 
 def segments_table(segments) -> str:
@@ -150,16 +160,25 @@ def bifurcations_table(segment: dict) -> str:
     return "\n".join(["| kind | speed (rpm) | detail |", "|---|---|---|"] + (rows or ["| none | | |"]))
 
 
-def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading: str = "") -> list[Path]:
+#: the published diagram's channels, the loose support first: the Table 4 scene's support "s" (the 3# bearing's
+#: pedestal, "the support" of the Section 5 studies, reports/studies/common.py) and disk 1
+PUBLISHED_CHANNELS = ("s.y", "disk1.y")
+CHANNEL_WORDS = {"s.y": "the loose support (s.y, the 3# bearing's support)", "disk1.y": "disk 1 (disk1.y)"}
+
+
+def publish(segments, out_dir, *, channel=PUBLISHED_CHANNELS, commands=(), reading: str = "") -> list[Path]:
     """``study-bifurcation.{png,svg,md,json}`` in ``out_dir`` from branch segments (the JSON of ``ringcontact
-    branch`` each; the JSON keeps the amplitudes of ``channel`` only). ``commands``: the command lines that
-    made them; ``reading``: the hand-written reading appended (reports/notes/study-bifurcation-reading.md)."""
+    branch`` each; the JSON keeps the amplitudes of ``channel`` only: one channel or a sequence, one panel each,
+    the first on top). ``commands``: the command lines that made them; ``reading``: the hand-written reading
+    appended (reports/notes/study-bifurcation-reading.md)."""
     import json
 
     from contact.files import atomic_write_text
 
     out_dir = Path(out_dir)
-    files = bifurcation_figure(list(segments), channel, out_dir / "study-bifurcation")
+    channels = (channel,) if isinstance(channel, str) else tuple(channel)
+    files = bifurcation_figure(list(segments), channels, out_dir / "study-bifurcation", labels=CHANNEL_WORDS)
+    where = " and at ".join(CHANNEL_WORDS.get(c, c) for c in channels)
     scene = next((s.get("scene") for s in segments if s.get("scene")), "")
     how = ("in one run from its first speed" if len(segments) == 1 else
            "in segments started at speeds where the orbit exists")
@@ -167,8 +186,9 @@ def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading
              "Made by `ringcontact branch` (pseudo-arclength continuation of the shooting orbit, "
              "`rotor/periodic/continuation.py`, Floquet multipliers of each orbit) over the Fig. 12 speed range, "
              f"{how}:", "", "```sh", *commands, "```", "",
-             f"Figure: `study-bifurcation.png/.svg`, 1X velocity amplitude at {channel} (stable solid, unstable "
-             "dashed, bifurcations marked with their kind) and the largest non-neutral |multiplier| against speed. "
+             f"Figure: `study-bifurcation.png/.svg`, 1X velocity amplitude at {where}, one panel each (stable solid, "
+             "unstable dashed, bifurcations marked with their kind) and the largest non-neutral |multiplier| against "
+             "speed. "
              "Data: `study-bifurcation.json` (each segment's points, bifurcations and why it stopped).", "",
              segments_table(segments), ""]
     if len(segments) == 1 and segments[0]["points"]:
@@ -180,7 +200,8 @@ def publish(segments, out_dir, *, channel: str = "disk1.y", commands=(), reading
     files.append(atomic_write_text(out_dir / "study-bifurcation.md", "\n".join(lines)))
     slim = [{**{k: v for k, v in s.items() if k not in ("points", "start")},
              "points": [{**{k: v for k, v in p.items() if k != "velocity_amplitudes_mm_s_1X_to_5X"},
-                         f"velocity_amplitudes_mm_s_1X_to_5X_{channel}": p["velocity_amplitudes_mm_s_1X_to_5X"][channel]}
+                         **{f"velocity_amplitudes_mm_s_1X_to_5X_{c}": p["velocity_amplitudes_mm_s_1X_to_5X"][c]
+                            for c in channels}}
                         for p in s["points"]]} for s in segments]
     files.append(atomic_write_text(out_dir / "study-bifurcation.json", json.dumps(slim, indent=1) + "\n"))
     return files

@@ -85,3 +85,27 @@ def test_one_run_report_lists_each_restart_with_its_reason_and_discontinuous_bif
     assert "| 1100.0 – 1200.0 | secant | 3 corrector failures, last: no convergence |" in md
     assert "| discontinuous | 1250.0 | period doubling: largest |multiplier| 0.98 -> 1.2" in md
     assert "discontinuous (at a switch)" in (tmp_path / "study-bifurcation.svg").read_text()
+
+
+def test_publish_draws_each_channel_in_its_own_panel_the_first_on_top(tmp_path):
+    """The published diagram: the loose support's channel on top, disk 1 below it (reports/bifurcation.py
+    PUBLISHED_CHANNELS); the JSON keeps both channels' amplitudes, the report names both."""
+    import json
+
+    from reports.bifurcation import PUBLISHED_CHANNELS, publish
+
+    b = dict(_branch(), rpm_start=1000.0, rpm_end=1400.0, stop="end reached")
+    b["points"] = [dict(p, velocity_amplitudes_mm_s_1X_to_5X={"s.y": [10.0 * (i + 1), 0, 0, 0, 0],
+                                                              "disk1.y": [1.0 + i, 0, 0, 0, 0], "x.y": [0] * 5})
+                   for i, p in enumerate(b["points"])]
+    assert PUBLISHED_CHANNELS[0] == "s.y"
+    publish([b], tmp_path, commands=["ringcontact branch x"])
+    data = json.loads((tmp_path / "study-bifurcation.json").read_text())
+    p4 = data[0]["points"][4]
+    assert p4["velocity_amplitudes_mm_s_1X_to_5X_s.y"] == [50.0, 0, 0, 0, 0]
+    assert p4["velocity_amplitudes_mm_s_1X_to_5X_disk1.y"] == [5.0, 0, 0, 0, 0]
+    assert not any("x.y" in k for k in p4)
+    md = (tmp_path / "study-bifurcation.md").read_text()
+    assert "1X velocity amplitude at the loose support (s.y" in md and "and at disk 1 (disk1.y)" in md
+    svg = (tmp_path / "study-bifurcation.svg").read_text()
+    assert svg.index("at the loose support") < svg.index("at disk 1")
