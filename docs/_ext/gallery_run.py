@@ -7,7 +7,10 @@ saved as ``docs/_generated/gallery/<stem>.png`` beside ``<stem>.txt`` (the print
 kept while nothing it depends on changed: the key is the SHA-256 of the example and of every
 ``.py`` and ``.json`` file of the packages (``<stem>.key``), so a second build costs nothing and a
 changed law or integrator runs the examples again. A failing example fails the build (the
-directive reports it as an error). ``docs/_generated/`` is not committed.
+directive reports it as an error). ``docs/_generated/`` is not committed. :func:`run_examples` runs
+the examples that are not up to date side by side, one process each on up to as many cores as the machine
+has (they ran one after the other: the seven took 17 s of processor time with numba's cache warm, 69 s
+of wall time at load 14, waited for one by one).
 """
 from __future__ import annotations
 
@@ -15,6 +18,7 @@ import hashlib
 import os
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parents[1]
@@ -64,3 +68,21 @@ def run_example(example: Path, timeout_s: float = 900.0) -> tuple[str, Path | No
     text_file.write_text(run.stdout, encoding="utf-8")
     key_file.write_text(key)
     return run.stdout, (png if png.is_file() else None)
+
+
+def run_examples(examples, workers: int | None = None) -> dict:
+    """``{example: (printed output, figure PNG or None) or the exception it raised}`` of every example, each run
+    by :func:`run_example` in a process of its own, up to ``workers`` at a time (default: the machine's cores,
+    at most 4). The examples' processes share nothing but numba's disk cache, whose entries numba writes
+    atomically."""
+    examples = list(examples)
+    workers = max(1, min(workers or min(os.cpu_count() or 1, 4), len(examples) or 1))
+
+    def one(example):
+        try:
+            return run_example(example)
+        except Exception as exc:             # reported by the directive, as a single run's error
+            return exc
+
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        return dict(zip(examples, pool.map(one, examples)))

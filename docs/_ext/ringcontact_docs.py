@@ -220,7 +220,10 @@ class GalleryDirective(Directive):
     """``.. ringcontact-gallery::``: every worked example, its docstring then its code."""
 
     def run(self):
+        from gallery_run import run_examples
+
         out: list[nodes.Node] = []
+        results = run_examples(example_files())          # side by side: the build waits for the longest
         for path in example_files():
             text = path.read_text(encoding="utf-8")
             tree = ast.parse(text)
@@ -236,17 +239,16 @@ class GalleryDirective(Directive):
             block = nodes.literal_block(text=text)
             block["language"] = "python"
             sec += block
-            sec += self._result(path)
+            sec += self._result(path, results[path])
             out.append(sec)
         return out
 
-    def _result(self, path: Path) -> list[nodes.Node]:
-        """The example's printed output and its figure, run at build time (``gallery_run``)."""
-        from gallery_run import run_example
-        try:
-            printed, png = run_example(path)
-        except Exception as exc:                     # the build fails with the example's error
-            return [self.state.document.reporter.error(f"gallery example {path.name}: {exc}")]
+    def _result(self, path: Path, run) -> list[nodes.Node]:
+        """The example's printed output and its figure, run at build time (``gallery_run.run_examples``: the
+        pair, or the exception its run raised)."""
+        if isinstance(run, Exception):               # the build fails with the example's error
+            return [self.state.document.reporter.error(f"gallery example {path.name}: {run}")]
+        printed, png = run
         result: list[nodes.Node] = [nodes.paragraph(text="Output:")]
         shown = nodes.literal_block(text=printed.rstrip() + "\n")
         shown["language"] = "text"
