@@ -99,6 +99,15 @@ EXACT_CONTACT = True
 #: central difference at 5e-7 and choosing again on the short levels where it missed left 1.7e-6. False: every block
 #: starts at its first differenced step (the earlier route)
 ENTER_BEFORE = True
+#: a ladder level whose replays of a column made other discrete decisions than the unperturbed replay (a stick trial,
+#: a held slow slip, a located event, an end mode: :func:`_signature`) lies on another smooth piece of the step, and a
+#: pair of levels touching it is not chosen for that column while another pair is left (:func:`_best_of_ladder`):
+#: long levels past a threshold near the start agree with each other on that piece and not with the derivative at
+#: the start. Measured on the period-4 orbit of Table 4 at 10 180.3 rpm (T/256, drawn by seed 1503871632 of
+#: benchmarks/bench_monodromy_random.py; a release at step 381, the face then slipping slowly near the hold's speed
+#: limit): the located monodromy 4.1e-3 from central differences of the whole map (converged to 5.3e-7) with every
+#: level counted, 2.4e-7 without the levels off the piece. False: every level counts (the earlier route)
+SAME_PIECE = True
 
 
 def event_steps(pm, tr) -> list[int]:
@@ -197,30 +206,63 @@ def _replays(pm, starts, modes, phi, t, n_steps: int = 1) -> np.ndarray:
                        np.tile(np.asarray(phi, dtype=float), (k, 1, 1)), np.full(k, float(t)), True, n_steps)[0]
 
 
-def _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols) -> np.ndarray:
+def _signature(status, modes) -> np.ndarray:
+    """The discrete decisions of replays (rows): least-residual steps, stick-onset re-projections, located events,
+    how each face's friction was held in the last step body (the step loop's ``status[2:7]``) and the end modes."""
+    return np.hstack([status[:, 2:7], modes])
+
+
+def _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols) -> tuple[np.ndarray, np.ndarray]:
     """Central differences ``(level, column, component)`` of the block from ``start`` in the columns ``cols`` at the
-    steps ``hs`` (relative to ``scales``), all replays in one compiled call (:func:`_replays`)."""
+    steps ``hs`` (relative to ``scales``), all replays in one compiled call (:func:`_replays_at`), and which of them
+    left the start's smooth piece (``(level, column)``: a replay whose decisions, :func:`_signature`, differ from
+    the unperturbed replay's; :data:`SAME_PIECE`)."""
     n3 = start.size
-    starts = np.tile(start, (2 * hs.size * cols.size, 1))
-    pert = starts.reshape(hs.size, cols.size, 2, n3)
+    starts = np.tile(start, (2 * hs.size * cols.size + 1, 1))
+    pert = starts[1:].reshape(hs.size, cols.size, 2, n3)
     idx = np.arange(cols.size)
     for li in range(hs.size):
         pert[li, idx, 0, cols] += hs[li] * scales[cols]
         pert[li, idx, 1, cols] -= hs[li] * scales[cols]
-    e = _replays(pm, starts, modes, phi, t, n_steps).reshape(hs.size, cols.size, 2, n3)
-    return (e[:, :, 0] - e[:, :, 1]) / (2.0 * hs[:, None, None] * scales[cols][None, :, None])
+    ends, status, end_modes, _ = replay_steps_tiled(pm, starts, modes, phi, t, n_steps)
+    e = ends[1:].reshape(hs.size, cols.size, 2, n3)
+    sig = _signature(status, end_modes)
+    off = np.any(sig[1:] != sig[0], axis=1).reshape(hs.size, cols.size, 2).any(axis=2)
+    return (e[:, :, 0] - e[:, :, 1]) / (2.0 * hs[:, None, None] * scales[cols][None, :, None]), off & SAME_PIECE
 
 
-def _best_of_ladder(hs, d, scales) -> tuple[np.ndarray, np.ndarray]:
+def replay_steps_tiled(pm, starts, modes, phi, t, n_steps):
+    """:func:`_replays_at` from each row of ``starts`` with the same ``modes``, forces ``phi`` and time ``t``, events
+    located: ends, statuses, end modes and end forces."""
+    pre, opts = pm.prepared, pm.options
+    k = len(starts)
+    return replay_steps(np.ascontiguousarray(starts, dtype=float), np.tile(np.asarray(modes, dtype=np.int64), (k, 1)),
+                        np.tile(np.asarray(phi, dtype=float), (k, 1, 1)), np.full(k, float(t)), int(n_steps), pm.dt,
+                        pre.Ainv, pre.Dr, pre.Kr, pre.Bt, pre.W, pre.S, pre.static, pre.orders, pre.cos, pre.sin,
+                        pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1,
+                        pm.reduced.support is not None, pm.params, opts.beta, opts.gamma, opts.tol, opts.max_iter,
+                        opts.w_reg, opts.w_stick, opts.max_passes, float(opts.stick_mean_weight),
+                        bool(opts.consistent_stick_onset), pre.Minv, pre.WM, pre.SM, pre.Mr, True, True)
+
+
+def _best_of_ladder(hs, d, scales, off=None) -> tuple[np.ndarray, np.ndarray]:
     """Per column of ``d`` (central differences at the steps ``hs``, largest first): the Richardson extrapolation of
     the pair of successive levels that agrees best with the next pair, and that agreement (scaled, the largest
-    over the components)."""
+    over the components). ``off`` (level, column): levels whose replays left the start's smooth piece; a pair
+    touching one is not chosen while the column has a pair that does not (else it is chosen as without ``off``, and
+    its agreement is infinite: refined, and counted as not smooth if no level of the refinement is on the piece)."""
     q = (hs[:-1] / hs[1:]) ** 2
     rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)             # (pair, column, component)
     gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)        # (pair, column)
-    best = np.argmin(gap, axis=0)
+    use, none = gap, np.zeros(d.shape[1], dtype=bool)
+    if off is not None and off.any():
+        bad = off[:-2] | off[1:-1] | off[2:]                                          # levels k, k+1, k+2 of pair k
+        masked = np.where(bad, np.inf, gap)
+        none = ~np.isfinite(masked).any(axis=0)
+        use = np.where(none[None, :], gap, masked)
+    best = np.argmin(use, axis=0)
     idx = np.arange(d.shape[1])
-    return rich[best + 1, idx], gap[best, idx]
+    return rich[best + 1, idx], np.where(none, np.inf, gap[best, idx])
 
 
 def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True):
@@ -245,23 +287,26 @@ def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True)
     n3 = start.size
     cols = np.arange(n3)
     if not progressive:
-        d = _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols)
-        return (d, *_best_of_ladder(hs, d, scales))
+        d, off = _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols)
+        return (d, off, *_best_of_ladder(hs, d, scales, off))
     d = np.empty((hs.size, n3, n3))
     J, gap = np.empty((n3, n3)), np.empty(n3)
-    d[:FIRST_LEVELS] = _differences(pm, start, modes, phi, t, scales, n_steps, hs[:FIRST_LEVELS], cols)
+    off = np.zeros((hs.size, n3), dtype=bool)
+    d[:FIRST_LEVELS], off[:FIRST_LEVELS] = _differences(pm, start, modes, phi, t, scales, n_steps, hs[:FIRST_LEVELS],
+                                                        cols)
     active = cols
     for top in range(FIRST_LEVELS, hs.size + 1):
-        J[active], gap[active] = _best_of_ladder(hs[:top], d[:top, active], scales)
+        J[active], gap[active] = _best_of_ladder(hs[:top], d[:top, active], scales, off[:top, active])
         size = np.maximum(np.abs(J[active] / scales[None, :]).max(axis=1), 1e-300)
         active = active[gap[active] > REFINE_TOL * size]
         if top == hs.size or not active.size:
             break
-        d[top, active] = _differences(pm, start, modes, phi, t, scales, n_steps, hs[top:top + 1], active)[0]
-    return d, J, gap
+        got, got_off = _differences(pm, start, modes, phi, t, scales, n_steps, hs[top:top + 1], active)
+        d[top, active], off[top, active] = got[0], got_off[0]
+    return d, off, J, gap
 
 
-def _refine(pm, start, modes, phi, t, scales, n_steps, d, redo, progressive: bool = True):
+def _refine(pm, start, modes, phi, t, scales, n_steps, d, off, redo, progressive: bool = True):
     """The choice (:func:`_best_of_ladder`) and agreement of the columns ``redo`` on the ladder merged with its half
     levels (:data:`LADDER` times 1/2, each between its level and the next), ``d`` their differences at every level
     of :data:`LADDER`: the refinement of :func:`_step_jacobian`.
@@ -276,16 +321,18 @@ def _refine(pm, start, modes, phi, t, scales, n_steps, d, redo, progressive: boo
     both[0::2], both[1::2] = hs, hs * 0.5
     merged = np.empty((2 * hs.size, redo.size, n3))
     merged[0::2] = d
+    moff = np.zeros((2 * hs.size, redo.size), dtype=bool)
+    moff[0::2] = off
     if not progressive:
-        merged[1::2] = _differences(pm, start, modes, phi, t, scales, n_steps, hs * 0.5, redo)
-        return _best_of_ladder(both, merged, scales)
+        merged[1::2], moff[1::2] = _differences(pm, start, modes, phi, t, scales, n_steps, hs * 0.5, redo)
+        return _best_of_ladder(both, merged, scales, moff)
     J, gap = np.empty((redo.size, n3)), np.empty(redo.size)
     active = np.arange(redo.size)
     for k in range(hs.size):
-        merged[2 * k + 1, active] = _differences(pm, start, modes, phi, t, scales, n_steps, hs[k:k + 1] * 0.5,
-                                                 redo[active])[0]
+        got, got_off = _differences(pm, start, modes, phi, t, scales, n_steps, hs[k:k + 1] * 0.5, redo[active])
+        merged[2 * k + 1, active], moff[2 * k + 1, active] = got[0], got_off[0]
         top = min(2 * k + 3, both.size)
-        J[active], gap[active] = _best_of_ladder(both[:top], merged[:top, active], scales)
+        J[active], gap[active] = _best_of_ladder(both[:top], merged[:top, active], scales, moff[:top, active])
         size = np.maximum(np.abs(J[active] / scales[None, :]).max(axis=1), 1e-300)
         active = active[gap[active] > REFINE_TOL * size]
         if not active.size:
@@ -310,11 +357,12 @@ def _step_jacobian(pm, start, modes, phi, t, scales, n_steps: int = 1) -> tuple[
     again on the merged ladder; one whose best agreement is still worse than :data:`SHRINK_TOL` of its size is
     counted as not smooth."""
     scales = np.asarray(scales, float)
-    d, J, gap = _ladder(pm, start, modes, phi, t, scales, n_steps, PROGRESSIVE)
+    d, off, J, gap = _ladder(pm, start, modes, phi, t, scales, n_steps, PROGRESSIVE)
     size = np.maximum(np.abs(J / scales[None, :]).max(axis=1), 1e-300)
     redo = np.flatnonzero(gap > REFINE_TOL * size)
     if redo.size:
-        J[redo], gap[redo] = _refine(pm, start, modes, phi, t, scales, n_steps, d[:, redo], redo, PROGRESSIVE)
+        J[redo], gap[redo] = _refine(pm, start, modes, phi, t, scales, n_steps, d[:, redo], off[:, redo], redo,
+                                     PROGRESSIVE)
     unsmooth = int(np.count_nonzero(gap > SHRINK_TOL * size))
     end = _replays(pm, start[None, :], modes, phi, t, n_steps)[0]
     return np.ascontiguousarray(J.T), end, unsmooth

@@ -115,3 +115,42 @@ def test_a_memory_through_plain_steps_on_the_steel_in_aluminium_rotor():
     got = _errors(15287.5, "table4-steel-in-aluminium")
     assert got is not None and got[1] < REFERENCE_CONVERGED
     assert got[0] < BOUND, got
+
+
+def test_a_ladder_level_off_the_starts_piece_is_not_chosen():
+    """rotor/dynamics/period_map_events.py ``_best_of_ladder`` with ``off``: one column, one component, the step's
+    derivative 1.0 at the start; the three longest levels lie past a threshold (their replays decided otherwise) and
+    agree with each other on 3.0. Without ``off`` they are chosen; with it the short levels' 1.0; with every level
+    off the old choice stands and the agreement is infinite (counted as not smooth)."""
+    hs = np.array(pme.LADDER)
+    d = np.where(hs > 1e-5, 3.0, 1.0 + 1e3 * hs ** 2)[:, None, None]
+    scales = np.ones(1)
+    assert pme._best_of_ladder(hs, d, scales)[0][0, 0] == pytest.approx(3.0)
+    off = (hs > 1e-5)[:, None]
+    J, gap = pme._best_of_ladder(hs, d, scales, off)
+    assert J[0, 0] == pytest.approx(1.0, abs=1e-9) and gap[0] < 1e-9
+    J, gap = pme._best_of_ladder(hs, d, scales, np.ones_like(off))
+    assert J[0, 0] == pytest.approx(3.0) and gap[0] == np.inf
+
+
+@pytest.mark.slow
+def test_table4_period_4_orbit_at_10_180_3_rpm():
+    """Dai et al. (2025) Table 4 at 10 180.3 rpm: the period-4 orbit ``ringcontact orbit`` finds (T/256), drawn by
+    seed 1503871632 of benchmarks/bench_monodromy_random.py. A release at step 381, then the face slipping slowly:
+    the ladder's long levels of the block lay past the slow-slip hold's decisions and agreed there; the located
+    monodromy was 4.1e-3 from central differences of the whole map (converged to 5.3e-7), 2.4e-7 with the levels
+    off the start's piece left out (``SAME_PIECE``)."""
+    from rotor.dynamics.monodromy_check import central_differences, scaled_error, state_scales
+    from rotor.periodic.period_flow import make_flow
+    from rotor.studies.orbit import orbit
+
+    sh = orbit("paper-table4", 10180.3).shooting
+    assert sh.converged and sh.period_revs == 4
+    _, _, system = point_system("paper-table4", 10180.3)
+    pm = make_flow(system, sh.period_s / (4 * sh.steps_per_rev)).handle
+    n = 4 * sh.steps_per_rev
+    r = period_map(pm, sh.state, sh.t0_s, n, modes0=sh.modes, record_every=1)
+    s = state_scales(pm, r.trajectory)
+    ref, check = central_differences(pm, sh.state, sh.t0_s, n, sh.modes, s)
+    assert scaled_error(ref, check, s) < REFERENCE_CONVERGED
+    assert scaled_error(r.monodromy, ref, s) < BOUND
