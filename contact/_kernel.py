@@ -12,7 +12,9 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
  1    ring width l0 (m)
  2    law code: 0 conformal, 1 Pereira (power law C·Δr^n), 2 elastic foundation
       (calibrated law of contact.calibrate: h = k_f R e (ε − sin ε cos ε), slot 6 = k_f R;
-      a tilted patch is integrated slice by slice, see _slices, instead of l·h(Δr_edge))
+      a tilted patch is integrated slice by slice, see _slices, instead of l·h(Δr_edge)),
+      3 foundation-spline (contact.calibrate.spline: the foundation law with slot 6 = R times
+      exp(c(ln Δr)), c the cubic Hermite spline of slots 15 on; tilted patches slice by slice as code 2)
  3    conformal constant 2π E* δ0 (N/m per unit b²(1+b²)/D)
  4    Dundurs α
  5    β coefficient c_β of the denominator (0 for the "zero" reading)
@@ -29,6 +31,8 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
       the *contact piece* of the map extended across grazing, which the grazing analysis of
       rotor/periodic/grazing.py differentiates (di Bernardo et al. 2008: each smooth piece of a
       piecewise-smooth system continued past its switching surface)
+15…   law code 3 only (else 0): the number of knots K (2 <= K <= SPLINE_MAX_KNOTS), then the knots' ln Δr,
+      their values c and slopes dc/d ln Δr (SPLINE_MAX_KNOTS slots each, the first K used); c linear beyond
 ====  ==================================================================
 
 Edge selection (Dai et al. 2025 Eqs. 18–19, regularised; :func:`selection`): with the centre
@@ -50,7 +54,10 @@ from contact.errors import OutsideDomainError
 
 compiled_with(__file__, [])  # cached in the user's cache folder (contact.compiled_cache)
 
-N_PARAMS = 15
+SPLINE_MAX_KNOTS = 12
+SPLINE_SLOT = 15                                   # first slot of a code-3 law's spline
+N_SPLINE_SLOTS = 1 + 3 * SPLINE_MAX_KNOTS
+N_PARAMS = SPLINE_SLOT + N_SPLINE_SLOTS
 STATE_NONE, STATE_EDGE1, STATE_EDGE2, STATE_TWO_POINT, STATE_LINE = 0, 1, 2, 3, 4
 
 
@@ -91,11 +98,54 @@ def _law_on(pen, p):
         cs = p[0] / e
         eps = math.atan2(sn, cs)
         return p[6] * e * (eps - sn * cs), p[6] * (eps + sn * cs), 1
+    if p[2] == 3.0:
+        return _spline_law(pen, p)
     n = p[7]
     return p[6] * pen ** n, p[6] * n * pen ** (n - 1.0), 1
 
 
-# Gauss–Legendre nodes/weights on [0, 1] (8 points) for the slice integral of law code 2.
+@numba.njit(cache=True, inline="always")
+def _spline_law(pen, p):
+    """Law code 3 at ``pen >= 0``: ``h = R e (ε − sin ε cos ε) exp(c(ln Δr))``, dh/dΔr (slots: module docstring);
+    at Δr = 0, h = 0 and h' = 0 where ``h ~ Δr^(1.5 + c'(−∞))`` has a finite slope, else inf."""
+    nk = int(p[SPLINE_SLOT])
+    x0 = SPLINE_SLOT + 1
+    y0 = x0 + SPLINE_MAX_KNOTS
+    m0 = y0 + SPLINE_MAX_KNOTS
+    if pen <= 0.0:
+        return 0.0, (0.0 if p[m0] > -0.5 else math.inf), 1
+    e = p[0] + pen
+    sn = math.sqrt(pen * (2.0 * p[0] + pen)) / e
+    cs = p[0] / e
+    eps = math.atan2(sn, cs)
+    hb = p[6] * e * (eps - sn * cs)
+    dhb = p[6] * (eps + sn * cs)
+    u = math.log(pen)
+    if u <= p[x0]:
+        c = p[y0] + p[m0] * (u - p[x0])
+        dc = p[m0]
+    elif u >= p[x0 + nk - 1]:
+        c = p[y0 + nk - 1] + p[m0 + nk - 1] * (u - p[x0 + nk - 1])
+        dc = p[m0 + nk - 1]
+    else:
+        k = 0
+        while k < nk - 2 and u > p[x0 + k + 1]:
+            k += 1
+        h = p[x0 + k + 1] - p[x0 + k]
+        t = (u - p[x0 + k]) / h
+        t2 = t * t
+        ya = p[y0 + k]
+        yb = p[y0 + k + 1]
+        ma = p[m0 + k]
+        mb = p[m0 + k + 1]
+        c = (2.0 * t2 * t - 3.0 * t2 + 1.0) * ya + (t2 * t - 2.0 * t2 + t) * h * ma + (3.0 * t2 - 2.0 * t2 * t) * yb \
+            + (t2 * t - t2) * h * mb
+        dc = (6.0 * t2 - 6.0 * t) * (ya - yb) / h + (3.0 * t2 - 4.0 * t + 1.0) * ma + (3.0 * t2 - 2.0 * t) * mb
+    g = math.exp(c)
+    return hb * g, (dhb + hb * dc / pen) * g, 1
+
+
+# Gauss–Legendre nodes/weights on [0, 1] (8 points) for the slice integral of law codes 2 and 3.
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 _GL_X = 0.5 * (_GL_X + 1.0)
 _GL_W = 0.5 * _GL_W
@@ -103,7 +153,7 @@ _GL_W = 0.5 * _GL_W
 
 @numba.njit(cache=True)
 def _slices(pen, t, l0, partial, p):
-    """Slice-integrated load of a tilted patch for law code 2 (additive hook for contact.calibrate, issue 5).
+    """Slice-integrated load of a tilted patch for law codes 2 and 3 (additive hook for contact.calibrate, issue 5).
 
     A Winkler bed has independent axial slices, so the patch load is ``P = ∫_0^l h(pen − t s) ds``
     (s from the loaded edge, l = pen/t for a partial patch, l0 otherwise) and its first moment about
@@ -250,7 +300,7 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
         l = pen / t
     else:
         l = l0
-    slices = p[2] == 2.0
+    slices = p[2] >= 2.0
     if slices:
         P, S, Pp, Pt, Sp, St = _slices(pen, t, l0, partial, p)
         # P = 0 where the slice length pen/t underflows (t = inf: a shooting trial state with |θ| ~ 1e155 rad,

@@ -65,7 +65,7 @@ Fast scalar path for a numba-compiled step loop
 ::
 
     from contact.loose_support import LooseSupportParams, point_force, point_force_jacobian
-    p = LooseSupportParams.paper_table4().kernel_args      # tuple of 15 floats
+    p = LooseSupportParams.paper_table4().kernel_args      # tuple of N_PARAMS floats
     @numba.njit
     def step(..., p):
         Fy, Fz, My, Mz = point_force(y, z, thy, thz, vy, vz, wy, wz, p)
@@ -86,8 +86,8 @@ from functools import cached_property
 import numpy as np
 
 from contact import laws
-from contact._kernel import (N_PARAMS, STATE_EDGE1, STATE_EDGE2, STATE_LINE, STATE_NONE,  # noqa: F401
-                             STATE_TWO_POINT, many_points, many_points_parallel, point_force, point_force_jacobian)
+from contact._kernel import (N_PARAMS, N_SPLINE_SLOTS, SPLINE_MAX_KNOTS, SPLINE_SLOT,  # noqa: F401
+                             STATE_EDGE1, STATE_EDGE2, STATE_LINE, STATE_NONE, STATE_TWO_POINT, many_points, many_points_parallel, point_force, point_force_jacobian)
 from contact.errors import InputError, OutsideDomainError
 from contact.tilt import EDGE_TRANSITION_M
 from contact.units import check_finite, check_positive
@@ -221,7 +221,8 @@ class LooseSupportParams:
                 2.0 * math.pi * self.e_star_Pa * self.clearance_m, alpha,
                 laws.beta_coefficient(beta, self.beta_reading), pc, pn, self.c_c_s_per_m,
                 1.0 if self.clip_damping_at_zero else 0.0, self.mu * self.preload_N,
-                1.0 if self.tilt_ignored else 0.0, self.friction_smoothing_m_s, self.edge_transition_m, 0.0)
+                1.0 if self.tilt_ignored else 0.0, self.friction_smoothing_m_s, self.edge_transition_m, 0.0) \
+            + (0.0,) * N_SPLINE_SLOTS             # a calibrated spline law's knots (contact.calibrate.law)
         assert len(args) == N_PARAMS
         return tuple(float(a) for a in args)
 

@@ -1,7 +1,8 @@
 """The law families of a calibration and their closed forms: ``log P = base(Δr) + X θ``.
 
-Each family (``conformal-scaled``, ``foundation``, ``conformal-compliance``, ``power``; see the
-package docstring of :mod:`contact.calibrate`) gives the force of a straight ring (N) at
+Each family (``conformal-scaled``, ``foundation``, ``conformal-compliance``, ``power``, and the flexible
+``foundation-spline`` of :mod:`contact.calibrate.spline`; see the package docstring of
+:mod:`contact.calibrate`) gives the force of a straight ring (N) at
 penetrations Δr (m) from its physical parameters (:data:`PARAMETERS`) and the scene's geometry
 (:class:`SceneGeometry`).
 """
@@ -13,11 +14,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact import laws
+import contact.calibrate.spline as spline
 from contact.errors import InputError
 
-FAMILIES = ("conformal-scaled", "foundation", "conformal-compliance", "power")
+ANALYTIC_FAMILIES = ("conformal-scaled", "foundation", "conformal-compliance", "power")
+FAMILIES = ANALYTIC_FAMILIES + (spline.FAMILY,)
 LINEAR_FAMILIES = ("conformal-scaled", "foundation", "power")       # log P linear in the fit coordinates
-KERNEL_LAW_CODE = {"conformal-scaled": 0.0, "power": 1.0, "foundation": 2.0}
+KERNEL_LAW_CODE = {"conformal-scaled": 0.0, "power": 1.0, "foundation": 2.0, spline.FAMILY: 3.0}
 
 
 @dataclass(frozen=True)
@@ -84,6 +87,11 @@ def foundation_shape(penetration_m, clearance_m: float):
     return e * (eps - sin_eps * cos_eps)
 
 
+def foundation_force(penetration_m, geo: SceneGeometry) -> np.ndarray:
+    """``R l e (ε − sin ε cos ε)`` (N per Pa/m of foundation modulus): the base of ``foundation-spline``."""
+    return geo.radius_m * geo.width_m * foundation_shape(penetration_m, geo.clearance_m)
+
+
 def _base_and_design(family: str, pen: np.ndarray, geo: SceneGeometry) -> tuple[np.ndarray, np.ndarray]:
     """``base(Δr)`` (log N) and design matrix ``X`` of a family, for Δr > 0."""
     if family == "conformal-scaled":
@@ -137,6 +145,7 @@ PARAMETERS = {
     "foundation": (("foundation_modulus_Pa_per_m", "Pa/m"),),
     "power": (("coefficient_N_per_m_pow_n_plus_1", "N/m^(n+1)"), ("exponent", "-")),
     "conformal-compliance": (("far_field_constant", "-"),),
+    spline.FAMILY: (("knot_count", "-"),),      # and the knots' log_penetration_NN, log_correction_NN, log_slope_NN
 }
 
 
@@ -163,6 +172,12 @@ def family_force(family: str, params: dict, penetration_m, geo: SceneGeometry) -
     if family == "conformal-compliance":
         return conformal_compliance_force(penetration_m, params["far_field_constant"], geo)
     pen = np.asarray(penetration_m, dtype=float)
+    if family == spline.FAMILY:
+        flat = np.maximum(pen.ravel(), 0.0)
+        out = np.zeros(flat.size)
+        pos = flat > 0
+        out[pos] = foundation_force(flat[pos], geo) * spline.correction(params, flat[pos])
+        return out.reshape(pen.shape)
     flat = pen.ravel()
     out = np.zeros(flat.size)
     pos = flat > 0

@@ -14,11 +14,12 @@ from functools import cached_property
 import numpy as np
 
 from contact import laws
+import contact.calibrate.spline as spline
 from contact.calibrate.families import KERNEL_LAW_CODE, SceneGeometry, family_force
 from contact.calibrate.validate import check_behaviour, check_document
 from contact.dataset import check_document_sha256, document_sha256
 from contact.errors import DatasetError, InputError
-from contact.loose_support import LooseSupportParams
+from contact.loose_support import N_SPLINE_SLOTS, SPLINE_SLOT, LooseSupportParams
 
 SCHEMA = "ringcontact/calibrated-law"
 VERSION = 1
@@ -131,8 +132,10 @@ class CalibratedLaw:
         mz = -m_plus + m_minus                  # M_z = Σ x F_y
         return -fy, mz, width
 
-    def kernel_law(self) -> tuple[float, float, float, float]:
-        """Kernel law slots ``(code, slot 3, slot 6, slot 7)`` of ``contact._kernel`` for this law.
+    def kernel_law(self) -> tuple:
+        """Kernel law slots ``(code, slot 3, slot 6, slot 7)`` of ``contact._kernel`` for this law, followed for
+        ``foundation-spline`` (code 3) by its knots (the kernel's slots 15 on, :func:`contact.calibrate.spline.
+        kernel_slots`).
 
         Raises
         ------
@@ -148,6 +151,8 @@ class CalibratedLaw:
             return (0.0, self.parameters["stiffness_factor"] * 2.0 * math.pi * g.e_star_Pa * g.clearance_m, 0.0, 1.0)
         if self.family == "power":
             return (1.0, 0.0, self.parameters["coefficient_N_per_m_pow_n_plus_1"], self.parameters["exponent"])
+        if self.family == spline.FAMILY:
+            return (3.0, 0.0, g.radius_m, 0.0, *spline.kernel_slots(self.parameters))
         return (2.0, 0.0, self.parameters["foundation_modulus_Pa_per_m"] * g.radius_m, 0.0)
 
     def loose_support_params(self, **overrides) -> "CalibratedSupportParams":
@@ -221,7 +226,7 @@ class CalibratedSupportParams(LooseSupportParams):
     """:class:`~contact.loose_support.LooseSupportParams` whose radial law is a calibrated one.
 
     Identical to its base for damping, friction, tilt geometry and validation; only the law
-    slots of the compiled kernel (``kernel_args`` 2, 3, 6, 7) come from ``calibrated_kernel_law``
+    slots of the compiled kernel (``kernel_args`` 2, 3, 6, 7, and 15 on for a spline) come from ``calibrated_kernel_law``
     (see :meth:`CalibratedLaw.kernel_law`). ``law`` keeps the base family for validation
     ("pereira" for a power law, "conformal" otherwise); ``calibration_name`` says which law is used.
     """
@@ -232,21 +237,24 @@ class CalibratedSupportParams(LooseSupportParams):
     def __post_init__(self):
         super().__post_init__()
         k = tuple(self.calibrated_kernel_law)
-        if len(k) != 4 or k[0] not in (0.0, 1.0, 2.0) or not all(math.isfinite(v) for v in k):
-            raise InputError(f"calibrated_kernel_law = {self.calibrated_kernel_law!r}: need (code 0/1/2, "
-                             "slot 3, slot 6, slot 7), finite")
+        size = 4 + (N_SPLINE_SLOTS if k and k[0] == 3.0 else 0)
+        if len(k) != size or k[0] not in (0.0, 1.0, 2.0, 3.0) or not all(math.isfinite(v) for v in k):
+            raise InputError(f"calibrated_kernel_law = {str(self.calibrated_kernel_law)[:80]}: need (code 0/1/2/3, "
+                             f"slot 3, slot 6, slot 7, and for code 3 the {N_SPLINE_SLOTS} spline slots), finite")
         if not self.calibration_name:
             raise InputError("calibration_name = '': name the calibrated law")
 
     @cached_property
     def kernel_args(self) -> tuple:
         args = list(LooseSupportParams.kernel_args.func(self))
-        code, s3, s6, s7 = (float(v) for v in self.calibrated_kernel_law)
+        code, s3, s6, s7 = (float(v) for v in self.calibrated_kernel_law[:4])
         args[2] = code
         if code == 0.0:
             args[3] = s3
         else:
             args[6], args[7] = s6, s7
+        if code == 3.0:
+            args[SPLINE_SLOT:SPLINE_SLOT + N_SPLINE_SLOTS] = [float(v) for v in self.calibrated_kernel_law[4:]]
         return tuple(args)
 
     @cached_property

@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 from contact import plausible
+import contact.calibrate.spline as spline
 from contact.calibrate.families import FAMILIES, PARAMETERS
 from contact.errors import DatasetError, InputError
 
@@ -145,6 +146,14 @@ def check_validity(source: str, validity: dict, radius_m: float) -> tuple[float,
 def check_parameters(source: str, family: str, doc: dict) -> tuple[dict, dict, dict]:
     """``(parameters, parameter_std, parameter_units)`` of the family, each typed and in range."""
     params, std, units = (_table(source, doc, k) for k in ("parameters", "parameter_std", "parameter_units"))
+    if family == spline.FAMILY:
+        wrong = spline.check_parameters(params)
+        if wrong is not None:
+            raise DatasetError(f"{source}: parameters.{wrong} (family {family!r})")
+        out = {k: float(v) for k, v in params.items() if k == "knot_count" or k.startswith(("log_penetration_",
+                                                                                           "log_correction_",
+                                                                                           "log_slope_"))}
+        return out, {k: 0.0 for k in out}, {k: str(units.get(k, "-")) for k in out}
     out, out_std = {}, {}
     for name, unit in PARAMETERS[family]:
         if name not in params:

@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from contact.compiled_cache import compiled_with
-from contact.loose_support import loose_support_force, point_force_jacobian
+from contact.loose_support import N_PARAMS, loose_support_force, point_force_jacobian
 from rotor.dynamics.system import SupportLaw
 
 # contact_kernel inlines contact._kernel: its cache entries are stale when that source changes too
@@ -22,10 +22,17 @@ from rotor.dynamics.system import SupportLaw
 compiled_with(__file__, ["contact._kernel"])
 
 
+assert N_PARAMS == 52, "law_tuple spells out every slot of contact._kernel's parameter tuple"
+
+
 @njit(cache=True, inline="always")
 def law_tuple(p):
-    """The law's parameter array (15,) as the tuple :func:`contact.loose_support.point_force_jacobian` takes."""
-    return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13], p[14])
+    """The law's parameter array (N_PARAMS,) as the tuple :func:`contact.loose_support.point_force_jacobian` takes
+    (a calibrated spline law's knots in slots 15 on, ``contact._kernel``)."""
+    return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], p[12], p[13], p[14], p[15], p[16],
+            p[17], p[18], p[19], p[20], p[21], p[22], p[23], p[24], p[25], p[26], p[27], p[28], p[29], p[30],
+            p[31], p[32], p[33], p[34], p[35], p[36], p[37], p[38], p[39], p[40], p[41], p[42], p[43], p[44],
+            p[45], p[46], p[47], p[48], p[49], p[50], p[51])
 
 
 @njit(cache=True, inline="always")

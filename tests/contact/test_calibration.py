@@ -78,16 +78,36 @@ def test_leave_one_out_matches_press_closed_form():
     np.testing.assert_allclose(np.log1p(fit.holdout_rel_err), -press, rtol=1e-9, atol=1e-13)
 
 
-def test_selection_keeps_one_parameter_unless_two_halve_the_error():
+def test_selection_takes_the_fewest_parameters_among_the_families_that_hold():
     pen = np.linspace(1e-6, 5e-5, 12)
-    # Pure foundation data: the 1-parameter foundation family is exact, power must not win.
+    # Pure foundation data: the 1-parameter foundation family is exact, no family with more parameters may win.
     f = cal.family_force("foundation", {"foundation_modulus_Pa_per_m": 1e13}, pen, GEO)
     fits = [cal.fit_family(fam, pen, f, GEO) for fam in cal.FAMILIES]
     assert cal.select_family(fits).family == "foundation"
-    # Pure power data with n far from every 1-parameter shape: the 2-parameter family wins.
+    # Pure power data with n far from every 1-parameter shape: power (2 parameters) holds, the 1-parameter ones do not.
     f = cal.family_force("power", {"coefficient_N_per_m_pow_n_plus_1": 1e10, "exponent": 1.05}, pen, GEO)
-    fits = [cal.fit_family(fam, pen, f, GEO) for fam in cal.FAMILIES]
-    assert cal.select_family(fits).family == "power"
+    fits = {fam: cal.fit_family(fam, pen, f, GEO) for fam in cal.FAMILIES}
+    assert not cal.family_holds(fits["foundation"].holdout_rel_err, 0.0)
+    assert cal.select_family(list(fits.values())).family == "power"
+
+
+def _fake_fit(family: str, k: int, errors) -> cal.FamilyFit:
+    e = np.asarray(errors, dtype=float)
+    return cal.FamilyFit(family, k, {}, {}, np.arange(1.0, e.size + 1), np.ones(e.size), e, e)
+
+
+def test_selection_when_no_family_holds_takes_the_lowest_held_out_max():
+    # issue 37: foundation (14.2 % max) had been chosen over power (12.4 %) with no reason given
+    fits = [_fake_fit("foundation", 1, [0.01, -0.142, 0.05]), _fake_fit("power", 2, [0.124, 0.02, -0.03])]
+    fem = np.full(3, 1e-3)
+    assert cal.select_family(fits, fem).family == "power"
+    from contact.calibrate.fit import selection_reason
+    assert selection_reason(fits, fits[1], fem).startswith("no family holds; power has the lowest held-out max")
+    # a family within the bound beats a more accurate one with more parameters; equal maxima: fewer parameters
+    fits = [_fake_fit("foundation", 1, [0.015, 0.0]), _fake_fit("foundation-spline", 6, [0.001, 0.0])]
+    assert cal.select_family(fits, np.zeros(2)).family == "foundation"
+    fits = [_fake_fit("power", 2, [0.05, 0.0]), _fake_fit("foundation", 1, [0.05, 0.01])]
+    assert cal.select_family(fits, np.zeros(2)).family == "foundation"
 
 
 def test_bad_fit_inputs_raise_named_errors():

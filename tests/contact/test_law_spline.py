@@ -1,0 +1,120 @@
+"""The flexible law family ``foundation-spline`` (contact/calibrate/spline.py): its knot slopes, its fit and
+hold-out, its law file, and the compiled kernel's law code 3 (contact/_kernel.py) against the Python form.
+
+Sources: the Fritsch–Carlson (1980) slopes as scipy's ``PchipInterpolator`` implements them; the force and its
+analytic Jacobian checked against the Python law and central differences.
+"""
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.interpolate import PchipInterpolator
+
+from contact import calibrate as cal
+import contact.calibrate.spline as spline
+from contact.errors import DatasetError
+from contact.loose_support import loose_support_force, loose_support_jacobian
+
+GEO = cal.SceneGeometry(clearance_m=3e-5, width_m=0.02, radius_m=0.045, bearing_thickness_m=0.005,
+                        support_thickness_m=0.02, bearing_E_Pa=210e9, bearing_nu=0.3, support_E_Pa=70e9,
+                        support_nu=0.33, plane="3d")
+PEN = np.geomspace(5e-7, 3e-5, 10)
+
+
+def _curve(pen):
+    """A rising force no analytic family follows: the foundation law times a slow bend in log Δr."""
+    u = np.log(np.asarray(pen) / 4e-6)
+    return 1.2e13 * cal.family_force("foundation", {"foundation_modulus_Pa_per_m": 1.0}, pen, GEO) \
+        * np.exp(0.12 * u - 0.05 * u ** 2)
+
+
+def _law(pen=PEN):
+    fit = cal.fit_family(spline.FAMILY, pen, _curve(pen), GEO)
+    units = {k: "-" for k in fit.parameters}
+    return fit, cal.CalibratedLaw(name="t-foundation-spline", scene="t", family=spline.FAMILY,
+                                  parameters=fit.parameters, parameter_std=fit.parameter_std, parameter_units=units,
+                                  geometry=GEO, validity_penetration_m=(float(pen[0]), float(pen[-1])), dataset={})
+
+
+def test_knot_slopes_are_scipys_pchip():
+    rng = np.random.default_rng(7)
+    x = np.sort(rng.uniform(-14, -10, 9))
+    y = np.cumsum(rng.uniform(-0.3, 1.0, 9))          # not monotone: the limiter's sign cases too
+    np.testing.assert_allclose(spline.pchip_slopes(x, y), PchipInterpolator(x, y).derivative()(x), rtol=1e-12,
+                               atol=1e-12)
+    xq = np.linspace(x[0], x[-1], 57)
+    np.testing.assert_allclose(spline.hermite(x, y, spline.pchip_slopes(x, y), xq)[0], PchipInterpolator(x, y)(xq),
+                               rtol=1e-12, atol=1e-12)
+
+
+def test_spline_holds_where_no_analytic_family_does():
+    f = _curve(PEN)
+    fits = {fam: cal.fit_family(fam, PEN, f, GEO) for fam in cal.FAMILIES}
+    assert np.max(np.abs(fits[spline.FAMILY].fit_rel_err)) < 1e-12          # through its knots
+    assert np.max(np.abs(fits[spline.FAMILY].holdout_rel_err[1:-1])) < 0.01        # interpolated
+    assert cal.family_holds(fits[spline.FAMILY].holdout_rel_err, 0.0)                 # the ends extrapolated
+    assert not any(cal.family_holds(fits[k].holdout_rel_err, 0.0) for k in cal.ANALYTIC_FAMILIES)
+    assert cal.select_family(list(fits.values())).family == spline.FAMILY
+    assert spline.rises(fits[spline.FAMILY].parameters)
+
+
+def test_a_correction_that_would_make_the_force_fall_is_left_out():
+    f = _curve(PEN)
+    f[5] = f[4] * 1.0001                              # a plateau: the correction's slope drops below -1
+    fit = cal.fit_family(spline.FAMILY, PEN, f, GEO)
+    assert not np.isfinite(fit.holdout_rel_err).any()
+
+
+def test_more_points_than_knots_keeps_the_others_held_out():
+    pen = np.geomspace(5e-7, 3e-5, spline.MAX_KNOTS + 5)
+    fit = cal.fit_family(spline.FAMILY, pen, _curve(pen), GEO)
+    assert fit.n_parameters == spline.MAX_KNOTS
+    assert np.count_nonzero(np.abs(fit.fit_rel_err) > 1e-12) == 5
+
+
+def test_law_file_round_trip_and_refusals():
+    _, law = _law()
+    back = cal.CalibratedLaw.from_json(law.to_json(), "t.json")
+    np.testing.assert_allclose(back.force(PEN).force_N, law.force(PEN).force_N, rtol=1e-10)
+    doc = json.loads(law.to_json())
+    for key, value, says in (("knot_count", 1, "knot_count"), ("log_penetration_03", doc["parameters"]
+                                                                 ["log_penetration_02"], "rise strictly")):
+        bad = json.loads(law.to_json())
+        bad["parameters"][key] = value
+        bad.pop("sha256")
+        from contact.dataset import document_sha256
+        bad["sha256"] = document_sha256(bad)
+        with pytest.raises(DatasetError, match=says):
+            cal.CalibratedLaw.from_json(json.dumps(bad), "t.json")
+
+
+def test_kernel_code_3_is_the_python_law_straight_and_tilted():
+    _, law = _law()
+    p = law.loose_support_params()
+    pen = np.geomspace(1e-7, 6e-5, 9)             # below, inside and beyond the knots
+    r = loose_support_force(p, GEO.clearance_m + pen, 0 * pen, 0 * pen, 0 * pen)
+    np.testing.assert_allclose(-r.Fy_N, law.force_per_length(pen) * GEO.width_m, rtol=1e-12)
+    for arcmin in (2.0, 8.0):
+        th = arcmin * math.pi / 10800
+        for q in (5e-7, 4e-6, 3e-5):
+            fs, ms, _ = law.tilted(q, th)
+            rk = loose_support_force(p, GEO.clearance_m + q, 0.0, 0.0, th)
+            # the kernel's 8 Gauss points per patch against 48 (the spline is C1 only, across its knots)
+            assert -float(rk.Fy_N) == pytest.approx(fs, rel=3e-4)
+            assert float(rk.Mz_Nm) == pytest.approx(ms, rel=3e-4)
+
+
+def test_kernel_code_3_jacobian_is_the_derivative():
+    _, law = _law()
+    p = law.loose_support_params(c_c_s_per_m=50.0)
+    for x0 in ([GEO.clearance_m + 4e-6, 1e-6, 1e-4, 3e-4, 0.01, -0.02, 0.1, 0.2],
+               [GEO.clearance_m + 2e-7, 1e-7, 0.0, 1.5e-4, 1e-3, 0.0, 0.0, 0.0]):
+        x0 = np.array(x0)
+        _, J = loose_support_jacobian(p, *x0)
+        steps = (1e-10, 1e-10, 1e-8, 1e-8, 1e-6, 1e-6, 1e-5, 1e-5)
+        fd = np.column_stack([(loose_support_jacobian(p, *(x0 + h * e))[0] - loose_support_jacobian(p, *(x0 - h * e))[0])
+                              / (2 * h) for h, e in zip(steps, np.eye(8))])
+        assert np.max(np.abs(J - fd)) < 1e-6 * np.max(np.abs(J))
