@@ -3,8 +3,8 @@
 The rule is the law file's (:data:`~reports.bearing.names.LAW_ERROR_BOUND_REL`, :func:`contact.calibrate.fit.
 holdout_excess`): a point is held by a family when its leave-one-out error exceeds the FEM point's own stated error
 by at most the bound. At zero tilt every family fitted on that reference is tried (2D points; with tilt the 3D
-zero-tilt points as well); the tilted 3D points are checked against the chosen law only (through the compiled
-rotor kernel, the way a rotor uses it), since the families are fitted at zero tilt. Neighbouring points that no
+zero-tilt points as well); the tilted 3D points, force and moment, are checked against the chosen law only (through
+the compiled rotor kernel, the way a rotor uses it), since the families are fitted at zero tilt. Neighbouring points that no
 family holds form one part: ``[lowest, highest]`` penetration of the run of consecutive points, at one tilt.
 """
 from __future__ import annotations
@@ -49,13 +49,17 @@ def _zero_tilt(reference: str, ds, fits, name: str) -> list[dict]:
 
 
 def _tilted(rows: list[dict], family: str) -> list[dict]:
+    """Force, then moment (a row without a FEM moment error or a zero moment is left out of the moment parts)."""
     out = []
-    for tilt in sorted({r["tilt_arcmin"] for r in rows if r["tilt_arcmin"] > 0}):
-        at = sorted((r for r in rows if r["tilt_arcmin"] == tilt), key=lambda r: r["penetration_mm"])
-        pen = np.array([r["penetration_mm"] * MM for r in at])
-        err = np.array([abs(r["calibrated-kernel_pct"]) / 100 - r["force_error_rel"] for r in at])
-        beyond = np.where(np.isfinite(err), err, math.inf)
-        out += _parts("3d tilted (chosen law)", float(tilt), pen, beyond, [family] * len(at))
+    for reference, col, fem in (("3d tilted (chosen law)", "calibrated-kernel_pct", "force_error_rel"),
+                                ("3d tilted moment (chosen law)", "calibrated-kernel_moment_pct", "moment_error_rel")):
+        for tilt in sorted({r["tilt_arcmin"] for r in rows if r["tilt_arcmin"] > 0}):
+            at = sorted((r for r in rows if r["tilt_arcmin"] == tilt and r[col] is not None and r[fem] is not None),
+                        key=lambda r: r["penetration_mm"])
+            pen = np.array([r["penetration_mm"] * MM for r in at])
+            err = np.array([abs(r[col]) / 100 - r[fem] for r in at])
+            beyond = np.where(np.isfinite(err), err, math.inf)
+            out += _parts(reference, float(tilt), pen, beyond, [family] * len(at))
     return out
 
 

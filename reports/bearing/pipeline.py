@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from contact import calibrate as cal
-from contact.calibrate.fit import holdout_excess
+from contact.calibrate.fit import ACCURACY_ADD_REL, ACCURACY_FEM_FACTOR, ACCURACY_RULE, holdout_excess
 from contact.dataset import read_dataset, write_dataset
 from contact.files import atomic_write_text
 from fem_reference.ring_scene import RingScene
@@ -99,7 +99,7 @@ def _calibrate(path: Path, name: str):
     ds = read_dataset(path)
     info = cal.dataset_provenance(path, ds)
     info["path"] = path.name               # the run folder travels as a whole
-    law, fits = cal.calibrate_scene(ds, name, info)
+    law, fits = cal.calibrate_scene(ds, name, info, families=cal.FAMILIES)    # the flexible family too
     return ds, law, fits
 
 
@@ -128,9 +128,10 @@ def calibrate(rs: RingScene, path2: Path, path3: Path | None) -> dict:
         excess["holdout_max_rel_3d_zero_tilt"] = holdout_excess(best.holdout_rel_err, fem3)
         for key, col in (("tilted_holdout_max_rel_slices", "calibrated-slices_pct"),
                          ("tilted_holdout_max_rel_kernel", "calibrated-kernel_pct")):
-            err = np.array([abs(r[col]) / 100 for r in rows])
+            err = _abs_rel(rows, col)
             checks[key] = float(np.nanmax(err)) if np.isfinite(err).any() else math.nan
             excess[key] = holdout_excess(err, ferr)
+        out["moment_check"] = moment_check(rows)
         checks["fem3d_error_max_rel"] = float(max(p.get("force_error_rel") or 0.0 for p in out["ds3"].points))
     warnings = [f"{key} = {100 * checks[key]:.2f} % is {100 * val:.2f} % beyond the FEM's stated error, more than "
                 f"the bound {100 * LAW_ERROR_BOUND_REL:g} %: no law family describes this ring pair that well; see the "
@@ -139,7 +140,67 @@ def calibrate(rs: RingScene, path2: Path, path3: Path | None) -> dict:
         warnings.append(f"family {chosen.family!r} is not in the compiled rotor kernel: the law file cannot drive "
                         "a rotor (families the rotor uses: " + ", ".join(cal.KERNEL_LAW_CODE) + ")")
     out.update(chosen=chosen, checks=checks, excess=excess, warnings=warnings)
+    out["accuracy"] = accuracy(out, rs.name)
     out["not_held"] = not_held(out, rs.name)
+    return out
+
+
+def moment_check(rows: list[dict]) -> dict:
+    """The tilted points' moment through the rotor kernel, held out (never fitted), by the law file's rule: the
+    largest error, by how much it exceeds the FEM point's stated moment error, and whether that is within
+    :data:`~reports.bearing.names.LAW_ERROR_BOUND_REL`. Reported beside the force verdict, not part of the flag that
+    refuses a law in the rotor: the bundled pair's law (moment 6.7 % off at 2' and 0.004 mm) would be refused by the
+    rotor scenes that name it; that decision belongs to the rotor's owners (issue 37's moment verdict, measured)."""
+    err = _abs_rel(rows, "calibrated-kernel_moment_pct")
+    fem = np.array([r["moment_error_rel"] if r["moment_error_rel"] is not None else math.nan for r in rows])
+    ok = np.isfinite(err) & np.isfinite(fem)
+    if not ok.any():
+        return {"points": 0}
+    beyond = holdout_excess(err[ok], fem[ok])
+    return {"points": int(ok.sum()), "holdout_max_rel": float(err[ok].max()), "beyond_fem_error_rel": float(beyond),
+            "error_bound_rel": LAW_ERROR_BOUND_REL, "held": bool(beyond <= LAW_ERROR_BOUND_REL)}
+
+
+def _abs_rel(rows: list[dict], col: str) -> np.ndarray:
+    """``|column| / 100`` of the tilted rows (a % column), NaN where a row has no value (a zero FEM moment)."""
+    return np.array([abs(r[col]) / 100 if r[col] is not None and np.isfinite(r[col]) else math.nan for r in rows])
+
+
+def accuracy(fit: dict, name: str) -> list[dict]:
+    """Issue 37's accuracy rule (:func:`contact.calibrate.fit.within_accuracy`: every held-out error within 2x the
+    FEM point's stated error + 0.2 %) for the chosen law, per reference and quantity: ``reference``, ``quantity``,
+    ``points``, ``within`` (how many meet it), ``holds``, ``worst_error_pct``, ``worst_bound_pct`` (at the point
+    that misses its bound the most, or the largest error when all meet it), ``within_inside`` (zero tilt: of the
+    points between the ends, whose hold-out interpolates; None for tilted points). Zero-tilt points: leave-one-out;
+    tilted points: never fitted (the law is calibrated at zero tilt)."""
+    out = []
+
+    def add(reference, quantity, err, fem, ends_extrapolated=False):
+        err, fem = np.abs(np.asarray(err, dtype=float)), np.abs(np.asarray(fem, dtype=float))
+        ok = np.isfinite(err) & np.isfinite(fem)
+        err, fem = err[ok], fem[ok]
+        if not err.size:
+            return
+        bound = ACCURACY_FEM_FACTOR * fem + ACCURACY_ADD_REL
+        within = cal.within_accuracy(err, fem)
+        i = int(np.argmax(err - bound))
+        out.append({"reference": reference, "quantity": quantity, "points": int(err.size),
+                    "within": int(within.sum()), "holds": bool(within.all()),
+                    "worst_error_pct": 100 * float(err[i]), "worst_bound_pct": 100 * float(bound[i]),
+                    # zero tilt: the two end points are held out by extrapolation beyond the others' range
+                    "within_inside": int(within[1:-1].sum()) if ends_extrapolated else None})
+
+    law2 = fit["law2"]
+    best2 = next(f for f in fit["fits2"] if f.family == law2.family)
+    add("2d", "force", best2.holdout_rel_err, cal.scene_points(fit["ds2"], name)[2], True)
+    if fit.get("law3") is not None:
+        best3 = next(f for f in fit["fits3"] if f.family == fit["law3"].family)
+        add("3d zero tilt", "force", best3.holdout_rel_err, cal.scene_points(fit["ds3"], name)[2], True)
+        rows = fit["rows3"]
+        add("3d tilted (rotor kernel)", "force", _abs_rel(rows, "calibrated-kernel_pct"),
+            [r["force_error_rel"] for r in rows])
+        add("3d tilted (rotor kernel)", "moment", _abs_rel(rows, "calibrated-kernel_moment_pct"),
+            [r["moment_error_rel"] if r["moment_error_rel"] is not None else math.nan for r in rows])
     return out
 
 
@@ -156,9 +217,12 @@ def law_file(rs: RingScene, fit: dict, range_from: dict | None = None) -> cal.Ca
             "checks": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["checks"].items()},
             "checks_beyond_fem_error": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["excess"].items()},
             "error_bound_rel": LAW_ERROR_BOUND_REL, "warnings": list(fit["warnings"]),
-            "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE, "not_held": fit["not_held"]}
+            "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE, "not_held": fit["not_held"],
+            "accuracy_rule": ACCURACY_RULE, "accuracy": fit["accuracy"]}
     if fit.get("plane") is not None:
         prov["plane"] = fit["plane"]
+    if fit.get("moment_check"):
+        prov["moment_check"] = fit["moment_check"]
     if range_from is not None:
         prov["range_from"] = range_from
     return dataclasses.replace(fit["chosen"], validity_tilt_max_rad=float(tilt_max), provenance=prov)
@@ -220,6 +284,8 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
                "validity_penetration_mm": [v * 1e3 for v in law.validity_penetration_m],
                "validity_tilt_max_arcmin": law.validity_tilt_max_rad / (math.pi / 10800),
                "checks": law.provenance["checks"], "warnings": fit["warnings"], "not_held": fit["not_held"],
+               "selection_reason": law.fit.get("selection_reason"), "accuracy": fit["accuracy"],
+               "moment_check": fit.get("moment_check"),
                "range_from": range_from, "plane": plane,
                "stages": stages.rows, "files": sorted({Path(f).name for f in files} | {path2.name}
                                                       | ({path3.name} if path3 else set()))}

@@ -121,13 +121,66 @@ def _tilt_lines(fit: dict) -> list[str]:
     if not rows:
         return []
     lines = ["| tilt | Δr (mm) | FEM force (N) ± % | paper's tilt model | calibrated, slices | calibrated, rotor kernel "
-             "| FEM M_z (N·m) ± % | M_z, slices |", "|---|---|---|---|---|---|---|---|"]
+             "| FEM M_z (N·m) ± % | M_z, slices | M_z, rotor kernel |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         me = r["moment_error_rel"]
         lines.append(f"| {r['tilt_arcmin']:g}′ | {r['penetration_mm']:.4g} | {r['force_fem_N']:,.0f} ± {100 * r['force_error_rel']:.2f} ".replace(",", " ")
                      + f"| {_fmt(r['conformal-paper_pct'])} | {_fmt(r['calibrated-slices_pct'])} | {_fmt(r['calibrated-kernel_pct'])} "
                      + f"| {r['moment_fem_Nm']:.2f} ± {100 * (me or 0):.2f} | "
-                     + ("–" if r["calibrated-slices_moment_pct"] is None else _fmt(r["calibrated-slices_moment_pct"], 1)) + " |")
+                     + ("–" if r["calibrated-slices_moment_pct"] is None else _fmt(r["calibrated-slices_moment_pct"], 2))
+                     + " | " + ("–" if r["calibrated-kernel_moment_pct"] is None else _fmt(r["calibrated-kernel_moment_pct"], 2))
+                     + " |")
+    return lines
+
+
+def _parameters_text(law) -> str:
+    """The law's parameters in one line (a spline: its knots' count and penetration range)."""
+    if law.family == "foundation-spline":
+        n = int(law.parameters["knot_count"])
+        lo, hi = (math.exp(law.parameters[f"log_penetration_{k:02d}"]) / MM for k in (0, n - 1))
+        return f"{n} knots from {lo:.4g} to {hi:.4g} mm (every knot in the law file's parameters)"
+    return ", ".join(f"{k} = {v:.6g} ± {law.parameter_std[k]:.2g} {law.parameter_units[k]}"
+                     for k, v in law.parameters.items())
+
+
+def _family_lines(law, fit: dict) -> list[str]:
+    """Every family tried on the law's reference, whether it holds, and why the chosen one won."""
+    doc = law.fit or {}
+    holds = {d["family"]: d.get("holds") for d in doc.get("families", [])}
+    lines = ["Families tried on the law's reference (zero tilt, every point held out in turn):", "",
+             "| family | parameters | held-out RMS (%) | held-out max (%) | holds | |", "|---|---|---|---|---|---|"]
+    for f in fit["fits3"] or fit["fits2"]:
+        lines.append(f"| {f.family} | {f.n_parameters} | {100 * f.holdout_rms:.3f} | {100 * f.holdout_max:.3f} | "
+                     f"{'yes' if holds.get(f.family) else 'no'} | {'chosen' if f.family == law.family else ''} |")
+    return lines + ["", f"Rule: {doc.get('selection_rule', '')}. Why `{law.family}`: "
+                    f"{doc.get('selection_reason', '')}."]
+
+
+def _moment_lines(law) -> list[str]:
+    """The moment verdict (tilted points through the rotor kernel), beside the force verdict above it."""
+    m = law.provenance.get("moment_check") or {}
+    if not m.get("points"):
+        return []
+    return [f"- Moment (the {m['points']} tilted points through the rotor kernel, never fitted): largest error "
+            f"{100 * m['holdout_max_rel']:.2f} %, {100 * m['beyond_fem_error_rel']:.2f} % beyond the FEM's stated moment "
+            f"error: **{'held' if m['held'] else 'not held'}** (bound {100 * m['error_bound_rel']:g} %). The flag above "
+            "is decided on the force checks; the moment verdict is reported, not yet a refusal in the rotor "
+            "(reports/bearing/pipeline.py: moment_check).", ""]
+
+
+def _accuracy_lines(law) -> list[str]:
+    """Issue 37's accuracy rule for the chosen law, per reference and quantity (force and moment)."""
+    rows = law.provenance.get("accuracy") or []
+    if not rows:
+        return []
+    lines = [f"Accuracy of the chosen law against issue 37's target ({law.provenance.get('accuracy_rule', '')}; "
+             "zero tilt held out point by point, tilted points never fitted):", "",
+             "| reference | quantity | points within / all | of them between the ends | holds | worst error (%) "
+             "| its bound (%) |", "|---|---|---|---|---|---|---|"]
+    lines += [f"| {r['reference']} | {r['quantity']} | {r['within']} / {r['points']} | "
+              + ("–" if r.get("within_inside") is None else f"{r['within_inside']} / {r['points'] - 2}")
+              + f" | {'yes' if r['holds'] else 'no'} | {r['worst_error_pct']:.3f} | {r['worst_bound_pct']:.3f} |"
+              for r in rows]
     return lines
 
 
@@ -187,7 +240,7 @@ def _followed_lines(fit: dict) -> list[str]:
 def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]) -> str:
     names = file_names(rs.name)
     checks, warn = law.provenance["checks"], law.provenance["warnings"]
-    pars = ", ".join(f"{k} = {v:.6g} ± {law.parameter_std[k]:.2g} {law.parameter_units[k]}" for k, v in law.parameters.items())
+    pars = _parameters_text(law)
     ok = not warn
     lines = [f"# Contact law of ring pair `{rs.name}`: laws against its FEM (Tables 2–3 style)", "",
              f"Generated by `ringcontact bearing` from the ring-pair file `{rs.source}` (sha256 {rs.sha256[:16]}…), "
@@ -201,16 +254,13 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
              f"{100 * law.provenance['error_bound_rel']:g} %; beyond it here: " + "; ".join(
                  f"{k} {100 * v:+.3f} %" for k, v in law.provenance["checks_beyond_fem_error"].items() if v is not None) + ".",
              f"- **{'verified' if ok else 'flagged'}**" + ("" if ok else ": " + " ".join(warn)), "",
+             *_moment_lines(law), *_accuracy_lines(law), "",
              *_followed_lines(fit), *_plane_lines(fit),
              "## Straight ring (2D, Table 2 style)", "",
              "Cells: `100 (P_law − P_FEM)/P_FEM` in %, signed; '–': the law has no solution there. Conformal law: "
              "composite modulus and Dundurs α of the two materials (Dai et al. 2025 Eq. 5) " + _dundurs(law)
              + "; Johnson and Pereira: plane-strain composite modulus (their sources).", "", *_straight_lines(t2), ""]
-    fits = fit["fits3"] or fit["fits2"]
-    lines += ["Families tried on the law's reference (held-out RMS / max); chosen by the rule: "
-              + str((law.fit or {}).get("selection_rule", "")) + ".", ""]
-    lines += [f"- {f.family}: {100 * f.holdout_rms:.3f} % / {100 * f.holdout_max:.3f} %"
-              + ("  ← chosen" if f.family == law.family else "") for f in fits]
+    lines += _family_lines(law, fit)
     lines += ["", f"![force]({Path(names['report']).stem}-force.png)", ""]
     if fit["rows3"]:
         lines += ["## Tilted ring (3D, Table 3 style)", "",

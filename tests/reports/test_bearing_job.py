@@ -77,6 +77,16 @@ def test_job_writes_a_verified_checksummed_law(run, capsys):
     assert law.provenance["checks"]["holdout_max_rel_2d"] < law.provenance["error_bound_rel"]
     md = (out / "accuracy-small-ring.md").read_text()
     assert "**verified**" in md and "Johnson" in md and "Pereira" in md and "FEM error estimate" in md
+    # why the family won, and issue 37's accuracy target per reference, in the law file, summary and report
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["selection_reason"] == law.fit["selection_reason"] and law.family in summary["selection_reason"]
+    assert "foundation-spline" in {f["family"] for f in law.fit["families"]}       # the flexible family was tried
+    acc = summary["accuracy"]
+    assert [(a["reference"], a["quantity"]) for a in acc] == [("2d", "force")] and acc[0]["points"] == len(pen)
+    assert acc[0]["holds"] == (acc[0]["within"] == acc[0]["points"])
+    assert [a["within"] for a in law.provenance["accuracy"]] == [a["within"] for a in acc]
+    assert "moment_check" not in law.provenance            # no tilt: no moment to check
+    assert f"Why `{law.family}`:" in md and "| 2d | force |" in md
 
 
 def test_a_stated_plane_of_a_straight_ring_is_used_unchecked_and_said_so(run):
@@ -177,3 +187,21 @@ def test_fem_check_recomputes_a_ring_pair_dataset(run, capsys):
     rc, f, out = run
     assert check_main(["--path", str(out / "fem2d-small-ring.json"), "--points", "2"]) == 0
     assert "largest difference 0.00e+00" in capsys.readouterr().out
+
+
+def test_tilted_moments_count_in_the_parts_no_family_holds():
+    """The verdict covers the moment: a tilted point whose moment misses by more than the bound is a part, even
+    where its force holds; a point without a FEM moment (zero tilt moment) is left out of the moment parts."""
+    from reports.bearing import holds
+
+    def row(pen_mm, force_pct, moment_pct):
+        return {"tilt_arcmin": 2.0, "penetration_mm": pen_mm, "force_error_rel": 1e-3,
+                "moment_error_rel": None if moment_pct is None else 1e-3,
+                "calibrated-kernel_pct": force_pct, "calibrated-kernel_moment_pct": moment_pct}
+
+    rows = [row(0.001, 0.1, -13.0), row(0.003, 0.1, None), row(0.01, 2.5, -1.0), row(0.03, 0.1, 5.0)]
+    parts = holds._tilted(rows, "foundation-spline")
+    assert [(p["reference"], p["penetration_mm"]) for p in parts] == [
+        ("3d tilted (chosen law)", [0.01, 0.01]),
+        ("3d tilted moment (chosen law)", [0.001, 0.001]), ("3d tilted moment (chosen law)", [0.03, 0.03])]
+    assert parts[1]["worst_excess_pct"] == pytest.approx(12.9)
