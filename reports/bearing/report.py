@@ -173,15 +173,18 @@ def _accuracy_lines(law) -> list[str]:
     rows = law.provenance.get("accuracy") or []
     if not rows:
         return []
-    lines = [f"Accuracy of the chosen law against issue 37's target ({law.provenance.get('accuracy_rule', '')}; "
-             "zero tilt held out point by point, tilted points never fitted):", "",
-             "| reference | quantity | points within / all | of them between the ends | holds | worst error (%) "
-             "| its bound (%) |", "|---|---|---|---|---|---|---|"]
-    lines += [f"| {r['reference']} | {r['quantity']} | {r['within']} / {r['points']} | "
-              + ("–" if r.get("within_inside") is None else f"{r['within_inside']} / {r['points'] - 2}")
-              + f" | {'yes' if r['holds'] else 'no'} | {r['worst_error_pct']:.3f} | {r['worst_bound_pct']:.3f} |"
-              for r in rows]
-    return lines
+    return [f"Accuracy of the chosen law against issue 37's target ({law.provenance.get('accuracy_rule', '')}; "
+            "zero tilt held out point by point, tilted points never fitted):", "", *accuracy_table(rows)]
+
+
+def accuracy_table(rows: list[dict]) -> list[str]:
+    """The rows of :func:`reports.bearing.pipeline.accuracy` as a Markdown table."""
+    return ["| reference | quantity | points within / all | of them between the ends | holds | worst error (%) "
+            "| its bound (%) |", "|---|---|---|---|---|---|---|"] + [
+        f"| {r['reference']} | {r['quantity']} | {r['within']} / {r['points']} | "
+        + ("–" if r.get("within_inside") is None else f"{r['within_inside']} / {r['points'] - 2}")
+        + f" | {'yes' if r['holds'] else 'no'} | {r['worst_error_pct']:.3f} | {r['worst_bound_pct']:.3f} |"
+        for r in rows]
 
 
 def _dundurs(law) -> str:

@@ -1,0 +1,338 @@
+"""Issue 37, must-show 3: a law for every ring pair, checked held out (force and moment), and its kernel cost.
+
+    .venv/bin/python benchmarks/bench_law_family.py [--pairs 30] [--seed S] [--workers 2] [--points 20000]
+                                                    [--repeats 9] [--out reports/published]
+
+Three parts, one run:
+
+1. **The 20 mm ring** (issue 38's newcomer bearing: steel ring R 40-45 mm, 20 mm wide, in an aluminium housing to
+   R 65 mm, clearance 0.03 mm) over 0.0005-0.03 mm and 0-8': ``ringcontact bearing`` on that ring-pair file
+   (:data:`RING`), its run folder written to ``<out>/law-family-newcomer-20mm/``; the 3D points are kept in the
+   3D store under the cache, so a second run reads them back. The law's accuracy against issue 37's target
+   (every held-out error within 2x the FEM point's stated error + 0.2 %), force and moment.
+2. **Generated pairs** (:func:`fem_reference.plane.generated.draw_pair`, a new seed each run unless ``--seed``):
+   each pair's 2D reference at :data:`POINTS_PER_PAIR` penetrations over its drawn range (the error-driven levels
+   of :func:`fem_reference.plane.adapt.adaptive_point` with their bar; a point without a bar is held to the
+   target's 0.2 % alone), every law family fitted and held out, the
+   chosen one's and the flexible family's accuracy against the same target (2D: force only).
+3. **Kernel cost**: the compiled loose-support kernel's point force with its Jacobian (the call the rotor's step
+   loop makes), on the 20 mm ring's foundation and foundation-spline laws, straight and tilted states in contact
+   over the range, beside *today's* foundation law: the kernel source of the commit before the spline family
+   (:data:`TODAY`), loaded from git into this process. Repeats interleaved; medians; the load average said.
+
+Writes ``<out>/law-family.md``.
+"""
+from __future__ import annotations
+
+import argparse
+import concurrent.futures as cf
+import importlib.util
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import numba  # noqa: E402
+
+from contact import calibrate as cal  # noqa: E402
+from contact.calibrate.fit import ACCURACY_RULE, within_accuracy  # noqa: E402
+from contact.dataset import read_dataset  # noqa: E402
+from contact.files import atomic_write_text  # noqa: E402
+from contact.loose_support import point_force_jacobian  # noqa: E402
+from contact.units import ARCMIN, MM  # noqa: E402
+
+POINTS_PER_PAIR = 5
+#: the kernel before the flexible family: "today's foundation law" of issue 37
+TODAY = "3a38b5f"
+RING = """schema = "ringcontact.ring-scene/1"
+name = "newcomer-20mm"
+description = "issue 38's newcomer bearing: steel ring R 40-45 mm x 20 mm in an aluminium housing to R 65 mm, clearance 0.03 mm"
+[bearing_ring]
+inner_radius_mm = 40.0
+outer_radius_mm = 45.0
+width_mm = 20.0
+youngs_modulus_gpa = 210.0
+poisson_ratio = 0.3
+[housing]
+radial_clearance_mm = 0.03
+outer_radius_mm = 65.0
+youngs_modulus_gpa = 70.0
+poisson_ratio = 0.33
+hold = "clamped-outer-axially-free"
+[drive]
+bearing = "rigid-inner-axially-free"
+[range]
+penetration_mm = [0.0005, 0.03]
+tilt_arcmin = [0, 8]
+"""
+
+
+def load() -> float:
+    return round(os.getloadavg()[0], 2)
+
+
+# ---------------------------------------------------------------------------------------------- 1. the 20 mm ring
+
+def ring_run(out: Path, workers: int) -> tuple[dict, float, tuple]:
+    """``ringcontact bearing`` on :data:`RING` into ``out``: its summary, wall time (s) and load (start, end)."""
+    from fem_reference import ring_scene
+    from reports.bearing import pipeline
+
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "newcomer-20mm.toml"
+    atomic_write_text(path, RING)
+    rs = ring_scene.load(str(path))
+    l0, t0 = load(), time.perf_counter()
+    summary = pipeline.run(rs, out, workers=workers, log=lambda s: print(s, file=sys.stderr))
+    return summary, time.perf_counter() - t0, (l0, load())
+
+
+def ring_laws(out: Path) -> dict:
+    """The ring's foundation and foundation-spline laws fitted on its 3D zero-tilt points (for the kernel cost)."""
+    ds = read_dataset(out / "fem3d-newcomer-20mm.json")
+    return {fam: cal.calibrate_scene(ds, "newcomer-20mm", families=(fam,))[0] for fam in ("foundation",
+                                                                                         "foundation-spline")}
+
+
+# ---------------------------------------------------------------------------------------------- 2. generated pairs
+
+def pair_check(index: int, seed: int) -> dict:
+    """One generated pair: its 2D points, every family held out, the chosen one's and the spline's accuracy."""
+    from fem_reference.plane.adapt import adaptive_point
+    from fem_reference.plane.generated import draw_pair
+    from fem_reference.ring_scene import default_grid
+
+    rng = np.random.default_rng([seed, index])
+    scene, (low, high) = draw_pair(rng, index)
+    r = scene.rings
+    row = {"index": index, "hold": scene.support_hold, "drive": scene.bearing_drive, "plane": scene.plane,
+           "clearance_mm": r.clearance_m / MM, "range_mm": [low / MM, high / MM]}
+    t0 = time.perf_counter()
+    try:
+        pen = np.array(default_grid(low / MM, high / MM, POINTS_PER_PAIR)) * MM
+        bars = [adaptive_point(scene, float(d)).bar for d in pen]
+    except Exception as exc:             # a pair the error-driven levels cannot solve is reported, not hidden
+        return {**row, "failed": f"{type(exc).__name__}: {str(exc)[:120]}", "wall_s": time.perf_counter() - t0}
+    force = np.array([b.force_n for b in bars])
+    refused = int(sum(not math.isfinite(b.error_rel) for b in bars))
+    fem = np.array([b.error_rel if math.isfinite(b.error_rel) else 0.0 for b in bars])    # no bar: held to 0.2 %
+    geo = cal.SceneGeometry(r.clearance_m, r.width_m, r.outer_radius_m, r.outer_radius_m - r.inner_radius_m,
+                            r.support_outer_radius_m - r.outer_radius_m - r.clearance_m,
+                            r.bearing.youngs_modulus_pa, r.bearing.poisson_ratio, r.support.youngs_modulus_pa,
+                            r.support.poisson_ratio, scene.plane)
+    fits = [f for f in (cal.fit_family(fam, pen, force, geo) for fam in cal.FAMILIES)
+            if np.all(np.isfinite(f.holdout_rel_err))]
+    chosen = cal.select_family(fits, fem)
+    spline = next((f for f in fits if f.family == "foundation-spline"), None)
+    return {**row, "wall_s": time.perf_counter() - t0, "fem_error_max_pct": 100 * float(fem.max()), "no_bar": refused,
+            "chosen": chosen.family, "chosen_holdout_max_pct": 100 * chosen.holdout_max,
+            "chosen_within": int(within_accuracy(chosen.holdout_rel_err, fem).sum()), "points": int(pen.size),
+            "families_holding": [f.family for f in fits if cal.family_holds(f.holdout_rel_err, fem)],
+            "spline_holdout_max_pct": math.nan if spline is None else 100 * spline.holdout_max,
+            "spline_within": 0 if spline is None else int(within_accuracy(spline.holdout_rel_err, fem).sum())}
+
+
+def pairs(n: int, seed: int, workers: int, keep: Path) -> tuple[list[dict], float, tuple]:
+    """Every pair's row; finished rows are kept in ``keep`` (JSON lines of this seed), so an interrupted run
+    resumes. Wall time: this run's (kept rows carry their own ``wall_s``)."""
+    import json
+
+    done = {}
+    if keep.exists():
+        for line in keep.read_text(encoding="utf-8").splitlines():
+            row = json.loads(line)
+            done[row["index"]] = row
+    todo = [i for i in range(n) if i not in done]
+    l0, t0 = load(), time.perf_counter()
+    with cf.ProcessPoolExecutor(max_workers=workers) as pool, keep.open("a", encoding="utf-8") as f:
+        for fut in cf.as_completed([pool.submit(pair_check, i, seed) for i in todo]):
+            row = fut.result()
+            done[row["index"]] = row
+            f.write(json.dumps(row) + "\n")
+            f.flush()
+            print(f"pair {row['index']}: {row.get('chosen', row.get('failed'))} ({row['wall_s']:.0f} s)", file=sys.stderr)
+    return [done[i] for i in range(n)], time.perf_counter() - t0, (l0, load())
+
+
+# ---------------------------------------------------------------------------------------------- 3. kernel cost
+
+def todays_kernel(tmp: Path):
+    """The kernel module of :data:`TODAY`, imported from its source under a private name."""
+    src = subprocess.run(["git", "-C", str(ROOT), "show", f"{TODAY}:contact/_kernel.py"], check=True,
+                         capture_output=True, text=True).stdout
+    path = tmp / "kernel_today.py"
+    path.write_text(src, encoding="utf-8")
+    spec = importlib.util.spec_from_file_location("kernel_today", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def make_loop(pfj):
+    """A compiled loop calling ``pfj`` (a kernel's point_force_jacobian) at every state: the step loop's call."""
+    @numba.njit
+    def loop(x, p):
+        jac = np.empty((4, 8))
+        acc = 0.0
+        for i in range(x.shape[0]):
+            f = pfj(x[i, 0], x[i, 1], x[i, 2], x[i, 3], x[i, 4], x[i, 5], x[i, 6], x[i, 7], p, jac)
+            acc += f[0] + jac[0, 0]
+        return acc
+    return loop
+
+
+def states(n: int, clearance_m: float, tilted: bool, seed: int = 3) -> np.ndarray:
+    """Relative states in contact over 0.0005-0.03 mm (log-uniform centre penetration), any direction; tilts
+    0-8' about a random axis when ``tilted``; small velocities."""
+    rng = np.random.default_rng(seed)
+    rad = clearance_m + np.exp(rng.uniform(math.log(0.0005 * MM), math.log(0.03 * MM), n))
+    ang = rng.uniform(0, 2 * math.pi, n)
+    t = rng.uniform(0, 8 * ARCMIN, n) if tilted else np.zeros(n)
+    ax = rng.uniform(0, 2 * math.pi, n)
+    v = rng.normal(0, 1e-3, (n, 4)) * np.array([1, 1, 0.1, 0.1])
+    return np.ascontiguousarray(np.column_stack([rad * np.cos(ang), rad * np.sin(ang), t * np.cos(ax),
+                                                 t * np.sin(ax), v]))
+
+
+def kernel_cost(laws: dict, n: int, repeats: int) -> tuple[dict, tuple]:
+    """Median ns per call of each case (today's foundation, this kernel's foundation and spline; straight and
+    tilted), repeats interleaved; and the load average (start, end)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        old = todays_kernel(Path(tmp))
+        old_loop, new_loop = make_loop(old.point_force_jacobian), make_loop(point_force_jacobian)
+        p_found = tuple(laws["foundation"].loose_support_params(mu=0.0, preload_N=0.0).kernel_args)
+        p_spline = tuple(laws["foundation-spline"].loose_support_params(mu=0.0, preload_N=0.0).kernel_args)
+        c = laws["foundation"].geometry.clearance_m
+        cases = {}
+        for tilted in (False, True):
+            x = states(n, c, tilted)
+            what = "tilted 0-8'" if tilted else "straight"
+            cases[f"foundation, today's kernel ({TODAY}), {what}"] = (old_loop, x, p_found[:old.N_PARAMS])
+            cases[f"foundation, this kernel, {what}"] = (new_loop, x, p_found)
+            cases[f"foundation-spline, this kernel, {what}"] = (new_loop, x, p_spline)
+        for fn, x, p in cases.values():
+            fn(x[:10], p)                                        # compile outside the timing
+        l0 = load()
+        times = {k: [] for k in cases}
+        for _ in range(repeats):
+            for k, (fn, x, p) in cases.items():
+                t0 = time.perf_counter()
+                fn(x, p)
+                times[k].append((time.perf_counter() - t0) / x.shape[0] * 1e9)
+        return {k: (statistics.median(v), min(v), max(v)) for k, v in times.items()}, (l0, load())
+
+
+# ---------------------------------------------------------------------------------------------- report
+
+def _ring_lines(summary: dict, wall_s: float, loads: tuple) -> list[str]:
+    from reports.bearing.report import accuracy_table
+
+    acc = summary["accuracy"]
+    lines = [f"`ringcontact bearing` on the ring-pair file [newcomer-20mm.toml](law-family-newcomer-20mm/newcomer-20mm.toml): "
+             f"{wall_s:.0f} s (load average {loads[0]:.2f} → {loads[1]:.2f}; 3D points read back from the 3D store "
+             "when an earlier run computed them). Law: "
+             f"`{summary['law_name']}`; why: {summary['selection_reason']}. Report: "
+             "[accuracy-newcomer-20mm.md](law-family-newcomer-20mm/accuracy-newcomer-20mm.md).", "",
+             f"Target: {ACCURACY_RULE}.", "", *accuracy_table(acc)]
+    m = summary.get("moment_check") or {}
+    if m.get("points"):
+        lines += ["", f"Moment at the law file's own bound (FEM error + {100 * m['error_bound_rel']:g} %, the rule that flags "
+                  f"a force): largest held-out error {100 * m['holdout_max_rel']:.2f} %, "
+                  f"{100 * m['beyond_fem_error_rel']:.2f} % beyond the FEM's: {'held' if m['held'] else 'not held'}."]
+    held = all(a["holds"] for a in acc)
+    return lines + ["", f"**The 20 mm ring {'meets' if held else 'does not meet'} the target** "
+                    + ("for force and moment." if held else "everywhere: " + "; ".join(
+                        f"{a['reference']} {a['quantity']} {a['within']}/{a['points']}" for a in acc
+                        if not a["holds"]) + ".")]
+
+
+def _pair_lines(rows: list[dict], seed: int, wall_s: float, loads: tuple) -> list[str]:
+    ok = [r for r in rows if "failed" not in r]
+    counts = sorted({r["points"] for r in ok})
+    lines = [f"Seed {seed} (numpy `default_rng([seed, index])` per pair), {len(rows)} pairs, "
+             f"{'/'.join(map(str, counts))} penetrations each (a grid of {POINTS_PER_PAIR} to 3 significant digits and "
+             f"the range's ends), {wall_s:.0f} s on the pool in this run (load average {loads[0]:.2f} → "
+             f"{loads[1]:.2f}; pairs finished by an interrupted run of the same seed are read back). Target: "
+             f"{ACCURACY_RULE} (2D: force).", "",
+             "| # | hold | drive | plane | c (mm) | range (mm) | FEM error max (%) | chosen | held-out max (%) "
+             "| within target | families holding | spline held-out max (%) | spline within | wall (s) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        head = (f"| {r['index']} | {r['hold']} | {r['drive']} | {r['plane']} | {r['clearance_mm']:.4f} | "
+                f"{r['range_mm'][0]:.4f}-{r['range_mm'][1]:.4f} |")
+        if "failed" in r:
+            lines.append(head + f" – | failed: {r['failed']} | | | | | | {r['wall_s']:.0f} |")
+            continue
+        lines.append(head + f" {r['fem_error_max_pct']:.3f} | {r['chosen']} | {r['chosen_holdout_max_pct']:.3f} | "
+                     f"{r['chosen_within']}/{r['points']} | {', '.join(r['families_holding']) or 'none'} | "
+                     f"{r['spline_holdout_max_pct']:.3f} | {r['spline_within']}/{r['points']} | {r['wall_s']:.0f} |")
+    chosen_all = sum(r["chosen_within"] == r["points"] for r in ok)
+    spline_all = sum(r["spline_within"] == r["points"] for r in ok)
+    holding = sum(bool(r["families_holding"]) for r in ok)
+    return lines + ["", f"Pairs solved: {len(ok)} of {len(rows)}. The chosen law meets the target at every point on "
+                    f"{chosen_all} of {len(ok)} pairs; the flexible family on {spline_all} of {len(ok)}; some family "
+                    f"holds the flag bound (FEM error + 2 %) on {holding} of {len(ok)}. Points within the target: "
+                    f"chosen {sum(r['chosen_within'] for r in ok)} of {sum(r['points'] for r in ok)}, flexible "
+                    f"{sum(r['spline_within'] for r in ok)} of {sum(r['points'] for r in ok)}. Points whose error-driven "
+                    f"levels gave no bar (held to 0.2 % alone): {sum(r['no_bar'] for r in ok)}."]
+
+
+def _cost_lines(cost: dict, loads: tuple, n: int, repeats: int) -> list[str]:
+    lines = [f"{n} states per case, {repeats} interleaved repeats; time per call of `point_force_jacobian` (force, "
+             f"moment and their 4x8 Jacobian) in a compiled loop, median (min-max); load average {loads[0]:.2f} → "
+             f"{loads[1]:.2f} (2 cores shared).", "",
+             "| case | ns per call, median | min-max | / today's foundation |", "|---|---|---|---|"]
+    for k, (med, lo, hi) in cost.items():
+        what = k.rsplit(", ", 1)[1]
+        base = next(v[0] for kk, v in cost.items() if kk.startswith("foundation, today's") and kk.endswith(what))
+        lines.append(f"| {k} | {med:.1f} | {lo:.1f}-{hi:.1f} | {med / base:.2f} |")
+    worst = max(v[0] / next(b[0] for kk, b in cost.items() if kk.startswith("foundation, today's")
+                            and kk.endswith(k.rsplit(", ", 1)[1])) for k, v in cost.items())
+    return lines + ["", f"Largest ratio to today's foundation law: {worst:.2f} (target: at most 2)."]
+
+
+def report(ring: tuple, pair: tuple, cost: tuple, args) -> str:
+    lines = ["# A law for every ring pair: held-out accuracy, force and moment, and kernel cost (issue 37)", "",
+             f"Generated by `benchmarks/bench_law_family.py --pairs {args.pairs} --seed {args.seed} --points "
+             f"{args.points} --repeats {args.repeats} --workers {args.workers}` (re-run it to replace these numbers; "
+             "a new seed each run unless given). Families: the analytic ones and the flexible `foundation-spline` "
+             "(contact/calibrate/spline.py); selection: " + cal.SELECTION_RULE + ".", "",
+             "## The 20 mm ring over 0.0005-0.03 mm and 0-8'", "", *_ring_lines(*ring), "",
+             "## Generated pairs (2D, force)", "", *_pair_lines(*pair), "",
+             "## Kernel cost against today's foundation law", "", *_cost_lines(*cost, args.points, args.repeats), ""]
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--pairs", type=int, default=30)
+    ap.add_argument("--seed", type=int, default=None, help="default: a new one each run (printed)")
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--points", type=int, default=20000)
+    ap.add_argument("--repeats", type=int, default=9)
+    ap.add_argument("--out", type=Path, default=ROOT / "reports" / "published")
+    args = ap.parse_args(argv)
+    if args.seed is None:
+        args.seed = int(np.random.SeedSequence().entropy % 2 ** 32)
+    print(f"seed {args.seed}", file=sys.stderr)
+    ring = ring_run(args.out / "law-family-newcomer-20mm", args.workers)
+    keep = Path(tempfile.gettempdir()) / f"bench-law-family-pairs-{args.seed}.jsonl"
+    rows, wall_s, loads = pairs(args.pairs, args.seed, args.workers, keep)
+    pair = (rows, args.seed, wall_s, loads)
+    cost = kernel_cost(ring_laws(args.out / "law-family-newcomer-20mm"), args.points, args.repeats)
+    atomic_write_text(args.out / "law-family.md", report(ring, pair, cost, args))
+    print(f"wrote {args.out / 'law-family.md'}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
