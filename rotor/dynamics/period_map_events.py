@@ -207,9 +207,10 @@ def _replays(pm, starts, modes, phi, t, n_steps: int = 1) -> np.ndarray:
 
 
 def _signature(status, modes) -> np.ndarray:
-    """The discrete decisions of replays (rows): least-residual steps, stick-onset re-projections, located events,
-    how each face's friction was held in the last step body (the step loop's ``status[2:7]``) and the end modes."""
-    return np.hstack([status[:, 2:7], modes])
+    """The discrete decisions of replays (rows): a non-finite end and its step, least-residual steps, stick-onset
+    re-projections, located events, how each face's friction was held in the last step body (the step loop's
+    ``status``) and the end modes."""
+    return np.hstack([status[:, :7], modes])
 
 
 def _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols) -> tuple[np.ndarray, np.ndarray]:
@@ -254,6 +255,7 @@ def _best_of_ladder(hs, d, scales, off=None) -> tuple[np.ndarray, np.ndarray]:
     q = (hs[:-1] / hs[1:]) ** 2
     rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)             # (pair, column, component)
     gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)        # (pair, column)
+    gap = np.where(np.isnan(gap), np.inf, gap)                                      # a non-finite replay
     use, none = gap, np.zeros(d.shape[1], dtype=bool)
     if off is not None and off.any():
         bad = off[:-2] | off[1:-1] | off[2:]                                          # levels k, k+1, k+2 of pair k
@@ -358,11 +360,17 @@ def _step_jacobian(pm, start, modes, phi, t, scales, n_steps: int = 1) -> tuple[
     counted as not smooth."""
     scales = np.asarray(scales, float)
     d, off, J, gap = _ladder(pm, start, modes, phi, t, scales, n_steps, PROGRESSIVE)
-    size = np.maximum(np.abs(J / scales[None, :]).max(axis=1), 1e-300)
+    size = np.maximum(np.nan_to_num(np.abs(J / scales[None, :]), posinf=0.0).max(axis=1), 1e-300)
     redo = np.flatnonzero(gap > REFINE_TOL * size)
     if redo.size:
         J[redo], gap[redo] = _refine(pm, start, modes, phi, t, scales, n_steps, d[:, redo], off[:, redo], redo,
                                      PROGRESSIVE)
+    for c in np.flatnonzero(~np.all(np.isfinite(J), axis=1)):
+        # every pair of levels touched a replay that did not end finite: the shortest level whose difference is
+        # finite, counted as not smooth (its agreement infinite)
+        fin = [k for k in range(len(LADDER) - 1, -1, -1) if np.all(np.isfinite(d[k, c]))]
+        J[c], gap[c] = (d[fin[0], c] if fin else 0.0), np.inf
+    size = np.maximum(np.abs(J / scales[None, :]).max(axis=1), 1e-300)
     unsmooth = int(np.count_nonzero(gap > SHRINK_TOL * size))
     end = _replays(pm, start[None, :], modes, phi, t, n_steps)[0]
     return np.ascontiguousarray(J.T), end, unsmooth
