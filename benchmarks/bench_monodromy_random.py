@@ -38,6 +38,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from contact.errors import ConvergenceError, OutsideDomainError  # noqa: E402
 from contact.files import atomic_write_text  # noqa: E402
 from rotor.dynamics.monodromy_check import central_differences, scaled_error, state_scales  # noqa: E402
 from rotor.dynamics.period_map import period_map  # noqa: E402
@@ -64,7 +65,11 @@ def monodromy_error(flow, sh) -> dict:
 def one_speed(scene: str, rpm: float) -> dict:
     from rotor.periodic.period_flow import make_flow
     t0 = time.perf_counter()
-    res = orbit(scene, rpm)
+    try:
+        res = orbit(scene, rpm)
+    except (OutsideDomainError, ConvergenceError) as exc:     # the transient left the law's domain: no state to check
+        return {"speed_rpm": rpm, "converged": False, "no_state": " ".join(str(exc).split())[:160],
+                "orbit_s": time.perf_counter() - t0}
     sh = res.shooting
     row = {"speed_rpm": rpm, "converged": bool(sh.converged), "period_revs": sh.period_revs,
            "steps_per_rev": sh.steps_per_rev, "orbit_s": time.perf_counter() - t0}
@@ -99,13 +104,17 @@ def report(scene, seed, rows, load0, load1, commit) -> str:
              f"state there: nothing to compare with); {len(rows) - len(ok)} speeds with no orbit. At those the map of "
              "one revolution is checked at the state the orbit search ended on (its last iterate): within "
              f"{BOUND:g} at **{sum(r['error'] <= BOUND for r in st_smooth)} of {len(st_smooth)}** whose reference "
-             f"converged ({len(states) - len(st_smooth)} did not). Together: **{sum(r['error'] <= BOUND for r in every)}"
+             f"converged ({len(states) - len(st_smooth)} did not; {sum(1 for r in rows if r.get('no_state'))} left the "
+             "law's domain in the transient: no state to check). Together: "
+             f"**{sum(r['error'] <= BOUND for r in every)}"
              f" of {len(every)}** speeds. Largest error where the reference converged: "
              f"{max((r['error'] for r in every), default=float('nan')):.1e}.",
              "", "| speed (rpm) | period (rev) | steps/rev | error | reference convergence | largest multiplier "
              "(monodromy / reference) | unsmooth columns |", "|---|---|---|---|---|---|---|"]
     for r in rows:
-        if r.get("error") is None:
+        if r.get("no_state"):
+            lines.append(f"| {r['speed_rpm']:.1f} | no orbit, no state: {r['no_state'].split(':')[0]} | | | | | |")
+        elif r.get("error") is None:
             lines.append(f"| {r['speed_rpm']:.1f} | no orbit | | | | | |")
         elif not r["converged"]:
             lines.append(f"| {r['speed_rpm']:.1f} | no orbit: 1 at the last iterate | {r['steps_per_rev']} | "
@@ -145,6 +154,9 @@ def main(argv=None) -> int:
     for rpm in speeds:
         rows.append(one_speed(a.scene, float(rpm)))
         r = rows[-1]
+        if r.get("no_state"):
+            print(f"{rpm:8.1f} rpm: no orbit, no state: {r['no_state']}", flush=True)
+            continue
         print(f"{rpm:8.1f} rpm: " + ("" if r["converged"] else "no orbit, last iterate: ")
               + (f"error {r['error']:.1e} (reference {r['reference_convergence']:.1e}), "
                  f"|mu| {r['largest_multiplier']:.5f}" if r.get("error") is not None else "-"), flush=True)
