@@ -138,8 +138,8 @@ def test_table4_period_4_orbit_at_10_180_3_rpm():
     """Dai et al. (2025) Table 4 at 10 180.3 rpm: the period-4 orbit ``ringcontact orbit`` finds (T/256), drawn by
     seed 1503871632 of benchmarks/bench_monodromy_random.py. A release at step 381, then the face slipping slowly:
     the ladder's long levels of the block lay past the slow-slip hold's decisions and agreed there; the located
-    monodromy was 4.1e-3 from central differences of the whole map (converged to 5.3e-7), 2.4e-7 with the levels
-    off the start's piece left out (``SAME_PIECE``)."""
+    monodromy was 4.1e-3 from central differences of the whole map (converged to 5.3e-7, within the benchmark's
+    1e-6), 2.4e-7 with the levels off the start's piece left out (``SAME_PIECE``)."""
     from rotor.dynamics.monodromy_check import central_differences, scaled_error, state_scales
     from rotor.periodic.period_flow import make_flow
     from rotor.studies.orbit import orbit
@@ -152,5 +152,5 @@ def test_table4_period_4_orbit_at_10_180_3_rpm():
     r = period_map(pm, sh.state, sh.t0_s, n, modes0=sh.modes, record_every=1)
     s = state_scales(pm, r.trajectory)
     ref, check = central_differences(pm, sh.state, sh.t0_s, n, sh.modes, s)
-    assert scaled_error(ref, check, s) < REFERENCE_CONVERGED
+    assert scaled_error(ref, check, s) < BOUND      # the benchmark's criterion: measured 5.2e-7 to 5.3e-7 here
     assert scaled_error(r.monodromy, ref, s) < BOUND
