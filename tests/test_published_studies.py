@@ -231,6 +231,35 @@ def test_params_statements_follow_from_its_committed_csv():
             assert f"1X varies by at most {worst:.1f} % across δ" in md
 
 
+def test_clearance_geometry_follows_from_its_committed_csv():
+    """study-findings.md's clearance mechanism ("Clearance, where the ring rides …", both meshes) against
+    study-clearance-geometry.csv: the bullets are what the CSV gives (reports.studies.clearance_geometry); at
+    every speed of 9 000–12 000 rpm on both meshes (where 2X rises with δ0 against Fig. 18) the ring's mean
+    offset follows δ0 with the same swing (rotor.studies.section5.offset_follows) and the contact force's 2X
+    changes with δ0 by more than the support's 2X displacement; the CSV's support 2X and periodic flags are
+    study-params.csv's and study-params-e2.csv's (δ = 1 mm). Fails when a rerun of the study breaks the mechanism."""
+    from reports.studies.clearance_geometry import H1, geometry_lines, judged, relative_change
+
+    rows = _csv("study-clearance-geometry.csv")
+    md = _md("study-findings.md")
+    lines = geometry_lines(rows, 2)
+    assert len(lines) == 2 and all(line in md for line in lines)
+    j = judged(rows)
+    for mesh, name in (("paper", "study-params.csv"), ("2/segment", "study-params-e2.csv")):
+        h1 = {rpm: v for (m, rpm), v in j.items() if m == mesh and H1[0] <= rpm <= H1[1]}
+        assert len(h1) == 6, (mesh, sorted(h1))
+        for rpm, (rs, res) in h1.items():
+            assert res["holds"], (mesh, rpm, res)
+            assert abs(relative_change(rs, "force_2x_N")) > abs(relative_change(rs, "support_2x_um")), (mesh, rpm)
+        params = {(float(r["speed_rpm"]), float(r["clearance_mm"])): r for r in _csv(name)
+                  if float(r["misalignment_mm"]) == 1.0}
+        geo = {(float(r["speed_rpm"]), float(r["clearance_mm"])): r for r in rows if r["mesh"] == mesh}
+        assert set(geo) == set(params), mesh
+        for k, r in geo.items():
+            assert r["periodic"] == params[k]["converged"], (mesh, k)
+            assert float(r["support_2x_um"]) == pytest.approx(float(params[k]["support_2X_um"]), rel=1e-5, abs=1e-9)
+
+
 def test_findings_reading_counts_of_periodic_speeds_are_the_cascades():
     """study-findings.md's reading: "The tilt-ignored cascades went from 18 to 40 periodic speeds of 61 on the paper's
     mesh ... and from 14 to 18 on the converged; the converged tilt-on cascade from 35 to 39": the new counts are the

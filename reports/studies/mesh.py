@@ -112,8 +112,10 @@ def findings_csv(paper: dict, converged: dict, elements: int, path: Path) -> Pat
 
 
 def mechanism_lines(paper: dict, converged: dict, elements: int) -> list[str]:
-    """The two mechanisms behind failing findings, measured: the clearance-independent stiffness of the
-    conformal law at the penetrations reached, and the speed from which the end faces slip."""
+    """The mechanisms behind failing findings, measured: the clearance-independent stiffness of the conformal law
+    at the penetrations reached, where the ring rides at each clearance (reports/studies/clearance_geometry.py),
+    the contact pattern with δ, and the speed from which the end faces slip."""
+    from reports.studies.clearance_geometry import as_read, both_meshes, geometry_lines
     from rotor.model.scene import load_scene
     from rotor.studies.section5 import first_slip, law_secant_stiffness
 
@@ -140,6 +142,7 @@ def mechanism_lines(paper: dict, converged: dict, elements: int) -> list[str]:
     out[-1] += ("Where the ring is in contact at every δ0, the support therefore meets nearly the same spring "
                 "whatever δ0, and 2X/3X barely change with it; a change against the paper's sense is not explained "
                 "by this, and since the paper uses the same law, neither is the difference from its Fig. 18.")
+    out += geometry_lines(as_read(both_meshes(paper.get("params"), converged.get("params"), elements)), elements)
     for tag, runs in (("paper's mesh", paper), (f"{elements} elements/segment", converged)):
         out += misalignment_lines(runs.get("params") or [], tag)
     for tag, runs in (("paper's mesh", paper), (f"{elements} elements/segment", converged)):

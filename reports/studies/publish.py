@@ -5,6 +5,7 @@ from pathlib import Path
 
 from contact.files import atomic_write_text
 from reports.studies.cascade import CASCADE_TITLE, NOTILT_TITLE, cascade_figures, cascade_note
+from reports.studies.clearance_geometry import write_geometry_csv
 from reports.studies.common import load_points
 from reports.studies.mesh import KINDS, findings_csv, findings_figure, findings_note
 from reports.studies.params import params_figures, params_note
@@ -46,6 +47,9 @@ def publish(runs: dict, published, *, findings_extra: str = "") -> list[Path]:
         files.append(atomic_write_text(published / "study-findings.md",
                                        findings_note(paper, conv, elements, extra=findings_extra)))
         files.append(findings_csv(paper, conv, elements, published / "study-findings.csv"))
+        if paper.get("params") or conv.get("params"):
+            files.append(write_geometry_csv(paper.get("params"), conv.get("params"), elements,
+                                            published / "study-clearance-geometry.csv"))
     return files
 
 

@@ -434,3 +434,29 @@ def misalignment_mechanism(points: dict) -> tuple[dict, str]:
             + "; support 1X " + " / ".join(f"{amp(c, 1):.3g}" for c in cases)
             + " µm, 3X " + " / ".join(f"{amp(c, 3):.3g}" for c in cases) + " µm")
     return pat, text
+
+
+#: the clearance mechanism's tolerance, as a share of the clearance change compared (–): the ring's mean offset
+#: follows δ0 where it moves by 1 ± this of δ0's change and its swings differ by less than this of it
+FOLLOW_TOL = 0.1
+
+
+def ring_offset(arrays) -> tuple[float, float]:
+    """Where the ring rides in its support over a point's record: ``(mean, swing)`` (m) of the mean of its two
+    edges' radial offsets ``r1``, ``r2`` (:func:`rotor.studies.steady_state.run_point`'s arrays); swing = peak to
+    peak. In contact the ring sits near δ0; stuck, wherever it was held."""
+    r = 0.5 * (np.asarray(arrays["r1"], float) + np.asarray(arrays["r2"], float))
+    return float(r.mean()), float(np.ptp(r))
+
+
+def offset_follows(clearances_m, means_m, swings_m) -> dict:
+    """The geometric reading of the clearance study at one speed (§5.3.1 (2)): between the smallest and the largest
+    clearance, ``slope`` (the mean offset's change over δ0's change, –), ``swing_change`` (largest minus smallest
+    swing over δ0's change, –), ``inside_m`` (δ0 minus the mean offset at each clearance, m) and ``holds``: the
+    mean offset follows δ0 with the same swing (slope within 1 ± :data:`FOLLOW_TOL`, swing change below it)."""
+    d0, m, s = (np.asarray(x, float) for x in (clearances_m, means_m, swings_m))
+    i, j = int(np.argmin(d0)), int(np.argmax(d0))
+    slope = (m[j] - m[i]) / (d0[j] - d0[i])
+    swing_change = (s.max() - s.min()) / (d0[j] - d0[i])
+    return {"slope": float(slope), "swing_change": float(swing_change), "inside_m": d0 - m,
+            "holds": bool(abs(slope - 1.0) <= FOLLOW_TOL and swing_change < FOLLOW_TOL)}

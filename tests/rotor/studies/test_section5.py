@@ -143,3 +143,28 @@ def test_low_speed_harmonics_are_judged_against_five_percent_of_1x():
     assert v == "agrees" and e == pytest.approx(0.04)
     v, e, t, _ = f.judge(_amps(base=row(0.10)))
     assert v == "disagrees" and e == pytest.approx(-0.05) and 0 < t < 0.01
+
+
+def test_ring_offset_is_the_mean_and_swing_of_the_two_edges():
+    """The ring's offset is the mean of its edges' offsets: r1 = 50 µm + 1 µm cos φ and r2 = 49 µm + 1 µm cos φ ride
+    at 49.5 µm with a 2 µm swing (peak to peak)."""
+    from rotor.studies.section5 import ring_offset
+
+    phi = 2 * np.pi * np.arange(256) / 256
+    mean, swing = ring_offset({"r1": 50e-6 + 1e-6 * np.cos(phi), "r2": 49e-6 + 1e-6 * np.cos(phi)})
+    assert mean == pytest.approx(49.5e-6, rel=1e-12) and swing == pytest.approx(2e-6, rel=1e-12)
+
+
+@pytest.mark.parametrize("means_um, swings_um, holds", [
+    ((29.5, 49.5, 79.5), (2.2, 2.3, 2.4), True),      # rides on the bore at every δ0, the same swing
+    ((22.0, 37.0, 66.0), (2.2, 2.3, 2.4), False),     # moves by 0.88 of δ0's change: the ring leaves the bore
+    ((29.5, 49.5, 79.5), (2.0, 4.0, 7.5), False)])    # the swing grows by 5.5 µm, 0.11 of δ0's change
+def test_offset_follows_the_clearance_only_with_slope_one_and_the_same_swing(means_um, swings_um, holds):
+    """The geometric reading of the clearance study: between δ0 = 0.03 and 0.08 mm the mean offset must move by
+    1 ± 0.1 of δ0's change and the swings differ by less than 0.1 of it (5 µm)."""
+    from rotor.studies.section5 import offset_follows
+
+    r = offset_follows(np.array([0.03, 0.05, 0.08]) * 1e-3, np.array(means_um) * 1e-6, np.array(swings_um) * 1e-6)
+    assert r["holds"] is holds
+    assert r["slope"] == pytest.approx((means_um[2] - means_um[0]) / 50.0)
+    assert r["inside_m"] == pytest.approx((np.array([30.0, 50.0, 80.0]) - means_um) * 1e-6)

@@ -154,3 +154,27 @@ def test_a_point_past_the_law_domain_is_recorded_not_failed():
     arrays, info = run_point("paper-table4", 15000.0, misalignment_m=2e-3, options=OPTIONS)
     assert "neat-fit" in info["outside_law_domain"] and not info["converged"]
     assert np.isnan(arrays["harm_q"]).all() and arrays["harm_q"].shape == (5, len(arrays["channels"]))
+
+
+@pytest.mark.slow
+def test_clearance_geometry_at_10200_rpm_is_what_the_points_give_now():
+    """study-clearance-geometry.csv's rows at 10 200 rpm on the paper's mesh (periodic at δ0 = 0.03 / 0.05 /
+    0.08 mm), recomputed: the ring's mean offset and swing, the contact share, the contact force's 1X and 2X and the
+    support's 2X to the CSV's digits (reports.studies.clearance_geometry), and the ring's offset follows δ0 with
+    the same swing there (rotor.studies.section5.offset_follows)."""
+    from reports.studies.clearance_geometry import CASES, HEADER, as_read, geometry_rows, judged
+
+    rpm = 10200.0
+    pts = []
+    for prefix, d0_mm in CASES:
+        arrays, info = point("paper", rpm, {0.03: "c0.03", 0.05: "base", 0.08: "c0.08"}[d0_mm])
+        pts.append(SimpleNamespace(key=f"{prefix}{rpm}", params={"speed_rpm": rpm}, info=info, arrays=arrays))
+    now = as_read(geometry_rows(pts, "paper"))
+    with open(ROOT / "reports" / "published" / "study-clearance-geometry.csv", newline="", encoding="utf-8") as fh:
+        pub = [r for r in csv.DictReader(fh) if r["mesh"] == "paper" and float(r["speed_rpm"]) == rpm]
+    assert len(now) == len(pub) == 3
+    for a, b in zip(now, pub):
+        assert (a["clearance_mm"], a["periodic"]) == (b["clearance_mm"], b["periodic"]) == (a["clearance_mm"], "1")
+        for col in HEADER[4:]:
+            assert float(a[col]) == pytest.approx(float(b[col]), rel=1e-4, abs=1e-9), (a["clearance_mm"], col)
+    assert judged(now)[("paper", rpm)][1]["holds"]
