@@ -22,7 +22,8 @@ def amplitude_grid(groups: dict, label, title: str):
     ``groups``: ``{value: (speeds_rpm (P,), amplitudes_um (P, 3 locations, 3 orders)[, periodic (P,) bool])}``.
     Amplitudes at or below :data:`FLOOR_UM` break the curve and are marked ``v`` on the lower edge ("below
     floor"), so a zero is never drawn as a dip. Points without a periodic steady state (their amplitudes are
-    those of a record that does not repeat) are drawn as open circles, and their count is in the legend.
+    those of a record that does not repeat) are drawn as open circles, and their count is in the first panel's
+    legend; every panel has a legend of its curves.
     """
     plt = pyplot()
     from matplotlib.transforms import blended_transform_factory
@@ -55,7 +56,8 @@ def amplitude_grid(groups: dict, label, title: str):
     axes[0, 0].plot([], [], "v", color="0.3", ms=4, label=f"below floor ({FLOOR_UM:g} µm, e.g. zero)")
     axes[0, 0].plot([], [], "o", ms=6, mfc="none", mec="0.3", label=f"not periodic ({n_irregular} points)")
     axes[0, 0].plot([], [], "x", ms=5, color="0.3", label="beyond the contact law's domain (no record)")
-    axes[0, 0].legend(fontsize=8)
+    for ax in axes.flat:                       # every panel names its curves; the marks are explained in the first
+        ax.legend(fontsize=7)
     fig.suptitle(title, fontsize=10)
     return fig
 

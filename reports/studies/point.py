@@ -30,8 +30,10 @@ def point_figures(out, figs, *, tasks=None, prefix: str = "study-point") -> list
         order = np.argsort(xs, kind="stable")
         Q = a["q_all"][:, iy] - a["q_all"][:, iy].mean(axis=0)
         spr = p.info["samples_per_rev"]
-        for k in range(0, spr, max(1, spr // 8)):
-            ax.plot(xs[order] * 1e3, Q[k, order] * 1e6, "-o", ms=3, lw=1)
+        step = max(1, spr // 8)
+        for k in range(0, spr, step):
+            ax.plot(xs[order] * 1e3, Q[k, order] * 1e6, "-o", ms=3, lw=1, label=f"{k // step}/8 rev")
+        ax.legend(fontsize=6, ncol=2, title="instant", title_fontsize=6)
         ax.set_xlabel("axial position x (mm)")
         ax.set_ylabel("dynamic deflection y (µm)")
         ax.set_title("(a) rotor deflection over one revolution", fontsize=9)
@@ -41,21 +43,24 @@ def point_figures(out, figs, *, tasks=None, prefix: str = "study-point") -> list
             y = (a["q"][:, c] - a["q"][:, c].mean()) * 1e6
             z = (a["q"][:, cz] - a["q"][:, cz].mean()) * 1e6
             ax = fig.add_subplot(gs[0, j + 1])
-            ax.plot(y, z, lw=0.8)
+            ax.plot(y, z, lw=0.8, label="y–z, mean removed")
+            ax.legend(fontsize=7, loc="upper right")
             ax.set_aspect("equal", "datalim")
             ax.set_xlabel("y (µm)")
             ax.set_ylabel("z (µm)")
             ax.set_title(f"orbit, {lab}", fontsize=9)
             ax = fig.add_subplot(gs[1, j + 1])
-            ax.plot((a["t"] - a["t"][0]) * 1e3, y, lw=0.8)
+            ax.plot((a["t"] - a["t"][0]) * 1e3, y, lw=0.8, label="y − mean")
+            ax.legend(fontsize=7, loc="upper right")
             ax.set_xlabel("time (ms)")
             ax.set_ylabel("y − mean (µm)")
             ax.set_title(f"time history, {lab}", fontsize=9)
             ax = fig.add_subplot(gs[2, j + 1])
             f = rpm / 60 * a["spec_orders"]
-            ax.semilogy(f, a["spec_v"][:, c] * 1e3, lw=0.8)
+            ax.semilogy(f, a["spec_v"][:, c] * 1e3, lw=0.8, label="y velocity")
             for k in range(1, 6):
-                ax.axvline(k * rpm / 60, color="0.8", lw=0.5, zorder=0)
+                ax.axvline(k * rpm / 60, color="0.8", lw=0.5, zorder=0, label="1X–5X" if k == 1 else None)
+            ax.legend(fontsize=7, loc="upper right")
             ax.set_ylim(max(a["spec_v"][:, c].max() * 1e3 * 1e-6, 1e-9), a["spec_v"][:, c].max() * 1e3 * 3)
             ax.set_xlabel("frequency (Hz)")
             ax.set_ylabel("y-velocity amplitude (mm/s)")

@@ -118,6 +118,20 @@ def test_params_zeros_are_marked_below_the_floor_not_drawn_as_dips(monkeypatch):
     assert any("below floor" in t.get_text() for t in fig.axes[0].get_legend().get_texts())
 
 
+def test_params_figures_have_a_legend_on_every_panel():
+    """Figs. 18-19 and their ratios to the scene's value (issue 39: legends on every panel): each of the nine panels
+    names its curves, one entry per clearance (or per ratio to the reference)."""
+    rpm = np.array([3000.0, 6000.0, 9000.0])
+    groups = {v: (rpm, np.full((3, 3, 3), 1.0 + k), np.ones(3, bool)) for k, v in enumerate((3e-5, 5e-5, 8e-5))}
+    lab = lambda v: f"δ0 = {v * 1e3:g} mm"                                      # noqa: E731
+    for fig, names in ((params.amplitude_grid(groups, lab, "t"), [lab(v) for v in groups]),
+                       (params.ratio_grid(groups, 5e-5, lab, "t"), [f"{lab(v)} / {lab(5e-5)}" for v in (3e-5, 8e-5)])):
+        assert len(fig.axes) == 9
+        for ax in fig.axes:
+            texts = [t.get_text() for t in ax.get_legend().get_texts()]
+            assert texts[:len(names)] == names, (ax.get_title(), texts)
+
+
 def test_cascade_maps_name_the_orders_and_share_one_amplitude_scale(tmp_path, monkeypatch):
     """The cascades are maps of speed against order: ticks 0, 1X–5X on the order axis; every panel of a figure
     (and the tilt-ignored cascade drawn beside it) on one logarithmic scale, four decades, with one colour bar
@@ -156,3 +170,36 @@ def test_one_naming_of_harmonic_orders(folder, pattern):
             if HARMONIC_F.search(PAPER_QUOTES.sub("", line)):
                 found.append(f"{path.relative_to(ROOT)}:{i + 1}: {line.strip()[:80]}")
     assert found == [], "use 1X…5X for harmonic orders"
+
+
+def test_point_figure_has_a_legend_on_every_panel(monkeypatch):
+    """Figs. 13-15 at one speed (reports.studies.point): every panel has a legend (issue 39), the deflection panel
+    one entry per instant of the revolution. A synthetic record of paper-table4's channels, one revolution of 64
+    samples."""
+    from types import SimpleNamespace
+
+    from reports.studies import point
+    from rotor.studies.steady_state import _scene_model
+
+    _, model = _scene_model("paper-table4", None)
+    spr = 64
+    phi = 2 * np.pi * np.arange(spr) / spr
+    channels = np.array([f"{n}.{d}" for n in ("disk1", "disk2", "s") for d in ("y", "z")])
+    q = np.column_stack([1e-6 * (np.cos if d == "y" else np.sin)(phi) for _ in range(3) for d in ("y", "z")])
+    dofs = np.array(model.dof_names)
+    arrays = {"dof_names": dofs, "q_all": 1e-6 * np.outer(np.cos(phi), np.ones(len(dofs))), "q": q,
+              "channels": channels, "t": phi / 1000.0, "spec_orders": np.linspace(0, 6, 48),
+              "spec_v": np.full((48, len(channels)), 1e-3), "r1": 49e-6 + 1e-6 * np.cos(phi),
+              "r2": 49e-6 + 1e-6 * np.sin(phi)}
+    p = SimpleNamespace(params={"speed_rpm": 10500.0, "scene": "paper-table4"}, arrays=arrays,
+                        info={"samples_per_rev": spr, "clearance_m": 50e-6, "label": "impact", "contact_fraction": 0.5,
+                              "converged": True, "period_revs": 1})
+    monkeypatch.setattr(point, "load_points", lambda out, tasks=None: [p])
+    figs = _capture(monkeypatch, point)
+    point.point_figures("unused", Path("unused"))
+    (fig,) = figs
+    assert len(fig.axes) == 11
+    for ax in fig.axes:
+        assert ax.get_legend() is not None, ax.get_title()
+    texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert texts == [f"{k}/8 rev" for k in range(8)]
