@@ -9,7 +9,8 @@ from reports.studies.common import integrator_text, LOCATIONS, pyplot, save
 
 
 def runup_figures(out, figs, *, prefix: str = "study-runup") -> list[Path]:
-    """Time–frequency cascade of a run-up (see :mod:`rotor.studies.runup`)."""
+    """Time–frequency cascade of a run-up (see :mod:`rotor.studies.runup`), the orders 1X–5X dotted (in each panel's
+    legend), and the time histories."""
     from rotor.studies.runup import load_runup, stft_cascade
 
     plt = pyplot()
@@ -26,7 +27,9 @@ def runup_figures(out, figs, *, prefix: str = "study-runup") -> list[Path]:
         m = ax.pcolormesh(fr, rpm_c, A, norm=LogNorm(vmin=top * 1e-4, vmax=top), cmap="viridis", shading="auto",
                           rasterized=True)
         for k in range(1, 6):
-            ax.plot(k * rpm_c / 60, rpm_c, ":", color="w", lw=0.6)
+            ax.plot(k * rpm_c / 60, rpm_c, ":", color="w", lw=0.6,
+                    label="1X–5X (k × rotation frequency)" if k == 1 else None)
+        ax.legend(fontsize=7, loc="lower right", facecolor="0.3", labelcolor="w", framealpha=0.8)
         ax.set_xlim(0, 5.5 * rpm_c.max() / 60)
         ax.set_xlabel("frequency (Hz)")
         ax.set_ylabel("rotor speed (rpm)")

@@ -203,3 +203,28 @@ def test_point_figure_has_a_legend_on_every_panel(monkeypatch):
         assert ax.get_legend() is not None, ax.get_title()
     texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert texts == [f"{k}/8 rev" for k in range(8)]
+
+
+def test_runup_cascade_has_a_legend_on_every_panel(monkeypatch):
+    """The run-up's time-frequency cascade (reports.studies.runup): each of its three panels names the dotted 1X-5X
+    lines (issue 39: legends on every panel), and both panels of the time histories have their legends. A synthetic
+    ramp 600 -> 6 000 rpm in 1 s, its 1X at every channel."""
+    from reports.studies import runup
+    import rotor.studies.runup as ru
+
+    t = np.linspace(0.0, 1.0, 20001)
+    rpm = 600.0 + 5400.0 * t
+    phase = 2 * np.pi * np.cumsum(rpm / 60.0) * (t[1] - t[0])
+    channels = np.array(["disk1.y", "disk2.y", "s.y"])
+    wave = np.column_stack([np.cos(phase)] * 3)
+    r = {"t": t, "rpm": rpm, "channels": channels, "v": 1e-3 * wave, "q": 1e-6 * wave, "r1": 40e-6 + 0 * t,
+         "r2": 40e-6 + 0 * t, "clearance_m": 50e-6, "info": {}}
+    monkeypatch.setattr(ru, "load_runup", lambda out: r)
+    figs = _capture(monkeypatch, runup)
+    runup.runup_figures("unused", Path("unused"))
+    cascade, time = figs
+    panels = [ax for ax in cascade.axes if ax.get_xlabel() == "frequency (Hz)"]
+    assert len(panels) == 3
+    for ax in panels:
+        assert [t.get_text() for t in ax.get_legend().get_texts()] == ["1X–5X (k × rotation frequency)"]
+    assert all(ax.get_legend() is not None for ax in time.axes)
