@@ -111,8 +111,9 @@ def _decade_axis(ax, threshold: float, side: str) -> None:
                           + (f"{10.0 ** t:g}" if t >= 0 else f"1/{10 ** -t:g}") for t in ticks], fontsize=8)
     ax.set_xticks([math.log10(m * 10.0 ** d) for d in range(-DECADES, DECADES) for m in range(2, 10)], minor=True)
     t = math.log10(threshold)
-    ax.axvline(t, color="k", lw=0.8)
-    ax.axvspan(t, lim, color="tab:green", alpha=0.08) if side == "above" else ax.axvspan(-lim, t, color="tab:green", alpha=0.08)
+    ax.axvline(t, color="k", lw=0.8, label=f"threshold {threshold:g}")
+    span = (t, lim) if side == "above" else (-lim, t)
+    ax.axvspan(*span, color="tab:green", alpha=0.08, label="paper's side")
     ax.grid(True, axis="x", which="major", alpha=0.4)
     ax.grid(True, axis="x", which="minor", alpha=0.12)
 
@@ -183,7 +184,9 @@ def figure(tabs: dict, variants, prefix: Path, *, scene: str = "paper-table4") -
                      ({"marker": ">", "color": "k"}, f"beyond ×{10 ** DECADES} (or below 1/{10 ** DECADES}),\n"
                                                      "drawn on the edge")):
         axes[2].scatter([], [], s=22, label=text, **kw)
-    axes[2].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    axes[2].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))     # speeds and marks: all panels
+    for ax, where in zip(axes[:2], ("lower right", "lower left")):                  # each panel: its threshold,
+        ax.legend(fontsize=7, loc=where, framealpha=0.9)                             # where its dots leave room
     fig.suptitle("Do the §5 findings of Dai et al. (2025) hold when the inputs Table 4 does not give are changed?\n"
                  "Deciding ratio per changed input (rows) and speed (dots), Table 4 rotor; green: the paper's side",
                  fontsize=10)

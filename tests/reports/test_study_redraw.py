@@ -118,6 +118,18 @@ def test_params_zeros_are_marked_below_the_floor_not_drawn_as_dips(monkeypatch):
     assert any("below floor" in t.get_text() for t in fig.axes[0].get_legend().get_texts())
 
 
+def test_sensitivity_figure_has_a_legend_on_every_panel(tmp_path, monkeypatch):
+    """Each of the three panels names its threshold and the paper's side (issue 39: legends on every panel); the
+    third carries the speeds and marks shared by all three."""
+    figs = _capture(monkeypatch, sf)
+    sf.figure({"base": _table(1)}, [sens.Variant("base", {})], tmp_path / "s")
+    (fig,) = figs
+    for ax, (_, threshold, _) in zip(fig.axes[:3], sf.PANELS.values()):
+        texts = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert texts[:2] == [f"threshold {threshold:g}", "paper's side"], texts
+    assert any(t.get_text().endswith(" rpm") for t in fig.axes[2].get_legend().get_texts())
+
+
 def test_params_figures_have_a_legend_on_every_panel():
     """Figs. 18-19 and their ratios to the scene's value (issue 39: legends on every panel): each of the nine panels
     names its curves, one entry per clearance (or per ratio to the reference)."""
