@@ -107,7 +107,7 @@ def report(rows: list[dict], load0, load1, repeats: int, commit: str) -> str:
              f"options (events located), one revolution of the period map with its monodromy from the state "
              f"{TRANSIENT_REVS} revolutions after the linear start. *whole*: every event-step column differenced at "
              "all 7 levels of the ladder (the earlier route); *progressive*: 3 levels for every column, then level by "
-             "level only the columns whose best agreement is not yet within REFINE_TOL (1e-7) of their size "
+             "level only the columns whose best agreement is not yet within REFINE_TOL of their size "
              "(rotor/dynamics/period_map_events.py, `_ladder`), the refinement's half levels the same way (`_refine`). "
              "Replays: single steps the ladders and refinements ran. "
              "Error: against the Richardson extrapolation of central differences of the whole map at 1e-7 and 2e-7 "

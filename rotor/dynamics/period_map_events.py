@@ -72,8 +72,14 @@ from rotor.dynamics.production_loop import RELEASE_HOLD, step_loop
 #: test_monodromy_random_speeds.py, benchmarks/bench_monodromy_random.py).
 LADDER = tuple(5.12e-4 * 0.25 ** k for k in range(7))
 #: a column whose best agreement on :data:`LADDER` is worse than this fraction of its size is differenced again at
-#: the steps halfway between (:func:`_step_jacobian`)
-REFINE_TOL = 1e-7
+#: the steps halfway between (:func:`_step_jacobian`); a column also stops on the ladder once within it
+#: (:func:`_ladder`). A step's derivative error is amplified by the steps after it: measured at the orbit of Table 4
+#: at 12 241.9 rpm (T/256, drawn by seed 1840347559 of benchmarks/bench_monodromy_random.py; differenced steps
+#: 14-25, 112, 123, 143, 172, 248, the error growing from 1e-7 at step 124 to 4.5e-6 at step 256 with no event
+#: between), the located monodromy was 4.5e-6 from central differences of the whole map (converged to 7.7e-7) at
+#: 1e-7 and 7.7e-7 at 1e-8 (1e-9: 7.9e-7), at 1.6 times the cost (0.58 -> 0.94 s); on 8 transient states of
+#: random speeds (seed 4242) the same errors within the reference's convergence at 1.3-1.5 times the cost
+REFINE_TOL = 1e-8
 #: a column whose best two successive levels still differ by more than this fraction of its size is not smooth at
 #: any level of the ladder (a threshold of the step within the smallest step of its start): counted and reported
 SHRINK_TOL = 1e-2
@@ -108,6 +114,15 @@ ENTER_BEFORE = True
 #: limit): the located monodromy 4.1e-3 from central differences of the whole map (converged to 5.3e-7) with every
 #: level counted, 2.4e-7 without the levels off the piece. False: every level counts (the earlier route)
 SAME_PIECE = True
+#: every step of the run is replayed (one compiled call), not only the candidates of :func:`event_steps`, and a step
+#: in which the loop located an event (its ``status[4]``) is differenced even where the record shows none: a plain
+#: first pass whose velocity reversed (``w_n+1 · w_n ≤ 0``) is split at the reversal, and the located step may end
+#: with its velocity turned by less than a right angle, so the record alone does not reveal it. Measured at the orbit
+#: of Table 4 at 16 440.4 rpm (T/256, drawn by seed 1840347559 of benchmarks/bench_monodromy_random.py; step 220, a
+#: face slowing from 1 437 to 712 ``w_reg``, turned by 89° at its end): carried as a plain step, the located
+#: monodromy was 1.3e-1 from central differences of the whole map (converged to 2.8e-7); differenced, 2.6e-7. The
+#: replays of the plain steps cost about one more run of the period. False: the candidates alone (the earlier route)
+REPLAY_EVERY_STEP = True
 
 
 def event_steps(pm, tr) -> list[int]:
@@ -147,10 +162,13 @@ def _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held: bool = True) -
     plain step (a central difference of a step where a face nearly sticks or has just stuck is less accurate:
     measured on Table 4 at 10 500 rpm, 3e-6 and 1e-5 against the analytic pass's 3e-7 at a stick onset and a
     release), or one that held a face's friction (module docstring, "Held steps, carried"). The rest are
-    differenced. With ``carry_held`` False (the earlier route) a candidate is carried only where its plain replay
-    (events not located) reproduces the record."""
+    differenced. With :data:`REPLAY_EVERY_STEP` every step is a candidate (an event the loop located may leave no
+    trace in the record). With ``carry_held`` False (the earlier route) a candidate is carried only where its plain
+    replay (events not located) reproduces the record."""
     cand = np.array(event_steps(pm, tr), dtype=np.int64)
     held = np.zeros((len(rec_p), 2), dtype=np.int64)
+    if REPLAY_EVERY_STEP and carry_held and pm.n_faces:
+        cand = np.arange(len(rec_p) - 1, dtype=np.int64)
     if cand.size == 0:
         return [], held
     starts = np.hstack([rec_p[cand], rec_v[cand], rec_a[cand]])
@@ -253,8 +271,9 @@ def _best_of_ladder(hs, d, scales, off=None) -> tuple[np.ndarray, np.ndarray]:
     touching one is not chosen while the column has a pair that does not (else it is chosen as without ``off``, and
     its agreement is infinite: refined, and counted as not smooth if no level of the refinement is on the piece)."""
     q = (hs[:-1] / hs[1:]) ** 2
-    rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)             # (pair, column, component)
-    gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)        # (pair, column)
+    with np.errstate(over="ignore", invalid="ignore"):                               # a diverged replay: inf, nan
+        rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)         # (pair, column, component)
+        gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)    # (pair, column)
     gap = np.where(np.isnan(gap), np.inf, gap)                                      # a non-finite replay
     use, none = gap, np.zeros(d.shape[1], dtype=bool)
     if off is not None and off.any():
