@@ -109,6 +109,16 @@ def _ensure_chromium() -> None:
         _apt_install(["chromium"])
 
 
+def _workers(rest: list[str]) -> list[str]:
+    """pytest-xdist options: one worker per core, at most two (the reference machine's), each test file on one
+    worker (its module fixtures built once); none where the caller chose (``-n``, ``-p no:xdist``) or on one core."""
+    if any(a == "-n" or a.startswith("-n") and a[2:].isdigit() or a.startswith("--numprocesses") or "xdist" in a
+           for a in rest):
+        return []
+    n = min(2, os.cpu_count() or 1)
+    return ["-n", str(n), "--dist", "loadfile"] if n > 1 else []
+
+
 def main(argv: list[str]) -> int:
     if not argv or argv[0] not in {"demo", "test", "setup"}:
         print(__doc__)
@@ -129,7 +139,7 @@ def main(argv: list[str]) -> int:
     if job == "demo":
         cmd = [VENV / "bin" / "ringcontact", "report", *rest]
     else:
-        cmd = [PY, "-m", "pytest", "-q", *rest]
+        cmd = [PY, "-m", "pytest", "-q", *_workers(rest), *rest]
     print("+", " ".join(str(c) for c in cmd), flush=True)
     return subprocess.run([str(c) for c in cmd], cwd=ROOT, env=env).returncode
 
