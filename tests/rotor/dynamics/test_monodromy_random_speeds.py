@@ -30,7 +30,8 @@ STEPS = 256
 N_SPEEDS = 3
 #: the issue's bound. Measured on 36 such states (seeds 1078804717, 3279707874, 2521866171, 11-13, 21-24): 1.6e-8 to
 #: 3.3e-7 at T/256 (1.4e-6 at 16 615 rpm at T/512, before the release blocks). At periodic orbits the benchmark
-#: reports/published/perf-monodromy-random.md finds some speeds above it (the differenced event steps' noise)
+#: reports/published/perf-monodromy-random.md (and its steel-in-aluminium twin) finds every orbit whose reference
+#: converged within it (18 of 18 and 16 of 16 at 8308483)
 BOUND = 1e-6
 REFERENCE_CONVERGED = 5e-7
 
@@ -150,7 +151,7 @@ def test_table4_period_4_orbit_at_10_180_3_rpm():
 def test_table4_orbit_at_16_440_4_rpm_an_event_the_record_does_not_show():
     """Dai et al. (2025) Table 4 at 16 440.4 rpm, the orbit (T/256) of seed 1840347559 of
     benchmarks/bench_monodromy_random.py whose located monodromy was 1.4e-1 from central differences of its map
-    (reports/published/perf-monodromy-random.md; reference converged to 3.1e-7): step 220's first pass reversed a
+    (reports/published/perf-monodromy-random.md as published at b139996; reference converged to 3.1e-7): step 220's first pass reversed a
     face's velocity, the step was split there and ended turned by 89 degrees, so the record showed no event and the
     step was carried as plain; with every step replayed (rotor/dynamics/period_map_events.py
     ``REPLAY_EVERY_STEP``) it is differenced: 1.2e-7. (The benchmark's other miss, 12 241.9 rpm, is not a test:
