@@ -49,12 +49,15 @@ ROUTES = {"whole": False, "progressive": True}
 
 
 def _with_route(progressive: bool, f):
-    old = pme.PROGRESSIVE
-    pme.PROGRESSIVE = progressive
+    """``f()`` on the route, the contact steps differenced too (``EXACT_CONTACT`` False, as the ladder tests of
+    tests/rotor/dynamics/test_period_map_events.py run it): production differentiates them exactly, which leaves 7 000
+    rpm with no differenced step at all and nothing for the ladder to do."""
+    old = pme.PROGRESSIVE, pme.EXACT_CONTACT
+    pme.PROGRESSIVE, pme.EXACT_CONTACT = progressive, False
     try:
         return f()
     finally:
-        pme.PROGRESSIVE = old
+        pme.PROGRESSIVE, pme.EXACT_CONTACT = old
 
 
 def _replays(progressive: bool, f) -> int:
@@ -108,7 +111,9 @@ def report(rows: list[dict], load0, load1, repeats: int, commit: str) -> str:
              f"{TRANSIENT_REVS} revolutions after the linear start. *whole*: every event-step column differenced at "
              "all 7 levels of the ladder (the earlier route); *progressive*: 3 levels for every column, then level by "
              "level only the columns whose best agreement is not yet within REFINE_TOL of their size "
-             "(rotor/dynamics/period_map_events.py, `_ladder`), the refinement's half levels the same way (`_refine`). "
+             "(rotor/dynamics/period_map_events.py, `_ladder`), the refinement's half levels the same way (`_refine`); "
+             "the contact steps are differenced on both routes (`EXACT_CONTACT` False, as the ladder tests run it; "
+             "production differentiates them exactly). "
              "Replays: single steps the ladders and refinements ran. "
              "Error: against the Richardson extrapolation of central differences of the whole map at 1e-7 and 2e-7 "
              "of each component's largest magnitude (rotor/dynamics/monodromy_check.py), in its scaled norm; "
