@@ -342,22 +342,22 @@ CLAIMS = (
 
     # perf-monodromy-ladder.md: each state's errors (both routes within 1e-6, the level-by-level one within the whole's
     # + 1e-7, fewer replays), checked by the ladder tests at T/256 (default) and T/2240 (slow)
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 11326 / 7222 | 7.0e-08 | 6.4e-08 | 1.3e-08 | 1.1e-07 |",
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 25424 / 18888 | 6.0e-08 | 6.4e-08 | 4.1e-09 | 1.1e-07 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder",
          tier="default"),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 11816 / 8496 | 1.6e-07 | 1.6e-07 | 1.2e-09 | 3.1e-07 |",
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 26012 / 19692 | 1.6e-07 | 1.6e-07 | 3.1e-09 | 3.1e-07 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder_at_2240_steps",
          tier="slow"),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 256 | 4438 / 3272 | 1.3e-07 | 9.4e-08 | 8.9e-08 | 1.4e-07 |",
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 256 | 9772 / 8328 | 4.2e-08 | 4.2e-08 | 7.8e-10 | 1.4e-07 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder",
          tier="default"),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 2240 | 4718 / 3766 | 1.4e-07 | 1.4e-07 | 1.3e-09 | 3.0e-07 |",
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 2240 | 9338 / 7806 | 1.4e-07 | 1.4e-07 | 2.8e-11 | 3.0e-07 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder_at_2240_steps",
          tier="slow"),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 256 | 5628 / 3684 | 4.2e-08 | 4.2e-08 | 5.3e-09 | 8.6e-08 |",
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 256 | 12712 / 9532 | 4.2e-08 | 4.2e-08 | 5.1e-09 | 8.6e-08 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder",
          tier="default"),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 2240 | 7378 / 5408 | 7.3e-08 | 7.3e-08 | 2.9e-08 | 1.2e-07 |",
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 2240 | 15666 / 12404 | 7.3e-08 | 7.3e-08 | 2.1e-09 | 1.2e-07 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder_at_2240_steps",
          tier="slow"),
 
@@ -644,12 +644,12 @@ _GENERATED_SAMPLE = ("one benchmark sample of generated ring pairs, drawn with a
                      "tests/fem_reference/plane/test_generated_bars.py re-solve pairs of the seed published before, "
                      "2988782516: the first three, and 20, 22 and 29, whose misses the bulk-refined levels fixed)")
 UNGUARDED = (
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 0.404 | 0.267 | 1.51× |", reason=_LADDER_TIME),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 0.435 | 0.348 | 1.25× |", reason=_LADDER_TIME),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 256 | 0.175 | 0.135 | 1.30× |", reason=_LADDER_TIME),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 2240 | 0.193 | 0.166 | 1.17× |", reason=_LADDER_TIME),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 256 | 0.278 | 0.184 | 1.51× |", reason=_LADDER_TIME),
-    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 2240 | 0.286 | 0.230 | 1.24× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 0.500 | 0.398 | 1.26× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 0.556 | 0.460 | 1.21× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 256 | 0.259 | 0.232 | 1.12× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 9000 | 2240 | 0.246 | 0.222 | 1.11× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 256 | 0.316 | 0.255 | 1.24× |", reason=_LADDER_TIME),
+    dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 2240 | 0.364 | 0.313 | 1.16× |", reason=_LADDER_TIME),
     dict(report="reports/published/fem2d-adaptive.md",
          claim='Points: 60 (30 pairs); with a bar: 58 (97%); outside their bar: 4 of 60 (6.7%); refused (no bar): 2.',
          reason=_GENERATED_SAMPLE),

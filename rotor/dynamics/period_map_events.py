@@ -317,8 +317,9 @@ def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True)
     linear start at 7 000 and 12 000 rpm, T/256, 936 event-step columns): with the whole ladder the chosen pair is
     the first (the longest steps) in 734 columns; level by level 609 stop after the first three levels, and the
     same 275 columns as with the whole ladder reach the refinement; single-step replays of the ladders and
-    refinements 11 326 -> 7 222 and 5 628 -> 3 684 (benchmarks/bench_monodromy_ladder.py for the times and the
-    accuracy against central differences of the whole map).
+    refinements 11 326 -> 7 222 and 5 628 -> 3 684 with :data:`REFINE_TOL` at 1e-7; at 1e-8, 25 424 -> 18 888 and
+    12 712 -> 9 532 (reports/published/perf-monodromy-ladder.md, from benchmarks/bench_monodromy_ladder.py, for the
+    times and the accuracy against central differences of the whole map).
     """
     hs = np.array(LADDER)
     n3 = start.size

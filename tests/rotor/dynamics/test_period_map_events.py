@@ -171,8 +171,8 @@ def test_ladder_level_by_level_is_as_accurate_as_the_whole_ladder(rpm, monkeypat
     whole map at 1e-7 and 2e-7 of each component's largest magnitude (rotor/dynamics/monodromy_check.py), converged to
     5e-7 against the one at 5e-8 and 1e-7. Both monodromies within the issue's 1e-6 of it, the level-by-level one
     no further from it than the whole ladder's plus 1e-7, with at most 0.9 of the replays (measured with
-    ``REFINE_TOL`` 1e-8: 0.74 at 7 000 rpm, 0.85 at 9 000 rpm; 0.57 and 0.72 with 1e-7, as in
-    reports/published/perf-monodromy-ladder.md). The contact steps are differenced here (``EXACT_CONTACT`` False),
+    ``REFINE_TOL`` 1e-8: 0.74 at 7 000 rpm, 0.85 at 9 000 rpm, as in reports/published/perf-monodromy-ladder.md;
+    0.57 and 0.72 with 1e-7). The contact steps are differenced here (``EXACT_CONTACT`` False),
     as before their exact derivative (rotor/dynamics/contact_step_derivative.py): the ladder still differences the
     friction events and any step that route declines."""
     _check_ladder_routes(rpm, 256, monkeypatch)
