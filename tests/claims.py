@@ -330,13 +330,13 @@ CLAIMS = (
          test="tests/docs/test_gallery.py::test_calibrated_law", tier="default"),
 
     # perf-located-monodromy.md: the errors at 8 400 / 10 500 / 12 000 rpm, each checked below 1e-6 in the default run
-    dict(report="reports/published/perf-located-monodromy.md", claim="| 1.2e-07 | 1.4e-07 | 0.980533 / 0.980533 |",
+    dict(report="reports/published/perf-located-monodromy.md", claim="| 8.8e-08 | 3.5e-07 | 0.980533 / 0.980533 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_table4_located_monodromy_through_stick_releases_and_contact_onsets",
          tier="default"),
-    dict(report="reports/published/perf-located-monodromy.md", claim="| 6.5e-08 | 1.5e-07 | 0.981604 / 0.981604 |",
+    dict(report="reports/published/perf-located-monodromy.md", claim="| 5.3e-08 | 2.1e-07 | 0.981604 / 0.981604 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_table4_located_monodromy_through_stick_releases_and_contact_onsets",
          tier="default"),
-    dict(report="reports/published/perf-located-monodromy.md", claim="| 5.1e-08 | 7.4e-08 | 0.987026 / 0.987026 |",
+    dict(report="reports/published/perf-located-monodromy.md", claim="| 4.2e-08 | 4.1e-08 | 0.987026 / 0.987026 |",
          test="tests/rotor/dynamics/test_period_map_events.py::test_table4_located_monodromy_through_stick_releases_and_contact_onsets",
          tier="default"),
 
