@@ -170,35 +170,23 @@ def _split_steps(pm, tr, rec_p, rec_v, rec_a, scales, carry_held: bool = True) -
     replay (events not located) reproduces the record."""
     cand = np.array(event_steps(pm, tr), dtype=np.int64)
     held = np.zeros((len(rec_p), 2), dtype=np.int64)
-    if REPLAY_EVERY_STEP and carry_held and pm.n_faces:
-        cand = np.union1d(cand, _hidden_events(pm, tr, rec_p, rec_v, rec_a, cand))
-    if cand.size == 0:
+    every = REPLAY_EVERY_STEP and carry_held and pm.n_faces
+    steps = np.arange(len(rec_p) - 1, dtype=np.int64) if every else cand
+    if steps.size == 0:
         return [], held
-    starts = np.hstack([rec_p[cand], rec_v[cand], rec_a[cand]])
-    ref = np.hstack([rec_p[cand + 1], rec_v[cand + 1], rec_a[cand + 1]])
-    modes = np.ascontiguousarray(tr.modes[cand].astype(np.int64))
-    phi = np.ascontiguousarray(tr.face_force[cand], dtype=float)
-    ts = np.ascontiguousarray(tr.t[cand], dtype=float)
-    ends, status = _replays_at(pm, starts, modes, phi, ts, carry_held)
+    ends, status = _replays_at(pm, np.hstack([rec_p[steps], rec_v[steps], rec_a[steps]]),
+                               np.ascontiguousarray(tr.modes[steps].astype(np.int64)),
+                               np.ascontiguousarray(tr.face_force[steps], dtype=float),
+                               np.ascontiguousarray(tr.t[steps], dtype=float), carry_held)
+    ref = np.hstack([rec_p[steps + 1], rec_v[steps + 1], rec_a[steps + 1]])
     same = np.max(np.abs(ends - ref) / scales, axis=1) <= 1e-10
     if not carry_held:
-        return cand[~same].tolist(), held
-    pure = (status[:, 4] == 0) & same
-    held[cand[pure]] = status[pure, 5:7]
-    return cand[~pure].tolist(), held
-
-
-def _hidden_events(pm, tr, rec_p, rec_v, rec_a, cand) -> np.ndarray:
-    """The steps of the record outside ``cand`` in which a replay from the recorded start located an event (the
-    step loop's ``status[4]``), all replayed in one compiled call (:data:`REPLAY_EVERY_STEP`)."""
-    rest = np.setdiff1d(np.arange(len(rec_p) - 1, dtype=np.int64), cand)
-    if rest.size == 0:
-        return rest
-    starts = np.hstack([rec_p[rest], rec_v[rest], rec_a[rest]])
-    _, status = _replays_at(pm, starts, np.ascontiguousarray(tr.modes[rest].astype(np.int64)),
-                            np.ascontiguousarray(tr.face_force[rest], dtype=float),
-                            np.ascontiguousarray(tr.t[rest], dtype=float), True)
-    return rest[status[:, 4] != 0]
+        return steps[~same].tolist(), held
+    located = status[:, 4] != 0
+    listed = np.isin(steps, cand) | located      # a step outside the candidates counts where it located an event
+    pure = listed & ~located & same
+    held[steps[pure]] = status[pure, 5:7]
+    return steps[listed & ~pure].tolist(), held
 
 
 def _replays_at(pm, starts, modes, phi, ts, locate: bool, n_steps: int = 1):
