@@ -186,6 +186,11 @@ def _phase0(p: dict) -> str:
                      for face in ("right", "left"))
 
 
+def largest_gap(pts) -> float:
+    """The widest stretch of speeds (rpm) a restart jumped over that no orbit of the branch covers (0 if none)."""
+    return max((abs(p["uncovered_rpm"][1] - p["uncovered_rpm"][0]) for p in pts if p.get("uncovered_rpm")), default=0.0)
+
+
 def restart_context(pts: list[dict], i: int, mu_n: list[float]) -> str:
     """What the branch did across the restart at point ``i``: the orbits on either side (switches per period,
     contact, stick, whether a stuck face sits at its friction limit) and the jump of the 1X amplitude at disk 2
@@ -235,6 +240,8 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes:
              f"| wall | {d['wall_s']:.0f} s |",
              "| restarts by kind | " + ", ".join(f"{k} {v}" for k, v in d["restarts"].items()) + " |",
              f"| corrector stalls | {len(d['corrector_failures'])} |",
+             f"| largest stretch no orbit covers | {largest_gap(pts):.1f} rpm (past the farthest speed reached before a "
+             "restart; a run back from a fold covers the speeds it skips) |",
              f"| stable / unstable orbits | {sum(p['stable'] for p in pts)} / {sum(not p['stable'] for p in pts)} |",
              "", "## Stability along the branch", "",
              "| from (rpm) | to (rpm) | stable | orbits |", "|---|---|---|---|"]
@@ -244,11 +251,14 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes:
     mu_n = mu_n or []
     lines += ["", "## Restarts (the speeds each skipped, how its orbit was shot, why the corrector failed, what the "
               "orbits on either side show)", "",
-              "| skipped (rpm) | shot | why the corrector failed before it | across the restart |", "|---|---|---|---|"]
-    rows = [f"| {p['skipped_rpm'][0]:.1f} – {p['skipped_rpm'][1]:.1f} | {p['restarted']} | "
+              "| skipped (rpm) | no orbit covers (rpm) | shot | why the corrector failed before it | across the restart |",
+              "|---|---|---|---|---|"]
+    rows = [f"| {p['skipped_rpm'][0]:.1f} – {p['skipped_rpm'][1]:.1f} | "
+            + (f"{p['uncovered_rpm'][0]:.1f} – {p['uncovered_rpm'][1]:.1f}" if p.get("uncovered_rpm") else "none")
+            + f" | {p['restarted']} | "
             f"{p.get('restart_reason', '')} | {restart_context(pts, i, mu_n) if i else ''} |"
             for i, p in enumerate(pts) if p.get("skipped_rpm")]
-    lines += rows or ["| none | | |"]
+    lines += rows or ["| none | | | | |"]
     lines += ["", "## Corrector stalls (every one, how it was passed)", "",
               "| at (rpm) | why | outcome |", "|---|---|---|"]
     lines += [f"| {f['speed_rpm']:.1f} | {f['why']} | {f['outcome']} |" for f in d["corrector_failures"]] or ["| none | | |"]

@@ -182,7 +182,8 @@ class ContinuationOptions:
 class Evaluator:
     """``R``, ``M`` and ``∂R/∂λ`` at (x, λ) in scaled variables, with the flow cached per λ. ``events``: the
     end-face mode changes of the last map evaluated with its Jacobian; ``failure``: why the last corrector
-    failed (set by :func:`rotor.periodic.corrector.correct`); ``modes0``: the end-face modes at phase 0 the maps
+    failed (set by :func:`rotor.periodic.corrector.correct`); ``modes_end``: the end-face modes after the period of
+    that map (a fixed point's own modes at phase 0 when they repeat); ``modes0``: the end-face modes at phase 0 the maps
     start from, the problem's until a restart lands on an orbit that starts in other modes
     (:func:`rotor.periodic.restarts.shot`: a stuck face's orbit and a slipping face's are fixed points of
     different maps)."""
@@ -190,6 +191,7 @@ class Evaluator:
     def __init__(self, problem: Problem, scales: np.ndarray, lam_scale: float):
         self.pb, self.s, self.ls = problem, scales, lam_scale
         self.modes0 = tuple(problem.modes0)
+        self.modes_end: tuple | None = None
         self._flows: dict = {}
         self.events, self.failure = -1, ""
 
@@ -205,7 +207,7 @@ class Evaluator:
         R = (r.state - x) / self.s
         if not jacobian:
             return R, None, None
-        self.events = int(r.events)
+        self.events, self.modes_end = int(r.events), tuple(int(m) for m in r.modes)
         h = PARAM_REL_STEP * max(abs(lam), 1e-12)
         Rp = advance(self.flow(lam + h), x, 0.0, self.pb.n_steps, self.modes0, jacobian=False).state
         Rm = advance(self.flow(lam - h), x, 0.0, self.pb.n_steps, self.modes0, jacobian=False).state

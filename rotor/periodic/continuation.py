@@ -68,6 +68,7 @@ from dataclasses import replace
 import numpy as np
 
 from sweep.progress import report
+from rotor.dynamics import constraints as cons
 from rotor.periodic.branch_events import bifurcations_between, confirmed_folds
 from rotor.periodic.branch_types import (COLD, GRID, NEUTRAL_TOL, PARAM_REL_STEP, RESCALE_RATIO, RESTART_NAMES,
                                          RESTART_STEP, SECANT, TRANSIENT, Bifurcation, Branch, BranchPoint,
@@ -251,15 +252,47 @@ def _corrected(ev, y_pred, tau, opts, phase, anchor, stalls: list):
     restarts, 4 before). Returns what :func:`rotor.periodic.corrector.correct` returns; the failure with the rows
     is kept in ``stalls`` with how it was passed."""
     got = correct(ev, y_pred, tau, opts, phase, anchor)
-    if got is not None or not len(phase):
-        return got
-    failed = ev.failure
-    got = correct(ev, y_pred, tau, opts)
     if got is not None:
-        stalls.append(f"{failed}; converged without the phase rows (the faces slip: the continuum has ended)")
-    else:
-        ev.failure = failed
-    return got
+        return got
+    failed, ends = ev.failure, [ev.modes_end]
+    if len(phase):
+        got = correct(ev, y_pred, tau, opts)
+        if got is not None:
+            stalls.append(f"{failed}; converged without the phase rows (the faces slip: the continuum has ended)")
+            return got
+        ends.append(ev.modes_end)
+    got = _on_end_modes(ev, y_pred, tau, opts, ends)
+    if got is not None:
+        stalls.append(f"{failed}; {got[1]}")
+        return got[0]
+    ev.failure = failed
+    return None
+
+
+def _on_end_modes(ev, y_pred, tau, opts, ends: list):
+    """The corrector again from ``y_pred``, its maps started from the end-face modes a failed corrector's last
+    iterate ended its period in (``ends``, each tried once where it differs from ``ev.modes0``), and kept if the
+    orbit it converges on ends its period in the modes it started from (a fixed point of the modes as of the
+    state). Returns ``(what correct returns, how)`` with ``ev.modes0`` the new modes, or None with them kept.
+
+    A stuck face's orbit and a slipping face's are fixed points of different maps (:func:`rotor.periodic.restarts.shot`):
+    where a face's mode at phase 0 changes along the branch the corrector from the old modes cannot reach the new
+    orbit. Measured on Table 4's branch (reports/published/perf-branch-switches.md, commit b139996): 4 of its 18
+    restarts (2 427.6, 2 466.6, 5 139.0 and 9 026.4 rpm) were transients whose orbit started in other modes, one
+    skipping 223 rpm."""
+    kept = ev.modes0
+    for modes in dict.fromkeys(m for m in ends if m is not None and m != kept):
+        ev.modes0 = modes
+        got = correct(ev, y_pred, tau, opts)
+        if got is not None and ev.modes_end == modes:
+            return got, f"converged from the modes its iterate ended the period in ({_modes_text(kept)} → {_modes_text(modes)})"
+    ev.modes0 = kept
+    return None
+
+
+def _modes_text(modes) -> str:
+    """End-face modes at phase 0 in words (right face first)."""
+    return ", ".join(f"{side} {'stuck' if m == cons.STICK else 'slipping'}" for side, m in zip(("right", "left"), modes))
 
 
 def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts, fold=None):

@@ -15,6 +15,13 @@ from rotor.periodic.shooting import lm_step, min_norm_step, orbit_scales, record
 
 #: halvings of a corrector step that does not lower the merit (:func:`correct`)
 MAX_HALVINGS = 4
+#: past ``max_iter`` the corrector goes on, up to this many times as many iterations, while each of its last two
+#: iterations lowered the residual by :data:`CONTRACTION` or more (:func:`_contracting`). Measured on Table 4's
+#: branch (reports/published/perf-branch-switches.md, commit b139996): 2 of its 18 restarts followed a corrector
+#: that stopped at 10 iterations while its residual halved each iteration (6 170.8 rpm: 4.6e-6 to 5.7e-7; 12 606.8
+#: rpm: 1.9e-7 to 7.8e-9), an inexact Jacobian's signature
+EXTRA_ITERATIONS = 2
+CONTRACTION = 0.7
 #: stalled corrector steps in a row before the retrials follow the Levenberg–Marquardt curve, and as many more
 #: before the corrector gives up (:func:`correct`)
 STALL_ITERATIONS = 2
@@ -69,7 +76,8 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
     Levenberg–Marquardt curve (:func:`rotor.periodic.shooting.lm_step`), which turns the step towards the
     merit's steepest descent as it shortens, and they follow it at once after :data:`STALL_ITERATIONS` stalled
     steps in a row (halved, and leaving more than half of the merit). After as many more, or when no trial on
-    either path lowers the merit, the corrector gives up (the caller halves the arclength step). Where a switch inside the period makes the map's derivative jump (a kink), the full Newton step
+    either path lowers the merit, the corrector gives up (the caller halves the arclength step). Past
+    ``max_iter`` it goes on only while it contracts (:data:`EXTRA_ITERATIONS`). Where a switch inside the period makes the map's derivative jump (a kink), the full Newton step
     taken with the Jacobian of one side overshoots to the other; the plain iteration cycles there, and an
     iterate accepted with a larger residual (the rule before issue 36's Table 4 work) wandered off the branch."""
     y = np.array(y_pred, float)
@@ -96,12 +104,12 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
         return None
     res = float(np.max(np.abs(R)))
     trail, stalled = [res], 0
-    for it in range(1, opts.max_iter + 1):
+    for it in range(1, EXTRA_ITERATIONS * opts.max_iter + 1):
         A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
         dy, _ = min_norm_step(A, -F, opts.rcond)
         if res < opts.tol and np.max(np.abs(dy)) < 1e3 * opts.tol:
             return y, J, M, it, res
-        if it == opts.max_iter:
+        if it >= opts.max_iter and not (it < EXTRA_ITERATIONS * opts.max_iter and _contracting(trail)):
             break
         step, lam, merit_t = None, 1.0, math.inf
         # the Newton line (halved), then, if no step on it lowers the merit or once stalled, the Levenberg–Marquardt
@@ -136,6 +144,11 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
     ev.failure = (f"no convergence in {len(trail)} iterations (residuals "
                   + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")" + _switches(ev))
     return None
+
+
+def _contracting(trail) -> bool:
+    """True if each of the last two iterations lowered the residual by :data:`CONTRACTION` or more."""
+    return len(trail) >= 3 and trail[-1] <= CONTRACTION * trail[-2] and trail[-2] <= CONTRACTION * trail[-3]
 
 
 def _switches(ev) -> str:

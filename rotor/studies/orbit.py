@@ -325,7 +325,8 @@ class BranchResult:
     """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
     ``critical_kind``, ``leading_multiplier``, ``restarted`` (None, or how a point past a stick/slip switch was
     shot: ``secant``, ``transient``, ``cold``; a restarted point also has ``skipped_rpm``, the speeds of the orbit
-    before it and its own: the range the restart jumped over), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``
+    before it and its own: the range the restart jumped over, and ``uncovered_rpm``, the farthest speed reached
+    before it and its own where the restart lands beyond it (the speeds no orbit of the branch covers), else None), ``velocity_amplitudes_mm_s_1X_to_5X``, ``max_edge_penetration_mm``
     and the contact fields of :attr:`OrbitResult.contact`),
     ``bifurcations`` (dicts: ``kind``,
     ``speed_rpm``), ``start`` (the first orbit), ``stop`` (why it ended), ``wall_s`` (s), ``branch``
@@ -401,7 +402,7 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     br = follow(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
     ex = (extrapolate_branch(pb, br, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)
           if richardson and br.points else None)
-    pts = []
+    pts, ahead = [], math.copysign(1.0, rpm_end - rpm_start)
     for i, p in enumerate(br.points):
         d = {"speed_rpm": p.parameter * to_rpm, "stable": bool(p.floquet.stable),
              "spectral_radius": p.floquet.spectral_radius, "critical_kind": p.floquet.kind,
@@ -411,6 +412,10 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
              **{f"stuck_at_phase_0_{face}_face": bool(m == STICK) for face, m in zip(("right", "left"), start_modes(pb, p))}}
         if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it, and why
             d["skipped_rpm"] = [pts[-1]["speed_rpm"], d["speed_rpm"]]
+            # past the farthest speed reached so far: the speeds no orbit of the branch covers (after a run back
+            # from a fold, less than skipped_rpm)
+            far = max(q["speed_rpm"] * ahead for q in pts) * ahead
+            d["uncovered_rpm"] = [far, d["speed_rpm"]] if (d["speed_rpm"] - far) * ahead > 0 else None
             d["restart_reason"] = p.why
         if amplitudes:
             flow = pb.flow(p.parameter)
