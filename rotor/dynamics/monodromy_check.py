@@ -22,21 +22,74 @@ def state_scales(pm, trajectory) -> np.ndarray:
     return s
 
 
+def _stencil(pm, state, t0_s: float, n_steps: int, modes0, scales, rel: float) -> dict:
+    """The map's end states with column ``j`` of the state moved by ``k · rel · scales[j]``, ``k`` in ±2, ±1, ±1/2
+    (``{k: (n, n) array, column j the end state}``; key 0: the unmoved end state in every column)."""
+    out = {k: np.zeros((state.size, state.size)) for k in (2.0, 1.0, 0.5, -0.5, -1.0, -2.0)}
+    out[0.0] = np.repeat(period_map(pm, state, t0_s, n_steps, modes0=modes0, jacobian=False).state[:, None],
+                         state.size, axis=1)
+    for j in range(state.size):
+        for k in (2.0, 1.0, 0.5, -0.5, -1.0, -2.0):
+            x = state.copy()
+            x[j] += k * rel * scales[j]
+            out[k][:, j] = period_map(pm, x, t0_s, n_steps, modes0=modes0, jacobian=False).state
+    return out
+
+
 def central_differences(pm, state, t0_s: float, n_steps: int, modes0, scales, rel: float = 1e-7):
     """``(reference, check)``: the Richardson extrapolations of central differences of the map of ``n_steps`` steps
     from ``state`` at ``t0_s`` (s) with the end-face ``modes0``, at ``2 rel`` and ``rel`` of ``scales``, and at
     ``rel`` and ``rel/2`` (``2 · 3 · 2 n_r`` maps)."""
-    def fd(h):
-        M = np.zeros((state.size, state.size))
-        for j in range(state.size):
-            e = np.zeros(state.size)
-            e[j] = h * scales[j]
-            a, b = (period_map(pm, state + d, t0_s, n_steps, modes0=modes0, jacobian=False).state for d in (e, -e))
-            M[:, j] = (a - b) / (2 * e[j])
-        return M
-
-    F = {k: fd(k * rel) for k in (2.0, 1.0, 0.5)}
+    P, h = _stencil(pm, state, t0_s, n_steps, modes0, scales, rel), rel * np.asarray(scales, float)[None, :]
+    F = {k: (P[k] - P[-k]) / (2 * k * h) for k in (2.0, 1.0, 0.5)}
     return (4 * F[1.0] - F[2.0]) / 3, (4 * F[0.5] - F[1.0]) / 3
+
+
+def piece_reference(pm, state, t0_s: float, n_steps: int, modes0, scales, monodromy, rel: float = 1e-7,
+                    bound: float = 1e-6) -> dict:
+    """The reference of the derivative of the map's piece the orbit lies on, column by column, and ``monodromy``'s
+    error against it (:func:`scaled_error`'s norm, the central reference's largest entry as the scale).
+
+    A column whose central differences (:func:`central_differences`) converge to ``bound`` is that column. Where a
+    threshold of the map lies within ``2 rel`` of the state on one side (a stick episode born, a step's event moved
+    across a step boundary: rotor/dynamics/period_map_events.py), the central stencil straddles two pieces and does
+    not converge; the one-sided differences on the other side (forward or backward, Richardson-extrapolated from
+    ``rel`` and ``2 rel``, checked against ``rel/2`` and ``rel``: first-order differences, so an O(h²) error, 1e-14
+    of the scale here) stay on the orbit's piece and do. Where both sides converge and differ, the state lies on
+    the threshold itself (within ``rel/2``): each side is the derivative of a piece that holds the orbit, and the
+    nearer to ``monodromy`` is taken, the column counted as ``on_threshold``. The same ``6 · 2 n_r + 1`` maps as
+    the central reference.
+
+    Returns ``{"error", "reference_convergence", "central_convergence", "one_sided_columns", "on_threshold",
+    "reference"}``: ``reference_convergence`` the largest column convergence of the chosen differences."""
+    P, h = _stencil(pm, state, t0_s, n_steps, modes0, scales, rel), rel * np.asarray(scales, float)[None, :]
+    C = {k: (P[k] - P[-k]) / (2 * k * h) for k in (2.0, 1.0, 0.5)}
+    central, central_check = (4 * C[1.0] - C[2.0]) / 3, (4 * C[0.5] - C[1.0]) / 3
+    S = np.asarray(scales, float)[None, :] / np.asarray(scales, float)[:, None]
+    norm = float(np.abs(central * S).max())
+
+    def col_gap(A, B):
+        return np.abs((A - B) * S).max(axis=0) / norm
+
+    sides = []
+    for sign in (1.0, -1.0):
+        D = {k: (P[sign * k] - P[0.0]) / (sign * k * h) for k in (2.0, 1.0, 0.5)}
+        est, chk = 2 * D[1.0] - D[2.0], 2 * D[0.5] - D[1.0]
+        sides.append((est, col_gap(est, chk)))
+    reference, conv = central.copy(), col_gap(central, central_check)
+    one_sided = on_threshold = 0
+    for j in np.flatnonzero(conv > bound):
+        good = [(est[:, j], gap[j]) for est, gap in sides if gap[j] <= bound]
+        if not good:
+            continue
+        if len(good) == 2 and np.abs((good[0][0] - good[1][0]) * S[:, j]).max() / norm > bound:
+            on_threshold += 1
+            good.sort(key=lambda g: np.abs((monodromy[:, j] - g[0]) * S[:, j]).max())
+        reference[:, j], conv[j] = good[0]
+        one_sided += 1
+    return {"error": scaled_error(monodromy, reference, scales), "reference_convergence": float(conv.max()),
+            "central_convergence": float(col_gap(central, central_check).max()), "one_sided_columns": one_sided,
+            "on_threshold": on_threshold, "reference": reference}
 
 
 def scaled_error(M, reference, scales) -> float:
