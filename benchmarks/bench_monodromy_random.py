@@ -10,7 +10,11 @@ uniformly over ``--rpm-min`` .. ``--rpm-max`` (seed printed, a new one each run 
    rotor/dynamics/period_map_events.py);
 3. the reference: central differences of the same map, every state component perturbed by ``h`` of its largest
    magnitude over the period, Richardson-extrapolated from ``h`` = 1e-7 and 2e-7; its convergence from the one at
-   5e-8 and 1e-7 (a map not smooth at that scale shows here, and the row says so).
+   5e-8 and 1e-7 (a map not smooth at that scale shows here). Column by column where they do not converge: the
+   one-sided differences that do (a threshold of the map within 2h of the state on one side), then the same at
+   ``h`` = 1e-8 (thresholds on both sides): the derivative of the map's piece the orbit lies on
+   (:func:`rotor.dynamics.monodromy_check.piece_reference`); the row says how many columns were taken so and what
+   the central differences alone gave.
 
 Where no orbit converges (a speed with none of the period tried, or a search that stalls), steps 2 and 3 are done on
 the map of one revolution at the state the search ended on (its last iterate), as the default test does at the state
@@ -40,7 +44,7 @@ sys.path.insert(0, str(ROOT))
 
 from contact.errors import ConvergenceError, OutsideDomainError  # noqa: E402
 from contact.files import atomic_write_text  # noqa: E402
-from rotor.dynamics.monodromy_check import central_differences, scaled_error, state_scales  # noqa: E402
+from rotor.dynamics.monodromy_check import piece_reference, state_scales  # noqa: E402
 from rotor.dynamics.period_map import period_map  # noqa: E402
 from rotor.studies.orbit import orbit  # noqa: E402
 
@@ -55,9 +59,9 @@ def monodromy_error(flow, sh) -> dict:
     n = sh.period_revs * sh.steps_per_rev
     r = period_map(pm, sh.state, sh.t0_s, n, modes0=sh.modes, record_every=1)
     s = state_scales(pm, r.trajectory)
-    ref, check = central_differences(pm, sh.state, sh.t0_s, n, sh.modes, s)
-    return {"error": scaled_error(r.monodromy, ref, s), "reference_convergence": scaled_error(ref, check, s),
-            "largest_multiplier": float(np.abs(np.linalg.eigvals(r.monodromy)).max()),
+    got = piece_reference(pm, sh.state, sh.t0_s, n, sh.modes, s, r.monodromy, bound=BOUND)
+    ref = got.pop("reference")
+    return {**got, "largest_multiplier": float(np.abs(np.linalg.eigvals(r.monodromy)).max()),
             "largest_multiplier_reference": float(np.abs(np.linalg.eigvals(ref)).max()),
             "unsmooth_columns": int(r.unsmooth_columns), "replay_mismatch": float(r.replay_mismatch)}
 
@@ -97,11 +101,15 @@ def report(scene, seed, rows, load0, load1, commit) -> str:
              f"({len(rows)} speeds drawn uniformly). Orbit as `ringcontact orbit` finds it; error of its located "
              "monodromy against the Richardson extrapolation of central differences of the same map at 1e-7 and "
              "2e-7 of each component's largest magnitude; the reference's own convergence against the one at 5e-8 "
-             f"and 1e-7. Load average {load0[0]:.2f} at start, {load1[0]:.2f} at end; {platform.machine()}, Python "
+             "and 1e-7. Where a column's central differences do not converge, the one-sided ones that do (a "
+             "threshold of the map within 2e-7 on one side), then the same at 1e-8 (thresholds on both sides): the "
+             "derivative of the piece the orbit lies on (`rotor.dynamics.monodromy_check.piece_reference`; "
+             f"{sum(r.get('one_sided_columns', 0) > 0 or r.get('finer_columns', 0) > 0 for r in rows)} speeds "
+             "needed it). Load average {load0[0]:.2f} at start, {load1[0]:.2f} at end; {platform.machine()}, Python "
              f"{platform.python_version()}.", "",
              f"Within {BOUND:g}: **{within} of {len(smooth)}** orbits whose reference converged to {BOUND:g}; "
-             f"{len(ok) - len(smooth)} orbits whose reference did not (the map has no derivative at 1e-7 of the "
-             f"state there: nothing to compare with); {len(rows) - len(ok)} speeds with no orbit. At those the map of "
+             f"{len(ok) - len(smooth)} orbits whose reference did not (no piece's derivative converged at 1e-7 or "
+             f"1e-8 of the state there: nothing to compare with); {len(rows) - len(ok)} speeds with no orbit. At those the map of "
              "one revolution is checked at the state the orbit search ended on (its last iterate): within "
              f"{BOUND:g} at **{sum(r['error'] <= BOUND for r in st_smooth)} of {len(st_smooth)}** whose reference "
              f"converged ({len(states) - len(st_smooth)} did not; {sum(1 for r in rows if r.get('no_state'))} left the "
@@ -109,21 +117,22 @@ def report(scene, seed, rows, load0, load1, commit) -> str:
              f"**{sum(r['error'] <= BOUND for r in every)}"
              f" of {len(every)}** speeds. Largest error where the reference converged: "
              f"{max((r['error'] for r in every), default=float('nan')):.1e}.",
-             "", "| speed (rpm) | period (rev) | steps/rev | error | reference convergence | largest multiplier "
-             "(monodromy / reference) | unsmooth columns |", "|---|---|---|---|---|---|---|"]
+             "", "| speed (rpm) | period (rev) | steps/rev | error | reference convergence (central alone) | "
+             "columns one-sided / at 1e-8 / on a threshold | largest multiplier (monodromy / reference) | "
+             "unsmooth columns |", "|---|---|---|---|---|---|---|---|"]
     for r in rows:
         if r.get("no_state"):
-            lines.append(f"| {r['speed_rpm']:.1f} | no orbit, no state: {r['no_state'].split(':')[0]} | | | | | |")
-        elif r.get("error") is None:
-            lines.append(f"| {r['speed_rpm']:.1f} | no orbit | | | | | |")
-        elif not r["converged"]:
-            lines.append(f"| {r['speed_rpm']:.1f} | no orbit: 1 at the last iterate | {r['steps_per_rev']} | "
-                         f"{r['error']:.1e} | {r['reference_convergence']:.1e} | {r['largest_multiplier']:.6f} / "
-                         f"{r['largest_multiplier_reference']:.6f} | {r['unsmooth_columns']} |")
-        else:
-            lines.append(f"| {r['speed_rpm']:.1f} | {r['period_revs']} | {r['steps_per_rev']} | {r['error']:.1e} | "
-                         f"{r['reference_convergence']:.1e} | {r['largest_multiplier']:.6f} / "
-                         f"{r['largest_multiplier_reference']:.6f} | {r['unsmooth_columns']} |")
+            lines.append(f"| {r['speed_rpm']:.1f} | no orbit, no state: {r['no_state'].split(':')[0]} | | | | | | |")
+            continue
+        if r.get("error") is None:
+            lines.append(f"| {r['speed_rpm']:.1f} | no orbit | | | | | | |")
+            continue
+        period = f"{r['period_revs']}" if r["converged"] else "no orbit: 1 at the last iterate"
+        central = r.get("central_convergence", r["reference_convergence"])
+        lines.append(f"| {r['speed_rpm']:.1f} | {period} | {r['steps_per_rev']} | {r['error']:.1e} | "
+                     f"{r['reference_convergence']:.1e} ({central:.1e}) | {r.get('one_sided_columns', 0)} / "
+                     f"{r.get('finer_columns', 0)} / {r.get('on_threshold', 0)} | {r['largest_multiplier']:.6f} / "
+                     f"{r['largest_multiplier_reference']:.6f} | {r['unsmooth_columns']} |")
     return "\n".join(lines) + "\n"
 
 

@@ -45,51 +45,68 @@ def central_differences(pm, state, t0_s: float, n_steps: int, modes0, scales, re
     return (4 * F[1.0] - F[2.0]) / 3, (4 * F[0.5] - F[1.0]) / 3
 
 
-def piece_reference(pm, state, t0_s: float, n_steps: int, modes0, scales, monodromy, rel: float = 1e-7,
+def piece_reference(pm, state, t0_s: float, n_steps: int, modes0, scales, monodromy, rels=(1e-7, 1e-8),
                     bound: float = 1e-6) -> dict:
     """The reference of the derivative of the map's piece the orbit lies on, column by column, and ``monodromy``'s
-    error against it (:func:`scaled_error`'s norm, the central reference's largest entry as the scale).
+    error against it (:func:`scaled_error`'s norm, the central reference's largest entry at ``rels[0]`` as the scale).
 
-    A column whose central differences (:func:`central_differences`) converge to ``bound`` is that column. Where a
-    threshold of the map lies within ``2 rel`` of the state on one side (a stick episode born, a step's event moved
-    across a step boundary: rotor/dynamics/period_map_events.py), the central stencil straddles two pieces and does
-    not converge; the one-sided differences on the other side (forward or backward, Richardson-extrapolated from
-    ``rel`` and ``2 rel``, checked against ``rel/2`` and ``rel``: first-order differences, so an O(h²) error, 1e-14
-    of the scale here) stay on the orbit's piece and do. Where both sides converge and differ, the state lies on
-    the threshold itself (within ``rel/2``): each side is the derivative of a piece that holds the orbit, and the
-    nearer to ``monodromy`` is taken, the column counted as ``on_threshold``. The same ``6 · 2 n_r + 1`` maps as
-    the central reference.
+    For each column, at each relative step of ``rels`` in turn until one converges to ``bound``: the central
+    differences (:func:`central_differences`); else, where a threshold of the map lies within ``2 rel`` of the state
+    on one side (a stick episode born, an event moved across a step boundary: rotor/dynamics/period_map_events.py)
+    and the central stencil straddles two pieces, the one-sided differences on the other side (forward or
+    backward, Richardson-extrapolated from ``rel`` and ``2 rel``, checked against ``rel/2`` and ``rel``: an O(h²)
+    error, 1e-14 of the scale), which stay on the orbit's piece. Where both sides converge and differ, the state
+    lies on the threshold itself (within ``rel/2``; the central differences then converge to the sides' mean,
+    which is no piece's derivative): each side is the derivative of a piece that holds the orbit, the nearer to
+    ``monodromy`` is taken, and the column is counted ``on_threshold``. A finer step (``rels[1]``)
+    is tried only for the columns no coarser one resolved (thresholds within ``2 rel`` on both sides). Measured on
+    Table 4 at T/256 (benchmarks/bench_monodromy_random.py, seed 2426071970): at 11 805.3 rpm 7 columns straddle a
+    threshold at 1e-7 (central convergence 2.0), resolved one-sided to 2.9e-9, the monodromy 8.3e-8 from them; at
+    9 294.0 rpm 3 columns have thresholds on both sides at 1e-7 (1.9e-4), resolved at 1e-8.
 
-    Returns ``{"error", "reference_convergence", "central_convergence", "one_sided_columns", "on_threshold",
-    "reference"}``: ``reference_convergence`` the largest column convergence of the chosen differences."""
-    P, h = _stencil(pm, state, t0_s, n_steps, modes0, scales, rel), rel * np.asarray(scales, float)[None, :]
-    C = {k: (P[k] - P[-k]) / (2 * k * h) for k in (2.0, 1.0, 0.5)}
-    central, central_check = (4 * C[1.0] - C[2.0]) / 3, (4 * C[0.5] - C[1.0]) / 3
+    Returns ``{"error", "reference_convergence", "central_convergence", "one_sided_columns", "finer_columns",
+    "on_threshold", "reference"}``: ``reference_convergence`` the largest column convergence of the chosen
+    differences (the central one's where no choice converged), ``central_convergence`` that of the central
+    differences at ``rels[0]`` alone (:func:`central_differences`)."""
     S = np.asarray(scales, float)[None, :] / np.asarray(scales, float)[:, None]
-    norm = float(np.abs(central * S).max())
-
-    def col_gap(A, B):
-        return np.abs((A - B) * S).max(axis=0) / norm
-
-    sides = []
-    for sign in (1.0, -1.0):
-        D = {k: (P[sign * k] - P[0.0]) / (sign * k * h) for k in (2.0, 1.0, 0.5)}
-        est, chk = 2 * D[1.0] - D[2.0], 2 * D[0.5] - D[1.0]
-        sides.append((est, col_gap(est, chk)))
-    reference, conv = central.copy(), col_gap(central, central_check)
-    one_sided = on_threshold = 0
-    for j in np.flatnonzero(conv > bound):
-        good = [(est[:, j], gap[j]) for est, gap in sides if gap[j] <= bound]
-        if not good:
-            continue
-        if len(good) == 2 and np.abs((good[0][0] - good[1][0]) * S[:, j]).max() / norm > bound:
-            on_threshold += 1
-            good.sort(key=lambda g: np.abs((monodromy[:, j] - g[0]) * S[:, j]).max())
-        reference[:, j], conv[j] = good[0]
-        one_sided += 1
+    n = len(scales)
+    reference, conv, todo = np.zeros((n, n)), np.full(n, np.inf), np.arange(n)
+    central_conv = norm = None
+    one_sided = finer = on_threshold = 0
+    for level, rel in enumerate(rels):
+        P, h = _stencil(pm, state, t0_s, n_steps, modes0, scales, rel), rel * np.asarray(scales, float)[None, :]
+        C = {k: (P[k] - P[-k]) / (2 * k * h) for k in (2.0, 1.0, 0.5)}
+        central, central_check = (4 * C[1.0] - C[2.0]) / 3, (4 * C[0.5] - C[1.0]) / 3
+        if norm is None:
+            norm = float(np.abs(central * S).max())
+            central_conv = np.abs((central - central_check) * S).max(axis=0) / norm
+        options = [(central, np.abs((central - central_check) * S).max(axis=0) / norm)]
+        for sign in (1.0, -1.0):
+            D = {k: (P[sign * k] - P[0.0]) / (sign * k * h) for k in (2.0, 1.0, 0.5)}
+            est, chk = 2 * D[1.0] - D[2.0], 2 * D[0.5] - D[1.0]
+            options.append((est, np.abs((est - chk) * S).max(axis=0) / norm))
+        for j in todo:
+            sides = [(est[:, j], gap[j]) for est, gap in options[1:] if gap[j] <= bound]
+            if len(sides) == 2 and np.abs((sides[0][0] - sides[1][0]) * S[:, j]).max() / norm > bound:
+                # a threshold at the state: the central differences converge to the sides' mean, no piece's
+                on_threshold += 1
+                reference[:, j], conv[j] = min(sides, key=lambda g: np.abs((monodromy[:, j] - g[0]) * S[:, j]).max())
+            elif options[0][1][j] <= bound:
+                reference[:, j], conv[j] = options[0][0][:, j], options[0][1][j]
+            elif sides:
+                reference[:, j], conv[j] = sides[0]
+                one_sided += 1
+            else:
+                if level == 0:          # none converged: the central differences, with their convergence
+                    reference[:, j], conv[j] = options[0][0][:, j], options[0][1][j]
+                continue
+            finer += level > 0
+        todo = np.flatnonzero(conv > bound)
+        if not len(todo):
+            break
     return {"error": scaled_error(monodromy, reference, scales), "reference_convergence": float(conv.max()),
-            "central_convergence": float(col_gap(central, central_check).max()), "one_sided_columns": one_sided,
-            "on_threshold": on_threshold, "reference": reference}
+            "central_convergence": float(central_conv.max()), "one_sided_columns": one_sided,
+            "finer_columns": finer, "on_threshold": on_threshold, "reference": reference}
 
 
 def scaled_error(M, reference, scales) -> float:
