@@ -254,13 +254,13 @@ def _corrected(ev, y_pred, tau, opts, phase, anchor, stalls: list):
     got = correct(ev, y_pred, tau, opts, phase, anchor)
     if got is not None:
         return got
-    failed, ends = ev.failure, [ev.modes_end]
+    failed, ends = ev.failure, [getattr(ev, "modes_end", None)]
     if len(phase):
         got = correct(ev, y_pred, tau, opts)
         if got is not None:
             stalls.append(f"{failed}; converged without the phase rows (the faces slip: the continuum has ended)")
             return got
-        ends.append(ev.modes_end)
+        ends.append(getattr(ev, "modes_end", None))
     got = _on_end_modes(ev, y_pred, tau, opts, ends)
     if got is not None:
         stalls.append(f"{failed}; {got[1]}")

@@ -367,3 +367,60 @@ def test_turn_back_follows_the_middle_branch_then_jumps_past_the_fold_as_a_run_u
     assert r < closed_form_folds(P, N)[0][1] and _curve_distance(jump.parameter, r) < 1e-6
     assert "turned back at a fold" in jump.why and any("restart (" in f[2] for f in br.failures)
     assert [b.kind for b in br.bifurcations] == ["fold"] and abs(br.bifurcations[0].parameter / w_fold - 1) < 1e-6
+
+
+def test_the_corrector_goes_on_past_max_iter_only_while_it_contracts():
+    """``R(x) = x − 1`` with a Jacobian ``c`` times too large: Newton's residual falls by ``1 − 1/c`` each
+    iteration (an inexact Jacobian's linear rate, rotor/periodic/corrector.py ``EXTRA_ITERATIONS``). At 0.2 it
+    needs 13 iterations to 1e-9 from 1: past ``max_iter`` = 10 it goes on and converges; at 0.8 (slower than
+    ``CONTRACTION`` = 0.7) it stops at ``max_iter``."""
+    from rotor.periodic.continuation import ContinuationOptions
+    from rotor.periodic.corrector import CONTRACTION, correct
+
+    class Inexact:
+        s, ls, events, failure = np.ones(1), 1.0, 0, ""
+
+        def __init__(self, c):
+            self.c = c
+
+        def __call__(self, x, lam, jacobian=True):
+            return x - 1.0, np.array([[self.c, 0.0]]), np.zeros((1, 1))
+
+    opts = ContinuationOptions(max_iter=10)
+    got = correct(Inexact(1.25), np.zeros(2), np.array([0.0, 1.0]), opts)
+    assert got is not None and 10 < got[3] <= 20 and abs(got[0][0] - 1.0) < 1e-8
+    assert 1.0 - 1.0 / 5.0 > CONTRACTION
+    slow = Inexact(5.0)
+    assert correct(slow, np.zeros(2), np.array([0.0, 1.0]), opts) is None
+    assert slow.failure.startswith("no convergence in 10 iterations")
+
+
+def test_a_failed_corrector_is_retried_from_the_modes_its_iterate_ended_the_period_in():
+    """Started with both faces stuck (modes (1, 1)) the map has no fixed point (``R = x² + 1``) and its iterates
+    end the period with the right face slipping; started so (modes (0, 1)) it has one at x = 2, which ends the
+    period in those modes: the retry lands there and the branch goes on with them
+    (rotor/periodic/continuation.py ``_on_end_modes``). Where that orbit ends in other modes than it started
+    from, it is no orbit of either map: refused, the modes kept."""
+    from rotor.periodic.continuation import ContinuationOptions, _corrected
+
+    class TwoMaps:
+        s, ls, events, failure = np.ones(1), 1.0, 0, ""
+
+        def __init__(self, end_of_slipping):
+            self.modes0, self.modes_end, self.end_of_slipping = (1, 1), None, end_of_slipping
+
+        def __call__(self, x, lam, jacobian=True):
+            if self.modes0 == (1, 1):
+                R, d, self.modes_end = x ** 2 + 1.0, 2.0 * x[0], (0, 1)
+            else:
+                R, d, self.modes_end = x - 2.0, 1.0, self.end_of_slipping
+            return R, np.array([[d, 0.0]]), np.zeros((1, 1))
+
+    tau, y0 = np.array([0.0, 1.0]), np.array([0.3, 0.0])
+    ev, stalls = TwoMaps((0, 1)), []
+    y, *_ = _corrected(ev, y0, tau, ContinuationOptions(), np.zeros((0, 2)), y0, stalls)
+    assert abs(y[0] - 2.0) < 1e-9 and ev.modes0 == (0, 1)
+    assert "right stuck, left stuck → right slipping, left stuck" in stalls[0]
+    ev, stalls = TwoMaps((1, 1)), []
+    assert _corrected(ev, y0, tau, ContinuationOptions(), np.zeros((0, 2)), y0, stalls) is None
+    assert ev.modes0 == (1, 1) and stalls == [] and ev.failure.startswith("no ")
