@@ -261,7 +261,7 @@ def _corrected(ev, y_pred, tau, opts, phase, anchor, stalls: list):
             stalls.append(f"{failed}; converged without the phase rows (the faces slip: the continuum has ended)")
             return got
         ends.append(getattr(ev, "modes_end", None))
-    got = _on_end_modes(ev, y_pred, tau, opts, ends)
+    got = _on_end_modes(ev, y_pred, tau, opts, ends, phase, anchor)
     if got is not None:
         stalls.append(f"{failed}; {got[1]}")
         return got[0]
@@ -269,23 +269,30 @@ def _corrected(ev, y_pred, tau, opts, phase, anchor, stalls: list):
     return None
 
 
-def _on_end_modes(ev, y_pred, tau, opts, ends: list):
+def _on_end_modes(ev, y_pred, tau, opts, ends: list, phase, anchor):
     """The corrector again from ``y_pred``, its maps started from the end-face modes a failed corrector's last
-    iterate ended its period in (``ends``, each tried once where it differs from ``ev.modes0``), and kept if the
-    orbit it converges on ends its period in the modes it started from (a fixed point of the modes as of the
-    state). Returns ``(what correct returns, how)`` with ``ev.modes0`` the new modes, or None with them kept.
+    iterate ended its period in (``ends``, each tried where it differs from ``ev.modes0``: with the phase rows
+    ``phase``, then without them), and kept if the orbit it converges on ends its period in the modes it started
+    from (a fixed point of the modes as of the state). Returns ``(what correct returns, how)`` with ``ev.modes0``
+    the new modes, or None with them kept.
 
     A stuck face's orbit and a slipping face's are fixed points of different maps (:func:`rotor.periodic.restarts.shot`):
     where a face's mode at phase 0 changes along the branch the corrector from the old modes cannot reach the new
     orbit. Measured on Table 4's branch (reports/published/perf-branch-switches.md, commit b139996): 4 of its 18
     restarts (2 427.6, 2 466.6, 5 139.0 and 9 026.4 rpm) were transients whose orbit started in other modes, one
-    skipping 223 rpm."""
+    skipping 223 rpm. On the Friswell rotor in a loose aluminium housing at 200 N of preload
+    (tests/rotor/scenes/friswell-591-loose-aluminium.toml, ``--preload-n 200``) the corrector past 2 407.1 rpm,
+    both faces slipping at phase 0, stalled at a residual of 3.0e-6 with the left face sticking once a period and
+    stuck at its end; from those modes, with the phase rows, it converges in 5 iterations (1.9e-12), without them
+    it does not (a transient restart skipped 47.7 rpm there)."""
     kept = ev.modes0
     for modes in dict.fromkeys(m for m in ends if m is not None and m != kept):
         ev.modes0 = modes
-        got = correct(ev, y_pred, tau, opts)
-        if got is not None and ev.modes_end == modes:
-            return got, f"converged from the modes its iterate ended the period in ({_modes_text(kept)} → {_modes_text(modes)})"
+        for rows in ((phase, None) if len(phase) else (None,)):
+            got = correct(ev, y_pred, tau, opts, rows, anchor if rows is not None else None)
+            if got is not None and ev.modes_end == modes:
+                return got, (f"converged from the modes its iterate ended the period in ({_modes_text(kept)} → "
+                             f"{_modes_text(modes)})")
     ev.modes0 = kept
     return None
 
