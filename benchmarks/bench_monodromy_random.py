@@ -105,7 +105,7 @@ def report(scene, seed, rows, load0, load1, commit) -> str:
              "threshold of the map within 2e-7 on one side), then the same at 1e-8 (thresholds on both sides): the "
              "derivative of the piece the orbit lies on (`rotor.dynamics.monodromy_check.piece_reference`; "
              f"{sum(r.get('one_sided_columns', 0) > 0 or r.get('finer_columns', 0) > 0 for r in rows)} speeds "
-             "needed it). Load average {load0[0]:.2f} at start, {load1[0]:.2f} at end; {platform.machine()}, Python "
+             f"needed it). Load average {load0[0]:.2f} at start, {load1[0]:.2f} at end; {platform.machine()}, Python "
              f"{platform.python_version()}.", "",
              f"Within {BOUND:g}: **{within} of {len(smooth)}** orbits whose reference converged to {BOUND:g}; "
              f"{len(ok) - len(smooth)} orbits whose reference did not (no piece's derivative converged at 1e-7 or "
