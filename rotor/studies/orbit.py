@@ -320,6 +320,15 @@ def _from_step_grid_orbit(flow: Flow, system, n: int, backend: str, q0, v0, fail
     return replace(failed, transient_revs=revs, wall_s=wall)
 
 
+def uncovered_rpm(before, speed_rpm: float, ahead: float):
+    """``[farthest, speed_rpm]``: the speeds (rpm) between the farthest of the branch's speeds ``before`` in the
+    direction ``ahead`` (±1) and a restarted orbit's ``speed_rpm`` beyond it, which no orbit of the branch covers;
+    None where the restart lands within the speeds covered (after a run back from a fold, the restart's
+    ``skipped_rpm`` starts at the orbit the branch ran back to)."""
+    far = max(v * ahead for v in before) * ahead
+    return [far, speed_rpm] if (speed_rpm - far) * ahead > 0 else None
+
+
 @dataclass(frozen=True)
 class BranchResult:
     """A branch of orbits over speed: ``points`` (dicts: ``speed_rpm``, ``stable``, ``spectral_radius``,
@@ -412,10 +421,7 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
              **{f"stuck_at_phase_0_{face}_face": bool(m == STICK) for face, m in zip(("right", "left"), start_modes(pb, p))}}
         if p.restarted and pts:         # the speeds the restart jumped over, from the orbit before it, and why
             d["skipped_rpm"] = [pts[-1]["speed_rpm"], d["speed_rpm"]]
-            # past the farthest speed reached so far: the speeds no orbit of the branch covers (after a run back
-            # from a fold, less than skipped_rpm)
-            far = max(q["speed_rpm"] * ahead for q in pts) * ahead
-            d["uncovered_rpm"] = [far, d["speed_rpm"]] if (d["speed_rpm"] - far) * ahead > 0 else None
+            d["uncovered_rpm"] = uncovered_rpm([q["speed_rpm"] for q in pts], d["speed_rpm"], ahead)
             d["restart_reason"] = p.why
         if amplitudes:
             flow = pb.flow(p.parameter)

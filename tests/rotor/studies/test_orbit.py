@@ -146,3 +146,15 @@ def test_an_unstable_orbit_the_located_transients_miss_is_reached_from_the_step_
     assert np.abs((r.state - sh.state) / sh.scales).max() < 1e-9
     fd = np.abs(np.linalg.eigvals(monodromy_fd(flow, sh.state, sh.t0_s, 256, sh.modes, rel_step=1e-7))).max()
     assert abs(np.abs(o.floquet.multipliers).max() / fd - 1) < 1e-4
+
+
+def test_the_speeds_a_restart_leaves_uncovered_start_at_the_farthest_reached():
+    """``uncovered_rpm``: after a run back from a fold (Table 4's branch, reports/published/perf-branch-switches.md
+    at b139996: folded at 16 929.8 rpm, ran back to 16 662.6, jumped to 16 947.1) the speeds no orbit covers are
+    16 929.8-16 947.1 rpm, not the 284.5 rpm of ``skipped_rpm``; a restart landing within the speeds covered
+    leaves none; downwards the same mirrored."""
+    from rotor.studies.orbit import uncovered_rpm
+
+    assert uncovered_rpm([16800.0, 16929.8, 16662.6], 16947.1, 1.0) == [16929.8, 16947.1]
+    assert uncovered_rpm([16800.0, 16929.8, 16662.6], 16900.0, 1.0) is None
+    assert uncovered_rpm([3000.0, 2400.0, 2600.0], 2350.0, -1.0) == [2400.0, 2350.0]
