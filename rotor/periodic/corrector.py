@@ -76,10 +76,9 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
     Levenberg–Marquardt curve (:func:`rotor.periodic.shooting.lm_step`), which turns the step towards the
     merit's steepest descent as it shortens, and they follow it at once after :data:`STALL_ITERATIONS` stalled
     steps in a row (halved, and leaving more than half of the merit). After as many more, or when no trial on
-    either path lowers the merit, the corrector gives up (the caller halves the arclength step). Past
-    ``max_iter`` it goes on only while it contracts (:data:`EXTRA_ITERATIONS`). Where a switch inside the period makes the map's derivative jump (a kink), the full Newton step
-    taken with the Jacobian of one side overshoots to the other; the plain iteration cycles there, and an
-    iterate accepted with a larger residual (the rule before issue 36's Table 4 work) wandered off the branch."""
+    either path lowers the merit, the corrector gives up (the caller halves the arclength step); past ``max_iter``
+    only while it contracts (:data:`EXTRA_ITERATIONS`). At a kink (a switch inside the period) the full Newton step
+    overshoots to the other side and the plain iteration cycles."""
     y = np.array(y_pred, float)
     has_phase = phase is not None and len(phase)
 
