@@ -10,8 +10,9 @@ picks) is followed in speed from 600 rpm to 18 000 rpm by :func:`rotor.studies.o
 located inside the step (``--locate-events on``, :attr:`rotor.dynamics.system.NewmarkOptions.locate_events`;
 ``off``: switches on step boundaries; ``default``: the scheme's default). Reported: points, highest speed
 reached, why it stopped, wall time with the load average at start and end (shared 2-core machine), every
-restart (the speeds it skipped, how it was shot, why the corrector failed before it), every corrector stall and
-how it was passed, the bifurcations (discontinuous ones with both sides), the stable and unstable stretches.
+restart (the speeds it skipped, those no orbit covers, how it was shot, why the corrector failed before it),
+every corrector stall and how it was passed, the bifurcations (discontinuous ones with both sides), the stable
+and unstable stretches.
 
 The branch is then verified on ``--verify`` points spread over it: at each point's speed a fresh flow
 (:func:`rotor.periodic.period_flow.make_flow`, the same event location) maps the point's own state over its

@@ -284,7 +284,9 @@ def _on_end_modes(ev, y_pred, tau, opts, ends: list, phase, anchor):
     (tests/rotor/scenes/friswell-591-loose-aluminium.toml, ``--preload-n 200``) the corrector past 2 407.1 rpm,
     both faces slipping at phase 0, stalled at a residual of 3.0e-6 with the left face sticking once a period and
     stuck at its end; from those modes, with the phase rows, it converges in 5 iterations (1.9e-12), without them
-    it does not (a transient restart skipped 47.7 rpm there)."""
+    it does not (a transient restart skipped 47.7 rpm there). On Table 4's branch at this code (600-5 180 rpm,
+    benchmarks/bench_branch_switches.py's settings) it never converged: the stalls there lie in the stuck faces'
+    continuum, where a face slips under the predictor and holds again at another offset."""
     kept = ev.modes0
     for modes in dict.fromkeys(m for m in ends if m is not None and m != kept):
         ev.modes0 = modes
