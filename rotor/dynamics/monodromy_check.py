@@ -40,7 +40,11 @@ def central_differences(pm, state, t0_s: float, n_steps: int, modes0, scales, re
     """``(reference, check)``: the Richardson extrapolations of central differences of the map of ``n_steps`` steps
     from ``state`` at ``t0_s`` (s) with the end-face ``modes0``, at ``2 rel`` and ``rel`` of ``scales``, and at
     ``rel`` and ``rel/2`` (``2 · 3 · 2 n_r`` maps)."""
-    P, h = _stencil(pm, state, t0_s, n_steps, modes0, scales, rel), rel * np.asarray(scales, float)[None, :]
+    return _central(_stencil(pm, state, t0_s, n_steps, modes0, scales, rel), rel * np.asarray(scales, float)[None, :])
+
+
+def _central(P, h):
+    """``(reference, check)`` of :func:`central_differences` from the stencil ``P`` (:func:`_stencil`), steps ``h``."""
     F = {k: (P[k] - P[-k]) / (2 * k * h) for k in (2.0, 1.0, 0.5)}
     return (4 * F[1.0] - F[2.0]) / 3, (4 * F[0.5] - F[1.0]) / 3
 
@@ -78,8 +82,7 @@ def piece_reference(pm, state, t0_s: float, n_steps: int, modes0, scales, monodr
     one_sided = finer = on_threshold = 0
     for level, rel in enumerate(rels):
         P, h = _stencil(pm, state, t0_s, n_steps, modes0, scales, rel), rel * np.asarray(scales, float)[None, :]
-        C = {k: (P[k] - P[-k]) / (2 * k * h) for k in (2.0, 1.0, 0.5)}
-        central, central_check = (4 * C[1.0] - C[2.0]) / 3, (4 * C[0.5] - C[1.0]) / 3
+        central, central_check = _central(P, h)
         if norm is None:
             norm = _smooth_scale(central * S, central_check * S)
             central_conv = np.abs((central - central_check) * S).max(axis=0) / norm

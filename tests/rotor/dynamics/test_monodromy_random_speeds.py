@@ -166,6 +166,13 @@ def test_table4_orbit_at_16_440_4_rpm_an_event_the_record_does_not_show():
 def _orbit_errors(scene: str, rpm: float) -> tuple[int, float, float]:
     """The period (revolutions) of the orbit ``ringcontact orbit`` finds at ``rpm``, its located monodromy's error
     against the derivative of its map's piece and that reference's convergence (scaled, as :func:`_errors`)."""
+    period, got = _orbit_piece(scene, rpm)
+    return period, got["error"], got["reference_convergence"]
+
+
+def _orbit_piece(scene: str, rpm: float) -> tuple[int, dict]:
+    """The period (revolutions) of the orbit ``ringcontact orbit`` finds at ``rpm`` and what
+    :func:`rotor.dynamics.monodromy_check.piece_reference` says of its located monodromy."""
     from rotor.periodic.period_flow import make_flow
     from rotor.studies.orbit import orbit
 
@@ -176,8 +183,7 @@ def _orbit_errors(scene: str, rpm: float) -> tuple[int, float, float]:
     pm = make_flow(system, sh.period_s / n).handle
     r = period_map(pm, sh.state, sh.t0_s, n, modes0=sh.modes, record_every=1)
     s = state_scales(pm, r.trajectory)
-    got = piece_reference(pm, sh.state, sh.t0_s, n, sh.modes, s, r.monodromy, bound=BOUND)
-    return sh.period_revs, got["error"], got["reference_convergence"]
+    return sh.period_revs, piece_reference(pm, sh.state, sh.t0_s, n, sh.modes, s, r.monodromy, bound=BOUND)
 
 
 @pytest.mark.slow
@@ -187,16 +193,7 @@ def test_table4_orbits_whose_central_differences_straddle_a_threshold(rpm, centr
     whose central reference did not converge (reports/published/perf-monodromy-random.md at 8308483: 1.0 at
     11 805.3 rpm, 1.9e-4 at 9 294.0 rpm). Measured: at 11 805.3 rpm 7 columns resolved one-sided, the monodromy
     8.3e-8 from them; at 9 294.0 rpm 3 columns at 1e-8 (thresholds on both sides at 1e-7), 2.2e-7."""
-    from rotor.periodic.period_flow import make_flow
-    from rotor.studies.orbit import orbit
-
-    sh = orbit("paper-table4", rpm).shooting
-    assert sh.converged
-    _, _, system = point_system("paper-table4", rpm)
-    n = sh.period_revs * sh.steps_per_rev
-    pm = make_flow(system, sh.period_s / n).handle
-    r = period_map(pm, sh.state, sh.t0_s, n, modes0=sh.modes, record_every=1)
-    got = piece_reference(pm, sh.state, sh.t0_s, n, sh.modes, state_scales(pm, r.trajectory), r.monodromy, bound=BOUND)
+    _, got = _orbit_piece("paper-table4", rpm)
     assert got["central_convergence"] > central_at_least         # the central stencil straddles a threshold
     assert got["one_sided_columns"] + got["finer_columns"] > 0 and got["reference_convergence"] < BOUND
     assert got["error"] < BOUND, got["error"]
