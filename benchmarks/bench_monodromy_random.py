@@ -16,7 +16,10 @@ uniformly over ``--rpm-min`` .. ``--rpm-max`` (seed printed, a new one each run 
    (:func:`rotor.dynamics.monodromy_check.piece_reference`); the row says how many columns were taken so and what
    the central differences alone gave.
 
-Where no orbit converges (a speed with none of the period tried, or a search that stalls), steps 2 and 3 are done on
+Where the transient from rest reaches no orbit, the orbit is sought from the nearest drawn speed's orbit (Newton
+from its state at phase 0, else a branch from it to the speed, :func:`neighbour_orbit`): an unstable orbit a
+transient never settles on is an orbit all the same, and its monodromy is checked like the others. Where no orbit
+converges even so (a speed with none of the period tried, or a search that stalls), steps 2 and 3 are done on
 the map of one revolution at the state the search ended on (its last iterate), as the default test does at the state
 60 revolutions after the linear start: the monodromy is the map's derivative at any state, so every speed drawn is
 checked.
@@ -66,16 +69,19 @@ def monodromy_error(flow, sh) -> dict:
             "unsmooth_columns": int(r.unsmooth_columns), "replay_mismatch": float(r.replay_mismatch)}
 
 
-def one_speed(scene: str, rpm: float) -> dict:
+def one_speed(scene: str, rpm: float, neighbour=None) -> tuple[dict, object]:
+    """The row of one speed and its orbit (None without one): the orbit from the transient (``neighbour`` None),
+    or from ``neighbour`` = ``(rpm, OrbitResult)``, a drawn speed's orbit: Newton from its state at phase 0, then
+    a branch from it to ``rpm`` (:func:`neighbour_orbit`)."""
     from rotor.periodic.period_flow import make_flow
     t0 = time.perf_counter()
     try:
-        res = orbit(scene, rpm)
+        res, route = (orbit(scene, rpm), "transient") if neighbour is None else neighbour_orbit(scene, rpm, *neighbour)
     except (OutsideDomainError, ConvergenceError) as exc:     # the transient left the law's domain: no state to check
         return {"speed_rpm": rpm, "converged": False, "no_state": " ".join(str(exc).split())[:160],
-                "orbit_s": time.perf_counter() - t0}
+                "orbit_s": time.perf_counter() - t0}, None
     sh = res.shooting
-    row = {"speed_rpm": rpm, "converged": bool(sh.converged), "period_revs": sh.period_revs,
+    row = {"speed_rpm": rpm, "converged": bool(sh.converged), "period_revs": sh.period_revs, "route": route,
            "steps_per_rev": sh.steps_per_rev, "orbit_s": time.perf_counter() - t0}
     # no orbit: the map of one revolution is checked at the state the search ended on (its last Newton iterate, a
     # state of the run like the default test's; the monodromy there is as much the map's derivative)
@@ -86,7 +92,34 @@ def one_speed(scene: str, rpm: float) -> dict:
         sh = dataclasses.replace(sh, period_revs=1, steps_per_rev=sh.steps_per_rev)
     if np.all(np.isfinite(sh.state)):
         row.update(monodromy_error(flow, sh))
-    return row
+    return row, (res if res.converged else None)
+
+
+def neighbour_orbit(scene: str, rpm: float, from_rpm: float, near) -> tuple:
+    """The orbit at ``rpm`` from the orbit ``near`` found at ``from_rpm``: Newton from its state at phase 0 (same
+    period, one revolution of transient), else the orbit where :func:`rotor.studies.orbit.branch` from it lands
+    at ``rpm``. Where the transient from rest reaches no orbit (an unstable orbit, a chaotic transient) one may
+    still exist: at 16 125.4 rpm on paper-table4 the search from rest stalled, Newton from the orbit at
+    15 969.9 rpm converged to 4.9e-14 in 0.14 s. Returns ``(OrbitResult, route)``."""
+    from rotor.periodic.period_flow import make_flow, to_full
+    from rotor.periodic.shooting import ShootingOptions
+    from rotor.studies.orbit import branch
+    from rotor.studies.steady_state import point_system
+    warm = ShootingOptions(transient_revs=1, round_growth=2.0)
+    res = orbit(scene, rpm, start=(near.q_m, near.v_m_s), period_revs=near.period_revs, options=warm)
+    if res.converged:
+        return res, f"Newton from {from_rpm:.1f} rpm"
+    br = branch(scene, from_rpm, rpm, start=(near.q_m, near.v_m_s), period_revs=near.period_revs, amplitudes=False)
+    last = br.branch.points[-1] if br.branch.points else None
+    if br.stop != "end reached" or last is None:
+        return res, f"none from {from_rpm:.1f} rpm (Newton; branch: {br.stop})"
+    _, _, system = point_system(scene, rpm)
+    flow = make_flow(system, 2.0 * np.pi / (system.omega_rad_s * br.start.steps_per_rev))
+    q, v = to_full(flow, last.state, 0.0)
+    got = orbit(scene, rpm, steps_per_rev=br.start.steps_per_rev, start=(q, v), period_revs=near.period_revs,
+                options=warm)
+    return got, (f"branch from {from_rpm:.1f} rpm ({len(br.points)} points, {sum(br.as_dict()['restarts'].values())} restarts)"
+                 if got.converged else f"none from {from_rpm:.1f} rpm (branch landed, Newton did not)")
 
 
 def report(scene, seed, rows, load0, load1, commit) -> str:
@@ -117,6 +150,10 @@ def report(scene, seed, rows, load0, load1, commit) -> str:
              f"**{sum(r['error'] <= BOUND for r in every)}"
              f" of {len(every)}** speeds. Largest error where the reference converged: "
              f"{max((r['error'] for r in every), default=float('nan')):.1e}.",
+             "", f"Where the transient from rest reached no orbit, the nearest drawn speed's orbit was the start (Newton "
+             "from its state at phase 0, else a branch from it): "
+             f"{sum(1 for r in rows if r.get('route', 'transient') != 'transient' and r['converged'])} orbits found "
+             "so (the period column says from where).",
              "", "| speed (rpm) | period (rev) | steps/rev | error | reference convergence (central alone) | "
              "columns one-sided / at 1e-8 / on a threshold | largest multiplier (monodromy / reference) | "
              "unsmooth columns |", "|---|---|---|---|---|---|---|---|"]
@@ -125,9 +162,11 @@ def report(scene, seed, rows, load0, load1, commit) -> str:
             lines.append(f"| {r['speed_rpm']:.1f} | no orbit, no state: {r['no_state'].split(':')[0]} | | | | | | |")
             continue
         if r.get("error") is None:
-            lines.append(f"| {r['speed_rpm']:.1f} | no orbit | | | | | | |")
+            lines.append(f"| {r['speed_rpm']:.1f} | no orbit ({r.get('route', 'transient')}) | | | | | | |")
             continue
         period = f"{r['period_revs']}" if r["converged"] else "no orbit: 1 at the last iterate"
+        if r.get("route", "transient") != "transient":
+            period += f" ({r['route']}; from rest: {r.get('transient', 'no orbit')})"
         central = r.get("central_convergence", r["reference_convergence"])
         lines.append(f"| {r['speed_rpm']:.1f} | {period} | {r['steps_per_rev']} | {r['error']:.1e} | "
                      f"{r['reference_convergence']:.1e} ({central:.1e}) | {r.get('one_sided_columns', 0)} / "
@@ -159,21 +198,39 @@ def main(argv=None) -> int:
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                             text=True).stdout.strip()
     load0 = os.getloadavg()
-    rows = []
+    rows, found = [], {}
     for rpm in speeds:
-        rows.append(one_speed(a.scene, float(rpm)))
-        r = rows[-1]
-        if r.get("no_state"):
-            print(f"{rpm:8.1f} rpm: no orbit, no state: {r['no_state']}", flush=True)
+        row, res = one_speed(a.scene, float(rpm))
+        _printed(rows, row, found, res)
+    # where the transient reached no orbit, from the nearest drawn speed's orbit (one_speed, neighbour_orbit)
+    for i, row in enumerate(list(rows)):
+        if row["converged"] or not found:
             continue
-        print(f"{rpm:8.1f} rpm: " + ("" if r["converged"] else "no orbit, last iterate: ")
-              + (f"error {r['error']:.1e} (reference {r['reference_convergence']:.1e}), "
-                 f"|mu| {r['largest_multiplier']:.5f}" if r.get("error") is not None else "-"), flush=True)
+        near = min(found, key=lambda f: abs(f - row["speed_rpm"]))
+        again, res = one_speed(a.scene, row["speed_rpm"], (near, found[near]))
+        again["transient"] = "no orbit" if row.get("no_state") is None else "left the law's domain"
+        rows[i] = again if again["converged"] or again.get("error") is not None else {**row, "route": again["route"]}
+        _printed(None, rows[i], found, res)
     text = report(a.scene, seed, rows, load0, os.getloadavg(), commit)
     write(a.out, text, {"seed": seed, "scene": a.scene, "commit": commit, "load": [load0[0], os.getloadavg()[0]],
                         "rows": rows})
     print(text)
     return 0
+
+
+def _printed(rows, r: dict, found: dict, res) -> None:
+    """Append row ``r`` to ``rows`` (unless None), its orbit ``res`` to ``found`` by speed, and print it."""
+    if rows is not None:
+        rows.append(r)
+    if res is not None:
+        found[r["speed_rpm"]] = res
+    rpm, how = r["speed_rpm"], f" [{r['route']}]" if r.get("route", "transient") != "transient" else ""
+    if r.get("no_state"):
+        print(f"{rpm:8.1f} rpm: no orbit, no state: {r['no_state']}{how}", flush=True)
+        return
+    print(f"{rpm:8.1f} rpm: " + ("" if r["converged"] else "no orbit, last iterate: ")
+          + (f"error {r['error']:.1e} (reference {r['reference_convergence']:.1e}), "
+             f"|mu| {r['largest_multiplier']:.5f}" if r.get("error") is not None else "-") + how, flush=True)
 
 
 def write(out: Path, text: str, data: dict) -> None:
