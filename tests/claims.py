@@ -625,9 +625,10 @@ NOT_CLAIMS = (
      "rotor.dynamics.monodromy_check.piece_reference); a sample, not a claim: each run draws a new seed, and the "
      "default run checks one random speed of this scene (test_monodromy_random_speeds.py)"),
     ("reports/published/perf-monodromy-random.md",
-     "one benchmark sample of 20 speeds (seed 1043030055, at c554eb7): 19 of 19 orbits within 1e-6 of the derivative "
-     "of their map's piece (largest 8.9e-7; the reference converged at every orbit, at 2 only column by column: "
-     "rotor.dynamics.monodromy_check.piece_reference), 1 speed with no orbit; the last sample's unresolved speeds "
+     "one benchmark sample of 20 speeds (seed 3815215491, at b5a1b37): 20 of 20 orbits within 1e-6 of the derivative "
+     "of their map's piece (largest 2.3e-7, every reference converged central); at 1 speed (16 394.5 rpm) the "
+     "transient from rest reached no orbit and Newton from the nearest drawn speed's orbit (17 762.7 rpm) found "
+     "one (multiplier 2.32); the earlier sample's unresolved speeds "
      "(seed 2426071970: 11 805.3 and 9 294.0 rpm) have a slow test; a sample, not a claim: each run draws a new "
      "seed, and the default run checks 3 other random speeds "
      "(test_monodromy_random_speeds.py)"),
