@@ -31,6 +31,14 @@ forced response under gravity or static loads the faces cannot hold, else the li
     ringcontact simulate --scene paper-table4 --speed-rpm 9000 --revolutions 40 --out runs/s9000
     ringcontact branch paper-table4 --rpm-start 9000 --rpm-end 12000 --from-state runs/s9000
 
+``orbit --from-orbit FILE`` starts Newton on the orbit of an ``orbit --out`` file of the same scene at a
+neighbouring speed (its phase-0 state and period, one revolution of transient): an unstable orbit that no
+transient from rest settles on is found so (on paper-table4 at 16 394.5 rpm the search from rest ends without an
+orbit; from 17 762.7 rpm's orbit Newton finds one, multiplier 2.32: reports/published/perf-monodromy-random.md)::
+
+    ringcontact orbit paper-table4 --speed-rpm 17762.7 --out runs/o17763.json
+    ringcontact orbit paper-table4 --speed-rpm 16394.5 --from-orbit runs/o17763.json
+
 Both carry the record of the law's validity over the orbits (``law_validity``, :mod:`rotor.model.law_validity`: the
 one ``simulate`` writes; a branch's merged over its orbits) and say its findings on stderr as ``simulate`` does; a
 law its file flags is refused unless ``--allow-flagged-law``.
@@ -54,6 +62,7 @@ from reports.cli._scene_options import (add_law_check_option, add_progress_optio
                                         override_words, say_on_terminal, scene_from_args, scene_top_rpm,
                                         warm_up_shown, warn_speeds_beyond_scene)
 from reports.cli._orbit_hb import check_method_args, hb_branch_run, hb_branch_table, hb_choice, hb_orbit_table
+from reports.cli._orbit_starts import chosen_orbit, orbit_file, state_start
 
 
 def _method(text: str) -> str:
@@ -98,6 +107,10 @@ def _orbit_parser() -> argparse.ArgumentParser:
     p.add_argument("--period-revs", type=count(1, 8, "revolutions"), default=None,
                    help="period in revolutions, 1 to 8 (default: found from the transient's Poincaré returns; "
                         "an orbit whose shorter period divides it is reported with the shorter period)")
+    p.add_argument("--from-orbit", type=in_file, default=None, metavar="FILE",
+                   help="start Newton on the orbit of an `orbit --out` FILE of the same scene at another speed (its "
+                        "state at phase 0 and period, one revolution of transient): finds an unstable orbit that no "
+                        "transient from rest settles on; --method shooting only")
     return p
 
 
@@ -348,13 +361,18 @@ def no_orbit_text(args, speed_rpm: float, steps_per_rev: int, attempts: list[dic
             f"contact events are short; a transient start: ringcontact simulate {scene} --speed-rpm {speed_rpm:g} "
             "--steady --revolutions 64 "
             "shows whether the response settles at all (steady_converged false: quasi-periodic or chaotic, no "
-            "periodic orbit to find).")
+            "stable periodic orbit); an unstable orbit no transient settles on: --from-orbit FILE, the `orbit --out` "
+            "file of a neighbouring speed's orbit.")
 
 
 def _orbit(args) -> int:
     from rotor.studies.orbit_methods import cross_check
 
     name, _, loose = _scene(args, "ringcontact orbit")
+    if args.from_orbit is not None:
+        if args.method != "shooting":
+            raise InputError(f"--method = {args.method}: --from-orbit starts shooting's Newton; give --method shooting")
+        orbit_file(args, name)                    # a bad file is refused before any computing
     check_method_args(args, "ringcontact orbit", args.speed_rpm, _overrides(args))
     pt, choice = (None, None) if args.method == "shooting" else hb_choice(args, args.speed_rpm, _overrides(args))
     if pt is not None:
@@ -383,21 +401,27 @@ def _shooting_orbit(args, name: str, loose, choice: dict | None = None, hb=None)
     from rotor.studies.orbit import orbit
     from rotor.periodic.shooting import ShootingOptions
 
-    start = {}
+    start, steps, began = {}, args.steps_per_rev, {}
     if hb is not None:
         import numpy as np
         st = hb.fields["phase0_state"]
         start = {"start": (np.array(st["q_m_rad"]), np.array(st["v_m_s_rad_s"])), "period_revs": hb.orbit.period_revs,
                  "options": ShootingOptions(transient_revs=1, round_growth=2.0)}
+    elif getattr(args, "from_orbit", None) is not None:     # an orbit at another speed: Newton from its state
+        got, rpm = orbit_file(args, name)
+        steps = got.pop("steps_per_rev")
+        start = {**got, "period_revs": args.period_revs or got["period_revs"],
+                 "options": ShootingOptions(transient_revs=1, round_growth=2.0)}
+        began = {"started_from_orbit": {"file": str(args.from_orbit), "speed_rpm": rpm}}
     _check_work(args, "ringcontact orbit", args.speed_rpm)
     res, events = _watched("ringcontact orbit", args, lambda: orbit(
-        args.scene, args.speed_rpm, steps_per_rev=args.steps_per_rev, **{"period_revs": args.period_revs, **start},
+        args.scene, args.speed_rpm, steps_per_rev=steps, **{"period_revs": args.period_revs, **start},
         richardson=args.richardson, **_overrides(args)))
     d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m,
                                               res.contact.get("max_tilt_in_contact_arcmin"),
                                               [res.contact.get("law_validity")]),
          "attempts": events.attempts, "method": "shooting", **({"method_choice": choice} if choice else {}),
-         **_stability(args)}
+         **began, **_stability(args)}
     return d, res, events
 
 
@@ -448,62 +472,6 @@ def _branch_table(d: dict, station: str) -> str:
     return "\n".join(lines)
 
 
-def _chosen_orbit(args, name: str) -> dict:
-    """``start``, ``period_revs`` and ``steps_per_rev`` of the ``orbit --out`` file ``--from-orbit`` (empty without
-    it); the file's scene and speed must be the branch's."""
-    if args.from_orbit is None:
-        return {}
-    import numpy as np
-    try:
-        o = json.loads(Path(args.from_orbit).read_text(encoding="utf-8"))
-        state, rpm, scene = o["phase0_state"], float(o["speed_rpm"]), o["scene"]
-    except (ValueError, KeyError, TypeError) as e:
-        raise InputError(f"--from-orbit = {args.from_orbit}: not an `orbit --out` file with phase0_state "
-                         f"({type(e).__name__}: {e})") from None
-    if scene != name:
-        raise InputError(f"--from-orbit = {args.from_orbit}: an orbit of scene {scene}, not of {name}")
-    if abs(rpm - args.rpm_start) > 1e-9 * rpm:
-        raise InputError(f"--rpm-start = {args.rpm_start:g} rpm: the orbit of --from-orbit is at {rpm!r} rpm; "
-                         "start the branch there")
-    return {"start": (np.array(state["q_m_rad"], float), np.array(state["v_m_s_rad_s"], float)),
-            "period_revs": int(o["period_revs"]),
-            "steps_per_rev": args.steps_per_rev or (int(o["steps_per_rev"]) if o.get("steps_per_rev") else None)}
-
-
-def _state_start(args, name: str, n_dofs: int) -> dict:
-    """``start`` (full ``(q, v)`` at phase 0) from the last sample of the ``simulate --out`` run ``--from-state``
-    (empty without it): the run complete (:func:`contact.files.check_run_files`), of the branch's scene and
-    ``--rpm-start``, with the branch's DOFs, ended after a whole number of revolutions (phase 0)."""
-    if args.from_state is None:
-        return {}
-    import numpy as np
-
-    from contact.files import check_run_files
-    opt = f"--from-state = {args.from_state}"
-    try:
-        summary = check_run_files(args.from_state, "simulate")
-        scene, rpm = summary["scene"], float(summary["speed_rpm"])
-        with np.load(Path(args.from_state) / "simulate.npz") as z:
-            t, q, v = float(z["t"][-1]), np.array(z["q"][-1], float), np.array(z["v"][-1], float)
-    except RingContactError as e:
-        raise InputError(f"{opt}: not a complete `simulate --out` run ({e})") from None
-    except (OSError, ValueError, KeyError, TypeError, IndexError) as e:
-        raise InputError(f"{opt}: not a `simulate --out` run with simulate.npz ({type(e).__name__}: {e})") from None
-    if scene != name:
-        raise InputError(f"{opt}: a run of scene {scene}, not of {name}")
-    if abs(rpm - args.rpm_start) > 1e-9 * rpm:
-        raise InputError(f"--rpm-start = {args.rpm_start:g} rpm: the run of --from-state is at {rpm!r} rpm; "
-                         "start the branch there")
-    revs = t * rpm / 60.0
-    if abs(revs - round(revs)) > 1e-6 * max(1.0, revs) or round(revs) < 1:
-        raise InputError(f"{opt}: the run ends after {revs:.6g} revolutions; a start needs a whole number (phase 0): "
-                         "run simulate with whole --revolutions")
-    if q.shape != (n_dofs,) or v.shape != (n_dofs,) or not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
-        raise InputError(f"{opt}: its state has {q.shape[0] if q.ndim else 0} DOFs, the branch's scene {n_dofs} "
-                         "(another mesh or scene options), or is not finite")
-    return {"start": (q, v)}
-
-
 def _branch(args) -> int:
     from rotor.periodic.continuation import ContinuationOptions
     from rotor.studies.orbit import branch
@@ -523,10 +491,10 @@ def _branch(args) -> int:
     if pt is not None:
         _warn_beyond(args, "ringcontact branch")
         return _hb_branch(args, name, loose, station, pt, choice)
-    chosen = {"steps_per_rev": args.steps_per_rev, **_chosen_orbit(args, name)}   # a bad --from-orbit first
+    chosen = {"steps_per_rev": args.steps_per_rev, **chosen_orbit(args, name)}   # a bad --from-orbit first
     if args.from_state is not None:                                                  # and a bad --from-state
         from rotor.studies.steady_state import point_system
-        chosen.update(_state_start(args, name, point_system(args.scene, args.rpm_start, **_overrides(args))[2].n))
+        chosen.update(state_start(args, name, point_system(args.scene, args.rpm_start, **_overrides(args))[2].n))
     _check_work(args, "ringcontact branch", min(args.rpm_start, args.rpm_end), int(args.max_points))
     t0 = time.perf_counter()
     res, events = _watched("ringcontact branch", args, lambda: branch(

@@ -110,6 +110,7 @@ def test_orbit_failure_says_what_was_tried_and_what_to_change(one_iteration, cap
     assert f"{len(d['attempts'])} Newton attempts" in out and f"residuals {residuals}" in out
     assert "--period-revs" in out and f"--steps-per-rev {2 * d['steps_per_rev']}" in out
     assert "ringcontact simulate --scene paper-table4 --mu 0 --speed-rpm 15000 --steady" in out
+    assert "--from-orbit FILE" in out          # an unstable orbit no transient settles on
     assert d["advice"] in out
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("ringcontact orbit: error: no periodic orbit at 15000 rpm")

@@ -139,18 +139,43 @@ def test_branch_starts_on_the_orbit_of_an_orbit_out_file_and_its_table_has_ampli
     assert rc == 2 and len(lines) == 1 and "--rpm-start = 1600 rpm" in lines[0] and "1500" in lines[0]
 
 
+def test_orbit_from_a_neighbouring_speeds_orbit_finds_the_unstable_orbit_the_benchmark_found(tmp_path, capsys):
+    """At 16 394.5 rpm on paper-table4 (seed 3815215491 of benchmarks/bench_monodromy_random.py) the search from
+    rest found no orbit; Newton from the orbit at 17 762.7 rpm did, multiplier 2.32
+    (reports/published/perf-monodromy-random.json, the expected value read from it). ``orbit --from-orbit`` is that
+    route for a user; with ``--method hb``, or a file of another scene, it is refused before any computing."""
+    rows = json.loads((ROOT / "reports/published/perf-monodromy-random.json").read_text())["rows"]
+    row = next(r for r in rows if r.get("route", "transient") != "transient")
+    near = float(row["route"].split()[2])
+    out, got = tmp_path / "near.json", tmp_path / "found.json"
+    rc, _, err = _run(["orbit", "paper-table4", "--speed-rpm", near, "--out", out], capsys)
+    assert rc == 0, err
+    rc, _, err = _run(["orbit", "paper-table4", "--speed-rpm", row["speed_rpm"], "--from-orbit", out, "--out", got],
+                      capsys)
+    assert rc == 0, err
+    d = json.loads(got.read_text())
+    assert d["converged"] and d["started_from_orbit"] == {"file": str(out), "speed_rpm": near}
+    assert d["period_revs"] == row["period_revs"] and not d["stable"]
+    assert d["spectral_radius"] == pytest.approx(row["largest_multiplier"], rel=1e-4)
+    for extra, words in ((["--method", "hb"], "--method = hb"), ([], "an orbit of scene paper-table4, not of")):
+        scene = "paper-table4" if extra else "table4-steel-in-aluminium"
+        rc, _, err = _run(["orbit", scene, "--speed-rpm", 16000, "--from-orbit", out, *extra], capsys)
+        lines = [ln for ln in err.splitlines() if ln.strip()]
+        assert rc == 2 and len(lines) == 1 and words in lines[0], err
+
+
 def test_branch_starts_from_the_end_state_of_a_simulate_run_and_refuses_bad_runs(damped_jeffcott, tmp_path, capsys):
     """--from-state DIR: the transient from the last state of a ``simulate --out DIR`` run (phase 0 after whole
     revolutions) reaches the orbit; the state handed over is the run's last sample."""
     import argparse
 
-    from reports.cli.orbit import _state_start
+    from reports.cli._orbit_starts import state_start
     sim = tmp_path / "sim"
     rc, _, err = _run(["simulate", "--scene", damped_jeffcott, "--speed-rpm", 1500, "--revolutions", 6,
                        "--steps-per-rev", 64, "--out", sim], capsys)
     assert rc == 0, err
     z = np.load(sim / "simulate.npz")
-    got = _state_start(argparse.Namespace(from_state=sim, from_orbit=None, rpm_start=1500.0), "damped-jeffcott",
+    got = state_start(argparse.Namespace(from_state=sim, from_orbit=None, rpm_start=1500.0), "damped-jeffcott",
                        z["q"].shape[1])
     assert np.array_equal(got["start"][0], z["q"][-1]) and np.array_equal(got["start"][1], z["v"][-1])
     rc, text, err = _run(["branch", damped_jeffcott, "--rpm-start", 1500, "--rpm-end", 1800, "--from-state", sim,
