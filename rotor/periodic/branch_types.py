@@ -194,6 +194,9 @@ class Evaluator:
         self.modes_end: tuple | None = None
         self._flows: dict = {}
         self.events, self.failure = -1, ""
+        #: the iterate and the rejected full step of a stall whose maps switch the faces a different number of
+        #: times, with the modes they start from (rotor/periodic/map_jump.py; reset by each stall's first corrector)
+        self.straddle: tuple | None = None
 
     def flow(self, lam):
         if lam not in self._flows:

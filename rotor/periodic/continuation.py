@@ -75,6 +75,7 @@ from rotor.periodic.branch_types import (COLD, GRID, NEUTRAL_TOL, PARAM_REL_STEP
                                          ContinuationOptions, Evaluator, Problem, parameter_problem, speed_problem,
                                          start_modes)
 from rotor.periodic.corrector import correct, land, make_point, neutral_rows, rescale, unit_tangent
+from rotor.periodic.map_jump import jump_across, jump_text
 from rotor.periodic.period_flow import advance
 from rotor.periodic.restarts import bridge, jump_past_fold, restart, shot
 from rotor.periodic.shooting import ShootingOptions, shoot
@@ -149,7 +150,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
             fails += 1
             stalls.append(f"turned back at a fold at {problem.name} = {far.parameter:.6g}, followed "
                           f"{abs(far.parameter - y[-1] * ev.ls):.6g} back" if back else ev.failure)
-            got = _past_stall(ev, points, y, tau, ds, phase, direction, fails, opts, far if back else None)
+            got = _past_stall(ev, points, y, tau, ds, phase, direction, fails, opts, far if back else None, stalls)
             if got is None:
                 ds = 0.0 if back else 0.5 * ds
                 if ds < opts.ds_min:
@@ -251,6 +252,8 @@ def _corrected(ev, y_pred, tau, opts, phase, anchor, stalls: list):
     2.3e-3 and this retry converged (a cold restart before); at 2 320, 2 322 and 2 429 rpm both failed (3
     restarts, 4 before). Returns what :func:`rotor.periodic.corrector.correct` returns; the failure with the rows
     is kept in ``stalls`` with how it was passed."""
+    if not stalls:
+        ev.straddle = None                     # the stall's first corrector: a straddle of its own (map_jump.py)
     got = correct(ev, y_pred, tau, opts, phase, anchor)
     if got is not None:
         return got
@@ -304,7 +307,7 @@ def _modes_text(modes) -> str:
     return ", ".join(f"{side} {'stuck' if m == cons.STICK else 'slipping'}" for side, m in zip(("right", "left"), modes))
 
 
-def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts, fold=None):
+def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: int, opts, fold=None, stalls=None):
     """A point past a stall of the corrector, or None (then the step is halved). Past the fold point ``fold``
     (the branch has run back from it by ``turn_back``): the orbit a run-up jumps to
     (:func:`rotor.periodic.restarts.jump_past_fold`), else the last resort from the fold point
@@ -312,7 +315,9 @@ def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: i
     restart (:func:`rotor.periodic.restarts.restart`) after ``restart_after`` failures in a row, after the first
     in a stuck face's continuum (phase rows) or just after a restart (the predictor has made the face slip,
     which no smaller step of the corrector undoes); the last resort (:func:`rotor.periodic.restarts.bridge`)
-    once the next halving would take ``ds`` below ``ds_min``."""
+    once the next halving would take ``ds`` below ``ds_min``. Before a restart, the last of ``stalls`` (the
+    stall's reasons) gets the period map's jump where the corrector rejected a step across a change of the
+    switches in the period (:func:`_jump`)."""
     if fold is not None:     # the jump a run-up makes; else the last resort from the fold point, further on
         y_fold = np.concatenate([fold.state / ev.s, [fold.parameter / ev.ls]])
         return jump_past_fold(ev, y_fold, direction, opts) or bridge(ev, [fold], y_fold, direction, opts)
@@ -320,10 +325,28 @@ def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: i
         return None
     got = None
     if fails == (1 if points[-1].restarted or len(phase) else opts.restart_after):
+        if stalls:                            # said with the restart's reason: the stall was the map's jump
+            stalls[-1] += _jump(ev)
         got = restart(ev, points, y, tau, opts, len(phase) > 0, ds * abs(tau[-1]))
     if got is None and ds * 0.5 < opts.ds_min:
         got = bridge(ev, points, y, direction, opts)
     return got
+
+
+def _jump(ev) -> str:
+    """The jump of the period map across the stall's straddle (:func:`rotor.periodic.map_jump.jump_across`) in
+    words, measured with the modes the straddle's maps started from; empty without a straddle or a jump."""
+    if getattr(ev, "straddle", None) is None:
+        return ""
+    y_a, y_b, modes0 = ev.straddle
+
+    def residual(y):
+        lam = y[-1] * ev.ls
+        r = advance(ev.flow(lam), y[:-1] * ev.s, 0.0, ev.pb.n_steps, modes0, jacobian=False)
+        return (r.state - y[:-1] * ev.s) / ev.s, int(r.events)
+
+    found = jump_across(residual, y_a, y_b)
+    return jump_text(found, ev.pb.name, float(found["at"][-1] * ev.ls) if found else 0.0)
 
 
 def _next_step(ds: float, iterations: int, switched: bool, opts) -> float:

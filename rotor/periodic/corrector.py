@@ -78,9 +78,8 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
     steps in a row (halved, and leaving more than half of the merit). After as many more, or when no trial on
     either path lowers the merit, the corrector gives up (the caller halves the arclength step); past ``max_iter``
     only while it contracts (:data:`EXTRA_ITERATIONS`). At a kink (a switch inside the period) the full Newton step
-    overshoots to the other side and the plain iteration cycles."""
-    y = np.array(y_pred, float)
-    has_phase = phase is not None and len(phase)
+    overshoots and the plain iteration cycles; one rejected across a change of switches is kept (:func:`_straddled`)."""
+    y, has_phase = np.array(y_pred, float), phase is not None and len(phase)
 
     def bordered(y, R):
         rows = [R, [tau @ (y - y_pred)]] + ([phase @ (y - anchor)] if has_phase else [])
@@ -101,7 +100,7 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
     if R is None:
         ev.failure = "iterate 1 outside what the scheme can step, or its residual not finite"
         return None
-    res = float(np.max(np.abs(R)))
+    res, switches = float(np.max(np.abs(R))), ev.events      # the iterate's switches (a straddle: _straddled)
     trail, stalled = [res], 0
     for it in range(1, EXTRA_ITERATIONS * opts.max_iter + 1):
         A = np.vstack([J, tau[None, :]] + ([phase] if has_phase else []))
@@ -121,6 +120,7 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
                 R_t, J_t, M_t, F_t, merit_t = evaluate(y + step, lam == 1.0)
                 if merit_t < merit:
                     break
+                _straddled(ev, switches, y, step, J_t is not None)
                 lam *= 0.5
             if merit_t < merit:
                 break
@@ -136,13 +136,21 @@ def correct(ev: Evaluator, y_pred, tau, opts: ContinuationOptions, phase=None, a
                 return None
         stalled = stalled + 1 if lam < 1.0 and merit_t > 0.5 * merit else 0
         R, J, M, F, merit = R_t, J_t, M_t, F_t, merit_t
-        res = float(np.max(np.abs(R)))
+        res, switches = float(np.max(np.abs(R))), ev.events
         trail.append(res)
         if stalled >= 2 * STALL_ITERATIONS:
             break                         # not contracting on either path
     ev.failure = (f"no convergence in {len(trail)} iterations (residuals "
                   + ", ".join(f"{r:.1e}" for r in trail[-4:]) + ")" + _switches(ev))
     return None
+
+
+def _straddled(ev, switches: int, y, step, mapped: bool) -> None:
+    """Keep ``(y, y + step, modes0)`` as the stall's straddle (``Evaluator.straddle``, the first of the stall) where
+    the rejected full step ``y + step``, ``mapped`` with its switches, switches the faces another number of times in
+    the period than ``y`` (``switches``): the map may jump between them (rotor/periodic/map_jump.py)."""
+    if mapped and ev.events != switches and getattr(ev, "straddle", ()) is None:
+        ev.straddle = (y.copy(), y + step, tuple(ev.modes0))
 
 
 def _contracting(trail) -> bool:
