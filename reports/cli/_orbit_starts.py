@@ -36,6 +36,14 @@ def orbit_file(args, name: str) -> tuple[dict, float]:
                          f"({type(e).__name__}: {e})") from None
     if scene != name:
         raise InputError(f"--from-orbit = {args.from_orbit}: an orbit of scene {scene}, not of {name}")
+    q, v = got["start"]
+    steps = got["steps_per_rev"]
+    # the file's numbers within what the options themselves allow (--period-revs 1-8, --steps-per-rev 16-100000)
+    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v)) and 1 <= got["period_revs"] <= 8
+            and (steps is None or 16 <= steps <= 100000)):
+        raise InputError(f"--from-orbit = {args.from_orbit}: its phase0_state must be finite, its period_revs 1 to 8 "
+                         f"and its steps_per_rev 16 to 100000 (has period_revs {got['period_revs']}, steps_per_rev "
+                         f"{steps})")
     return got, rpm
 
 

@@ -163,6 +163,14 @@ def test_orbit_from_a_neighbouring_speeds_orbit_finds_the_unstable_orbit_the_ben
         rc, _, err = _run(["orbit", scene, "--speed-rpm", 16000, "--from-orbit", out, *extra], capsys)
         lines = [ln for ln in err.splitlines() if ln.strip()]
         assert rc == 2 and len(lines) == 1 and words in lines[0], err
+    # a file whose numbers no option would accept: refused before any computing, one line
+    o = json.loads(out.read_text())
+    for key, value in (("steps_per_rev", 10 ** 9), ("period_revs", -3)):
+        bad = tmp_path / f"bad-{key}.json"
+        bad.write_text(json.dumps({**o, key: value}))
+        rc, _, err = _run(["orbit", "paper-table4", "--speed-rpm", 16000, "--from-orbit", bad], capsys)
+        lines = [ln for ln in err.splitlines() if ln.strip()]
+        assert rc == 2 and len(lines) == 1 and f"{key} {value}" in lines[0], err
 
 
 def test_branch_starts_from_the_end_state_of_a_simulate_run_and_refuses_bad_runs(damped_jeffcott, tmp_path, capsys):
