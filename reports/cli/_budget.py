@@ -14,7 +14,8 @@ revolutions; most stop far earlier), typical values otherwise (said in the messa
 say both: "about X (at most Y: …)". Their step costs are measured on the system itself by a short probe
 (:func:`map_cost`: a revolution of the period map without and a share of one with its monodromy, after the
 compile, which is reported separately), a branch's orbit count follows the continuation's step control over
-the branch's scaled arclength (:func:`branch_orbits`, :func:`state_path`), and the bound counts the whole
+the branch's predicted path (:func:`branch_orbits` over :func:`reports.cli._branch_path.branch_path`: its scaled
+arclength, and where it grazes and follows a contact branch), and the bound counts the whole
 transient and ``--max-points`` orbits. They are refused on the typical value, or on the bound where it exceeds
 :data:`BOUND_REFUSAL` budgets: a bound counts work a smooth run never does (400 orbits where 25 cover a
 smooth branch; 2 000 transient revolutions where 24 usually do), so refusing on it refused 13-s branches, while a
@@ -187,6 +188,15 @@ BRANCH_ITERATIONS = 3
 #: a corrector iteration: the map with its monodromy, two without (∂R/∂λ), three systems built (λ, λ ± h); and
 #: per orbit two further periods without (its amplitudes, the scales' record)
 BRANCH_PLAIN_PER_ORBIT = 2 * BRANCH_ITERATIONS + 2
+#: corrector iterations of an orbit on a contact stretch between two grazings (the same Jeffcott-ring branch: 214
+#: maps with monodromy for 44 orbits), and the map costs there are the contact branch's (:func:`orbit`)
+GRAZING_ITERATIONS = 4.9
+#: scaled arclength of a contact stretch between grazings over its predicted one (:mod:`reports.cli._branch_path`):
+#: the contact branch folds (up, back along the unstable middle branch, on again), which the linear path cannot see
+CONTACT_PATH_FACTOR = 2.0
+#: a grazing crossing (:func:`rotor.periodic.grazing._cross`: the grazing orbit on the penetration's level sets
+#: and the first orbit past it) in orbits of the contact stretch
+CROSSING_ORBITS = 6.0
 #: a first orbit (:func:`rotor.periodic.shooting.shoot_from_transient`): the first transient round, and Newton
 #: iterations with monodromy on the period (typical: the first round's Newton converges)
 ORBIT_ITERATIONS = 3
@@ -305,37 +315,11 @@ def branch_orbits(path: float, opts=None) -> int:
     return count + (1 if count < o.max_points else 0)
 
 
-def state_path(system_at_rpm, rpm_start: float, rpm_end: float, samples: int = 17) -> float:
-    """The scaled arclength of a branch from ``rpm_start`` to ``rpm_end`` (the parameter scaled by a tenth of the
-    range, as :func:`rotor.studies.orbit.branch` does): 10, plus the state's change where the linear periodic
-    solution (loose support locked, :func:`rotor.dynamics.initial.linear_initial_state`) moves, in the orbit's
-    own scales (its peak-to-peak displacement and velocity ranges, never below the start's, as
-    :func:`rotor.periodic.corrector.rescale` keeps them)."""
-    import numpy as np
-
-    from rotor.dynamics.initial import linear_initial_state
-
-    states, ranges = [], []
-    for rpm in np.linspace(rpm_start, rpm_end, samples):
-        system = system_at_rpm(float(rpm))
-        period = 2.0 * np.pi / system.omega_rad_s
-        qv = [np.concatenate(linear_initial_state(system, period * j / 8)) for j in range(8)]
-        n = system.n
-        states.append(qv[0])
-        ptp = np.ptp(np.array(qv), axis=0)
-        ranges.append(np.concatenate([np.full(n, max(ptp[:n].max(), 1e-12)), np.full(n, max(ptp[n:].max(), 1e-12))]))
-    floor = ranges[0]
-    path = 0.0
-    for a, b, s in zip(states, states[1:], ranges[1:]):
-        path += float(np.hypot(10.0 / (samples - 1), np.linalg.norm((b - a) / np.maximum(s, floor))))
-    return path
-
-
 def orbit(system, steps_per_rev: int, period_revs: int | None, points: int = 0, *, cost: MapCost | None = None,
-          path: float | None = None) -> Estimate:
+          path=None, contact_cost: MapCost | None = None) -> Estimate:
     """Shooting at one speed (and, with ``points`` = ``--max-points``, a branch): typically the first transient
     round (``ShootingOptions.transient_revs``) and :data:`ORBIT_ITERATIONS` Newton iterations on the period map
-    with its monodromy, then the branch's orbits (:func:`branch_orbits` over ``path``, :func:`state_path`; 10:
+    with its monodromy, then the branch's orbits (:func:`_branch_work` over ``path``; 10:
     the parameter alone) of :data:`BRANCH_ITERATIONS` corrector iterations each; at most the whole transient
     (``max_transient_revs``) with every round's Newton attempts at full length, and ``points`` orbits. The step
     costs are measured on ``system`` (``cost``; :func:`map_cost` when not given)."""
@@ -353,19 +337,48 @@ def orbit(system, steps_per_rev: int, period_revs: int | None, points: int = 0, 
     tries = 1 if period_revs else o.periods_per_round
     bound = (o.max_transient_revs * n * c.plain_s
              + rounds * tries * o.max_iter * (period_revs or MAX_PERIOD_REVS) * n * c.jac_s)
-    per_orbit = (BRANCH_ITERATIONS * (k * n * c.jac_s + 3 * c.build_s) + BRANCH_PLAIN_PER_ORBIT * k * n * c.plain_s)
+    per_orbit = _per_orbit(c, BRANCH_ITERATIONS, k * n)
     made = (f"{_us(c.plain_s)} a step, {_us(c.jac_s)} with the monodromy, measured on the system"
             + (f" in {c.probe_s:.2g} s" if c.probe_s >= 0.5 else ""))
     if points:
-        orbits = branch_orbits(10.0 if path is None else path)
-        typical += orbits * per_orbit
-        bound += points * per_orbit
-        made = f"the first orbit and about {orbits} orbits of {per_orbit:.2g} s; {made}"
+        orbits, work, said, worst = _branch_work(path, c, contact_cost, k * n)
+        typical += work
+        bound += points * worst
+        made = f"the first orbit and about {orbits} orbits{said}; {made}"
         limit = f"{points} orbits and the longest first orbit"
     else:
         limit = f"the first orbit after {o.max_transient_revs} transient revolutions"
     return Estimate(typical, (period_revs or MAX_PERIOD_REVS) * n * system.n * 8 * 6, made, bound=False,
                     upper_s=bound, upper_of=limit)
+
+
+def _per_orbit(c: MapCost, iterations: float, steps: int) -> float:
+    """Seconds of a branch's orbit of ``iterations`` corrector iterations on maps of ``steps`` steps at the costs
+    ``c``: per iteration the map with its monodromy and three systems built, two maps without; two more per orbit."""
+    return iterations * (steps * c.jac_s + 3 * c.build_s) + (2 * iterations + 2) * steps * c.plain_s
+
+
+def _branch_work(path, c: MapCost, contact_cost: MapCost | None, steps: int) -> tuple[int, float, str, float]:
+    """``(orbits, seconds, words, seconds of the costliest orbit)`` of a branch past its first orbit. ``path``: None (the parameter's 10 scales
+    alone), a scaled arclength, or a predicted path with grazings (:class:`reports.cli._branch_path.BranchPath`):
+    each segment counted from the first step again (the continuation starts anew past a grazing), a contact
+    stretch between grazings at :data:`CONTACT_PATH_FACTOR` times its path, :data:`GRAZING_ITERATIONS` and the
+    map costs ``contact_cost`` (measured there; else ``c``), and :data:`CROSSING_ORBITS` of its orbits a grazing."""
+    if not hasattr(path, "segments"):
+        orbits = branch_orbits(10.0 if path is None else path)
+        per = _per_orbit(c, BRANCH_ITERATIONS, steps)
+        return orbits, orbits * per, f" of {per:.2g} s", per
+    touching = _per_orbit(contact_cost or c, GRAZING_ITERATIONS, steps)
+    smooth = _per_orbit(c, BRANCH_ITERATIONS, steps)
+    orbits = seconds = 0.0
+    for p, contact in path.segments:
+        m = branch_orbits(p * CONTACT_PATH_FACTOR if contact else p)
+        orbits, seconds = orbits + m, seconds + m * (touching if contact else smooth)
+    seconds += len(path.grazing_rpm) * CROSSING_ORBITS * touching
+    if not path.grazing_rpm:
+        return int(orbits), seconds, f" of {smooth:.2g} s", smooth
+    return (int(orbits), seconds, f" of {smooth:.2g} s, {touching:.2g} s in contact, and {len(path.grazing_rpm)} "
+            f"grazing(s) near {', '.join(f'{g:.0f}' for g in path.grazing_rpm)} rpm", max(smooth, touching))
 
 
 def _us(seconds: float) -> str:

@@ -57,6 +57,7 @@ from pathlib import Path
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError, RingContactError
 from reports.cli import _budget
+from reports.cli._branch_path import branch_path
 from reports.cli._edge import Parser, count, fail, in_dir, in_file, out_file, out_prefix, quantity
 from reports.cli._scene_options import (add_law_check_option, add_progress_option, add_scene_options, finish,
                                         override_words, say_on_terminal, scene_from_args, scene_top_rpm,
@@ -183,9 +184,12 @@ def _check_work(args, prog: str, rpm: float, points: int = 0) -> None:
         _budget.check(prog, first, args.accept_long, cause, remedy)
     warm_up_shown(prog, args, warm_up)          # the compile first, reported on its own: the probe times the steps
     cost = _budget.map_cost(lambda: point_system(args.scene, rpm, **ov)[2], n)
-    path = (_budget.state_path(lambda w: point_system(args.scene, w, **ov)[2], args.rpm_start, args.rpm_end)
+    path = (branch_path(lambda w: point_system(args.scene, w, **ov)[2], args.rpm_start, args.rpm_end)
             if points else None)
-    est = _budget.orbit(system, n, getattr(args, "period_revs", None), points, cost=cost, path=path)
+    contact = (_budget.map_cost(lambda: point_system(args.scene, path.deepest_rpm, **ov)[2], n)
+               if points and path.deepest_rpm is not None else None)
+    est = _budget.orbit(system, n, getattr(args, "period_revs", None), points, cost=cost, path=path,
+                        contact_cost=contact)
     _budget.check(prog, est, args.accept_long, cause, remedy)
     _warn_beyond(args, prog)
     _warn_unstable(args, prog, model, (args.rpm_start, args.rpm_end) if points else (rpm,))

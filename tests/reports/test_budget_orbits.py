@@ -1,4 +1,4 @@
-"""The orbit count of a smooth branch (reports/cli/_budget.py: branch_orbits, state_path) against the count the
+"""The orbit count of a smooth branch (reports/cli/_budget.py: branch_orbits) against the count the
 continuation takes (rotor.periodic.continuation.continue_branch) on a rotor that never touches its ring (linear):
 the estimate's count model, no wall time."""
 from __future__ import annotations
