@@ -205,6 +205,13 @@ class Evaluator:
             self._flows[lam] = self.pb.flow(lam)
         return self._flows[lam]
 
+    def residual_switches(self, y, modes0) -> tuple:
+        """``(R, switches)``: the scaled residual at the scaled point ``y = (x/s, λ/ls)`` of the map from the end-face
+        ``modes0``, without its Jacobian, and the end-face switches of that period (rotor/periodic/map_jump.py)."""
+        x, lam = y[:-1] * self.s, y[-1] * self.ls
+        r = advance(self.flow(lam), x, 0.0, self.pb.n_steps, modes0, jacobian=False)
+        return (r.state - x) / self.s, int(r.events)
+
     def __call__(self, x, lam, jacobian=True):
         r = advance(self.flow(lam), x, 0.0, self.pb.n_steps, self.modes0, jacobian=jacobian)
         R = (r.state - x) / self.s

@@ -339,13 +339,7 @@ def _jump(ev) -> str:
     if getattr(ev, "straddle", None) is None:
         return ""
     y_a, y_b, modes0 = ev.straddle
-
-    def residual(y):
-        lam = y[-1] * ev.ls
-        r = advance(ev.flow(lam), y[:-1] * ev.s, 0.0, ev.pb.n_steps, modes0, jacobian=False)
-        return (r.state - y[:-1] * ev.s) / ev.s, int(r.events)
-
-    found = jump_across(residual, y_a, y_b)
+    found = jump_across(lambda y: ev.residual_switches(y, modes0), y_a, y_b)
     return jump_text(found, ev.pb.name, float(found["at"][-1] * ev.ls) if found else 0.0)
 
 

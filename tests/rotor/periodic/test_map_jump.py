@@ -38,3 +38,20 @@ def test_a_kink_or_alike_switches_is_no_jump():
     small = lambda y: (_jumping(y)[0] - np.array([SIZE - 0.1 * JUMP_FLOOR, 0.0]) * (y[0] > BOUNDARY), _jumping(y)[1])
     assert jump_across(small, np.array([0.0, 1.0]), np.array([1.0, 1.0])) is None         # below the floor
     assert jump_text(None, "speed_rad_s", 1.0) == ""
+
+
+def test_the_stall_s_residual_is_the_corrector_s_map():
+    """``Evaluator.residual_switches`` (the map the stall's jump is measured on, rotor/periodic/continuation.py: _jump)
+    is the corrector's own residual at the same scaled point and modes, with the switches of its period: on a
+    Jeffcott rotor in contact with its ring (rotor/periodic/jeffcott.py), equal to round-off."""
+    from rotor.periodic.branch_types import Evaluator, speed_problem
+    from rotor.periodic.jeffcott import JeffcottParams, jeffcott_system
+
+    params = JeffcottParams(law="conformal")
+    pb = speed_problem(lambda w: jeffcott_system(params, w), 64, modes0=(0, 0))
+    scales = np.concatenate([np.full(4, 1e-5), np.full(4, 1e-2)])
+    ev = Evaluator(pb, scales, 30.0)
+    x = np.array([2e-5, 1e-5, 0.0, 0.0, -3e-3, 6e-3, 0.0, 0.0])
+    R, _, _ = ev(x, 320.0, jacobian=True)
+    got, switches = ev.residual_switches(np.concatenate([x / scales, [320.0 / 30.0]]), ev.modes0)
+    assert np.allclose(got, R, rtol=1e-12, atol=1e-15) and switches == ev.events
