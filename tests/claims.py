@@ -288,7 +288,7 @@ CLAIMS = (
 
     # perf-hb-scenes.md: the family of the run's seed; the slow test checks every orbit within 1e-10 of the continuous
     # closed form and the end reached on ten rotors of the commit's seed (the default run: one)
-    dict(report="reports/published/perf-hb-scenes.md", claim="| HB | 10 | 1455 | 5.53e-14 | 0.00e+00 |",
+    dict(report="reports/published/perf-hb-scenes.md", claim="| HB | 10 | 1442 | 3.57e-14 | 0.00e+00 |",
          test="tests/rotor/periodic/test_hb_scenes.py::test_hb_branches_of_ten_random_scenes_are_the_continuous_closed_form",
          tier="slow"),
     dict(report="reports/published/perf-hb-scenes.md", claim="Every HB stop: ['end reached']",
@@ -674,14 +674,14 @@ UNGUARDED = (
                 "e299cad's study-cascade*.csv against this commit's); a comparison of two runs, not a property of one"),
     dict(report="reports/published/perf-hb.md", claim="HB took 0.402 times pyHarm-os's CPU on the same branch",
          reason=_CPU_RATIO),
-    dict(report="reports/published/perf-hb-scenes.md", claim="| 2.03 | 0.266 (on 9) |", reason=_CPU_RATIO),
-    dict(report="reports/published/perf-hb-scenes.md", claim="HB / pyHarm-os CPU per rotor: 0.13 to 0.74",
+    dict(report="reports/published/perf-hb-scenes.md", claim="| 1.69 | 0.291 (on 8) |", reason=_CPU_RATIO),
+    dict(report="reports/published/perf-hb-scenes.md", claim="HB / pyHarm-os CPU per rotor: 0.23 to 0.37",
          reason=_CPU_RATIO),
-    dict(report="reports/published/perf-hb-scenes.md", claim="| shooting N | 3 | 212 | 6.88e-05 |",
+    dict(report="reports/published/perf-hb-scenes.md", claim="| shooting N | 3 | 190 | 1.34e-04 |",
          reason="the step's distance from the CONTINUOUS closed form, measured by the benchmark only (the tests "
                 "bound shooting against the scheme-consistent closed form: tests/rotor/studies/test_grazing_family.py)"),
-    dict(report="reports/published/perf-hb-scenes.md", claim="| 15000 | 256, 78.0, False, 1.0 | 32 | True | 1.98 | "
+    dict(report="reports/published/perf-hb-scenes.md", claim="| 15000 | 256, 12.8, False, 1.0 | 32 | True | 1.72 | "
                                                               "2.1e-08 | 2.6e-04 | 2.4e-08 |",
-         reason="Table 4 HB against shooting and Richardson at one speed: about 80 s of shooting per speed, run by "
+         reason="Table 4 HB against shooting and Richardson at one speed: 13-78 s of shooting per speed, run by "
                 "the benchmark only; no test runs it"),
 )
