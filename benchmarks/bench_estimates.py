@@ -60,6 +60,8 @@ def _cases(jr: str, lo: float, hi: float) -> list:
          ["branch", FRISWELL, "--rpm-start", "2300", "--rpm-end", "2800"]),
         ("orbit Friswell 5.9.1 loose Al, 200 N, 2570 rpm",
          ["orbit", FRISWELL, "--speed-rpm", "2570", "--preload-N", "200"]),
+        ("branch Friswell 5.9.1 loose Al, 200 N, 2300 -> 2800 rpm (restarts: not in the estimate)",
+         ["branch", FRISWELL, "--rpm-start", "2300", "--rpm-end", "2800", "--preload-N", "200"]),
         ("orbit paper-table4 at 12000 rpm", ["orbit", "paper-table4", "--speed-rpm", "12000"]),
         ("orbit paper-table4 at 7000 rpm", ["orbit", "paper-table4", "--speed-rpm", "7000"]),
     ]
