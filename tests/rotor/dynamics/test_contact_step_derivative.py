@@ -7,7 +7,7 @@ revolution from the state 24 revolutions after the linear start. Speeds drawn un
 the commit's seed (printed; ``RINGCONTACT_TEST_SEED`` reruns them), the first two with a contact step in that
 revolution. Expected value: the Richardson extrapolation of central differences of the located step
 (rotor/dynamics/period_map_events.py ``_replays``, the compiled step from its recorded start) at 1e-6 and 2e-6 of
-each component's scale; measured on Table 4 at 7 000 rpm: the exact derivative within 3e-9 to 3e-8 of it at 8
+each component's scale, at the steps where it agrees with the one at 5e-7 and 1e-6 (:data:`REFERENCE_CONVERGED`); measured on Table 4 at 7 000 rpm: the exact derivative within 3e-9 to 3e-8 of it at 8
 contact steps, and within 2e-9 to 1.2e-8 of the steel-in-aluminium orbit's at 8 781 rpm (where the ladder of
 differences put the monodromy 1.2e-6 from its map's).
 """
@@ -31,6 +31,13 @@ from rotor.studies.steady_state import point_system
 STEPS = 256
 #: measured largest 3e-8 (module docstring); the ladder's own bound on a differenced event step is 1e-6
 BOUND = 2e-7
+#: a step's reference is compared only where it agrees with the same Richardson extrapolation at 5e-7 and 1e-6 to
+#: this (half the bound; measured elsewhere 7e-10 to 3.2e-8 on seeds 1, 2 and 2421572205): a threshold of the step
+#: within 2e-6 of its start makes the differences jump. Measured on Table 4 at
+#: 14 496.1 rpm (drawn by commit 9056426's seed), step 139: central differences at 1e-7 and 2e-6 agree with the exact
+#: derivative to 2.8e-9 and 2.4e-10, those at 3e-8, 3e-7 and 1e-6 differ by 4.7e3, 2.5e-4 and 7.4e-5, so the
+#: reference at 1e-6 and 2e-6 was 9.9e-5 off (its convergence 2.0e-4)
+REFERENCE_CONVERGED = 1e-7
 
 
 def _record(scene: str, rpm: float):
@@ -64,9 +71,9 @@ def _central(pm, x0, modes, phi, t, scales, h):
     return ((e[0::2] - e[1::2]) / (2.0 * h * scales[:, None])).T
 
 
-def _step_errors(pm, tr) -> list[tuple[int, float | None]]:
-    """Each contact step of the record: (step, scaled error of the exact derivative against the reference), None
-    where the exact route declined it."""
+def _step_errors(pm, tr) -> list[tuple[int, float | None, float]]:
+    """Each contact step of the record: (step, scaled error of the exact derivative against the reference, None
+    where the exact route declined it; the reference's own convergence, against the same at 5e-7 and 1e-6)."""
     (rec_p, rec_v, rec_a), scales = _scales(pm, tr)
     nr = pm.nr
     out = []
@@ -80,14 +87,14 @@ def _step_errors(pm, tr) -> list[tuple[int, float | None]]:
         Sa = np.hstack([np.zeros((nr, 2 * nr)), np.eye(nr)])
         plan = csd.contact_step_plan(pm, x0, modes, phi, tr.t[n], ref_end, scales)
         if plan is None:
-            out.append((n, None))
+            out.append((n, None, math.nan))
             continue
         got = csd.contact_step_sensitivity(pm, plan, Spv, Sa)
         J = np.vstack([got[0], got[1]])
-        D1, D2 = (_central(pm, x0, modes, phi, tr.t[n], scales, h) for h in (1e-6, 2e-6))
+        D05, D1, D2 = (_central(pm, x0, modes, phi, tr.t[n], scales, h) for h in (5e-7, 1e-6, 2e-6))
         R = (4.0 * D1 - D2) / 3.0
         norm = lambda A: np.abs(A * scales[None, :] / scales[:, None]).max()   # noqa: E731
-        out.append((n, norm(J - R) / norm(R)))
+        out.append((n, norm(J - R) / norm(R), norm(R - (4.0 * D05 - D1) / 3.0) / norm(R)))
     return out
 
 
@@ -105,14 +112,14 @@ def test_exact_contact_step_derivative_equals_central_differences_of_the_step(sc
         if rec is None:
             continue
         errors = _step_errors(*rec)
-        if errors:
+        if any(e is not None and c <= REFERENCE_CONVERGED for _, e, c in errors):
             checked.append((rpm, errors))
     print(checked)
-    assert len(checked) == 2, "fewer than two speeds with a contact step"
+    assert len(checked) == 2, "fewer than two speeds with a contact step and a converged reference"
     for rpm, errors in checked:
-        exact = [e for _, e in errors if e is not None]
+        exact = [(e, c) for _, e, c in errors if e is not None]
         assert len(exact) >= len(errors) / 2, (rpm, errors)       # most contact steps go the exact route
-        assert max(exact) < BOUND, (rpm, errors)
+        assert max(e for e, c in exact if c <= REFERENCE_CONVERGED) < BOUND, (rpm, errors)
 
 
 def test_a_pass_derivative_in_its_length_equals_central_differences_in_the_length():
