@@ -185,9 +185,6 @@ def runup(spec) -> Estimate:
 #: corrector iterations of a smooth branch's orbit: 3 (Friswell 5.9.1 loose aluminium 2 300 -> 2 800 rpm, 81 maps
 #: with monodromy for 27 orbits) to 4.9 (a Jeffcott-ring branch through two grazings, 214 for 44), 2026-11-28
 BRANCH_ITERATIONS = 3
-#: a corrector iteration: the map with its monodromy, two without (∂R/∂λ), three systems built (λ, λ ± h); and
-#: per orbit two further periods without (its amplitudes, the scales' record)
-BRANCH_PLAIN_PER_ORBIT = 2 * BRANCH_ITERATIONS + 2
 #: corrector iterations of an orbit on a contact stretch between two grazings (the same Jeffcott-ring branch: 214
 #: maps with monodromy for 44 orbits), and the map costs there are the contact branch's (:func:`orbit`)
 GRAZING_ITERATIONS = 4.9
