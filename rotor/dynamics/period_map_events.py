@@ -93,18 +93,17 @@ PROGRESSIVE = True
 #: a step split at a contact onset or loss alone is differentiated exactly (rotor/dynamics/contact_step_derivative.py)
 #: instead of differenced; False: differenced as every event step (the earlier route, for side-by-side runs)
 EXACT_CONTACT = True
-#: a differenced event step is differenced from the start of the step before it (:func:`blocks`), so that its
-#: start's perturbations are the ones a step makes (its acceleration consistent with its position and velocity, a
-#: stuck face's velocity zero) and not any direction of ``(p, v, a)``: a threshold of the step near its start in a
-#: direction no step reaches (the slow-slip hold's rectilinear test, a stuck face's start velocity) left the ladder's
-#: long levels on a smooth piece of their own, agreeing with each other to 1e-9 and not with the derivative at the
-#: start. Measured on Table 4 at 12 130.9 rpm (T/256, the state 60 revolutions after the linear start, step 29: a
-#: release, the other face in a rectilinear slow slip since its release in step 28): ten of the step's columns
-#: 1.5 to 53 of their size from its central differences at 1e-6 and 1e-7, the located monodromy 6.3e-3 from central
-#: differences of the whole map (converged to 4.2e-8); from the step before, 2.3e-8. Checking each column against its
-#: central difference at 5e-7 and choosing again on the short levels where it missed left 1.7e-6. False: every block
-#: starts at its first differenced step (the earlier route)
-ENTER_BEFORE = True
+#: consecutive differenced steps are one block (:func:`blocks`), differenced together from the first one's start,
+#: so that what the step loop carries from one of them to the next beyond ``(p, v, a)`` (the face forces, a released
+#: face's slip direction) moves with the perturbation as the loop moves it. Measured on the Table 4 rotor with the
+#: steel-in-aluminium bearing at 15 287.5 rpm (T/256, the state 60 revolutions after the linear start; event steps
+#: 35-38 differenced one by one): the located monodromy 3.3e-3 from central differences of the whole map (converged
+#: to 5e-7), 1.7e-7 as one block; on Table 4 at 12 130.9 rpm (steps 28-30, a release then a rectilinear slow slip):
+#: 2.7e-7 one by one, 2.2e-8 as one block. Entering every block one step earlier as well (the earlier route, which
+#: merged such steps as a side effect) differenced a plain step whose start lies within the ladder of a threshold:
+#: on Table 4 at 6 040.9 rpm (steps 223-227 entered at 223, reference converged to 2.0e-7) 1.58e-6; entered at 224,
+#: 2.2e-7; at 222, 1.1e-7. False: every differenced step a block of its own unless :func:`blocks` chains it
+MERGE_CONSECUTIVE = True
 #: a ladder level whose replays of a column made other discrete decisions than the unperturbed replay (a stick trial,
 #: a held slow slip, a located event, an end mode: :func:`_signature`) lies on another smooth piece of the step, and a
 #: pair of levels touching it is not chosen for that column while another pair is left (:func:`_best_of_ladder`):
@@ -438,7 +437,7 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
                                          scales)
                 if plan is not None:
                     plans[first] = plan
-    segments = blocks([n for n in differenced if n not in plans], held, modes, ENTER_BEFORE)
+    segments = blocks([n for n in differenced if n not in plans], held, modes, MERGE_CONSECUTIVE)
     inside = {n for a, b in segments for n in range(a, b + 1)}
     segments = sorted(segments + [(n, n) for n in plans if n not in inside])
     for first, last in segments + [(n_steps, n_steps)]:
@@ -462,7 +461,7 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
 
 
 def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = None,
-           enter_before: bool = False) -> list[tuple[int, int]]:
+           merge_consecutive: bool = False) -> list[tuple[int, int]]:
     """The steps to difference, as blocks ``(first, last)`` of consecutive steps replayed in one call.
 
     The step loop remembers more than ``(p, v, a)`` from one step to the next: the face forces, and a face just
@@ -480,8 +479,7 @@ def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = 
       join the release step. Measured on Table 4 at 9 916.2 rpm (T/512, 60 revolutions after the linear start): one
       held slow slip after a release, carried, 6.5e-2; differenced alone, 6.5e-2; in the release's block 1.7e-7.
 
-    With ``enter_before`` (:data:`ENTER_BEFORE`) every block also starts one step earlier, so consecutive
-    differenced steps are one block.
+    With ``merge_consecutive`` (:data:`MERGE_CONSECUTIVE`) consecutive differenced steps are one block.
 
     Blocks that touch or overlap merge; every other differenced step is a block of its own."""
     held = np.asarray(held)
@@ -500,10 +498,8 @@ def blocks(differenced: list[int], held: np.ndarray, modes: np.ndarray | None = 
                     marks.add(m)
                     chained.add(m)
                     m += 1
-    if enter_before:
-        for n in list(marks):
-            marks.add(n - 1)
-            chained.add(n)
+    if merge_consecutive:
+        chained |= marks
     out: list[list[int]] = []
     for n in sorted(m for m in marks if m >= 0):
         if out and n == out[-1][1] + 1 and n in chained:

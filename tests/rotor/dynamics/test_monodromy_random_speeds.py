@@ -92,22 +92,22 @@ def test_a_held_face_force_is_differenced_with_the_step_that_set_it():
     held[8, 1] = 1
     assert pme.blocks([4], held, modes) == [(4, 6)]
     assert pme.blocks([4, 9], held, modes) == [(4, 6), (9, 9)]
-    # entered from the step before: every block one step earlier (step 0 has none), touching ones merged
-    assert pme.blocks([4, 9], held, modes, enter_before=True) == [(3, 6), (8, 9)]
-    assert pme.blocks([0, 2, 3], np.zeros((5, 2), dtype=np.int64), enter_before=True) == [(0, 0), (1, 3)]
+    # consecutive differenced steps merged: step 7 joins the release's block, 9 stays alone, no block starts earlier
+    assert pme.blocks([4, 7, 9], held, modes) == [(4, 6), (7, 7), (9, 9)]
+    assert pme.blocks([4, 7, 9], held, modes, merge_consecutive=True) == [(4, 7), (9, 9)]
+    assert pme.blocks([0, 2, 3], np.zeros((5, 2), dtype=np.int64)) == [(0, 0), (2, 2), (3, 3)]
+    assert pme.blocks([0, 2, 3], np.zeros((5, 2), dtype=np.int64), merge_consecutive=True) == [(0, 0), (2, 3)]
 
 
-@pytest.mark.xfail(strict=True, reason="a miss of the located monodromy found by commit 4a2b159's seed, not fixed")
-def test_table4_at_6_040_9_rpm_the_located_monodromy_misses_by_1_6e_6():
+def test_table4_at_6_040_9_rpm_no_plain_step_entered_before_its_block():
     """Dai et al. (2025) Table 4 at 6 040.9 rpm, T/256, the state 60 revolutions after the linear start: drawn by the
     commit seed 1244337563 (4a2b159) in test_located_monodromy_at_random_speeds_equals_central_differences_of_its_map.
-    The reference converged to 2.0e-7 (three columns one-sided: 16, 25 and 41 straddle a threshold at 1e-7). The
-    located monodromy is 1.58e-6 from it, in column 9, a column whose central differences converge at 1e-7 and at 3e-8
-    and give 1.58e-6 and 1.60e-6 at both steps, so the miss is the monodromy's, not the reference's. Its cause:
-    entering each differenced block from the step before (rotor/dynamics/period_map_events.py ``ENTER_BEFORE``, which
-    took 12 130.9 rpm from 6.3e-3 to 2.3e-8 below); with every block entered at its own first step the monodromy is
-    2.4e-7 from the reference here (column 9: 4.4e-8). A per-block choice is not built yet: strict, so this test fails
-    once the monodromy meets the bound here."""
+    The reference converged to 2.0e-7 (three columns one-sided: 16, 25 and 41 straddle a threshold at 1e-7). With
+    every block of differenced steps entered one step earlier (the earlier rule) the located monodromy was 1.58e-6
+    from it, in column 9, whose central differences converge at 1e-7 and 3e-8 and give 1.58e-6 and 1.60e-6 at both
+    steps: the plain step 223 entered before the block 224-227 starts within the ladder of a threshold (entered at
+    222: 1.1e-7). With consecutive differenced steps merged and no block entered earlier
+    (rotor/dynamics/period_map_events.py ``MERGE_CONSECUTIVE``): 2.2e-7."""
     got = _errors(6040.9)
     assert got is not None and got[1] < REFERENCE_CONVERGED
     assert got[0] < BOUND, got
@@ -119,7 +119,8 @@ def test_table4_at_12_130_9_rpm_a_release_step_differenced_from_the_step_before(
     map is smooth at the reference's scale (its central differences converged to 4.2e-8). Step 29 (a release, the
     other face in a rectilinear slow slip since its release in step 28) differenced from its own start gave 6.3e-3:
     its ladder's long levels agree on a smooth piece past a threshold near the start. Differenced from the step
-    before (rotor/dynamics/period_map_events.py ``ENTER_BEFORE``): 2.3e-8."""
+    before: 2.3e-8. At 95fb1f6 (with the ladder's levels off the start's piece left out) steps 28-30 differenced one
+    by one gave 2.7e-7, as one block (rotor/dynamics/period_map_events.py ``MERGE_CONSECUTIVE``) 2.2e-8."""
     got = _errors(12130.9)
     assert got is not None and got[1] < REFERENCE_CONVERGED
     assert got[0] < BOUND, got
@@ -129,8 +130,9 @@ def test_a_memory_through_plain_steps_on_the_steel_in_aluminium_rotor():
     """The Table 4 rotor with the steel-in-aluminium bearing (friction 0.3) at 15 287.5 rpm, T/256, the state 60
     revolutions after the linear start (drawn at random with seed 41): four differenced event steps 35-38, twelve
     plain steps, then a held slow slip at step 50. The map is smooth there (its reference converged to 5e-7); the
-    located monodromy was 3.4e-3 from it with every block differenced from its own first step, 1.7e-7 with each
-    block entered from the step before (rotor/dynamics/period_map_events.py ``ENTER_BEFORE``)."""
+    located monodromy was 3.4e-3 from it with every step differenced alone, 1.7e-7 with steps 35-38 one block
+    (rotor/dynamics/period_map_events.py ``MERGE_CONSECUTIVE``; entering each block one step earlier as well, the
+    earlier rule, also 1.7e-7)."""
     got = _errors(15287.5, "table4-steel-in-aluminium")
     assert got is not None and got[1] < REFERENCE_CONVERGED
     assert got[0] < BOUND, got
