@@ -628,12 +628,12 @@ NOT_CLAIMS = (
      "against a reference converged to 4.8e-7) and one unresolved; a sample, not a claim: each run draws a new "
      "seed, and the default run checks one random speed of this scene (test_monodromy_random_speeds.py)"),
     ("reports/published/perf-monodromy-random.md",
-     "one benchmark sample of 20 speeds (seed 3815215491, at b5a1b37): 20 of 20 orbits within 1e-6 of the derivative "
-     "of their map's piece (largest 2.3e-7, every reference converged central); at 1 speed (16 394.5 rpm) the "
-     "transient from rest reached no orbit and Newton from the nearest drawn speed's orbit (17 762.7 rpm) found "
-     "one (multiplier 2.32); the earlier sample's unresolved speeds "
-     "(seed 2426071970: 11 805.3 and 9 294.0 rpm) have a slow test; a sample, not a claim: each run draws a new "
-     "seed, and the default run checks 3 other random speeds "
+     "one benchmark sample of 20 speeds (seed 2272336857, at d1eafe5, consecutive differenced steps one block): 20 of "
+     "20 orbits within 1e-6 of the derivative of their map's piece (largest 7.7e-7, the period-4 orbit at "
+     "12 168.3 rpm against a reference converged to 8.9e-7; at 6 503.2 rpm one column from one-sided differences "
+     "at 1e-8); the sample before (seed 3815215491, b5a1b37) 20 of 20, largest 2.3e-7; the earlier sample's "
+     "unresolved speeds (seed 2426071970: 11 805.3 and 9 294.0 rpm) have a slow test; a sample, not a claim: each "
+     "run draws a new seed, and the default run checks 3 other random speeds "
      "(test_monodromy_random_speeds.py)"),
 )
 
