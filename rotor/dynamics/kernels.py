@@ -19,7 +19,7 @@ from rotor.dynamics.system import SupportLaw
 
 # contact_kernel inlines contact._kernel: its cache entries are stale when that source changes too
 # (numba itself only watches this file).
-compiled_with(__file__, ["contact._kernel"])
+compiled_with(__file__, ["contact._kernel", "contact._kernel_friction", "contact._kernel_tilt"])
 
 
 assert N_PARAMS == 52, "law_tuple spells out every slot of contact._kernel's parameter tuple"
