@@ -53,7 +53,7 @@ import numba
 import numpy as np
 
 from contact._kernel_friction import _face_friction
-from contact._kernel_tilt import N_TILT_SLOTS, TILT_SLOT, law_fixed, slices_fixed, tilt_correction, tilt_present
+from contact._kernel_tilt import N_TILT_SLOTS, TILT_SLOT, slices_fixed, tilt_correction, tilt_present
 from contact.compiled_cache import compiled_with
 from contact.errors import OutsideDomainError
 
@@ -300,7 +300,10 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     vkz = vz - a * wy
     vn = ny * vky + nz * vkz
     corr = p[2] >= 2.0 and tilt_present(p)     # False at compile time for N_PARAMS slots (contact._kernel_tilt)
-    hv, dh, ok = law_fixed(pen, p) if corr else _law(pen, p)
+    if corr:                                    # the slices evaluate the law (a slice law is defined for Δr >= 0)
+        hv, dh, ok = 0.0, 0.0, 1
+    else:
+        hv, dh, ok = _law(pen, p)
     if ok == 0:
         return 0.0, 0.0, 0.0, 0
     partial = 0.0 < pen < t * l0       # (a bilateral edge below zero penetration: the full width)

@@ -91,10 +91,12 @@ def with_tilt_correction(law, points: list[dict], *, smoothing: float | None = N
 
 
 def held_out(law, points: list[dict]) -> dict:
-    """The law's kernel (with its correction, if any) at 3D tilted points it was not fitted to: per point the
-    mid-plane penetration (m), tilt (rad), relative force and moment errors (–) and their bounds (arrays)."""
+    """The law's kernel (with its correction, if any) at 3D tilted points it was not fitted to (those with a loaded
+    edge in contact and a load): per point the mid-plane penetration (m), tilt (rad), relative force and moment
+    errors (–) and their bounds (arrays)."""
     g = law.geometry
-    pts = [p for p in points if p["tilt_rad"] > 0 and p["penetration_m"] > 0]
+    pts = [p for p in points if p["tilt_rad"] > 0 and p["force_n"] > 0
+           and p["penetration_m"] + 0.5 * g.width_m * p["tilt_rad"] > 0]
     pm = np.array([p["penetration_m"] for p in pts])
     t = np.array([p["tilt_rad"] for p in pts])
     res = loose_support_force(law.loose_support_params(), g.clearance_m + pm, 0.0, 0.0, t)
