@@ -245,14 +245,15 @@ every ``r``. The correction multiplies the slices' patch load by ``exp(a(ξ, ψ)
 ``ξ`` = ``ln r`` scaled to [0, 1] over the law's range and ``ψ = φ/(3π/4)``; ``a``, ``b`` are tensor products of
 uniform cubic B-splines on 4 x 6 intervals with mirrored end coefficients, fitted by penalised weighted least squares
 (P-splines, Eilers & Marx 1996; each point weighted by 1/its bound). Built in, not fitted: ``a = 0`` at zero tilt
-(the straight law is the zero-tilt limit, bit for bit), zero slope across ``φ = 0`` (force and moment even and odd in
-θ with continuous first and second derivatives through θ = 0), the moment zero at zero tilt (it multiplies the
-slices' moment), C² inside the range, C¹ and constant beyond it. The kernel evaluates it with its exact derivatives
+(the straight law is the zero-tilt limit, bit for bit), zero slope across ``φ = 0`` (at a fixed mid-plane
+penetration both corrections are even in θ with continuous first and second derivatives through θ = 0, so the force
+stays even and the moment odd), the moment zero at zero tilt (it multiplies the slices' moment), C² inside the range,
+C¹ and constant beyond it. The kernel evaluates it with its exact derivatives
 (contact/_kernel_tilt.py).
 
 Tried in this session and dropped (exploration scripts, not rerun here): (1) surfaces of this kind fitted to the 18
-committed tilted points alone: held out (leave-one-out, or alternate points) 0.5-1.3 % worst, 2-5 times the bounds
-(0.2-0.6 %): the committed grid (penetrations a factor 2.3 apart, tilts 2, 4, 8′) is too coarse for the transition
+committed tilted points alone: held out (leave-one-out, or alternate points) 0.5-1.6 % worst for the best settings
+tried, up to 5 times the bounds (0.2-0.6 %): the committed grid (penetrations a factor 2.3 apart, tilts 2, 4, 8′) is too coarse for the transition
 at φ ≈ π/4; hence the training grid (the cached 3D levels solve a point in about 0.5 s); (2) physical few-parameter
 corrections of the slices, a shear layer between the slices (Pasternak 1954: a patch shortened by a length and an
 edge force, and variants): worst error 5-19 times the bound after a fit on all points, so no such form holds.
