@@ -296,9 +296,12 @@ def report(rings: dict, cost: tuple, args, wall_s: float) -> tuple[str, bool]:
               + (f" ({'; '.join(miss)})" if miss else "") + ". Kernel cost: "
               f"**{worst:.2f}x** today's foundation law ({'within' if worst <= 2 else 'beyond'} 2x).", "",
               "Not done here: `ringcontact bearing` does not fit the correction yet (its 20 mm ring law, "
-              "`law-family.md`, is still the slices' alone); the rotor's step loop takes laws of 52 kernel slots, so it "
-              "refuses a law with a correction (rotor/dynamics/kernels.py) instead of dropping it; the generated "
-              "pairs of `law-family.md` are 2D (no tilt to correct).", ""]
+              "`law-family.md`, is still the slices' alone); the rotor's step loops build the law's parameter tuple once, "
+              "as 52 slots (`law_tuple` in rotor/dynamics/production_loop.py and production_kernels.py), so they "
+              "would drop a correction: `support_law_from_params` refuses a law with one (tried: sending "
+              "rotor.dynamics.kernels.contact_point's long arrays to the long kernel is not enough, a Table 4 run "
+              "with and without the correction came out identical; the loops must be compiled for the long tuple); "
+              "the generated pairs of `law-family.md` are 2D (no tilt to correct).", ""]
     return "\n".join(lines), held and worst <= 2
 
 
