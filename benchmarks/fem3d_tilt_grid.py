@@ -1,7 +1,9 @@
 """3D FEM points on a grid of mid-plane penetrations and tilts, to fit and to check a tilt correction (issue 37).
 
     .venv/bin/python benchmarks/fem3d_tilt_grid.py RING OUT.json --tilts-arcmin 0,0.5,1 --penetrations-um 1,2,4
-                                                   [--append]
+                                                   [--append] --reference RUN/fem3d-RING.json
+
+(negative mid-plane penetrations, the loaded edge alone in contact: ``--penetrations-um=-0.5,-1``)
 
 RING: a ring-pair file or a bundled name (``fem_reference.ring_scene.load``). Each point is solved by
 :func:`fem_reference.solid.sweep.point_task` in this process (one core, no pool) on the ring's three 3D mesh levels
@@ -72,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("out")
     ap.add_argument("--tilts-arcmin", required=True)
     ap.add_argument("--penetrations-um", required=True)
-    ap.add_argument("--reference", help="the ring's committed 3D dataset, for the metadata and columns")
+    ap.add_argument("--reference", required=True, help="the ring's committed 3D dataset, for the metadata and columns")
     ap.add_argument("--append", action="store_true")
     a = ap.parse_args(argv)
     out = Path(a.out)
