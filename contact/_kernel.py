@@ -33,6 +33,9 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
       piecewise-smooth system continued past its switching surface)
 15…   law code 3 only (else 0): the number of knots K (2 <= K <= SPLINE_MAX_KNOTS), then the knots' ln Δr,
       their values c and slopes dc/d ln Δr (SPLINE_MAX_KNOTS slots each, the first K used); c linear beyond
+52…   only in a tuple of N_PARAMS_TILT slots (law codes 2 and 3): a tilt correction of the slice-integrated
+      patch fitted to 3D tilted points, P exp(a) and moment × exp(b) (contact._kernel_tilt,
+      contact.calibrate.tilt_correction). The usual tuple of N_PARAMS slots has none, and compiles as before
 ====  ==================================================================
 
 Edge selection (Dai et al. 2025 Eqs. 18–19, regularised; :func:`selection`): with the centre
@@ -49,15 +52,19 @@ import math
 import numba
 import numpy as np
 
+from contact._kernel_friction import _face_friction
+from contact._kernel_tilt import N_TILT_SLOTS, TILT_SLOT, slices_fixed, tilt_correction, tilt_present
 from contact.compiled_cache import compiled_with
 from contact.errors import OutsideDomainError
 
-compiled_with(__file__, [])  # cached in the user's cache folder (contact.compiled_cache)
+compiled_with(__file__, ["contact._kernel_friction", "contact._kernel_tilt"])  # cached in the user's cache folder
 
 SPLINE_MAX_KNOTS = 12
 SPLINE_SLOT = 15                                   # first slot of a code-3 law's spline
 N_SPLINE_SLOTS = 1 + 3 * SPLINE_MAX_KNOTS
 N_PARAMS = SPLINE_SLOT + N_SPLINE_SLOTS
+N_PARAMS_TILT = N_PARAMS + N_TILT_SLOTS            # a law with a tilt correction: its slots after the others
+assert TILT_SLOT == N_PARAMS
 STATE_NONE, STATE_EDGE1, STATE_EDGE2, STATE_TWO_POINT, STATE_LINE = 0, 1, 2, 3, 4
 
 
@@ -292,7 +299,11 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     vky = vy + a * wz
     vkz = vz - a * wy
     vn = ny * vky + nz * vkz
-    hv, dh, ok = _law(pen, p)
+    corr = p[2] >= 2.0 and tilt_present(p)     # False at compile time for N_PARAMS slots (contact._kernel_tilt)
+    if corr:                                    # the slices evaluate the law (a slice law is defined for Δr >= 0)
+        hv, dh, ok = 0.0, 0.0, 1
+    else:
+        hv, dh, ok = _law(pen, p)
     if ok == 0:
         return 0.0, 0.0, 0.0, 0
     partial = 0.0 < pen < t * l0       # (a bilateral edge below zero penetration: the full width)
@@ -301,14 +312,23 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
     else:
         l = l0
     slices = p[2] >= 2.0
+    ea = eb = 1.0
+    ca_p = ca_t = cb_p = cb_t = 0.0
     if slices:
-        P, S, Pp, Pt, Sp, St = _slices(pen, t, l0, partial, p)
+        P, S, Pp, Pt, Sp, St = slices_fixed(pen, t, l0, partial, p) if corr else _slices(pen, t, l0, partial, p)
         # P = 0 where the slice length pen/t underflows (t = inf: a shooting trial state with |θ| ~ 1e155 rad,
         # rejected by its line search): no load, the arm of the analytic laws, no division by zero
         d = 0.5 * l0 - S / P if P > 0.0 else 0.5 * (l0 - l)
+        P_s, d_s = P, d                 # the slices' patch, before the tilt correction of a law that has one
+        if corr:                        # P exp(a), moment P d exp(b): contact._kernel_tilt, fitted to 3D points
+            ca, ca_p, ca_t, cb, cb_p, cb_t = tilt_correction(pen, t, l0, p)
+            ea = math.exp(ca)
+            eb = math.exp(cb - ca)
+            P, d = P * ea, d * eb
     else:
         P = l * hv
         d = 0.5 * (l0 - l)
+        P_s, d_s = P, d
     damp = 1.0 + p[8] * vn
     clipped = False
     if p[9] != 0.0 and damp < 0.0:
@@ -333,7 +353,11 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
                 elif j == 3:
                     dt = thz / t
             dP = Pp * dpen + Pt * dt
-            dd = -((Sp * dpen + St * dt) * P - S * dP) / (P * P) if P > 0.0 else 0.0
+            dd = -((Sp * dpen + St * dt) * P_s - S * dP) / (P_s * P_s) if P_s > 0.0 else 0.0
+            if corr:
+                da = ca_p * dpen + ca_t * dt
+                dd = eb * (dd + d_s * (cb_p * dpen + cb_t * dt - da))
+                dP = ea * (dP + P_s * da)
         else:
             if partial:
                 dt = 0.0
@@ -364,44 +388,6 @@ def _edge(sgn, w, ry, rz, rho, vy, vz, wy, wz, thy, thz, t, p, jac):
         jac[2, 4 + j] += w * sgn * d * (-dfz_v)
         jac[3, 4 + j] += w * sgn * d * dfy_v
     return fy, fz, sgn * d, 1
-
-
-@numba.njit(cache=True, inline="always")
-def _face_friction(sgn, vy, vz, wy, wz, p, jac):
-    """Coulomb friction ``(fy, fz, my, mz)`` of end face ``sgn`` (+1 right, −1 left); Jacobian into ``jac``."""
-    muN = p[10]
-    if muN == 0.0:
-        return 0.0, 0.0, 0.0, 0.0
-    a = sgn * 0.5 * p[1]
-    uy = vy + a * wz
-    uz = vz - a * wy
-    u2 = uy * uy + uz * uz
-    eps = p[12]
-    S2 = u2 + eps * eps
-    if S2 == 0.0:
-        return 0.0, 0.0, 0.0, 0.0   # zero relative velocity: stick, friction set by constraints
-    S = math.sqrt(S2)
-    c = muN / S
-    fy = -c * uy
-    fz = -c * uz
-    h = 0.5 * p[1]
-    if jac is None:
-        return fy, fz, sgn * h * (-fz), sgn * h * fy
-    S3 = S2 * S
-    # d(u/S)/du = (I S² − u uᵀ)/S³
-    gyy = (S2 - uy * uy) / S3
-    gyz = -uy * uz / S3
-    gzz = (S2 - uz * uz) / S3
-    duy = (1.0, 0.0, 0.0, a)
-    duz = (0.0, 1.0, -a, 0.0)
-    for j in range(4):
-        dfy = -muN * (gyy * duy[j] + gyz * duz[j])
-        dfz = -muN * (gyz * duy[j] + gzz * duz[j])
-        jac[0, 4 + j] += dfy
-        jac[1, 4 + j] += dfz
-        jac[2, 4 + j] += sgn * h * (-dfz)
-        jac[3, 4 + j] += sgn * h * dfy
-    return fy, fz, sgn * h * (-fz), sgn * h * fy
 
 
 @numba.njit(cache=True)

@@ -86,7 +86,8 @@ from functools import cached_property
 import numpy as np
 
 from contact import laws
-from contact._kernel import (N_PARAMS, N_SPLINE_SLOTS, SPLINE_MAX_KNOTS, SPLINE_SLOT,  # noqa: F401
+from contact._kernel import (N_PARAMS, N_PARAMS_TILT, N_SPLINE_SLOTS, N_TILT_SLOTS, SPLINE_MAX_KNOTS, SPLINE_SLOT,  # noqa: F401
+                             TILT_SLOT,
                              STATE_EDGE1, STATE_EDGE2, STATE_LINE, STATE_NONE, STATE_TWO_POINT, many_points, many_points_parallel, point_force, point_force_jacobian)
 from contact.errors import InputError, OutsideDomainError
 from contact.tilt import EDGE_TRANSITION_M

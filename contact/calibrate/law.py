@@ -19,7 +19,8 @@ from contact.calibrate.families import KERNEL_LAW_CODE, SceneGeometry, family_fo
 from contact.calibrate.validate import check_behaviour, check_document
 from contact.dataset import check_document_sha256, document_sha256
 from contact.errors import DatasetError, InputError
-from contact.loose_support import N_SPLINE_SLOTS, SPLINE_SLOT, LooseSupportParams
+from contact.calibrate.tilt_correction import TiltCorrection
+from contact.loose_support import N_SPLINE_SLOTS, N_TILT_SLOTS, SPLINE_SLOT, TILT_SLOT, LooseSupportParams
 
 SCHEMA = "ringcontact/calibrated-law"
 VERSION = 1
@@ -135,7 +136,8 @@ class CalibratedLaw:
     def kernel_law(self) -> tuple:
         """Kernel law slots ``(code, slot 3, slot 6, slot 7)`` of ``contact._kernel`` for this law, followed for
         ``foundation-spline`` (code 3) by its knots (the kernel's slots 15 on, :func:`contact.calibrate.spline.
-        kernel_slots`).
+        kernel_slots`), and for a law with a tilt correction by the spline slots (zeros for code 2) and the
+        correction's (slots 52 on, :meth:`contact.calibrate.tilt_correction.TiltCorrection.kernel_slots`).
 
         Raises
         ------
@@ -151,9 +153,14 @@ class CalibratedLaw:
             return (0.0, self.parameters["stiffness_factor"] * 2.0 * math.pi * g.e_star_Pa * g.clearance_m, 0.0, 1.0)
         if self.family == "power":
             return (1.0, 0.0, self.parameters["coefficient_N_per_m_pow_n_plus_1"], self.parameters["exponent"])
+        tilt = TiltCorrection.from_parameters(self.parameters)
         if self.family == spline.FAMILY:
-            return (3.0, 0.0, g.radius_m, 0.0, *spline.kernel_slots(self.parameters))
-        return (2.0, 0.0, self.parameters["foundation_modulus_Pa_per_m"] * g.radius_m, 0.0)
+            out = (3.0, 0.0, g.radius_m, 0.0, *spline.kernel_slots(self.parameters))
+        else:
+            out = (2.0, 0.0, self.parameters["foundation_modulus_Pa_per_m"] * g.radius_m, 0.0)
+        if tilt is None:
+            return out
+        return out + (0.0,) * (4 + N_SPLINE_SLOTS - len(out)) + tilt.kernel_slots()
 
     def loose_support_params(self, **overrides) -> "CalibratedSupportParams":
         """The loose support of the rotor with this law (other fields as in ``LooseSupportParams``).
@@ -226,7 +233,8 @@ class CalibratedSupportParams(LooseSupportParams):
     """:class:`~contact.loose_support.LooseSupportParams` whose radial law is a calibrated one.
 
     Identical to its base for damping, friction, tilt geometry and validation; only the law
-    slots of the compiled kernel (``kernel_args`` 2, 3, 6, 7, and 15 on for a spline) come from ``calibrated_kernel_law``
+    slots of the compiled kernel (``kernel_args`` 2, 3, 6, 7, 15 on for a spline, 52 on for a tilt correction) come
+    from ``calibrated_kernel_law``
     (see :meth:`CalibratedLaw.kernel_law`). ``law`` keeps the base family for validation
     ("pereira" for a power law, "conformal" otherwise); ``calibration_name`` says which law is used.
     """
@@ -238,9 +246,11 @@ class CalibratedSupportParams(LooseSupportParams):
         super().__post_init__()
         k = tuple(self.calibrated_kernel_law)
         size = 4 + (N_SPLINE_SLOTS if k and k[0] == 3.0 else 0)
-        if len(k) != size or k[0] not in (0.0, 1.0, 2.0, 3.0) or not all(math.isfinite(v) for v in k):
+        tilted = bool(k) and k[0] in (2.0, 3.0) and len(k) == 4 + N_SPLINE_SLOTS + N_TILT_SLOTS
+        if (len(k) != size and not tilted) or k[0] not in (0.0, 1.0, 2.0, 3.0) or not all(math.isfinite(v) for v in k):
             raise InputError(f"calibrated_kernel_law = {str(self.calibrated_kernel_law)[:80]}: need (code 0/1/2/3, "
-                             f"slot 3, slot 6, slot 7, and for code 3 the {N_SPLINE_SLOTS} spline slots), finite")
+                             f"slot 3, slot 6, slot 7, and for code 3 the {N_SPLINE_SLOTS} spline slots, for codes 2 "
+                             f"and 3 with a tilt correction the spline slots and its {N_TILT_SLOTS}), finite")
         if not self.calibration_name:
             raise InputError("calibration_name = '': name the calibrated law")
 
@@ -254,7 +264,11 @@ class CalibratedSupportParams(LooseSupportParams):
         else:
             args[6], args[7] = s6, s7
         if code == 3.0:
-            args[SPLINE_SLOT:SPLINE_SLOT + N_SPLINE_SLOTS] = [float(v) for v in self.calibrated_kernel_law[4:]]
+            args[SPLINE_SLOT:SPLINE_SLOT + N_SPLINE_SLOTS] = [float(v) for v in
+                                                              self.calibrated_kernel_law[4:4 + N_SPLINE_SLOTS]]
+        if len(self.calibrated_kernel_law) > 4 + N_SPLINE_SLOTS:        # a tilt correction (contact._kernel_tilt)
+            assert len(args) == TILT_SLOT
+            args += [float(v) for v in self.calibrated_kernel_law[4 + N_SPLINE_SLOTS:]]
         return tuple(args)
 
     @cached_property

@@ -17,6 +17,7 @@ import numpy as np
 
 from contact import plausible
 import contact.calibrate.spline as spline
+import contact.calibrate.tilt_correction as tilt_correction
 from contact.calibrate.families import FAMILIES, PARAMETERS
 from contact.errors import DatasetError, InputError
 
@@ -144,8 +145,25 @@ def check_validity(source: str, validity: dict, radius_m: float) -> tuple[float,
 
 
 def check_parameters(source: str, family: str, doc: dict) -> tuple[dict, dict, dict]:
-    """``(parameters, parameter_std, parameter_units)`` of the family, each typed and in range."""
+    """``(parameters, parameter_std, parameter_units)`` of the family, each typed and in range, with a tilt correction's
+    ``tilt_*`` parameters (:func:`contact.calibrate.tilt_correction.check_parameters`) if the law has one."""
     params, std, units = (_table(source, doc, k) for k in ("parameters", "parameter_std", "parameter_units"))
+    tilt = {k: v for k, v in params.items() if k.startswith("tilt_")}
+    if tilt and family not in ("foundation", spline.FAMILY):
+        raise DatasetError(f"{source}: parameters.{sorted(tilt)[0]}: a tilt correction is for the slice-integrated "
+                           f"families (foundation, {spline.FAMILY}), not {family!r}")
+    wrong = tilt_correction.check_parameters(tilt)
+    if wrong is not None:
+        raise DatasetError(f"{source}: parameters.{wrong} (family {family!r})")
+    tilt = {k: float(v) for k, v in tilt.items()}
+    params = {k: v for k, v in params.items() if not k.startswith("tilt_")}
+    out, out_std, out_units = _family_parameters(source, family, params, std, units)
+    return ({**out, **tilt}, {**out_std, **{k: 0.0 for k in tilt}},
+            {**out_units, **{k: str(units.get(k, "-")) for k in tilt}})
+
+
+def _family_parameters(source: str, family: str, params: dict, std: dict, units: dict) -> tuple[dict, dict, dict]:
+    """:func:`check_parameters` of the family's own parameters (a tilt correction's taken out)."""
     if family == spline.FAMILY:
         wrong = spline.check_parameters(params)
         if wrong is not None:

@@ -22,7 +22,8 @@ from rotor.dynamics.production_loop import step_loop
 
 compiled_with(__file__, ["rotor.dynamics.production_loop", "rotor.dynamics.contact_events",
                          "rotor.dynamics.friction_events", "rotor.dynamics.production_kernels",
-                         "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
+                         "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel",
+                         "contact._kernel_friction", "contact._kernel_tilt"])
 
 
 @njit(cache=True)

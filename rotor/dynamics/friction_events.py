@@ -73,7 +73,7 @@ from contact.compiled_cache import compiled_with
 from rotor.dynamics.production_kernels import _consistent_acceleration
 
 compiled_with(__file__, ["rotor.dynamics.production_kernels", "rotor.dynamics.constraints", "rotor.dynamics.kernels",
-                         "contact._kernel"])
+                         "contact._kernel", "contact._kernel_friction", "contact._kernel_tilt"])
 
 SAME_EVENT = 1e-6   # event fractions closer than this (of the step) are one event
 

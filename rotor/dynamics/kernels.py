@@ -14,12 +14,13 @@ import numpy as np
 from numba import njit
 
 from contact.compiled_cache import compiled_with
+from contact.errors import InputError
 from contact.loose_support import N_PARAMS, loose_support_force, point_force_jacobian
 from rotor.dynamics.system import SupportLaw
 
 # contact_kernel inlines contact._kernel: its cache entries are stale when that source changes too
 # (numba itself only watches this file).
-compiled_with(__file__, ["contact._kernel"])
+compiled_with(__file__, ["contact._kernel", "contact._kernel_friction", "contact._kernel_tilt"])
 
 
 assert N_PARAMS == 52, "law_tuple spells out every slot of contact._kernel's parameter tuple"
@@ -70,6 +71,10 @@ def support_law_from_params(params) -> SupportLaw:
     contact layer's.
     """
     radial = dataclasses.replace(params, mu=0.0, preload_N=0.0, friction_smoothing_m_s=0.0)
+    if len(radial.kernel_args) != N_PARAMS:
+        raise InputError(f"law {getattr(params, 'calibration_name', '') or params.law!r} has a tilt correction "
+                         f"({len(radial.kernel_args)} kernel slots, contact._kernel_tilt): the rotor's step loop "
+                         f"takes laws of {N_PARAMS} slots only, so it would drop the correction; use the law without it")
 
     def force(u, v):
         r = loose_support_force(radial, u[0], u[1], u[2], u[3], v[0], v[1], v[2], v[3])

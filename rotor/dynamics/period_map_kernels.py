@@ -26,7 +26,8 @@ from contact.compiled_cache import compiled_with
 from rotor.dynamics.production_kernels import NC, _forces, _residual, _small_solve
 
 compiled_with(__file__, ["rotor.dynamics.production_kernels", "rotor.dynamics.constraints",
-                         "rotor.dynamics.kernels", "contact._kernel"])
+                         "rotor.dynamics.kernels", "contact._kernel", "contact._kernel_friction",
+                         "contact._kernel_tilt"])
 
 
 @njit(cache=True)

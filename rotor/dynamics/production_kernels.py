@@ -32,7 +32,8 @@ from rotor.dynamics.kernels import law_tuple
 # The kernels below inline rotor.dynamics.constraints and the law kernel (rotor.dynamics.kernels, which
 # inlines contact._kernel): their cache entries are stale when any of those sources changes (numba
 # itself only watches this file).
-compiled_with(__file__, ["rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
+compiled_with(__file__, ["rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel", "contact._kernel_friction",
+                         "contact._kernel_tilt"])
 
 # Caching: the law kernel is not an argument but the one compiled law of the suite,
 # rotor.dynamics.kernels.contact_kernel, which picks the law (conformal, Pereira, elastic foundation)

@@ -39,7 +39,8 @@ from rotor.dynamics.production_kernels import (_load, _mode_update, _reproject, 
 
 compiled_with(__file__, ["rotor.dynamics.contact_events", "rotor.dynamics.friction_events",
                          "rotor.dynamics.production_kernels",
-                         "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel"])
+                         "rotor.dynamics.constraints", "rotor.dynamics.kernels", "contact._kernel",
+                         "contact._kernel_friction", "contact._kernel_tilt"])
 
 PLAIN, HELD, TO_EVENT, FROM_EVENT = 0, 1, 2, 3   # passes of a step (module docstring)
 RELEASE_HOLD = 1000.0   # slow slips (friction_events, "Slow slips") are held below this many w_reg

@@ -33,7 +33,7 @@ from rotor.dynamics.kernels import contact_kernel, contact_point
 from rotor.dynamics.system import RotorSystem, SupportLaw, coupling_map
 
 # _law_samples inlines the law kernel (rotor.dynamics.kernels, which inlines contact._kernel).
-compiled_with(__file__, ["rotor.dynamics.kernels", "contact._kernel"])
+compiled_with(__file__, ["rotor.dynamics.kernels", "contact._kernel", "contact._kernel_friction", "contact._kernel_tilt"])
 
 
 @njit(cache=True)
