@@ -71,6 +71,7 @@ from contact.errors import InputError
 
 STICK = 1
 SLIP = 0
+PROJECTED = 2   # a face whose friction is Coulomb's law solved as a projection (:func:`coulomb_projection`)
 
 
 def face_maps(width_m: float) -> tuple[np.ndarray, np.ndarray]:
@@ -172,6 +173,34 @@ def slip_force(w, mu_N: float, w_reg: float):
     jac[1, 0] = c * w[1] * w[0]
     jac[1, 1] = -mu_N / s + c * w[1] * w[1]
     return force, jac
+
+
+def coulomb_projection(fy: float, fz: float, wy: float, wz: float, mu_N: float, r: float):
+    """Coulomb's law of one face as the projection ``f = proj_{|f| ≤ μN}(f − r w)`` (Alart & Curnier 1991).
+
+    ``f`` (N) is the face's friction force over the step (the trapezoidal rule's step mean, Moreau 1988),
+    ``w`` (m/s) its sliding velocity at the step's end, ``r`` (N s/m) the augmentation: any ``r > 0`` gives the
+    same solution (``w = 0`` with ``|f| ≤ μN``, or ``f = −μN w/|w|``), it only scales the equation. No mode, no
+    threshold and no regularisation: the map from ``(f, w)`` to the projection is Lipschitz-continuous, so a step
+    solved with it has no jump (Clarke's generalised derivative at the disk's edge).
+
+    Returns
+    -------
+    (py, pz, d00, d01, d11) : the projection ``p`` (N) and its derivative ``D = ∂p/∂q`` (symmetric, 2 × 2) with
+    respect to ``q = f − r w``: ``I`` inside the disk (stuck), ``μN (I − q̂q̂ᵀ)/|q|`` outside (slipping).
+    """
+    qy = fy - r * wy
+    qz = fz - r * wz
+    n2 = qy * qy + qz * qz
+    if mu_N > 0.0 and n2 <= mu_N * mu_N:
+        return qy, qz, 1.0, 0.0, 1.0
+    if n2 == 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    nq = np.sqrt(n2)
+    ey = qy / nq
+    ez = qz / nq
+    c = mu_N / nq
+    return mu_N * ey, mu_N * ez, c * (1.0 - ey * ey), -c * ey * ez, c * (1.0 - ez * ez)
 
 
 def face_mode_update(mode: int, force, w_new, w_old, mu_N: float, w_stick: float, tried_stick: bool,

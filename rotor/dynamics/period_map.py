@@ -53,7 +53,9 @@ from rotor.dynamics import constraints as cons
 from rotor.dynamics.condense import Condensed, condense, expand
 from rotor.dynamics.period_map_events import located_monodromy
 from rotor.dynamics.period_map_kernels import sensitivity_pass
+from rotor.dynamics.period_map_projection import sensitivity_pass_projected
 from rotor.dynamics.production import Prepared, prepare, simulate_production
+from rotor.dynamics.projection_start import projected_modes
 from rotor.dynamics.production import warm_up as production_warm_up
 from rotor.dynamics.system import NewmarkOptions, RotorSystem, Trajectory, check_time_step
 
@@ -222,7 +224,9 @@ def period_map(pm: PeriodMap, state0, t0: float, n_steps: int, *, modes0=None, j
         events = int(sum(modes_req[k] != modes_rec[0, k] for k in range(pm.n_faces)))
         events += int(np.count_nonzero(np.diff(modes_rec[:, :pm.n_faces].astype(np.int64), axis=0)))
     mismatch, unsmooth = 0.0, 0
-    if jacobian and pm.options.locate_events:      # event steps differentiated as located (period_map_events)
+    if jacobian and pm.options.friction_scheme == "projection" and pm.reduced.support is not None:
+        mono = _monodromy_projected(pm, tr, rec_p, rec_v)
+    elif jacobian and pm.options.locate_events:      # event steps differentiated as located (period_map_events)
         mono, mismatch, unsmooth = located_monodromy(pm, tr, rec_p, rec_v)
     else:
         mono = _monodromy(pm, tr, rec_p, rec_v) if jacobian else None
@@ -244,6 +248,16 @@ def _monodromy(pm: PeriodMap, tr: Trajectory, rec_p, rec_v) -> np.ndarray:
                             opts.gamma, pm.AK, pm.AD, pm.MK, pm.MD, pre.Bt, pre.W, pre.S, pre.WM, pre.SM, pre.P,
                             pre.limits, pre.a1, pm.reduced.support is not None, pm.params, opts.w_reg,
                             bool(opts.consistent_stick_onset))
+
+
+def _monodromy_projected(pm: PeriodMap, tr: Trajectory, rec_p, rec_v) -> np.ndarray:
+    """The monodromy of the projection scheme's record (:mod:`rotor.dynamics.period_map_projection`)."""
+    pre, opts = pm.prepared, pm.options
+    return sensitivity_pass_projected(np.ascontiguousarray(rec_p), np.ascontiguousarray(rec_v),
+                                      np.ascontiguousarray(tr.a @ pm.T), np.ascontiguousarray(tr.face_force),
+                                      projected_modes(pm.n_faces), pm.dt, opts.beta, opts.gamma, pm.AK, pm.AD, pm.MK,
+                                      pm.MD, pre.Bt, pre.W, pre.S, pre.WM, pre.SM, pre.P, pre.limits, pre.a1,
+                                      pm.params, opts.w_reg)
 
 
 def warm_up() -> dict:

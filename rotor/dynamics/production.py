@@ -51,6 +51,7 @@ from rotor.dynamics.condense import condense, expand
 from rotor.dynamics.initial import initial_state
 from rotor.dynamics.kernels import contact_kernel
 from rotor.dynamics.production_loop import step_loop
+from rotor.dynamics.projection_start import projected_modes, projected_start
 from rotor.dynamics.system import (NewmarkOptions, RotorSystem, Trajectory, check_inputs, check_time_step, coupling_map,
                                    relative_compliance)
 
@@ -153,11 +154,17 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
         raise InputError(f"prepared: made for dt = {pre.dt:g} s, called with dt_s = {dt:g} s")
     if system.lock.shape[0] and np.abs(system.lock @ q0).max() > 1e-12 * (1 + np.abs(q0).max()):
         raise InputError("q0: violates the lock (3a/3b equal displacement) constraint")
-    a0, modes, phi_face = _initial_faces(system, t0, q0, v0, modes0, opts)
     T = pre.T
-    p, vp, ap = T.T @ q0, T.T @ v0, T.T @ a0
-    rec = _records(system, n_steps // record_every + 1, T.shape[1], t0, p, vp, ap, q0, v0, modes, phi_face)
     params = np.asarray(sup.law.params, dtype=float) if sup is not None else np.zeros(N_PARAMS)
+    projected = sup is not None and opts.friction_scheme == "projection"
+    if projected:       # the start's acceleration and face forces by the step's own projection (projection_start)
+        p, vp = T.T @ q0, T.T @ v0
+        modes = projected_modes(pre.n_faces)
+        ap, phi_face = projected_start(pre, t0, p, vp, params, opts)
+    else:
+        a0, modes, phi_face = _initial_faces(system, t0, q0, v0, modes0, opts)
+        p, vp, ap = T.T @ q0, T.T @ v0, T.T @ a0
+    rec = _records(system, n_steps // record_every + 1, T.shape[1], t0, p, vp, ap, q0, v0, modes, phi_face)
     status = np.zeros(7, dtype=np.int64)
     try:
         done, wdt_max = step_loop(p, vp, ap, modes, phi_face, float(t0), float(dt), int(n_steps), int(record_every),
@@ -165,7 +172,7 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
                                   pre.sin, pre.omega_force, pre.P, pre.limits, pre.n_faces, pre.s_yy, pre.a1, sup is not None,
                                   params, opts.beta, opts.gamma, opts.tol, opts.max_iter, opts.w_reg, opts.w_stick,
                                   opts.max_passes, float(opts.stick_mean_weight), bool(opts.consistent_stick_onset),
-                                  pre.Minv, pre.WM, pre.SM, pre.Mr, bool(opts.locate_events), True, rec["t"], rec["p"],
+                                  pre.Minv, pre.WM, pre.SM, pre.Mr, bool(opts.locate_events) and not projected, True, rec["t"], rec["p"],
                                   rec["v"], rec["a"], rec["u"], rec["w"], rec["fc"], rec["fel"], rec["face"], rec["modes"], rec["its"], rec["passes"], status)
     except OutsideDomainError as e:
         raise OutsideDomainError(

@@ -43,6 +43,7 @@ compiled_with(__file__, ["rotor.dynamics.constraints", "rotor.dynamics.kernels",
 # on disk (contact.compiled_cache) and compiled once per machine.
 
 _mode_update = njit(cache=True)(cons.face_mode_update)
+_coulomb_projection = njit(cache=True, inline="always")(cons.coulomb_projection)
 
 
 
@@ -146,6 +147,38 @@ def newton_work():
     return np.zeros((13, MX)), np.zeros((4, MX, MX)), np.zeros((2, 6)), np.zeros((4, 8))
 
 
+@njit(cache=True, inline="always")
+def _projected_rows(vec, mat, face, P, k, j, gdt):
+    """Rows ``j, j+1`` of the condensed residual and Newton matrix for face ``k`` solved by projection
+    (:func:`rotor.dynamics.constraints.coulomb_projection`): ``R = c (f̄ − proj(f̄ − r w))`` with ``f̄`` the step
+    mean of the face force (``face[k, F_FROZEN]`` 1: ``(f_start + f_end)/2``, ``f_start`` in ``face[k, F_FD0:]``;
+    0: the end force alone), ``w`` the face's end velocity, ``c`` the face's mean condensed compliance (1/kg) and
+    ``r = 1/(c γΔt)``: stuck, the rows are the stuck face's ``P w/(γΔt)``; slipping, ``c (f̄ − μN q̂)``."""
+    c = 0.0
+    for rr in range(2):
+        for a in range(4):
+            for b in range(4):
+                c += P[k, rr, a] * mat[MS, a, b] * P[k, rr, b]
+    c *= 0.5
+    r = 1.0 / (c * gdt)
+    wm = 0.5 if face[k, F_FROZEN] != 0.0 else 0.0
+    fy = (1.0 - wm) * vec[VXT, j] + wm * face[k, F_FD0]
+    fz = (1.0 - wm) * vec[VXT, j + 1] + wm * face[k, F_FD1]
+    wy = P[k, 0, 0] * vec[VW, 0] + P[k, 0, 1] * vec[VW, 1] + P[k, 0, 2] * vec[VW, 2] + P[k, 0, 3] * vec[VW, 3]
+    wz = P[k, 1, 0] * vec[VW, 0] + P[k, 1, 1] * vec[VW, 1] + P[k, 1, 2] * vec[VW, 2] + P[k, 1, 3] * vec[VW, 3]
+    py, pz, d00, d01, d11 = _coulomb_projection(fy, fz, wy, wz, face[k, F_MU], r)
+    vec[VR2, j] = c * (fy - py)
+    vec[VR2, j + 1] = c * (fz - pz)
+    for col in range(4):    # ∂R/∂α = D P_k (c r γΔt = 1)
+        mat[MJ2, j, col] = d00 * P[k, 0, col] + d01 * P[k, 1, col]
+        mat[MJ2, j + 1, col] = d01 * P[k, 0, col] + d11 * P[k, 1, col]
+    e = c * (1.0 - wm)      # ∂R/∂f_end = c (1 − wm)(I − D)
+    mat[MJ2, j, j] = e * (1.0 - d00)
+    mat[MJ2, j, j + 1] = -e * d01
+    mat[MJ2, j + 1, j] = -e * d01
+    mat[MJ2, j + 1, j + 1] = e * (1.0 - d11)
+
+
 @njit(cache=True)
 def _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, tol, max_iter, evaluate_only):
     """Newton on the condensed unknowns [α (NC); φ of stuck faces (2 each)] from ``vec[VX]``, analytic Jacobian,
@@ -205,7 +238,7 @@ def _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, tol,
             mat[MJG, 5, 5] = -a1 * (s2 + 2 * d1 * d1) * bdt2
         j = NC
         for k in range(2):
-            if modes[k] == 1:
+            if modes[k] >= 1:       # stuck or projected: the face force is an unknown
                 face[k, F_PHI0] = vec[VXT, j]
                 face[k, F_PHI1] = vec[VXT, j + 1]
                 j += 2
@@ -247,12 +280,15 @@ def _newton(vec, mat, face, jac, P, modes, params, m, a1, bdt2, gdt, w_reg, tol,
                     mat[MJ2, r, c] = (1.0 if r == c else 0.0) - s
             j = NC
             for k in range(2):
+                if modes[k] == 2:
+                    _projected_rows(vec, mat, face, P, k, j, gdt)
                 if modes[k] == 1:
                     for rr in range(2):
                         vec[VR2, j + rr] = (P[k, rr, 0] * vec[VW, 0] + P[k, rr, 1] * vec[VW, 1]
                                             + P[k, rr, 2] * vec[VW, 2] + P[k, rr, 3] * vec[VW, 3]) / gdt
                         for c in range(4):
                             mat[MJ2, j + rr, c] = P[k, rr, c]
+                if modes[k] >= 1:
                     for r in range(NC):
                         for rr in range(2):
                             s = 0.0
@@ -396,14 +432,14 @@ def _solve_support(alpha, alpha_lin, u_pre, w_pre, S, P, modes, phi_stuck, freez
     arrays.)"""
     n_st = 0
     for k in range(2):
-        if modes[k] == 1:
+        if modes[k] >= 1:
             n_st += 1
     m = NC + 2 * n_st
     _load_work(vec, face, alpha, u_pre, w_pre, freeze, freeze_dir, mu_N)
     _load_step(vec, mat, alpha_lin, S)
     j = NC
     for k in range(2):
-        if modes[k] == 1:
+        if modes[k] >= 1:
             vec[VX, j] = phi_stuck[k, 0]
             vec[VX, j + 1] = phi_stuck[k, 1]
             j += 2

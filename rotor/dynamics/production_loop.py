@@ -225,6 +225,12 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     freeze_dir[k, 1] = rel_dir[k, 1]
                 phi_old[k, 0] = phi_face[k, 0]
                 phi_old[k, 1] = phi_face[k, 1]
+                if modes[k] == 2:
+                    # a projected face (rotor.dynamics.constraints.coulomb_projection): Coulomb's bound on the step
+                    # mean of its force, the start force carried in the freeze slots
+                    freeze[k] = True
+                    freeze_dir[k, 0] = phi_face[k, 0]
+                    freeze_dir[k, 1] = phi_face[k, 1]
             g[:] = 0.0
             while True:
                 passes += 1
@@ -244,7 +250,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                             flipped = True
                     if flipped and passes < max_passes + 4:
                         for k in range(2):
-                            freeze[k] = hold[k] or rel[k]
+                            freeze[k] = hold[k] or rel[k] or modes[k] == 2
                             if rel[k] and not hold[k]:
                                 freeze_dir[k, 0] = rel_dir[k, 0]
                                 freeze_dir[k, 1] = rel_dir[k, 1]
@@ -257,9 +263,10 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                         phi_face[k] = phi[k]
                     break
                 alpha[:] = alpha_new
-                if (freeze[0] and not (hold[0] or rel[0])) or (freeze[1] and not (hold[1] or rel[1])):
+                if ((freeze[0] and modes[0] != 2 and not (hold[0] or rel[0]))
+                        or (freeze[1] and modes[1] != 2 and not (hold[1] or rel[1]))):
                     for k in range(2):
-                        freeze[k] = hold[k] or rel[k]
+                        freeze[k] = hold[k] or rel[k] or modes[k] == 2
                     continue
                 for i in range(NC):
                     w_new[i] = w_pre[i] + gdt * alpha[i]
@@ -281,7 +288,7 @@ def step_loop(p, v, a, modes, phi_face, t0, dt, n_steps, record_every,
                     _reproject(p_pre + bdt2 * a_try, v_pre + gdt * a_try, Q, Minv, Dr, Kr, Bt, WM, SM, P, modes,
                                mu_N, a1, params, w_reg, phi_c)
                 for k in range(n_faces):
-                    if hold[k]:
+                    if hold[k] or modes[k] == 2:
                         continue
                     if k == 0:
                         matvec_into(P_0, w_new4, wk)

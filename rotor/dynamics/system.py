@@ -252,6 +252,9 @@ class Trajectory:
     located_events: int = 0
 
 
+FRICTION_SCHEMES = ("active-set", "projection")
+
+
 @dataclass(frozen=True)
 class NewmarkOptions:
     """β, γ (average acceleration by default), Newton tolerance ε and iteration cap,
@@ -267,7 +270,13 @@ class NewmarkOptions:
     and an edge's contact onset or loss, inside a step is located and the step split there, and a slow slip's
     friction is Coulomb's, held over the step, :mod:`rotor.dynamics.friction_events`,
     :mod:`rotor.dynamics.contact_events`; False: the plain step, switches on step boundaries, as the published
-    studies before the fourth session of 2026-11-27 were computed)."""
+    studies before the fourth session of 2026-11-27 were computed), and ``friction_scheme`` (production scheme
+    only): ``"active-set"`` (the default: everything above) or ``"projection"``: each face's Coulomb law solved
+    inside the step's Newton as a projection onto the disk ``|f̄| ≤ μN`` of the step-mean force
+    (:func:`rotor.dynamics.constraints.coulomb_projection`): no modes, no regularisation and no thresholds, so
+    the step map has no jump; no event is located (``w_reg``, ``w_stick``, ``max_passes``,
+    ``stick_mean_weight``, ``consistent_stick_onset`` and ``locate_events`` do not apply;
+    :mod:`rotor.dynamics.projection_start`)."""
 
     beta: float = 0.25
     gamma: float = 0.5
@@ -283,6 +292,11 @@ class NewmarkOptions:
     stick_mean_weight: float = 0.5
     consistent_stick_onset: bool = True
     locate_events: bool = True
+    friction_scheme: str = "active-set"
+
+    def __post_init__(self):
+        if self.friction_scheme not in FRICTION_SCHEMES:
+            raise InputError(f"friction_scheme: {self.friction_scheme!r}; must be one of {', '.join(FRICTION_SCHEMES)}")
 
 
 # ---------------------------------------------------------------------------
