@@ -73,6 +73,14 @@ def _method(text: str) -> str:
     return text
 
 
+def _friction_scheme(text: str) -> str:
+    """A ``type=`` for ``--friction-scheme`` (rotor/dynamics/system.py: FRICTION_SCHEMES)."""
+    from rotor.dynamics.system import FRICTION_SCHEMES
+    if text not in FRICTION_SCHEMES:
+        raise argparse.ArgumentTypeError(f"= {text}: must be one of {', '.join(FRICTION_SCHEMES)}")
+    return text
+
+
 #: ``--method`` values (rotor/studies/orbit_methods.py: METHODS)
 METHOD_NAMES = ("shooting", "hb", "auto")
 
@@ -94,6 +102,10 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--richardson", action="store_true",
                    help="shooting also with twice the steps per revolution, the amplitudes extrapolated to "
                         "continuous time (Richardson; JSON richardson); not with --method hb (no step)")
+    p.add_argument("--friction-scheme", type=_friction_scheme, default="active-set",
+                   help="shooting's end-face friction: active-set (default: stick/slip modes, events located inside "
+                        "the step) or projection (Coulomb's law solved in each step as a projection: no modes and no "
+                        "thresholds, so the period map has no jump; events not located)")
     p.add_argument("--json", action="store_true", help="print the result as JSON (default: a short table)")
     p.add_argument("--out", type=out_file, default=None, help="also write the JSON result to this file")
     add_progress_option(p)
@@ -420,8 +432,8 @@ def _shooting_orbit(args, name: str, loose, choice: dict | None = None, hb=None)
     _check_work(args, "ringcontact orbit", args.speed_rpm)
     res, events = _watched("ringcontact orbit", args, lambda: orbit(
         args.scene, args.speed_rpm, steps_per_rev=steps, **{"period_revs": args.period_revs, **start},
-        richardson=args.richardson, **_overrides(args)))
-    d = {**orbit_json(res, name), **law_fields(loose, res.max_edge_penetration_m,
+        richardson=args.richardson, friction_scheme=args.friction_scheme, **_overrides(args)))
+    d = {**orbit_json(res, name), "friction_scheme": args.friction_scheme, **law_fields(loose, res.max_edge_penetration_m,
                                               res.contact.get("max_tilt_in_contact_arcmin"),
                                               [res.contact.get("law_validity")]),
          "attempts": events.attempts, "method": "shooting", **({"method_choice": choice} if choice else {}),
@@ -505,8 +517,8 @@ def _branch(args) -> int:
         args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(
             max_points=int(args.max_points), turn_back=None if args.turn_back_rpm is None else
             args.turn_back_rpm / (abs(args.rpm_end - args.rpm_start) / 10.0)),     # the branch's speed scale
-        richardson=args.richardson, **chosen, **_overrides(args)))
-    d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end,
+        richardson=args.richardson, friction_scheme=args.friction_scheme, **chosen, **_overrides(args)))
+    d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end, "friction_scheme": args.friction_scheme,
          "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3), "method": "shooting",
          **({"method_choice": choice} if choice else {}), **_stability(args)}

@@ -48,7 +48,8 @@ class Problem:
     modes0 : end-face modes the orbits start from
     name : str, the parameter's name with its unit (``speed_rad_s``, ``clearance_m``)
     locate_events : friction events located inside the step (:func:`rotor.periodic.period_flow.make_flow`;
-        None: the scheme's default)
+        None: the scheme's default); friction_scheme : "active-set" or "projection"
+        (:attr:`rotor.dynamics.system.NewmarkOptions.friction_scheme`; None: the default)
     """
 
     system_at: Callable
@@ -59,10 +60,11 @@ class Problem:
     modes0: tuple = (cons.SLIP, cons.SLIP)
     name: str = "speed_rad_s"
     locate_events: bool | None = None
+    friction_scheme: str | None = None
 
     def flow(self, lam: float) -> Flow:
         return make_flow(self.system_at(lam), 2.0 * math.pi / (self.speed_at(lam) * self.steps_per_rev), self.backend,
-                         self.locate_events)
+                         self.locate_events, self.friction_scheme)
 
     @property
     def n_steps(self) -> int:

@@ -74,17 +74,24 @@ class MapResult:
     unsmooth_columns: int = 0
 
 
-def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto", locate_events: bool | None = None) -> Flow:
+def make_flow(system: RotorSystem, dt_s: float, backend: str = "auto", locate_events: bool | None = None,
+              friction_scheme: str | None = None) -> Flow:
     """Prepare ``system`` for maps of step ``dt_s`` (s); ``backend`` "auto" (= "exact": the monodromy of
     :mod:`rotor.dynamics.period_map`) or "fd" (central differences, :func:`monodromy_fd`, for cross-checks;
     its step is not checked against the contact limit). ``locate_events``: friction events located inside the
     step (:attr:`rotor.dynamics.system.NewmarkOptions.locate_events`: the map continuous through them); None:
-    the default of :class:`~rotor.dynamics.system.NewmarkOptions`."""
+    the default of :class:`~rotor.dynamics.system.NewmarkOptions`. ``friction_scheme``: "active-set" or
+    "projection" (:attr:`rotor.dynamics.system.NewmarkOptions.friction_scheme`); None: the default."""
     if backend == "auto":
         backend = "exact"
     if backend not in ("exact", "fd"):
         raise ValueError(f"backend = {backend!r}: must be 'auto', 'fd' or 'exact' (rotor.dynamics.period_map)")
-    opts = None if locate_events is None else NewmarkOptions(locate_events=bool(locate_events))
+    given = {} if locate_events is None else {"locate_events": bool(locate_events)}
+    if friction_scheme is not None:
+        given["friction_scheme"] = friction_scheme
+        if friction_scheme == "projection":     # a map with no jump: nothing to locate (the step-grid map is it)
+            given["locate_events"] = False
+    opts = NewmarkOptions(**given) if given else None
     pm = period_map_setup(system, dt_s, opts, check_step=backend == "exact")
     return Flow(system, pm.reduced, pm.condensed, pm.T, float(dt_s), backend, pm)
 

@@ -140,7 +140,8 @@ def shot(ev, y_pred, opts, how: int, y_last):
         elif how == GRID:
             # the step-grid map's orbit (events on step boundaries) from the linear periodic solution's transients,
             # then Newton on the branch's own map from it (the two differ by the scheme's O(h²))
-            plain = make_flow(flow.system, flow.dt_s, flow.backend, locate_events=False)
+            plain = make_flow(flow.system, flow.dt_s, flow.backend, locate_events=False,
+                              friction_scheme=flow.handle.options.friction_scheme)
             q, v = linear_initial_state(flow.system, 0.0)
             grid = shoot_from_transient(plain, q, v, steps_per_rev=pb.steps_per_rev, period_revs=pb.period_revs,
                                         options=ShootingOptions(tol=opts.tol, rcond=opts.rcond), modes0=pb.modes0)

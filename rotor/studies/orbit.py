@@ -215,7 +215,8 @@ def _overrides(kw: dict) -> dict:
 
 def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, period_revs: int | None = None,
           backend: str = "auto", options: ShootingOptions | None = None, start=None, stations=None,
-          period_hint: int | None = None, richardson: bool = False, **overrides) -> OrbitResult:
+          period_hint: int | None = None, richardson: bool = False, friction_scheme: str | None = None,
+          **overrides) -> OrbitResult:
     """The periodic orbit of ``scene`` at ``speed_rpm`` (rpm), its stability and 1X-5X velocity amplitudes.
 
     ``overrides``: ``clearance_m``, ``misalignment_m``, ``tilt_ignored``, ``mu``, ``preload_n``,
@@ -226,7 +227,8 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     ``period_hint``: a period (revolutions) to try in every transient round besides those the Poincaré
     returns support (a neighbouring speed's, :func:`cascade`). ``richardson``: also the orbit with twice the steps
     from this one and the amplitudes extrapolated to continuous time (:func:`richardson_fields`, JSON
-    ``richardson``).
+    ``richardson``). ``friction_scheme``: "active-set" or "projection"
+    (:attr:`rotor.dynamics.system.NewmarkOptions.friction_scheme`); None: the scheme's default.
     """
     t_start = time.perf_counter()
     check_positive("speed_rpm", speed_rpm, "rpm", upper=plausible.top("run_speed_rpm"))    # an orbit needs a period: no zero speed
@@ -234,7 +236,7 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
         raise InputError(f"period_revs = {period_revs}: must be a whole number of revolutions, 1 to {MAX_PERIOD_REVS}")
     _, model, system = point_system(scene, speed_rpm, **_overrides(overrides))
     n = int(steps_per_rev or step_per_rev(system, SteadyStateOptions()))
-    flow = make_flow(system, 2.0 * math.pi / (system.omega_rad_s * n), backend)
+    flow = make_flow(system, 2.0 * math.pi / (system.omega_rad_s * n), backend, friction_scheme=friction_scheme)
     q0, v0, start_info = transient_start(system, model, start)
     res = shoot_from_transient(flow, q0, v0, steps_per_rev=n, period_revs=period_revs, options=options,
                                period_hint=period_hint)
@@ -246,7 +248,7 @@ def orbit(scene: str, speed_rpm: float, *, steps_per_rev: int | None = None, per
     if richardson and res.converged:
         fine = orbit(scene, speed_rpm, steps_per_rev=2 * n, period_revs=res.period_revs, backend=backend,
                      start=(q, v), options=ShootingOptions(transient_revs=1, round_growth=2.0), stations=stations,
-                     **overrides)
+                     friction_scheme=friction_scheme, **overrides)
         rich = richardson_fields(n, amps, pen, fine.converged, fine.velocity_amplitudes_mm_s_1X_to_5X,
                                  fine.max_edge_penetration_m)
     return OrbitResult(float(speed_rpm), res.period_revs, res.period_s, n, res.converged, res.floquet.stable,
@@ -361,7 +363,7 @@ class BranchResult:
 def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int | None = None, backend: str = "auto",
            options: ContinuationOptions | None = None, amplitudes: bool = True, through_grazing: bool | None = None,
            start=None, period_revs: int | None = None, locate_events: bool | None = None, richardson: bool = False,
-           **overrides) -> BranchResult:
+           friction_scheme: str | None = None, **overrides) -> BranchResult:
     """Continue the orbit found at ``rpm_start`` (:func:`orbit`) in speed until ``rpm_end`` (rpm).
 
     The arclength is measured with the start orbit's scales and a speed scale of a tenth of the range.
@@ -377,7 +379,8 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     without ``period_revs`` (a state at phase 0, e.g. the end of a ``simulate`` run): the orbit a transient
     from that state reaches (period found).
     ``locate_events``: the continuation's maps locate friction events inside the step
-    (:func:`rotor.periodic.period_flow.make_flow`; None: the scheme's default).
+    (:func:`rotor.periodic.period_flow.make_flow`; None: the scheme's default). ``friction_scheme``: as
+    :func:`orbit`.
     ``richardson``: every point also corrected with twice the steps per revolution and extrapolated
     (:func:`rotor.periodic.richardson.extrapolate_branch`; each point's JSON ``richardson``, :func:`richardson_fields`).
     """
@@ -393,7 +396,7 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     # transient from it, as from the linear periodic solution
     chosen = ({} if start is None else {"start": start} if period_revs is None else
               {"start": start, "period_revs": period_revs, "options": ShootingOptions(transient_revs=1, round_growth=2.0)})
-    first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, **chosen, **ov)
+    first = orbit(scene, rpm_start, steps_per_rev=n, backend=backend, friction_scheme=friction_scheme, **chosen, **ov)
     if not first.converged:
         return BranchResult((), (), first, "no orbit at the start", time.perf_counter() - t_start,
                             Branch((), (), first.period_revs, "no orbit at the start", 0.0))
@@ -405,7 +408,7 @@ def branch(scene: str, rpm_start: float, rpm_end: float, *, steps_per_rev: int |
     res = first.shooting
     # the orbit's start time is a whole number of revolutions: phase 0, where the continuation's maps start
     pb = speed_problem(system_at, n, period_revs=first.period_revs, backend=backend, modes0=res.modes,
-                       locate_events=locate_events)
+                       locate_events=locate_events, friction_scheme=friction_scheme)
     w0, w1 = rpm_start / to_rpm, rpm_end / to_rpm
     follow = continue_through_grazing if follows_grazing(sys_lo.support, through_grazing) else continue_branch
     br = follow(pb, res.state, w0, w1, scales=res.scales, lam_scale=abs(w1 - w0) / 10.0, options=options)

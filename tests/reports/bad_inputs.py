@@ -278,6 +278,7 @@ def _orbit_cases() -> list:
         for name in ("nosuch_scene", "bad_toml", "huge_modulus", "thin_shaft"):
             c.append((f"{job} scene {name}", [base[0], "{" + name + "}", *base[2:]], None))
         c += _out_cases(job, base, "--out", UNWRITABLE_FILES)
+        c += [(f"{job} --friction-scheme moreau", [*base, "--friction-scheme", "moreau"], "moreau")]
     return c
 
 
