@@ -69,14 +69,16 @@ def monodromy_error(flow, sh) -> dict:
             "unsmooth_columns": int(r.unsmooth_columns), "replay_mismatch": float(r.replay_mismatch)}
 
 
-def one_speed(scene: str, rpm: float, neighbour=None) -> tuple[dict, object]:
+def one_speed(scene: str, rpm: float, neighbour=None, scheme: str = "active-set") -> tuple[dict, object]:
     """The row of one speed and its orbit (None without one): the orbit from the transient (``neighbour`` None),
     or from ``neighbour`` = ``(rpm, OrbitResult)``, a drawn speed's orbit: Newton from its state at phase 0, then
-    a branch from it to ``rpm`` (:func:`neighbour_orbit`)."""
+    a branch from it to ``rpm`` (:func:`neighbour_orbit`); ``scheme``: the end-face friction scheme
+    (:attr:`rotor.dynamics.system.NewmarkOptions.friction_scheme`)."""
     from rotor.periodic.period_flow import make_flow
     t0 = time.perf_counter()
     try:
-        res, route = (orbit(scene, rpm), "transient") if neighbour is None else neighbour_orbit(scene, rpm, *neighbour)
+        res, route = ((orbit(scene, rpm, friction_scheme=scheme), "transient") if neighbour is None else
+                      neighbour_orbit(scene, rpm, *neighbour, scheme=scheme))
     except (OutsideDomainError, ConvergenceError) as exc:     # the transient left the law's domain: no state to check
         return {"speed_rpm": rpm, "converged": False, "no_state": " ".join(str(exc).split())[:160],
                 "orbit_s": time.perf_counter() - t0}, None
@@ -87,7 +89,7 @@ def one_speed(scene: str, rpm: float, neighbour=None) -> tuple[dict, object]:
     # state of the run like the default test's; the monodromy there is as much the map's derivative)
     from rotor.studies.steady_state import point_system
     _, _, system = point_system(scene, rpm)
-    flow = make_flow(system, sh.period_s / (sh.period_revs * sh.steps_per_rev))
+    flow = make_flow(system, sh.period_s / (sh.period_revs * sh.steps_per_rev), friction_scheme=scheme)
     if not sh.converged:
         sh = dataclasses.replace(sh, period_revs=1, steps_per_rev=sh.steps_per_rev)
     if np.all(np.isfinite(sh.state)):
@@ -95,7 +97,7 @@ def one_speed(scene: str, rpm: float, neighbour=None) -> tuple[dict, object]:
     return row, (res if res.converged else None)
 
 
-def neighbour_orbit(scene: str, rpm: float, from_rpm: float, near) -> tuple:
+def neighbour_orbit(scene: str, rpm: float, from_rpm: float, near, scheme: str = "active-set") -> tuple:
     """The orbit at ``rpm`` from the orbit ``near`` found at ``from_rpm``: Newton from its state at phase 0 (same
     period, one revolution of transient), else the orbit where :func:`rotor.studies.orbit.branch` from it lands
     at ``rpm``. Where the transient from rest reaches no orbit (an unstable orbit, a chaotic transient) one may
@@ -106,30 +108,36 @@ def neighbour_orbit(scene: str, rpm: float, from_rpm: float, near) -> tuple:
     from rotor.studies.orbit import branch
     from rotor.studies.steady_state import point_system
     warm = ShootingOptions(transient_revs=1, round_growth=2.0)
-    res = orbit(scene, rpm, start=(near.q_m, near.v_m_s), period_revs=near.period_revs, options=warm)
+    res = orbit(scene, rpm, start=(near.q_m, near.v_m_s), period_revs=near.period_revs, options=warm,
+                friction_scheme=scheme)
     if res.converged:
         return res, f"Newton from {from_rpm:.1f} rpm"
-    br = branch(scene, from_rpm, rpm, start=(near.q_m, near.v_m_s), period_revs=near.period_revs, amplitudes=False)
+    br = branch(scene, from_rpm, rpm, start=(near.q_m, near.v_m_s), period_revs=near.period_revs, amplitudes=False,
+                friction_scheme=scheme)
     last = br.branch.points[-1] if br.branch.points else None
     if br.stop != "end reached" or last is None:
         return res, f"none from {from_rpm:.1f} rpm (Newton; branch: {br.stop})"
     _, _, system = point_system(scene, rpm)
-    flow = make_flow(system, 2.0 * np.pi / (system.omega_rad_s * br.start.steps_per_rev))
+    flow = make_flow(system, 2.0 * np.pi / (system.omega_rad_s * br.start.steps_per_rev), friction_scheme=scheme)
     q, v = to_full(flow, last.state, 0.0)
     got = orbit(scene, rpm, steps_per_rev=br.start.steps_per_rev, start=(q, v), period_revs=near.period_revs,
-                options=warm)
+                options=warm, friction_scheme=scheme)
     return got, (f"branch from {from_rpm:.1f} rpm ({len(br.points)} points, {sum(br.as_dict()['restarts'].values())} restarts)"
                  if got.converged else f"none from {from_rpm:.1f} rpm (branch landed, Newton did not)")
 
 
-def report(scene, seed, rows, load0, load1, commit) -> str:
+def report(scene, seed, rows, load0, load1, commit, scheme: str = "active-set") -> str:
     ok = [r for r in rows if r.get("error") is not None and r["converged"]]
     smooth = [r for r in ok if r["reference_convergence"] <= BOUND]
     within = sum(r["error"] <= BOUND for r in smooth)
     states = [r for r in rows if r.get("error") is not None and not r["converged"]]
     st_smooth = [r for r in states if r["reference_convergence"] <= BOUND]
     every = smooth + st_smooth
-    lines = ["# The located monodromy at random speeds", "",
+    title = ("# The located monodromy at random speeds" if scheme == "active-set" else
+             "# The monodromy at random speeds, friction by projection")
+    lines = [title, "",
+             (f"Friction scheme `{scheme}` (`rotor.dynamics.system.NewmarkOptions.friction_scheme`). "
+              if scheme != "active-set" else "") +
              f"`benchmarks/bench_monodromy_random.py` at commit {commit}, scene `{scene}`, seed **{seed}** "
              f"({len(rows)} speeds drawn uniformly). Orbit as `ringcontact orbit` finds it; error of its located "
              "monodromy against the Richardson extrapolation of central differences of the same map at 1e-7 and "
@@ -182,13 +190,19 @@ def main(argv=None) -> int:
     ap.add_argument("--rpm-min", type=float, default=6000.0)
     ap.add_argument("--rpm-max", type=float, default=18000.0)
     ap.add_argument("--seed", type=int, default=None)
-    ap.add_argument("--out", type=Path, default=OUT / "perf-monodromy-random.md")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="default: reports/published/perf-monodromy-random.md (-projection.md with that scheme)")
+    ap.add_argument("--friction-scheme", default="active-set", choices=("active-set", "projection"))
     ap.add_argument("--from-json", type=Path, default=None,
                     help="render the report again from a run's JSON (nothing recomputed) into --out")
     a = ap.parse_args(argv)
+    scheme = a.friction_scheme
+    if a.out is None:
+        a.out = OUT / ("perf-monodromy-random.md" if scheme == "active-set" else "perf-monodromy-random-projection.md")
     if a.from_json is not None:
         d = json.loads(a.from_json.read_text())
-        text = report(d["scene"], d["seed"], d["rows"], (d["load"][0],), (d["load"][1],), d["commit"])
+        text = report(d["scene"], d["seed"], d["rows"], (d["load"][0],), (d["load"][1],), d["commit"],
+                      d.get("friction_scheme", "active-set"))
         write(a.out, text, d)
         print(text)
         return 0
@@ -200,20 +214,20 @@ def main(argv=None) -> int:
     load0 = os.getloadavg()
     rows, found = [], {}
     for rpm in speeds:
-        row, res = one_speed(a.scene, float(rpm))
+        row, res = one_speed(a.scene, float(rpm), scheme=scheme)
         _printed(rows, row, found, res)
     # where the transient reached no orbit, from the nearest drawn speed's orbit (one_speed, neighbour_orbit)
     for i, row in enumerate(list(rows)):
         if row["converged"] or not found:
             continue
         near = min(found, key=lambda f: abs(f - row["speed_rpm"]))
-        again, res = one_speed(a.scene, row["speed_rpm"], (near, found[near]))
+        again, res = one_speed(a.scene, row["speed_rpm"], (near, found[near]), scheme=scheme)
         again["transient"] = "no orbit" if row.get("no_state") is None else "left the law's domain"
         rows[i] = again if again["converged"] or again.get("error") is not None else {**row, "route": again["route"]}
         _printed(None, rows[i], found, res)
-    text = report(a.scene, seed, rows, load0, os.getloadavg(), commit)
+    text = report(a.scene, seed, rows, load0, os.getloadavg(), commit, scheme)
     write(a.out, text, {"seed": seed, "scene": a.scene, "commit": commit, "load": [load0[0], os.getloadavg()[0]],
-                        "rows": rows})
+                        "rows": rows, "friction_scheme": scheme})
     print(text)
     return 0
 

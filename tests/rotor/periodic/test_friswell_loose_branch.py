@@ -169,3 +169,28 @@ def test_a_failed_landing_is_shot_at_rpm_end_and_said(monkeypatch):
     lin = _linear_1x_mm_s(end, amps, shot.start.steps_per_rev)
     for name, a in amps.items():
         assert a[0] == pytest.approx(lin[name], rel=NEWMARK_COEFF * (math.pi / shot.start.steps_per_rev) ** 2), name
+
+
+@pytest.fixture(scope="module")
+def result_200n():
+    """The 200 N branch 2 300 -> 2 800 rpm with the friction solved by projection (``friction_scheme="projection"``,
+    rotor/dynamics/constraints.py ``coulomb_projection``): μN = 20 N per face, which the right face's step-mean
+    force reaches near the peak (measured at 2 484 rpm: 20.0 N, the face slips there)."""
+    return branch(SCENE, RPM_START, RPM_END, preload_n=200.0, friction_scheme="projection")
+
+
+def test_the_200_n_branch_by_projection_has_no_restart_and_its_peak_is_the_orbits(result_200n):
+    """Issue 36's must-show for the 200 N preload: no restart, no corrector failure, the last orbit at --rpm-end
+    itself, and the peak of disk 2's 1X velocity inside the range and within 1 % of the orbit shot at that speed on
+    its own (from a transient, the same scheme). With the active-set scheme this branch restarted 2 to 16 times by
+    where its steps fell (2 300 or 2 300.5 rpm start), at jumps of its map."""
+    b = result_200n.branch
+    assert result_200n.stop == "end reached" and b.restarts == 0 and b.failures == ()
+    assert result_200n.points[-1]["speed_rpm"] == pytest.approx(RPM_END, abs=1e-9)
+    amps = [p["velocity_amplitudes_mm_s_1X_to_5X"][PEAK_CHANNEL][0] for p in result_200n.points]
+    k = int(np.argmax(amps))
+    assert 0 < k < len(amps) - 1
+    o = orbit(SCENE, result_200n.points[k]["speed_rpm"], steps_per_rev=result_200n.start.steps_per_rev,
+              preload_n=200.0, friction_scheme="projection")
+    assert o.converged
+    assert amps[k] == pytest.approx(o.velocity_amplitudes_mm_s_1X_to_5X[PEAK_CHANNEL][0], rel=0.01)
