@@ -220,11 +220,14 @@ def period_map(pm: PeriodMap, state0, t0: float, n_steps: int, *, modes0=None, j
     rec_p, rec_v = tr.q @ pm.T, tr.v @ pm.T
     modes_rec = tr.modes
     events = 0
-    if pm.n_faces:
+    projected = pm.options.friction_scheme == "projection" and red.support is not None
+    if projected:           # one map for every start: no modes, and a stick or slip onset is a kink, not a jump
+        modes_rec = np.tile(projected_modes(pm.n_faces), (tr.modes.shape[0], 1))
+    elif pm.n_faces:
         events = int(sum(modes_req[k] != modes_rec[0, k] for k in range(pm.n_faces)))
         events += int(np.count_nonzero(np.diff(modes_rec[:, :pm.n_faces].astype(np.int64), axis=0)))
     mismatch, unsmooth = 0.0, 0
-    if jacobian and pm.options.friction_scheme == "projection" and pm.reduced.support is not None:
+    if jacobian and projected:
         mono = _monodromy_projected(pm, tr, rec_p, rec_v)
     elif jacobian and pm.options.locate_events:      # event steps differentiated as located (period_map_events)
         mono, mismatch, unsmooth = located_monodromy(pm, tr, rec_p, rec_v)

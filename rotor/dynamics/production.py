@@ -51,7 +51,7 @@ from rotor.dynamics.condense import condense, expand
 from rotor.dynamics.initial import initial_state
 from rotor.dynamics.kernels import contact_kernel
 from rotor.dynamics.production_loop import step_loop
-from rotor.dynamics.projection_start import projected_modes, projected_start
+from rotor.dynamics.projection_start import projected_branch_modes, projected_modes, projected_start
 from rotor.dynamics.system import (NewmarkOptions, RotorSystem, Trajectory, check_inputs, check_time_step, coupling_map,
                                    relative_compliance)
 
@@ -185,6 +185,8 @@ def simulate_production(system: RotorSystem, dt: float, n_steps: int, q0=None, v
         raise ConvergenceError(
             f"production scheme: {what} at step {status[1]}, t = {t_fail:.6g} s (tol = {opts.tol:.1e}, "
             f"max_iter = {opts.max_iter}); largest ω_c·Δt met = {wdt_max:.3g}; reduce dt_s = {dt:.3e} s")
+    if projected:       # the modes recorded as the branch each face's projection took, for the record's readers
+        rec["modes"] = projected_branch_modes(rec["w"], pre.P, pre.n_faces)
     tr = Trajectory(t=rec["t"], q=rec["p"] @ T.T, v=rec["v"] @ T.T, a=rec["a"] @ T.T, u=rec["u"], w=rec["w"],
                     f_contact=rec["fc"], f_elastic=rec["fel"], face_force=rec["face"], modes=rec["modes"],
                     newton_iters=rec["its"], passes=rec["passes"], omega_dt_max=float(wdt_max),

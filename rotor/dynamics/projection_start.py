@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from contact.errors import ConvergenceError
-from rotor.dynamics.constraints import PROJECTED, SLIP
+from rotor.dynamics.constraints import PROJECTED, SLIP, STICK
 from rotor.dynamics.production_kernels import NC, VG, _load, _solve_support, newton_work
 
 
@@ -24,6 +24,22 @@ def projected_modes(n_faces: int) -> np.ndarray:
     """The face modes of the projection scheme: the active faces projected, the inactive one (tilt ignored)
     slipping with a zero limit (no force)."""
     return np.array([PROJECTED] * n_faces + [SLIP] * (2 - n_faces), dtype=np.int64)
+
+
+#: a projected face is reported stuck where its sliding speed is below this (m/s): the stuck branch of the projection
+#: holds it at zero to the step's Newton tolerance (about 1e-12 m/s on the Table 4 rotor), a slip is faster
+STUCK_SPEED_M_S = 1e-9
+
+
+def projected_branch_modes(w_rec, P, n_faces: int) -> np.ndarray:
+    """The recorded modes of a projection run as its readers expect them (int8 (N, 2)): ``STICK`` where a face's
+    sliding speed ``|P_k w|`` (``w_rec`` (N, 4), m/s) is below :data:`STUCK_SPEED_M_S` (the projection's stuck
+    branch), else ``SLIP``; an inactive face ``SLIP``. The period map itself runs on ``PROJECTED`` faces."""
+    out = np.full((w_rec.shape[0], 2), SLIP, dtype=np.int8)
+    for k in range(n_faces):
+        speed = np.hypot(w_rec @ P[k, 0], w_rec @ P[k, 1])
+        out[speed < STUCK_SPEED_M_S, k] = STICK
+    return out
 
 
 def projected_start(pre, t0: float, p, v, params, opts) -> tuple[np.ndarray, np.ndarray]:
