@@ -139,8 +139,9 @@ def report(scene, seed, rows, load0, load1, commit, scheme: str = "active-set") 
              (f"Friction scheme `{scheme}` (`rotor.dynamics.system.NewmarkOptions.friction_scheme`). "
               if scheme != "active-set" else "") +
              f"`benchmarks/bench_monodromy_random.py` at commit {commit}, scene `{scene}`, seed **{seed}** "
-             f"({len(rows)} speeds drawn uniformly). Orbit as `ringcontact orbit` finds it; error of its located "
-             "monodromy against the Richardson extrapolation of central differences of the same map at 1e-7 and "
+             f"({len(rows)} speeds drawn uniformly). Orbit as `ringcontact orbit` finds it; error of its "
+             f"{'located ' if scheme == 'active-set' else ''}monodromy against the Richardson extrapolation of "
+             "central differences of the same map at 1e-7 and "
              "2e-7 of each component's largest magnitude; the reference's own convergence against the one at 5e-8 "
              "and 1e-7. Where a column's central differences do not converge, the one-sided ones that do (a "
              "threshold of the map within 2e-7 on one side), then the same at 1e-8 (thresholds on both sides): the "

@@ -16,3 +16,23 @@ def commit_seed() -> int:
         return int(os.environ["RINGCONTACT_TEST_SEED"])
     head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=Path(__file__).parent, capture_output=True, text=True)
     return int(head.stdout.strip()[:8], 16) if head.returncode == 0 and head.stdout.strip() else FALLBACK_SEED
+
+
+def checked_speeds(errors, n_speeds: int, rng, converged: float, tries_per_speed: int,
+                   rpm_range=(6000.0, 18000.0)) -> tuple[list, list]:
+    """Draw speeds (rpm, 0.1 rpm) uniformly over ``rpm_range`` from ``rng`` until ``n_speeds`` have a reference:
+    ``errors(rpm)`` gives ``(error, reference convergence)`` or None (the transient left the law's domain); a draw
+    whose reference did not converge to ``converged`` is skipped. Returns ``(checked [(rpm, error)], skipped
+    [(rpm, why)])``, both printed."""
+    checked, skipped = [], []
+    for _ in range(tries_per_speed * n_speeds):
+        if len(checked) == n_speeds:
+            break
+        rpm = round(float(rng.uniform(*rpm_range)), 1)
+        got = errors(rpm)
+        if got is None or got[1] > converged:
+            skipped.append((rpm, "transient beyond the law's domain" if got is None else f"reference {got[1]:.1e}"))
+            continue
+        checked.append((rpm, got[0]))
+    print("checked", [(r, f"{e:.1e}") for r, e in checked], "skipped", skipped)
+    return checked, skipped

@@ -93,6 +93,50 @@ def consistent_acceleration_jacobian(p, v, Bt, MK, MD, WM, SM, P, modes, mu_N, a
     return Af + WM @ (Pm.T @ dphi)
 
 
+@njit(cache=True, inline="always")
+def predictor_sensitivity(Pre, Spv, Sa, dt, c1, c2):
+    """The Newmark predictor's sensitivity ``Pre`` (2nr × ncol, rows p then v) from the state's ``Spv`` and the
+    acceleration's ``Sa``: ``p + Δt v + c1 a``, ``v + c2 a`` (``c1 = Δt²(1/2 − β)``, ``c2 = Δt(1 − γ)``)."""
+    nr = Sa.shape[0]
+    for i in range(nr):
+        for c in range(Sa.shape[1]):
+            sa = Sa[i, c]
+            Pre[i, c] = Spv[i, c] + dt * Spv[nr + i, c] + c1 * sa
+            Pre[nr + i, c] = Spv[nr + i, c] + c2 * sa
+
+
+@njit(cache=True)
+def alpha_rows(mRy, S, Gu, Gw):
+    """The condensed rows of ``−R_y`` (into ``mRy[:NC, :3NC]``): ``R_α = α − α_lin − S g(u_pre + βΔt² α, w_pre +
+    γΔt α)``, so ``I`` on ``α_lin`` and ``S ∂g/∂u``, ``S ∂g/∂w`` on ``u_pre``, ``w_pre``."""
+    for r in range(NC):
+        mRy[r, r] = 1.0
+        for c in range(NC):
+            su = 0.0
+            sw = 0.0
+            for k in range(NC):
+                su += S[r, k] * Gu[k, c]
+                sw += S[r, k] * Gw[k, c]
+            mRy[r, NC + c] = su
+            mRy[r, 2 * NC + c] = sw
+
+
+@njit(cache=True)
+def force_columns(Dg, Dx, Gu, Gw, bdt2, gdt):
+    """``dg = Gu du + Gw dw`` with ``du = du_pre + βΔt² dα``, ``dw = dw_pre + γΔt dα`` into ``Dg`` (NC × the columns
+    of ``Dx``, whose first NC rows are ``dα``): the direct ``u_pre``, ``w_pre`` columns and every column through
+    ``dα`` (the faces' force unknowns are the caller's)."""
+    for r in range(NC):
+        for c in range(NC):
+            Dg[r, NC + c] = Gu[r, c]
+            Dg[r, 2 * NC + c] = Gw[r, c]
+        for c in range(Dx.shape[1]):
+            s = 0.0
+            for k in range(NC):
+                s += (bdt2 * Gu[r, k] + gdt * Gw[r, k]) * Dx[k, c]
+            Dg[r, c] += s
+
+
 @njit(cache=True)
 def _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, params, w_reg, bdt2, gdt):
     """``∂g/∂(y, f)`` (NC × 22) of the converged condensed forces with respect to ``y = (α_lin, u_pre, w_pre)``
@@ -113,16 +157,7 @@ def _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, param
               g, Jg, phi, uu, ww, R, J)
     # −R_y: R_α = α − α_lin − S g(u_pre + βΔt² α, w_pre + γΔt α), R_stuck = P_k w / (γΔt)
     mRy = np.zeros((m, 3 * NC))
-    for r in range(NC):
-        mRy[r, r] = 1.0
-        for c in range(NC):
-            su = 0.0
-            sw = 0.0
-            for k in range(NC):
-                su += S[r, k] * Gu[k, c]
-                sw += S[r, k] * Gw[k, c]
-            mRy[r, NC + c] = su
-            mRy[r, 2 * NC + c] = sw
+    alpha_rows(mRy, S, Gu, Gw)
     j = NC
     for k in range(2):
         if modes[k] == 1:
@@ -134,15 +169,7 @@ def _step_support_jacobian_held(u, w, S, P, modes, freeze, fdir, mu_N, a1, param
     # dg = Gu du + Gw dw + Σ_stuck P_kᵀ dφ_k, du = du_pre + βΔt² dα, dw = dw_pre + γΔt dα
     Dgf = np.zeros((NC, 3 * NC + 4))
     Dg = Dgf[:, :3 * NC]
-    for r in range(NC):
-        for c in range(NC):
-            Dg[r, NC + c] = Gu[r, c]
-            Dg[r, 2 * NC + c] = Gw[r, c]
-        for c in range(3 * NC):
-            s = 0.0
-            for k in range(NC):
-                s += (bdt2 * Gu[r, k] + gdt * Gw[r, k]) * Dx[k, c]
-            Dg[r, c] += s
+    force_columns(Dg, Dx, Gu, Gw, bdt2, gdt)
     j = NC
     for k in range(2):
         if modes[k] == 1:
@@ -299,11 +326,7 @@ def carry(rec_p, rec_v, rec_modes, Spv, Sa, dt, beta, gamma, AK, AD, MK, MD, Bt,
                     fn = np.sqrt(rec_face[n, k, 0] ** 2 + rec_face[n, k, 1] ** 2)
                     fdir[k, 0] = mu_N[k] * rec_face[n, k, 0] / fn
                     fdir[k, 1] = mu_N[k] * rec_face[n, k, 1] / fn
-        for i in range(nr):
-            for c in range(ncol):
-                sa = Sa[i, c]
-                Pre[i, c] = Spv[i, c] + dt * Spv[nr + i, c] + c1 * sa
-                Pre[nr + i, c] = Spv[nr + i, c] + c2 * sa
+        predictor_sensitivity(Pre, Spv, Sa, dt, c1, c2)
         np.dot(AKD, Pre, Sal)
         Sal -= dload
         if has_support:

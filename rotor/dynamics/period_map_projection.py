@@ -19,7 +19,8 @@ import numpy as np
 from numba import njit
 
 from contact.compiled_cache import compiled_with
-from rotor.dynamics.period_map_kernels import _force_jacobians_held
+from rotor.dynamics.period_map_kernels import (_force_jacobians_held, alpha_rows, force_columns,
+                                               predictor_sensitivity)
 from rotor.dynamics.production_kernels import NC, _coulomb_projection, _residual
 
 compiled_with(__file__, ["rotor.dynamics.production_kernels", "rotor.dynamics.period_map_kernels",
@@ -55,16 +56,7 @@ def projected_step_jacobian(u, w, phi_end, phi_start, wm, S, P, modes, mu_N, a1,
     _residual(x, m, np.zeros(NC), u, w, S, P, modes, freeze, phi_start, mu_N, a1, bdt2, gdt, params, w_reg,
               g, Jg, phi, uu, ww, R, J)
     mRy = np.zeros((m, NY))         # −R_y and −R_f
-    for r in range(NC):
-        mRy[r, r] = 1.0
-        for c in range(NC):
-            su = 0.0
-            sw = 0.0
-            for k in range(NC):
-                su += S[r, k] * Gu[k, c]
-                sw += S[r, k] * Gw[k, c]
-            mRy[r, NC + c] = su
-            mRy[r, 2 * NC + c] = sw
+    alpha_rows(mRy, S, Gu, Gw)
     j = NC
     for k in range(2):
         if modes[k] != 2:
@@ -93,15 +85,7 @@ def projected_step_jacobian(u, w, phi_end, phi_start, wm, S, P, modes, mu_N, a1,
     # dg = Gu du + Gw dw + Σ P_kᵀ dφ_k, du = du_pre + βΔt² dα, dw = dw_pre + γΔt dα
     Dg = np.zeros((NC, NY))
     Dphi = np.zeros((4, NY))
-    for r in range(NC):
-        for c in range(NC):
-            Dg[r, NC + c] = Gu[r, c]
-            Dg[r, 2 * NC + c] = Gw[r, c]
-        for c in range(NY):
-            s = 0.0
-            for k in range(NC):
-                s += (bdt2 * Gu[r, k] + gdt * Gw[r, k]) * Dx[k, c]
-            Dg[r, c] += s
+    force_columns(Dg, Dx, Gu, Gw, bdt2, gdt)
     j = NC
     for k in range(2):
         if modes[k] == 2:
@@ -162,11 +146,7 @@ def sensitivity_pass_projected(rec_p, rec_v, rec_a, rec_face, modes, dt, beta, g
     AKD[:, nr:] = AD
     Y = np.empty((NY, ncol))        # ∂y: α_lin = Bt a_lin, u_pre = Bt p_pre, w_pre = Bt v_pre; then ∂f_n
     for n in range(n_steps):
-        for i in range(nr):
-            for c in range(ncol):
-                sa = Sa[i, c]
-                Pre[i, c] = Spv[i, c] + dt * Spv[nr + i, c] + c1 * sa
-                Pre[nr + i, c] = Spv[nr + i, c] + c2 * sa
+        predictor_sensitivity(Pre, Spv, Sa, dt, c1, c2)
         np.dot(AKD, Pre, Sal)
         np.dot(Bt, Sal, Y[:NC])
         np.dot(Bt, Pre[:nr], Y[NC:2 * NC])

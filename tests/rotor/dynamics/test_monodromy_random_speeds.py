@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 import pytest
-from seeds import commit_seed
+from seeds import checked_speeds, commit_seed
 
 from contact.errors import OutsideDomainError
 from rotor.dynamics import period_map_events as pme
@@ -59,17 +59,8 @@ def test_located_monodromy_at_random_speeds_equals_central_differences_of_its_ma
     seed = commit_seed()
     rng = np.random.default_rng(seed)
     print(f"seed {seed} (RINGCONTACT_TEST_SEED={seed} reruns these speeds)")
-    checked, skipped = [], []
-    for _ in range(8 * n_speeds):      # measured: up to 6 in 10 states have no derivative at the reference's scale
-        if len(checked) == n_speeds:
-            break
-        rpm = round(float(rng.uniform(6000.0, 18000.0)), 1)
-        got = _errors(rpm, scene)
-        if got is None or got[1] > REFERENCE_CONVERGED:
-            skipped.append((rpm, "transient beyond the law's domain" if got is None else f"reference {got[1]:.1e}"))
-            continue
-        checked.append((rpm, got[0]))
-    print("checked", [(r, f"{e:.1e}") for r, e in checked], "skipped", skipped)
+    # measured: up to 6 in 10 states have no derivative at the reference's scale
+    checked, skipped = checked_speeds(lambda rpm: _errors(rpm, scene), n_speeds, rng, REFERENCE_CONVERGED, 8)
     assert len(checked) == n_speeds, skipped
     assert all(e < BOUND for _, e in checked), checked
 
