@@ -647,6 +647,16 @@ NOT_CLAIMS = (
      "at every step from 3e-8 to 1e-6), seed 4269954154 (1b1a63c) 20 of 20, seed 2376377958 one miss (1.15e-6 "
      "against a reference converged to 4.8e-7) and one unresolved; a sample, not a claim: each run draws a new "
      "seed, and the default run checks one random speed of this scene (test_monodromy_random_speeds.py)"),
+    ("reports/published/perf-monodromy-random-projection.md",
+     "one benchmark sample of 20 speeds with the friction solved by projection (seed 1344113174, at 6579e29): 20 of "
+     "20 orbits within 1e-6 of central differences of their map (largest 1.6e-7; one orbit, 16 609.8 rpm, from a "
+     "neighbouring speed's); a sample, not a claim: each run draws a new seed, and the default run checks 3 other "
+     "random speeds (test_friction_projection.py)"),
+    ("reports/published/perf-monodromy-random-projection-steel-in-aluminium.md",
+     "one benchmark sample of 20 speeds with the friction solved by projection (seed 1025849640, at 7794a84): 18 of "
+     "18 orbits within 1e-6 where the central differences converged (largest 1.6e-7); at 9 007.9 and 12 288.2 rpm "
+     "they did not (3.2e-2, 1.1e-6: a face at the disk's edge within the stencil, a kink of the map); a sample, "
+     "not a claim: the default run checks 2 other random speeds (test_friction_projection.py)"),
     ("reports/published/perf-monodromy-random.md",
      "one benchmark sample of 20 speeds (seed 2272336857, at d1eafe5, consecutive differenced steps one block): 20 of "
      "20 orbits within 1e-6 of the derivative of their map's piece (largest 7.7e-7, the period-4 orbit at "
