@@ -58,7 +58,7 @@ LOCATE = {"on": True, "off": False, "default": None}
 
 
 def run_branch(max_points: int, locate_events: bool | None, turn_back_rpm: float | None = None,
-               max_wall_s: float | None = None) -> tuple:
+               max_wall_s: float | None = None, friction_scheme: str = "active-set") -> tuple:
     """The branch (:class:`rotor.studies.orbit.BranchResult`), its ``ringcontact branch --json`` dict and wall time."""
     from rotor.dynamics.period_map import warm_up
     from rotor.periodic.continuation import ContinuationOptions
@@ -78,16 +78,18 @@ def run_branch(max_points: int, locate_events: bool | None, turn_back_rpm: float
         scale = abs(RPM_END - RPM_START) / 10.0         # the branch's speed scale (rpm)
         opts = ContinuationOptions(max_points=max_points, max_wall_s=max_wall_s,
                                    turn_back=None if turn_back_rpm is None else turn_back_rpm / scale)
-        res = branch(SCENE, RPM_START, RPM_END, options=opts, locate_events=locate_events, tilt_ignored=False)
+        res = branch(SCENE, RPM_START, RPM_END, options=opts, locate_events=locate_events, tilt_ignored=False,
+                     friction_scheme=friction_scheme)
     wall = time.perf_counter() - t0
     d = {"scene": SCENE, "rpm_start": RPM_START, "rpm_end": RPM_END, "period_revs": res.start.period_revs,
          "steps_per_rev": res.start.steps_per_rev, "locate_events": locate_events, "turn_back_rpm": turn_back_rpm,
+         "friction_scheme": friction_scheme,
          **res.as_dict(),
          "wall_s": round(wall, 3)}
     return res, d, wall
 
 
-def verify(res, n_verify: int, locate_events: bool | None) -> list[dict]:
+def verify(res, n_verify: int, locate_events: bool | None, friction_scheme: str = "active-set") -> list[dict]:
     """Independent check of ``n_verify`` points spread over the branch (see the module docstring)."""
     from rotor.periodic.period_flow import advance, make_flow
     from rotor.periodic.shooting import ShootingOptions, orbit_scales, record_reduced, shoot
@@ -101,7 +103,8 @@ def verify(res, n_verify: int, locate_events: bool | None) -> list[dict]:
         p = pts[i]
         modes = p.modes or res.start.shooting.modes       # the end-face modes its map starts from
         flow = make_flow(point_system(SCENE, p.parameter * TO_RPM, tilt_ignored=False)[2],
-                         2.0 * math.pi / (p.parameter * n), locate_events=locate_events)
+                         2.0 * math.pi / (p.parameter * n), locate_events=locate_events,
+                         friction_scheme=friction_scheme)
         pv, vv, _ = record_reduced(flow, p.state, 0.0, steps, modes, max(1, steps // 256))
         s = np.maximum(orbit_scales(flow, pv, vv), floor)
         r = advance(flow, p.state, 0.0, steps, modes, jacobian=False)
@@ -115,7 +118,8 @@ def verify(res, n_verify: int, locate_events: bool | None) -> list[dict]:
     return rows
 
 
-def isolated_checks(res, locate_events: bool | None, rel_steps=(1e-6, 1e-7), cap: int = 40) -> list[dict]:
+def isolated_checks(res, locate_events: bool | None, rel_steps=(1e-6, 1e-7), cap: int = 40,
+                    friction_scheme: str = "active-set") -> list[dict]:
     """Every orbit whose stability differs from both neighbours' (an isolated spike), checked by central
     differences of the whole map (:func:`rotor.periodic.period_flow.monodromy_fd`, the same event location) at the
     two ``rel_steps``: the largest multiplier of each against the branch's, and the located monodromy's columns
@@ -135,8 +139,9 @@ def isolated_checks(res, locate_events: bool | None, rel_steps=(1e-6, 1e-7), cap
         modes = p.modes or res.start.shooting.modes
         system = point_system(SCENE, p.parameter * TO_RPM, tilt_ignored=False)[2]
         dt = 2.0 * math.pi / (p.parameter * n)
-        r = advance(make_flow(system, dt, locate_events=locate_events), p.state, 0.0, steps, modes)
-        fd_flow = make_flow(system, dt, backend="fd", locate_events=locate_events)
+        r = advance(make_flow(system, dt, locate_events=locate_events, friction_scheme=friction_scheme), p.state, 0.0,
+                    steps, modes)
+        fd_flow = make_flow(system, dt, backend="fd", locate_events=locate_events, friction_scheme=friction_scheme)
         fd = [float(np.abs(np.linalg.eigvals(monodromy_fd(fd_flow, p.state, 0.0, steps, modes, rel_step=h))).max())
               for h in rel_steps]
         agree = abs(fd[0] - fd[1]) <= 1e-3 * max(fd)
@@ -226,14 +231,19 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes:
            mu_n: list[float] | None = None) -> str:
     pts = d["points"]
     reached = max((p["speed_rpm"] for p in pts), default=float("nan"))
-    lines = ["# Continuation of the Table 4 rotor through stick/slip and contact switches: one branch", "",
+    scheme = d.get("friction_scheme", "active-set")
+    lines = ["# Continuation of the Table 4 rotor through stick/slip and contact switches: one branch"
+             + ("" if scheme == "active-set" else ", friction by projection"), "",
              f"Made by `nice .venv/bin/python benchmarks/bench_branch_switches.py --max-points {args.max_points} "
              f"--verify {args.verify} --locate-events {args.locate_events} --turn-back-rpm {args.turn_back_rpm:g}"
-             + (f" --max-wall-s {args.max_wall_s:g}" if args.max_wall_s else "") + f"` at commit {commit}: one "
+             + (f" --max-wall-s {args.max_wall_s:g}" if args.max_wall_s else "")
+             + (f" --friction-scheme {scheme}" if scheme != "active-set" else "") + f"` at commit {commit}: one "
              f"`ringcontact branch {SCENE} --rpm-start {RPM_START:.0f} --rpm-end {RPM_END:.0f} --turn-back-rpm "
-             f"{args.turn_back_rpm:g}` "
-             f"({d['steps_per_rev']} steps per revolution, friction events and contact onsets and losses located "
-             f"inside the step: {d['locate_events']}), in one process. Load average at start "
+             f"{args.turn_back_rpm:g}" + (f" --friction-scheme {scheme}" if scheme != "active-set" else "") + "` "
+             + (f"({d['steps_per_rev']} steps per revolution, friction events and contact onsets and losses located "
+                f"inside the step: {d['locate_events']})" if scheme == "active-set" else
+                f"({d['steps_per_rev']} steps per revolution, the end faces' friction solved by projection: no modes, "
+                "no events located)") + ", in one process. Load average at start "
              f"{load[0][0]:.2f}/{load[0][1]:.2f}/{load[0][2]:.2f}, at end {load[1][0]:.2f}/{load[1][1]:.2f}/"
              f"{load[1][2]:.2f} (shared 2-core machine, other jobs running: the wall time is an upper bound).", "",
              "| | |", "|---|---|",
@@ -293,32 +303,37 @@ def main(argv=None) -> int:
     ap.add_argument("--branch-json", type=Path, default=None)
     ap.add_argument("--turn-back-rpm", type=float, default=250.0)
     ap.add_argument("--max-wall-s", type=float, default=None)
+    ap.add_argument("--friction-scheme", choices=("active-set", "projection"), default="active-set",
+                    help="the end faces' friction (rotor.dynamics.system.NewmarkOptions.friction_scheme); projection "
+                         "writes perf-branch-switches-projection.md (+ .json)")
     ap.add_argument("--from-json", action="store_true",
                     help="no computing: write the report again from --branch-json and the published .json (the "
                          "run's commit, load and checks kept)")
     args = ap.parse_args(argv)
+    stem = "perf-branch-switches" + ("" if args.friction_scheme == "active-set" else f"-{args.friction_scheme}")
     if args.from_json:
         try:
             d = json.loads(args.branch_json.read_text())
-            slim = json.loads((OUT / "perf-branch-switches.json").read_text())
+            slim = json.loads((OUT / f"{stem}.json").read_text())
         except (AttributeError, OSError, ValueError) as e:   # no --branch-json, a missing or damaged file
             print(f"bench_branch_switches: --from-json needs --branch-json PATH of a run and its "
-                  f"{OUT / 'perf-branch-switches.json'}: {type(e).__name__}: {e}", file=sys.stderr)
+                  f"{OUT / (stem + '.json')}: {type(e).__name__}: {e}", file=sys.stderr)
             return 2
         load = slim["load_average"]
         text = report(d, load, args, slim["commit"], slim["verified"], slim["isolated_checks"], face_limits_N())
-        atomic_write_text(OUT / "perf-branch-switches.md", text)
+        atomic_write_text(OUT / f"{stem}.md", text)
         print(text)
         return 0
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                             text=True).stdout.strip()
     load0 = os.getloadavg()
-    res, d, _ = run_branch(args.max_points, LOCATE[args.locate_events], args.turn_back_rpm, args.max_wall_s)
+    res, d, _ = run_branch(args.max_points, LOCATE[args.locate_events], args.turn_back_rpm, args.max_wall_s,
+                           args.friction_scheme)
     load1 = os.getloadavg()
     if args.branch_json is not None:
         atomic_write_text(args.branch_json, json.dumps(d) + "\n")
-    verified = verify(res, args.verify, LOCATE[args.locate_events])
-    spikes = isolated_checks(res, LOCATE[args.locate_events])
+    verified = verify(res, args.verify, LOCATE[args.locate_events], args.friction_scheme)
+    spikes = isolated_checks(res, LOCATE[args.locate_events], friction_scheme=args.friction_scheme)
     slim = {k: v for k, v in d.items() if k not in ("points", "start")}
     slim["speeds_rpm"] = [p["speed_rpm"] for p in d["points"]]
     slim["stable"] = [p["stable"] for p in d["points"]]
@@ -326,9 +341,9 @@ def main(argv=None) -> int:
     slim["isolated_checks"] = spikes
     slim["load_average"] = [list(load0), list(load1)]
     slim["commit"] = commit
-    atomic_write_text(OUT / "perf-branch-switches.json", json.dumps(slim, indent=1) + "\n")
+    atomic_write_text(OUT / f"{stem}.json", json.dumps(slim, indent=1) + "\n")
     text = report(d, [load0, load1], args, commit, verified, spikes, face_limits_N())
-    atomic_write_text(OUT / "perf-branch-switches.md", text)
+    atomic_write_text(OUT / f"{stem}.md", text)
     print(text)
     return 0
 
