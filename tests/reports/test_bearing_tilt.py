@@ -187,3 +187,34 @@ def test_job_on_a_fresh_ring_solves_its_grids_and_verifies_the_correction(tmp_pa
     assert rec["chosen"] and rec["holds"], rec
     assert np.isfinite(summary["checks"]["tilted_holdout_max_rel_kernel"])
 
+
+PERF = PUB / "perf-bearing"
+
+
+def test_the_benchmark_s_tilted_run_is_recomputed_from_its_kept_datasets():
+    """reports/published/perf-bearing.md's tilted run (benchmarks/bench_bearing.py keeps its FEM datasets and laws in
+    reports/published/perf-bearing/): its law, and the tilt correction's held-out table, force and moment, recomputed
+    from those datasets by the job's own calibrate stage."""
+    summary = json.loads((PERF / "summary.json").read_text())
+    rs = ring_scene.load(summary["ring_scene"])
+    assert summary["ring_scene_sha256"] == rs.sha256
+    grids = {k: PERF / v for k, v in tilt.grid_files(rs.name).items()}
+    fit = pipeline.calibrate(rs, PERF / f"fem2d-{rs.name}.json", PERF / f"fem3d-{rs.name}.json", grids)
+    law = CalibratedLaw.from_json((PERF / summary["law_file"]).read_text())
+    assert fit["chosen"].name == law.name == summary["law_name"]
+    for k, v in law.parameters.items():
+        assert math.isclose(fit["chosen"].parameters[k], v, rel_tol=1e-9, abs_tol=1e-12), k
+    # the grids are the job's: every point of both grids, none of the verification points a training point
+    for which, (tilts, pens) in tilt.grids(rs).items():
+        assert _keys(read_dataset(grids[which]).points) == _keys(
+            {"penetration_m": p, "tilt_rad": t} for t in tilts for p in pens)
+    md = (PUB / "perf-bearing.md").read_text(encoding="utf-8")
+    assert (f"Law of the tilted run: `{law.name}` ({law.family}); checks: holdout_max_rel_2d "
+            f"{100 * fit['checks']['holdout_max_rel_2d']:.3f} %") in md
+    rec = fit["tilt"]["record"]
+    for s, per in rec["sets"].items():
+        for q, both in per.items():
+            c, st = both["corrected"], both["straight"]
+            assert (f"| {s} | {q} | {c['within']} / {c['points']} | {c['worst_error_pct']:.3f} vs "
+                    f"{c['worst_bound_pct']:.3f} | {st['within']} / {st['points']} |") in md
+    assert f"Why: {rec['reason']}." in md
