@@ -19,8 +19,8 @@ Stages (each timed, with the load average, into ``timings.json``):
    on the 2D points and, with tilt, on the 3D zero-tilt points; the tilted 3D points are never
    fitted, so they are held out as a whole. With tilt, the tilt correction is fitted on the training grid alone
    and checked, force and moment, on the verification grid and on the 3D reference points
-   (:func:`reports.bearing.tilt.correct`); the corrected law is chosen when its worst held-out error over its
-   bound is not larger than the straight law's;
+   (:func:`reports.bearing.tilt.correct`); the corrected law is chosen when its cross-validated worst error over
+   its bound on the training grid is not larger than the straight law's there;
 4. ``report``: the Tables 2-3 style accuracy report of this bearing (:mod:`reports.bearing.report`);
 5. the law file ``<name>-law.json``: with tilt the corrected law (or the 3D-calibrated straight law when the
    correction does worse), else the 2D one, with its validity range (penetration, tilt), provenance (the
@@ -113,8 +113,8 @@ def _calibrate(path: Path, name: str):
 def calibrate(rs: RingScene, path2: Path, path3: Path | None, tilt_paths: dict | None = None) -> dict:
     """Fit the 2D (and 3D) laws, check the tilted points, flag what exceeds the bound. ``tilt_paths`` (the grids of
     :func:`reports.bearing.tilt.run_grids`): fit the tilt correction and check it held out
-    (:func:`reports.bearing.tilt.correct`); the corrected law is then the chosen one when it does better, and the
-    straight law's own calibration is kept under ``straight``."""
+    (:func:`reports.bearing.tilt.correct`); the corrected law is then the chosen one when it does better on the
+    training grid, and the straight law's own calibration is kept under ``straight``."""
     from reports.accuracy.tilted import table3_rows
 
     ds2, law2, fits2 = _calibrate(path2, rs.name)
