@@ -132,7 +132,7 @@ def errors(law, points: list[dict]) -> dict[str, tuple[np.ndarray, np.ndarray, n
 
 
 def tally(err: np.ndarray, bound: np.ndarray) -> dict:
-    """``points``, ``within`` (the target met), ``worst_ratio`` (largest |error|/bound; inf if any error is not
+    """``points``, ``within`` (the target met), ``worst_ratio`` (largest ``|error| / bound``; inf if any error is not
     finite), ``worst_error_pct`` and ``worst_bound_pct`` at that point."""
     err, bound = np.abs(np.asarray(err, dtype=float)), np.asarray(bound, dtype=float)
     if not err.size:

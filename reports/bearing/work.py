@@ -34,7 +34,7 @@ BYTES_PER_DOF_2D = 15.4e3
 POINT_3D_S = 44.4 * 2 / 24
 #: one point of the tilt correction's grids (reports.bearing.tilt), worker time, the levels already cached:
 #: 78.6 s for the 117 points of steel-in-aluminium's training grid on one core (0.67 s; the 20 mm ring's 130
-#: points took 48.4 s), reports/published/law-tilt-correction/fem3d-tilt-train-*.json metadata
+#: points took 48.4 s): the training grids' metadata in reports/published/law-tilt-correction/
 POINT_GRID_S = 0.7
 
 
