@@ -8,9 +8,13 @@ process, both cold: an empty output folder and an empty 3D level cache (``RINGCO
 temporary directory):
 
 * 2D only: the same file with ``[range] tilt_arcmin = [0, 0]`` (the 2D sweep, calibration, report);
-* with tilt: the file as it is (the 3D tilt sweep with its check level added).
+* with tilt: the file as it is (the 3D tilt sweep with its check level added, then the tilt correction's training
+  and verification grids on the same levels, the correction fitted on the first and checked held out on the second
+  and on the 3D reference points: reports/bearing/tilt.py).
 
-Per stage the job's own ``timings.json`` (wall time, 1-minute load average at its start and end) and
+The tilted run's FEM datasets, law files and summary are kept in ``reports/published/perf-bearing/`` (the last
+repeat's), so the tilt correction's held-out table below can be recomputed from them
+(tests/reports/test_bearing_tilt.py). Per stage the job's own ``timings.json`` (wall time, 1-minute load average at its start and end) and
 the wall time around the whole process (interpreter start and imports included). Targets (issue
 "your bearing, end to end"): 2D only <= 2 min, with tilt cold <= 15 min, on 2 cores. The machine is
 shared: the load average is written beside every figure.
@@ -56,6 +60,18 @@ def run_job(toml: Path, out: Path, cache: Path, workers: int, *extra: str) -> di
             "summary": summary}
 
 
+def keep(run: Path, folder: Path, summary: dict) -> None:
+    """The tilted run's datasets, law files and summary into ``folder`` (replaced as a whole)."""
+    import shutil
+
+    if folder.exists():
+        shutil.rmtree(folder)
+    folder.mkdir(parents=True)
+    for name in sorted(set(summary["files"]) - {n for n in summary["files"] if n.endswith((".png", ".svg", ".md", ".csv"))}
+                       | {"summary.json"}):
+        shutil.copy(run / name, folder / name)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", default="steel-in-aluminium", help="ring-pair file or bundled name")
@@ -77,7 +93,9 @@ def main(argv: list[str] | None = None) -> int:
                 case = tmp / f"{variant.replace(' ', '-')}-{k}"
                 runs[variant].append(run_job(f, case / "out", case / "cache", args.workers))
                 print(f"{variant}: {runs[variant][-1]['wall_s']:.1f} s", file=sys.stderr)
-    args.out.write_text(report(args, runs), encoding="utf-8")
+        keep(tmp / f"with-tilt-{args.repeats - 1}" / "out", args.out.with_suffix(""), runs["with tilt"][-1]["summary"])
+    from contact.files import atomic_write_text
+    atomic_write_text(args.out, report(args, runs))
     print(f"wrote {args.out}")
     return 0
 
@@ -91,7 +109,10 @@ def report(args, runs: dict) -> str:
              "empty output folder and an empty 3D level cache. '2D only' is the same file with `tilt_arcmin = [0, 0]`. "
              "Medians over the repeats; the 1-minute load average beside each figure (2 shared cores: above 2 the "
              "cores are oversubscribed and every time is inflated). With tilt, `calibrate` includes compiling the "
-             "compiled loose-support kernel (the rotor path of the tilted check) into the empty cache.", "",
+             "compiled loose-support kernel (the rotor path of the tilted check), for the straight law's 52 slots and "
+             "for the tilt-corrected law's 126 (contact/_kernel_tilt.py), into the empty cache; `tilt-grid` solves "
+             "the tilt correction's training and verification grids on the 3D levels `fem3d` built "
+             "(reports/bearing/tilt.py).", "",
              "| variant | whole job (s) | target (s) | met | load average (start → end) | stages (s) |",
              "|---|---|---|---|---|---|"]
     for variant, rr in runs.items():
@@ -111,7 +132,26 @@ def report(args, runs: dict) -> str:
     lines += ["", f"Law of the tilted run: `{first['law_name']}` ({first['family']}); checks: "
               + "; ".join(f"{k} {100 * v:.3f} %" for k, v in first["checks"].items() if v is not None)
               + (f"; warnings: {first['warnings']}" if first["warnings"] else "; no warnings") + ".", ""]
-    return "\n".join(lines)
+    return "\n".join(lines + tilt_lines(first))
+
+
+def tilt_lines(summary: dict) -> list[str]:
+    """The tilted run's tilt correction: held out, force and moment, with and without it (the job's own record)."""
+    rec = summary.get("tilt_correction")
+    if not rec:
+        return ["The tilted run fitted no tilt correction.", ""]
+    lines = [f"Tilt correction of the tilted run ({'shipped' if rec['chosen'] else 'not shipped'}; "
+             f"{'every held-out point within' if rec['holds'] else 'NOT every held-out point within'} the target, "
+             f"{rec['target']}): fitted on {rec['training_points']['tilted']} tilted training points, held out:", "",
+             "| held-out points | quantity | within / all, corrected | worst (%) vs bound (%) | within / all, straight "
+             "(slices) |", "|---|---|---|---|---|"]
+    for s, per in rec["sets"].items():
+        for q, both in per.items():
+            c, st = both["corrected"], both["straight"]
+            if c["points"]:
+                lines.append(f"| {s} | {q} | {c['within']} / {c['points']} | {c['worst_error_pct']:.3f} vs "
+                             f"{c['worst_bound_pct']:.3f} | {st['within']} / {st['points']} |")
+    return lines + ["", f"Why: {rec['reason']}.", ""]
 
 
 if __name__ == "__main__":

@@ -101,7 +101,7 @@ def test_table1_ring_file_reproduces_a_committed_2d_point():
 
 
 def test_steel_in_aluminium_law_refits_from_its_committed_fem():
-    """bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md and perf-bearing.md: the law of the second ring pair
+    """bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md: the law of the second ring pair
     refitted from its committed 2D and 3D FEM datasets (reports.bearing.pipeline.calibrate, the job's own stage):
     foundation modulus 3.89956e+12 Pa/m; checks holdout_max_rel_2d 0.895 %, fem2d_error_max_rel 0.074 %,
     holdout_max_rel_3d_zero_tilt 0.997 %, tilted 0.820 %, fem3d_error_max_rel 0.076 %; no warning (verified)."""
@@ -118,7 +118,6 @@ def test_steel_in_aluminium_law_refits_from_its_committed_fem():
     law = fit["chosen"]
     assert f"`{law.name}` ({law.family}), foundation_modulus_Pa_per_m = " \
            f"{law.parameters['foundation_modulus_Pa_per_m']:.5e}" in report
-    assert f"Law of the tilted run: `{law.name}` ({law.family}); checks: {checks}; no warnings." in _md("perf-bearing.md")
 
 
 def test_paper_implied_loads_and_the_clamped_rings_stiffness_ratio():

@@ -8,7 +8,8 @@ gravity on (tests/rotor/scenes/friswell-591-loose-aluminium.toml with the ring's
 scene takes them from the law, as docs/rotor-scenes say a law file may). From the wheel's ``ringcontact``
 (tests/test_wheel.py builds and installs it):
 
-1. ``bearing my-bearing.toml`` writes the law file;
+1. ``bearing my-bearing.toml`` writes the law file (with tilt: the law with its tilt correction, and beside it the
+   straight law, the one the rotor scene names);
 2. a law its file flags is refused by ``simulate`` and the API without the option (exit 2, one line; InputError):
    the flagged law is the written one with the warning ``bearing`` puts into ``provenance.warnings`` when a held-out
    error passes the bound (reports/bearing/pipeline.py), checksum redone, since whether this ring's own law passes
@@ -90,8 +91,11 @@ def test_the_newcomers_walkthrough_from_the_wheel(tmp_path):
     exe = venv / "bin" / "ringcontact"
     (work / "my-bearing.toml").write_text(RING, encoding="utf-8")
     _run([exe, "bearing", "my-bearing.toml", "--out", "brg", "--workers", "2"], cwd=work, env=env)
-    law = json.loads((work / "brg" / "my-bearing-law.json").read_text(encoding="utf-8"))
-    assert law["provenance"]["ring_scene"]["name"] == "my-bearing"
+    # with tilt the law file carries the tilt correction; the rotor names the straight law written beside it
+    corrected = json.loads((work / "brg" / "my-bearing-law.json").read_text(encoding="utf-8"))
+    assert corrected["provenance"]["tilt_correction"]["chosen"] and corrected["provenance"]["rotor_note"]
+    law = json.loads((work / "brg" / "my-bearing-law-straight.json").read_text(encoding="utf-8"))
+    assert law["provenance"]["ring_scene"]["name"] == "my-bearing" and law["provenance"]["rotor_kernel"]
     (work / "my-law.json").write_text(json.dumps(law), encoding="utf-8")
     flagged = dict(law, provenance={**law["provenance"], "warnings": [FLAG]})
     flagged.pop("sha256")
@@ -137,7 +141,7 @@ def test_the_newcomers_walkthrough_from_the_wheel(tmp_path):
     wider = json.loads((work / "brg" / "summary.json").read_text(encoding="utf-8"))
     print(json.dumps({k: wider[k] for k in ("validity_penetration_mm", "validity_tilt_max_arcmin", "warnings",
                                             "not_held")}))
-    (work / "my-law.json").write_bytes((work / "brg" / "my-bearing-law.json").read_bytes())
+    (work / "my-law.json").write_bytes((work / "brg" / "my-bearing-law-straight.json").read_bytes())
     allow = ["--allow-flagged-law"] if wider["warnings"] else []
     _run([exe, "simulate", "--scene", "scene.toml", "--speed-rpm", str(RPM), "--revolutions", "1", "--out", "rerun",
           *allow], cwd=work, env=env)

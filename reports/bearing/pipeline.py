@@ -13,13 +13,20 @@ Stages (each timed, with the load average, into ``timings.json``):
 2. ``fem3d`` (only when ``[range] tilt_arcmin`` asks for tilt): the 3D tilt sweep of the
    harmonic levels with the finer check level (:mod:`fem_reference.solid.sweep`), resumable
    through its store under the cache;
+   ``tilt-grid`` (with tilt): the tilt correction's training and verification grids of 3D points on the same
+   cached levels (:mod:`reports.bearing.tilt`), resumable the same way;
 3. ``calibrate``: every law family fitted with leave-one-out hold-out (:mod:`contact.calibrate`)
    on the 2D points and, with tilt, on the 3D zero-tilt points; the tilted 3D points are never
-   fitted, so they are held out as a whole;
+   fitted, so they are held out as a whole. With tilt, the tilt correction is fitted on the training grid alone
+   and checked, force and moment, on the verification grid and on the 3D reference points
+   (:func:`reports.bearing.tilt.correct`); the corrected law is chosen when its cross-validated worst error over
+   its bound on the training grid is not larger than the straight law's there;
 4. ``report``: the Tables 2-3 style accuracy report of this bearing (:mod:`reports.bearing.report`);
-5. the law file ``<name>-law.json``: the 3D-calibrated law when the range has tilt (the real ring,
-   free end faces), else the 2D one, with its validity range (penetration, tilt), provenance (the
-   ring-pair file's name and sha256, the code version) and the checks made; whole-file sha256.
+5. the law file ``<name>-law.json``: with tilt the corrected law (or the 3D-calibrated straight law when the
+   correction does worse), else the 2D one, with its validity range (penetration, tilt), provenance (the
+   ring-pair file's name and sha256, the code version) and the checks made; whole-file sha256. Beside a corrected
+   law, ``<name>-law-straight.json``: the same run's straight 3D law, the one a rotor scene can name (the rotor's
+   step loops do not evaluate a correction yet).
 
 A law whose held-out error exceeds the FEM point's own stated error by more than
 :data:`~reports.bearing.names.LAW_ERROR_BOUND_REL` (or whose family the compiled rotor kernel cannot
@@ -103,46 +110,81 @@ def _calibrate(path: Path, name: str):
     return ds, law, fits
 
 
-def calibrate(rs: RingScene, path2: Path, path3: Path | None) -> dict:
-    """Fit the 2D (and 3D) laws, check the tilted points, flag what exceeds the bound."""
+def calibrate(rs: RingScene, path2: Path, path3: Path | None, tilt_paths: dict | None = None) -> dict:
+    """Fit the 2D (and 3D) laws, check the tilted points, flag what exceeds the bound. ``tilt_paths`` (the grids of
+    :func:`reports.bearing.tilt.run_grids`): fit the tilt correction and check it held out
+    (:func:`reports.bearing.tilt.correct`); the corrected law is then the chosen one when it does better on the
+    training grid, and the straight law's own calibration is kept under ``straight``."""
     from reports.accuracy.tilted import table3_rows
 
     ds2, law2, fits2 = _calibrate(path2, rs.name)
-    out = {"ds2": ds2, "law2": law2, "fits2": fits2, "ds3": None, "law3": None, "fits3": None, "rows3": []}
+    out = {"ds2": ds2, "law2": law2, "fits2": fits2, "ds3": None, "law3": None, "fits3": None, "rows3": [],
+           "zero3": None, "tilt": None, "straight": None}
     if path3 is not None:
         ds3, law3, fits3 = _calibrate(path3, rs.name)
-        out.update(ds3=ds3, law3=law3, fits3=fits3, rows3=table3_rows(ds3, rs.name, law3))
-    chosen = out["law3"] or law2
-    fits = out["fits3"] or fits2
-    best = next(f for f in fits if f.family == chosen.family)
+        best3 = next(f for f in fits3 if f.family == law3.family)
+        out.update(ds3=ds3, law3=law3, fits3=fits3, rows3=table3_rows(ds3, rs.name, law3),
+                   zero3=(best3.holdout_rel_err, cal.scene_points(ds3, rs.name)[2]))
+    out["chosen"] = out["law3"] or law2
+    _verdict(out, rs.name)
+    if tilt_paths is None or path3 is None:
+        return out
+    from reports.bearing.tilt import correct, rows_held
+    tc = correct(rs, out, tilt_paths)
+    if not tc["chosen"]:
+        out["tilt"] = tc
+        return out
+    fit = dict(out, tilt=tc, straight=out, chosen=tc["law"],
+               rows3=rows_held(table3_rows(out["ds3"], rs.name, tc["law"]), tc["trained"]),
+               zero3=(tc["base_fit"].holdout_rel_err, tc["base_fem_error"]))
+    _verdict(fit, rs.name)
+    return fit
+
+
+def _verdict(out: dict, name: str) -> None:
+    """The chosen law's checks, the excess over the FEM's error, warnings, accuracy and the parts no family holds,
+    into ``out``."""
+    law2, fits2, ds2 = out["law2"], out["fits2"], out["ds2"]
     best2 = next(f for f in fits2 if f.family == law2.family)
-    fem2 = cal.scene_points(ds2, rs.name)[2]
+    fem2 = cal.scene_points(ds2, name)[2]
     checks = {"holdout_max_rel_2d": best2.holdout_max, "fem2d_error_max_rel": float(np.max(fem2))}
     # a held-out error counts against the bound only beyond the FEM point's own stated error
     excess = {"holdout_max_rel_2d": holdout_excess(best2.holdout_rel_err, fem2)}
     if out["law3"] is not None:
-        fem3 = cal.scene_points(out["ds3"], rs.name)[2]
-        rows = out["rows3"]
-        ferr = np.array([r["force_error_rel"] for r in rows])
-        checks["holdout_max_rel_3d_zero_tilt"] = best.holdout_max
-        excess["holdout_max_rel_3d_zero_tilt"] = holdout_excess(best.holdout_rel_err, fem3)
-        for key, col in (("tilted_holdout_max_rel_slices", "calibrated-slices_pct"),
-                         ("tilted_holdout_max_rel_kernel", "calibrated-kernel_pct")):
-            err = _abs_rel(rows, col)
-            checks[key] = float(np.nanmax(err)) if np.isfinite(err).any() else math.nan
-            excess[key] = holdout_excess(err, ferr)
-        out["moment_check"] = moment_check(rows)
-        checks["fem3d_error_max_rel"] = float(max(p.get("force_error_rel") or 0.0 for p in out["ds3"].points))
+        _checks_3d(out, checks, excess)
+    chosen = out["chosen"]
     warnings = [f"{key} = {100 * checks[key]:.2f} % is {100 * val:.2f} % beyond the FEM's stated error, more than "
                 f"the bound {100 * LAW_ERROR_BOUND_REL:g} %: no law family describes this ring pair that well; see the "
                 "report's families" for key, val in excess.items() if np.isfinite(val) and val > LAW_ERROR_BOUND_REL]
     if chosen.family not in cal.KERNEL_LAW_CODE:
         warnings.append(f"family {chosen.family!r} is not in the compiled rotor kernel: the law file cannot drive "
                         "a rotor (families the rotor uses: " + ", ".join(cal.KERNEL_LAW_CODE) + ")")
-    out.update(chosen=chosen, checks=checks, excess=excess, warnings=warnings)
-    out["accuracy"] = accuracy(out, rs.name)
-    out["not_held"] = not_held(out, rs.name)
-    return out
+    if out["tilt"] is not None and out["tilt"]["chosen"]:
+        warnings += out["tilt"]["warnings"]
+    out.update(checks=checks, excess=excess, warnings=warnings)
+    out["accuracy"] = accuracy(out, name)
+    out["not_held"] = not_held(out, name)
+
+
+def _checks_3d(out: dict, checks: dict, excess: dict) -> None:
+    """The 3D checks of the chosen law into ``checks`` and ``excess``: zero tilt held out (leave-one-out on the
+    points it was fitted on), the tilted reference points through the slices (a straight law only: a corrected
+    law's slices are what it corrects) and the rotor kernel, the moment verdict."""
+    err0, fem0 = out["zero3"]
+    rows = out["rows3"]
+    ferr = np.array([r["force_error_rel"] for r in rows])
+    checks["holdout_max_rel_3d_zero_tilt"] = float(np.max(np.abs(err0)))
+    excess["holdout_max_rel_3d_zero_tilt"] = holdout_excess(err0, fem0)
+    corrected = out["chosen"] is not out["law3"]
+    for key, col in (("tilted_holdout_max_rel_slices", "calibrated-slices_pct"),
+                     ("tilted_holdout_max_rel_kernel", "calibrated-kernel_pct")):
+        if corrected and key.endswith("slices"):
+            continue
+        err = _abs_rel(rows, col)
+        checks[key] = float(np.nanmax(err)) if np.isfinite(err).any() else math.nan
+        excess[key] = holdout_excess(err, ferr)
+    out["moment_check"] = moment_check(rows)
+    checks["fem3d_error_max_rel"] = float(max(p.get("force_error_rel") or 0.0 for p in out["ds3"].points))
 
 
 def moment_check(rows: list[dict]) -> dict:
@@ -194,13 +236,15 @@ def accuracy(fit: dict, name: str) -> list[dict]:
     best2 = next(f for f in fit["fits2"] if f.family == law2.family)
     add("2d", "force", best2.holdout_rel_err, cal.scene_points(fit["ds2"], name)[2], True)
     if fit.get("law3") is not None:
-        best3 = next(f for f in fit["fits3"] if f.family == fit["law3"].family)
-        add("3d zero tilt", "force", best3.holdout_rel_err, cal.scene_points(fit["ds3"], name)[2], True)
+        add("3d zero tilt", "force", *fit["zero3"], True)
         rows = fit["rows3"]
         add("3d tilted (rotor kernel)", "force", _abs_rel(rows, "calibrated-kernel_pct"),
             [r["force_error_rel"] for r in rows])
         add("3d tilted (rotor kernel)", "moment", _abs_rel(rows, "calibrated-kernel_moment_pct"),
             [r["moment_error_rel"] if r["moment_error_rel"] is not None else math.nan for r in rows])
+    if fit.get("tilt") is not None and fit["tilt"]["chosen"]:
+        from reports.bearing.tilt import accuracy_rows
+        out += accuracy_rows(fit["tilt"])
     return out
 
 
@@ -210,14 +254,16 @@ def law_file(rs: RingScene, fit: dict, range_from: dict | None = None) -> cal.Ca
     from reports.version import version_line
 
     tilt_max = max(rs.tilts_rad, default=0.0) if fit["law3"] is not None else 0.0
+    tc = fit.get("tilt")
+    corrected = tc is not None and tc["chosen"]
     prov = {"ring_scene": {"name": rs.name, "sha256": rs.sha256, "source": rs.source, "document": rs.document},
             "code_version": version_line(), "created_utc": utc_stamp(),
-            "reference": "3d (free end faces), zero-tilt fit, tilted points held out" if fit["law3"] is not None
-            else f"2d (plane {rs.scene.plane})",
+            "reference": _reference(fit, rs),
             "checks": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["checks"].items()},
             "checks_beyond_fem_error": {k: (None if not np.isfinite(v) else float(v)) for k, v in fit["excess"].items()},
             "error_bound_rel": LAW_ERROR_BOUND_REL, "warnings": list(fit["warnings"]),
-            "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE, "not_held": fit["not_held"],
+            "rotor_kernel": fit["chosen"].family in cal.KERNEL_LAW_CODE and not corrected,
+            "not_held": fit["not_held"],
             "accuracy_rule": ACCURACY_RULE, "accuracy": fit["accuracy"]}
     if fit.get("plane") is not None:
         prov["plane"] = fit["plane"]
@@ -225,7 +271,25 @@ def law_file(rs: RingScene, fit: dict, range_from: dict | None = None) -> cal.Ca
         prov["moment_check"] = fit["moment_check"]
     if range_from is not None:
         prov["range_from"] = range_from
+    if tc is not None:
+        prov["tilt_correction"] = tc["record"]
+    if corrected:
+        prov["rotor_note"] = ROTOR_NOTE
     return dataclasses.replace(fit["chosen"], validity_tilt_max_rad=float(tilt_max), provenance=prov)
+
+
+#: why a law with a tilt correction is written beside its straight law
+ROTOR_NOTE = ("the rotor's step loops do not evaluate a tilt correction yet (rotor.dynamics.kernels refuses such a "
+              "law with one line): a rotor scene names the straight law written beside this one")
+
+
+def _reference(fit: dict, rs: RingScene) -> str:
+    if fit["law3"] is None:
+        return f"2d (plane {rs.scene.plane})"
+    if fit.get("tilt") is not None and fit["tilt"]["chosen"]:
+        return ("3d (free end faces): zero-tilt fit and tilt correction on the training grid, the verification grid "
+                "and the reference points held out")
+    return "3d (free end faces), zero-tilt fit, tilted points held out"
 
 
 def _plane(rs: RingScene, stages: Stages, plane_check: bool | None, **kw) -> tuple[RingScene, dict]:
@@ -238,6 +302,22 @@ def _plane(rs: RingScene, stages: Stages, plane_check: bool | None, **kw) -> tup
     pens = ", ".join(f"{p * 1e3:.3g}" for p in check_penetrations_m(rs))
     return stages.run("plane", f"3D ring at zero tilt at {pens} mm against plane stress and strain",
                       lambda: resolve(rs, run_check=True, **kw))
+
+
+def _fem_stages(rs: RingScene, out: Path, stages: Stages, **kw) -> tuple[Path, Path | None, dict | None]:
+    """Stages 1-2b: the 2D reference, and with tilt the 3D reference and the tilt correction's two grids."""
+    from reports.bearing.tilt import grid_points, run_grids
+
+    n2 = len(rs.penetrations_2d_m)
+    path2 = stages.run("fem2d", f"2D reference, {n2} penetrations x 3+ mesh levels", lambda: run_fem2d(rs, out, **kw))
+    if not rs.needs_3d:
+        return path2, None, None
+    n3 = len(rs.penetrations_3d_m) * len(rs.tilts_rad)
+    path3 = stages.run("fem3d", f"3D tilt reference, {n3} points (boundary conditions {rs.bc_3d})",
+                       lambda: run_fem3d(rs, out, **kw))
+    grids = stages.run("tilt-grid", f"3D training and verification grids, {grid_points(rs)} points",
+                       lambda: run_grids(rs, out, path3, **kw))
+    return path2, path3, grids
 
 
 def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: bool = False,
@@ -256,21 +336,18 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
     stages = Stages(log)
     rs, plane = _plane(rs, stages, plane_check, workers=workers, executor=executor, fresh=fresh, progress=progress)
     log(f"plane {plane['used']}: {plane['why']}")
-    n2 = len(rs.penetrations_2d_m)
-    path2 = stages.run("fem2d", f"2D reference, {n2} penetrations x 3+ mesh levels",
-                       lambda: run_fem2d(rs, out, workers=workers, executor=executor, fresh=fresh, progress=progress))
-    path3 = None
-    if rs.needs_3d:
-        n3 = len(rs.penetrations_3d_m) * len(rs.tilts_rad)
-        path3 = stages.run("fem3d", f"3D tilt reference, {n3} points (boundary conditions {rs.bc_3d})",
-                           lambda: run_fem3d(rs, out, workers=workers, executor=executor, fresh=fresh,
-                                             progress=progress))
-    fit = stages.run("calibrate", "law families with hold-out", lambda: calibrate(rs, path2, path3))
+    path2, path3, tilt_paths = _fem_stages(rs, out, stages, workers=workers, executor=executor, fresh=fresh,
+                                           progress=progress)
+    what = "law families with hold-out" + (", tilt correction fitted and held out" if tilt_paths else "")
+    fit = stages.run("calibrate", what, lambda: calibrate(rs, path2, path3, tilt_paths))
     fit["range_from"], fit["plane"] = range_from, plane
     law = law_file(rs, fit, range_from)
     files = [atomic_write_text(out / names["law"], law.to_json())]
     if fit["law3"] is not None:
         files.append(atomic_write_text(out / names["law2d"], fit["law2"].to_json()))
+    if fit["straight"] is not None:
+        straight = dict(fit["straight"], range_from=range_from, plane=plane)
+        files.append(atomic_write_text(out / names["law_straight"], law_file(rs, straight, range_from).to_json()))
 
     files += stages.run("report", "accuracy report", lambda: write_report(rs, fit, law, out, stages.rows))
     for w in fit["warnings"]:
@@ -286,9 +363,12 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
                "checks": law.provenance["checks"], "warnings": fit["warnings"], "not_held": fit["not_held"],
                "selection_reason": law.fit.get("selection_reason"), "accuracy": fit["accuracy"],
                "moment_check": fit.get("moment_check"),
+               "tilt_correction": law.provenance.get("tilt_correction"),
+               "law_straight_file": names["law_straight"] if fit["straight"] is not None else None,
                "range_from": range_from, "plane": plane,
                "stages": stages.rows, "files": sorted({Path(f).name for f in files} | {path2.name}
-                                                      | ({path3.name} if path3 else set()))}
+                                                      | ({path3.name} if path3 else set())
+                                                      | {Path(p).name for p in (tilt_paths or {}).values()})}
     atomic_write_text(out / names["timings"], json.dumps({"stages": stages.rows}, indent=1) + "\n")
     atomic_write_text(out / names["summary"], json.dumps(summary, indent=1, allow_nan=False) + "\n")
     return summary

@@ -26,6 +26,7 @@ from contact.units import ARCMIN, MM
 from reports.accuracy.common import LAW_LABELS
 from reports.accuracy.straight import law_forces
 from reports.bearing.names import LAW_ERROR_BOUND_REL, file_names
+from reports.bearing.tilt import report_lines as tilt_report_lines
 
 
 def _fem2d(fit: dict, name: str):
@@ -149,7 +150,8 @@ def _family_lines(law, fit: dict) -> list[str]:
     holds = {d["family"]: d.get("holds") for d in doc.get("families", [])}
     lines = ["Families tried on the law's reference (zero tilt, every point held out in turn):", "",
              "| family | parameters | held-out RMS (%) | held-out max (%) | holds | |", "|---|---|---|---|---|---|"]
-    for f in fit["fits3"] or fit["fits2"]:
+    fits = fit["tilt"]["base_fits"] if fit.get("straight") is not None else (fit["fits3"] or fit["fits2"])
+    for f in fits:
         lines.append(f"| {f.family} | {f.n_parameters} | {100 * f.holdout_rms:.3f} | {100 * f.holdout_max:.3f} | "
                      f"{'yes' if holds.get(f.family) else 'no'} | {'chosen' if f.family == law.family else ''} |")
     return lines + ["", f"Rule: {doc.get('selection_rule', '')}. Why `{law.family}`: "
@@ -257,6 +259,8 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
              f"{100 * law.provenance['error_bound_rel']:g} %; beyond it here: " + "; ".join(
                  f"{k} {100 * v:+.3f} %" for k, v in law.provenance["checks_beyond_fem_error"].items() if v is not None) + ".",
              f"- **{'verified' if ok else 'flagged'}**" + ("" if ok else ": " + " ".join(warn)), "",
+             *([f"- Rotor: {law.provenance['rotor_note']} (`{names['law_straight']}`).", ""]
+               if law.provenance.get("rotor_note") else []),
              *_moment_lines(law), *_accuracy_lines(law), "",
              *_followed_lines(fit), *_plane_lines(fit),
              "## Straight ring (2D, Table 2 style)", "",
@@ -266,10 +270,15 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
     lines += _family_lines(law, fit)
     lines += ["", f"![force]({Path(names['report']).stem}-force.png)", ""]
     if fit["rows3"]:
+        corrected = fit.get("straight") is not None
+        how = (f"The chosen law `{law.name}` (the slices of `{fit['tilt']['record']['base_law']}` with the tilt "
+               "correction: the rotor-kernel columns; the slices columns are the same law without it), the reference "
+               "points that are not training points of the correction" if corrected else
+               f"Calibrated at zero tilt on the 3D points (`{fit['law3'].name}`)")
         lines += ["## Tilted ring (3D, Table 3 style)", "",
-                  f"Calibrated at zero tilt on the 3D points (`{fit['law3'].name}`); every tilted cell is held out. "
-                  "Force and moment differences in %, signed.", "", *_tilt_lines(fit), "",
-                  f"![tilt]({Path(names['report']).stem}-tilt.png)", ""]
+                  f"{how}; every tilted cell is held out. Force and moment differences in %, signed.", "",
+                  *_tilt_lines(fit), "", f"![tilt]({Path(names['report']).stem}-tilt.png)", ""]
+    lines += tilt_report_lines(fit.get("tilt"))
     lines += ["## Speed against error", "", "| method | time per point | largest error (%) | points without solution |",
               "|---|---|---|---|"]
     lines += [f"| {r['method']} | {r['time_per_point_s']:.3g} s | {r['max_abs_error_pct']:.3g} | {r['points_without_solution']} |"

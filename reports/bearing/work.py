@@ -17,6 +17,7 @@ import math
 
 from fem_reference.plane.sweep import GRADING_LENGTH_M, MAX_DOFS_EXTRA_LEVEL, arc_zone_rad
 from fem_reference.ring_scene import RingScene
+from reports.bearing.tilt import grid_points
 from reports.cli._budget import Estimate
 
 #: DOFs per estimated element (measured 12.1 and 13.6, see the module docstring; the larger, rounded up)
@@ -31,6 +32,10 @@ BYTES_PER_DOF_2D = 15.4e3
 #: one 3D point, worker time: 44.4 s for the 24 points of steel-in-aluminium on 2 workers, cold level cache
 #: (reports/published/perf-bearing.md)
 POINT_3D_S = 44.4 * 2 / 24
+#: one point of the tilt correction's grids (reports.bearing.tilt), worker time, the levels already cached:
+#: 78.6 s for the 117 points of steel-in-aluminium's training grid on one core (0.67 s; the 20 mm ring's 130
+#: points took 48.4 s): the training grids' metadata in reports/published/law-tilt-correction/
+POINT_GRID_S = 0.7
 
 
 def _elements(rs: RingScene, zone_rad: float, h_m: float) -> float:
@@ -55,8 +60,10 @@ def estimate(rs: RingScene, workers: int) -> Estimate:
     dofs = [dofs_2d(rs, p) for p in rs.penetrations_2d_m]
     secs = sum(POINT_2D_S * (n / POINT_2D_DOFS) ** POINT_2D_EXPONENT for n in dofs)
     n3 = len(rs.penetrations_3d_m) * len(rs.tilts_rad) if rs.needs_3d else 0
-    secs += n3 * POINT_3D_S
+    ng = grid_points(rs) if rs.needs_3d else 0
+    secs += n3 * POINT_3D_S + ng * POINT_GRID_S
     w = max(1, int(workers))
     made = (f"{len(dofs)} 2D points of up to {max(dofs):.3g} DOFs, {BYTES_PER_DOF_2D / 1e3:.3g} kB a DOF"
-            + (f", {n3} 3D points of {POINT_3D_S:.3g} s" if n3 else "") + f" on {w} worker(s)")
+            + (f", {n3} 3D points of {POINT_3D_S:.3g} s and {ng} grid points of {POINT_GRID_S:.3g} s" if n3 else "")
+            + f" on {w} worker(s)")
     return Estimate(secs / w, max(dofs) * BYTES_PER_DOF_2D * min(w, len(dofs)), made, bound=False)

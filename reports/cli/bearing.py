@@ -103,6 +103,9 @@ def main(argv: list[str] | None = None) -> int:
     else:
         print(f"law file {out}/{summary['law_file']}: {summary['law_name']} "
               f"({'verified' if not summary['warnings'] else 'FLAGGED: ' + str(len(summary['warnings'])) + ' warning(s)'})")
+        if summary.get("law_straight_file"):
+            print(f"straight {out}/{summary['law_straight_file']}: the same run's law without the tilt correction "
+                  "(for a rotor scene: the rotor's step loops do not evaluate a correction yet)")
         print(f"report   {out}/accuracy-{rs.name}.md")
     return 0
 

@@ -55,6 +55,7 @@ def test_job_writes_a_verified_checksummed_law(run, capsys):
     assert {"fem2d-small-ring.json", "small-ring-law.json", "accuracy-small-ring.md", "accuracy-small-ring.csv",
             "accuracy-small-ring-force.png", "accuracy-small-ring-speed.png", "timings.json", "summary.json"} <= names
     assert "fem3d-small-ring.json" not in names          # [0, 0] tilt: no 3D work at all
+    assert not [n for n in names if n.startswith("fem3d-tilt-") or n.endswith("-law-straight.json")]
     assert not [n for n in names if ".tmp" in n]
     doc = json.loads((out / "small-ring-law.json").read_text())
     sha = doc.pop("sha256")
@@ -86,6 +87,7 @@ def test_job_writes_a_verified_checksummed_law(run, capsys):
     assert acc[0]["holds"] == (acc[0]["within"] == acc[0]["points"])
     assert [a["within"] for a in law.provenance["accuracy"]] == [a["within"] for a in acc]
     assert "moment_check" not in law.provenance            # no tilt: no moment to check
+    assert summary["tilt_correction"] is None and "tilt_correction" not in law.provenance     # nor a correction
     assert f"Why `{law.family}`:" in md and "| 2d | force |" in md
 
 
