@@ -658,6 +658,12 @@ NOT_CLAIMS = (
      "at every step from 3e-8 to 1e-6), seed 4269954154 (1b1a63c) 20 of 20, seed 2376377958 one miss (1.15e-6 "
      "against a reference converged to 4.8e-7) and one unresolved; a sample, not a claim: each run draws a new "
      "seed, and the default run checks one random speed of this scene (test_monodromy_random_speeds.py)"),
+    ("reports/published/perf-branch-switches-projection.md",
+     "one run of the Table 4 branch with the friction solved by projection (5ece314, load 1.7-2.0): end reached, 504 "
+     "orbits, 328 s, 21 restarts (8 transient, 13 cold; 20 in stuck faces' continua at 2 411-2 440, 4 223-4 292 and "
+     "5 058-5 184 rpm, one face at its friction limit), 445 rpm no orbit covers (5 184.5-5 630.0 rpm); every "
+     "verified point's residual below 5e-10; a benchmark sample of one run, not a claim (its wall time moves with "
+     "the load)"),
     ("reports/published/perf-monodromy-random-projection.md",
      "one benchmark sample of 20 speeds with the friction solved by projection (seed 1344113174, at 6579e29): 20 of "
      "20 orbits within 1e-6 of central differences of their map (largest 1.6e-7; one orbit, 16 609.8 rpm, from a "
