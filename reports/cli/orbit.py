@@ -81,6 +81,17 @@ def _friction_scheme(text: str) -> str:
     return text
 
 
+#: ``branch --family-member`` values: which member of a friction-held family each point is
+FAMILY_MEMBERS = ("kept", "centred")
+
+
+def _family_member(text: str) -> str:
+    """A ``type=`` for ``branch --family-member`` (:data:`FAMILY_MEMBERS`)."""
+    if text not in FAMILY_MEMBERS:
+        raise argparse.ArgumentTypeError(f"= {text}: must be one of {', '.join(FAMILY_MEMBERS)}")
+    return text
+
+
 #: ``--method`` values (rotor/studies/orbit_methods.py: METHODS)
 METHOD_NAMES = ("shooting", "hb", "auto")
 
@@ -147,6 +158,11 @@ def _branch_parser() -> argparse.ArgumentParser:
     p.add_argument("--from-state", type=in_dir, default=None, metavar="DIR",
                    help="start on the orbit a transient reaches from the end state of a `simulate --out DIR` run "
                         "(same scene, --rpm-start its speed, a whole number of revolutions)")
+    p.add_argument("--family-member", type=_family_member, default="kept",
+                   help="where the ring's faces stick through the period (a family of orbits held by friction): kept "
+                        "(default: each orbit keeps the offsets the previous one stuck at, until a face slips) or "
+                        "centred (each orbit is the family's member farthest from slipping and from the bore, "
+                        "rotor/periodic/family_centre.py)")
     return p
 
 
@@ -516,10 +532,12 @@ def _branch(args) -> int:
     res, events = _watched("ringcontact branch", args, lambda: branch(
         args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(
             max_points=int(args.max_points), turn_back=None if args.turn_back_rpm is None else
-            args.turn_back_rpm / (abs(args.rpm_end - args.rpm_start) / 10.0)),     # the branch's speed scale
+            args.turn_back_rpm / (abs(args.rpm_end - args.rpm_start) / 10.0),      # the branch's speed scale
+            centre_families=args.family_member == "centred"),
         richardson=args.richardson, friction_scheme=args.friction_scheme, **chosen, **_overrides(args)))
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end, "friction_scheme": args.friction_scheme,
-         "period_revs": res.start.period_revs, "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
+         "family_member": args.family_member, "period_revs": res.start.period_revs,
+         "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3), "method": "shooting",
          **({"method_choice": choice} if choice else {}), **_stability(args)}
     deepest_mm = max([p.get("max_edge_penetration_mm", 0.0) for p in d["points"]], default=0.0)

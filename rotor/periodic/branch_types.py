@@ -161,7 +161,11 @@ class ContinuationOptions:
     ``turn_back``: None, or how far (scaled parameter) the branch may run back after a fold before it jumps past
     the fold's parameter (:func:`rotor.periodic.restarts.jump_past_fold`: what a run-up does; the returning
     branch is the unstable middle one of a hysteresis); ``max_wall_s``: stop ("wall time limit") after this
-    long (s)."""
+    long (s).
+    ``centre_families``: each point of a friction-held family (faces stuck through the period) is moved to the
+    member farthest from slipping and from the bore (:func:`rotor.periodic.family_centre.centred`), and a
+    corrector failing there halves the step ``restart_after`` times before a restart, as off the family;
+    False: each point keeps the previous point's offsets, and the first failure there restarts."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -179,6 +183,7 @@ class ContinuationOptions:
     watch: Callable | None = None
     turn_back: float | None = None
     max_wall_s: float | None = None
+    centre_families: bool = False
 
 
 class Evaluator:

@@ -75,6 +75,7 @@ from rotor.periodic.branch_types import (COLD, GRID, NEUTRAL_TOL, PARAM_REL_STEP
                                          ContinuationOptions, Evaluator, Problem, parameter_problem, speed_problem,
                                          start_modes)
 from rotor.periodic.corrector import correct, land, make_point, neutral_rows, rescale, unit_tangent
+from rotor.periodic.family_centre import centred
 from rotor.periodic.map_jump import jump_across, jump_text
 from rotor.periodic.period_flow import advance
 from rotor.periodic.restarts import bridge, jump_past_fold, restart, shot
@@ -141,7 +142,7 @@ def continue_branch(problem: Problem, state0, lam0: float, lam_end: float, *, sc
         y_prev = y
         side, ahead, seen = _watched(opts, ev, y, tau, ds, seen)
         back = opts.turn_back is not None and (far.parameter / ev.ls - y[-1]) * direction > opts.turn_back
-        got = None if ahead or back else _corrected(ev, y + ds * tau, tau, opts, phase, y_prev, stalls)
+        got = None if ahead or back else _corrected_member(ev, y + ds * tau, tau, opts, phase, y_prev, stalls)
         if ahead or (side is not None and got is not None and (opts.watch(ev, got[0]) > 0.0) != side):
             stop = "grazing"
             break
@@ -242,6 +243,17 @@ def _at_end(ev, y_prev, y, lam_end: float, opts, phase, failures: list):
     return None
 
 
+def _corrected_member(ev, y_pred, tau, opts, phase, anchor, stalls: list):
+    """:func:`_corrected`, and with ``opts.centre_families`` its point moved to the member of its friction-held
+    family farthest from slipping and from the bore (:func:`rotor.periodic.family_centre.centred`; the
+    corrector's iteration count kept for the step control)."""
+    got = _corrected(ev, y_pred, tau, opts, phase, anchor, stalls)
+    if got is None or not opts.centre_families:
+        return got
+    moved = centred(ev, got[0], got[1], opts)
+    return got if moved is None else (*moved[:3], got[3], moved[4])
+
+
 def _corrected(ev, y_pred, tau, opts, phase, anchor, stalls: list):
     """The corrector from ``y_pred`` (:func:`rotor.periodic.corrector.correct`, the phase rows ``phase`` holding the
     levels of ``anchor``), and where it fails with phase rows, again without them: where the faces slip
@@ -324,7 +336,7 @@ def _past_stall(ev, points, y, tau, ds: float, phase, direction: float, fails: i
     if not opts.pass_switches:
         return None
     got = None
-    if fails == (1 if points[-1].restarted or len(phase) else opts.restart_after):
+    if fails == (1 if points[-1].restarted or (len(phase) and not opts.centre_families) else opts.restart_after):
         if stalls:                            # said with the restart's reason: the stall was the map's jump
             stalls[-1] += _jump(ev)
         got = restart(ev, points, y, tau, opts, len(phase) > 0, ds * abs(tau[-1]))

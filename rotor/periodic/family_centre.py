@@ -1,0 +1,117 @@
+"""The member of a friction-held family of orbits farthest from slipping and from the bore.
+
+A ring whose end faces stick through the whole period makes its orbits a continuum (multipliers exactly 1,
+:mod:`rotor.periodic.floquet`): every offset at which the faces could have stuck gives an orbit. Measured on
+Table 4 (``paper-table4``, 2 240 steps per revolution, friction by projection, 2 420 rpm): the continuum is
+affine to round-off (a member moved by 1e-3 of its scale along a right null vector of ``M − I`` maps onto itself
+to 3e-9; the end-face forces change by a constant in time, their second difference 4e-5 N). So along the
+family the face forces and the ring's edge offsets are ``f(t) + K c`` with ``K`` constant, and each member is
+held only while ``|f_k(t) + K_k c| ≤ μN`` at both faces and the edges stay inside the clearance.
+
+Continuation keeping the previous member's offsets (the phase rows of :func:`rotor.periodic.corrector.neutral_rows`)
+walks the branch into the place where one face's holding force reaches μN: there the map has a kink, Newton's
+basin is tiny, and each step needs a restart (20 of the 21 restarts of the Table 4 branch by projection,
+reports/published/perf-branch-switches-projection.md). :func:`centred` moves the point instead to the member
+that minimises the largest of ``|f_k(t) + K_k c| / μN`` and ``|r_e(t) + E_e c| / δ0`` over the period (faces
+``k``, edges ``e``, ``δ0`` the radial clearance): the Chebyshev centre of the set of members, in which the
+next steps stay stuck as long as the set is not empty. The member is one of the family like any other (the same
+1X response where the stuck rotor is linear); the branch says which one it reports.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import minimize
+
+from rotor.periodic.branch_types import NEUTRAL_TOL, ContinuationOptions, Evaluator
+from rotor.periodic.corrector import correct, neutral_rows
+from rotor.periodic.period_flow import record
+
+#: samples of the period the margins are read on (every this many steps)
+RECORD_EVERY = 8
+#: step along each family direction (scaled state) of the margins' finite differences; exact for the affine family
+FAMILY_STEP = 1e-3
+#: exponent of the smooth maximum minimised (the p-norm of the margins over the period)
+P_NORM = 32.0
+#: a move is made only where it lowers the largest margin by at least this much
+MIN_GAIN = 1e-3
+#: fractions of the move tried when the corrector does not close the full one (the family is affine only
+#: while the ring does not touch the bore)
+FRACTIONS = (1.0, 0.5, 0.25)
+
+
+def margins(ev: Evaluator, x, lam: float):
+    """``(values (T, m, 2), limits (m,), stuck)``: along the period of the map at the state ``x`` (SI) and the
+    parameter ``lam``, sampled every :data:`RECORD_EVERY` steps, the end-face friction forces (N) and the ring's
+    two edge offsets from the bore's centre (m), their limits (μN per face, the clearance per edge), and
+    whether every face sticks at every sample."""
+    fl = ev.flow(lam)
+    tr = record(fl, x, 0.0, ev.pb.n_steps, ev.modes0, RECORD_EVERY)
+    sup = fl.system.support
+    _, limits, n_faces = sup.faces()
+    u = tr.q @ sup.relative_map(tr.q.shape[1]).T
+    h = 0.5 * sup.width_m
+    edges = np.stack([np.stack([u[:, 0] + h * u[:, 3], u[:, 1] - h * u[:, 2]], -1),
+                      np.stack([u[:, 0] - h * u[:, 3], u[:, 1] + h * u[:, 2]], -1)], 1)
+    values = np.concatenate([tr.face_force[:, :n_faces, :], edges], 1)
+    lim = np.concatenate([limits[:n_faces], [sup.law.clearance_m] * 2])
+    stuck = bool(np.all(tr.modes[:, :n_faces] == 1))
+    return values, lim, stuck
+
+
+def largest(values, lim, K, c) -> float:
+    """The largest margin ratio ``max |v(t) + K c| / limit`` over the samples and the faces and edges."""
+    v = (values + np.einsum("mak,k->ma", K, c)[None]) / lim[None, :, None]
+    return float(np.sqrt((v ** 2).sum(-1)).max())
+
+
+def chebyshev_offset(values, lim, K) -> np.ndarray:
+    """The family coordinate ``c`` minimising :func:`largest` (a convex min-max), through its smooth upper
+    bound ``log ‖ratio‖_p`` (``p`` :data:`P_NORM`, BFGS from ``c = 0``)."""
+    def merit(c):
+        v = (values + np.einsum("mak,k->ma", K, c)[None]) / lim[None, :, None]
+        m2 = (v ** 2).sum(-1)
+        top = m2.max()
+        w = (m2 / top) ** (P_NORM / 2.0)
+        g = np.einsum("tm,tma,mak->k", w / m2.clip(1e-300), v / lim[None, :, None], K) * 2.0 / w.sum()
+        return 0.5 * np.log(top) + np.log(w.mean()) / P_NORM, g / 2.0
+    got = minimize(merit, np.zeros(K.shape[-1]), jac=True, method="BFGS")
+    return got.x
+
+
+def centred(ev: Evaluator, y, J, opts: ContinuationOptions):
+    """The corrected point ``(y, J, M, iterations, residual)`` of the member of ``y``'s friction-held family
+    (scaled ``y = (x/s, λ/λ_s)``, ``J`` its bordered Jacobian) farthest from slipping and from the bore, or
+    None where ``y`` is no such family's member (no neutral direction, or a face slips in the period) or no
+    move lowers the largest margin by :data:`MIN_GAIN`.
+
+    The family's directions are the right null vectors of the scaled ``M − I`` (singular values below
+    :data:`rotor.periodic.branch_types.NEUTRAL_TOL` of the largest); the margins' change along each is one
+    finite difference (:data:`FAMILY_STEP`); the move to :func:`chebyshev_offset` is then closed by the corrector
+    at the fixed parameter with the moved member's levels as phase rows (the move, then half and a quarter
+    of it, :data:`FRACTIONS`). ``ev.modes0`` is unchanged."""
+    _, sv, vt = np.linalg.svd(J[:, :-1])
+    null = sv < NEUTRAL_TOL * sv[0]
+    if not null.any():
+        return None
+    V = vt[null].T
+    x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+    values, lim, stuck = margins(ev, x, lam)
+    if not stuck:
+        return None
+    K = np.empty(values.shape[1:] + (V.shape[1],))
+    for j in range(V.shape[1]):
+        moved, _, _ = margins(ev, x + FAMILY_STEP * V[:, j] * ev.s, lam)
+        K[..., j] = (moved - values).mean(axis=0) / FAMILY_STEP
+    c = chebyshev_offset(values, lim, K)
+    if largest(values, lim, K, c) > largest(values, lim, K, 0.0 * c) - MIN_GAIN:
+        return None
+    fixed = np.zeros(len(y))
+    fixed[-1] = 1.0
+    rows = neutral_rows(J)
+    for alpha in FRACTIONS:
+        y_c = y.copy()
+        y_c[:-1] += alpha * (V @ c)
+        got = correct(ev, y_c, fixed, opts, rows, y_c)
+        if got is not None:
+            return got
+    return None
