@@ -3,10 +3,11 @@
 A ring whose end faces stick through the whole period makes its orbits a continuum (multipliers exactly 1,
 :mod:`rotor.periodic.floquet`): every offset at which the faces could have stuck gives an orbit. Measured on
 Table 4 (``paper-table4``, 2 240 steps per revolution, friction by projection, 2 420 rpm): the continuum is
-affine to round-off (a member moved by 1e-3 of its scale along a right null vector of ``M − I`` maps onto itself
-to 3e-9; the end-face forces change by a constant in time, their second difference 4e-5 N). So along the
-family the face forces and the ring's edge offsets are ``f(t) + K c`` with ``K`` constant, and each member is
-held only while ``|f_k(t) + K_k c| ≤ μN`` at both faces and the edges stay inside the clearance.
+affine to second order (a member moved by 1e-3 of its scale along a right null vector of ``M − I`` maps onto
+itself to 3e-9, by 1e-2 to 2e-7 at 2 389.5 rpm; the end-face forces change by a constant in time, their second
+difference 4e-5 N). So along the family the face forces and the ring's edge offsets are ``f(t) + K c`` with ``K``
+constant, and each member is held only while ``|f_k(t) + K_k c| ≤ μN`` at both faces and the edges stay inside
+the clearance; the corrector closes the small curvature after the move.
 
 Continuation keeping the previous member's offsets (the phase rows of :func:`rotor.periodic.corrector.neutral_rows`)
 walks the branch into the place where one face's holding force reaches μN: there the map has a kink, Newton's

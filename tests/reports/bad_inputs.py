@@ -270,7 +270,9 @@ def _orbit_cases() -> list:
     c += _num_cases("branch", br, "--turn-back-rpm", NUMBERS_BAD + ["-1", "0", "250rpm"], "rpm")
     c += [("branch --from-state nosuch", [*br, "--from-state", "/nonexistent/run"], "/nonexistent/run"),
           ("branch --from-state a file", [*br, "--from-state", "{file}"], None),
-          ("branch --from-state not a run", [*br, "--from-state", "{dir}"], None)]
+          ("branch --from-state not a run", [*br, "--from-state", "{dir}"], None),
+          ("branch --family-member middle", [*br, "--family-member", "middle"], "middle"),
+          ("branch --family-member empty", [*br, "--family-member", ""], None)]
     for job, base in (("orbit", b), ("branch", br)):
         c += _num_cases(job, base, "--steps-per-rev", ["0", "-1", "1000000000", "abc"], "")
         c += _num_cases(job, base, "--clearance-mm", NUMBERS_BAD + ["0", "-1", "50"], "mm")

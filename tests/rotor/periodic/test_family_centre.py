@@ -1,0 +1,101 @@
+"""The centred member of a friction-held family of orbits (rotor/periodic/family_centre.py, issue 36).
+
+Sources of the expected values: the period map itself (a member of the family maps onto itself; the margins'
+change along the family is read from maps of moved members) and the disk and clearance limits of the scene
+(μN per end face, the radial clearance δ0). Speeds are drawn from the commit's seed (tests/seeds.py) over Table 4's
+stuck stretch 2 300-2 400 rpm (``paper-table4``, Dai et al. 2025 Table 4, friction by projection): both faces stick
+through the period there and the ring does not touch its bore (reports/published/perf-branch-switches-projection.md:
+the restarts from 2 411 rpm on came from a face reaching μN).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from seeds import commit_seed
+
+from rotor.periodic.branch_types import NEUTRAL_TOL, ContinuationOptions, Evaluator, speed_problem
+from rotor.periodic.family_centre import FAMILY_STEP, centred, chebyshev_offset, largest, margins
+from rotor.periodic.floquet import floquet
+from rotor.studies.orbit import orbit
+from rotor.studies.steady_state import point_system
+
+SCENE = "paper-table4"
+TO_RPM = 30.0 / math.pi
+
+
+def _member(rpm: float):
+    """``(ev, y, J, M)``: the orbit a transient from rest reaches at ``rpm`` in the branch's scaled variables."""
+    o = orbit(SCENE, rpm, friction_scheme="projection", tilt_ignored=False)
+    assert o.converged and o.floquet.n_neutral >= 2, (rpm, o.floquet.n_neutral)
+    pb = speed_problem(lambda w: point_system(SCENE, w * TO_RPM, tilt_ignored=False)[2], o.steps_per_rev,
+                       period_revs=o.period_revs, modes0=o.shooting.modes, friction_scheme="projection")
+    ev = Evaluator(pb, o.shooting.scales.copy(), 1740.0 / TO_RPM)
+    lam = rpm / TO_RPM
+    R, J, M = ev(o.shooting.state, lam)
+    return ev, np.concatenate([o.shooting.state / ev.s, [lam / ev.ls]]), J, M
+
+
+@pytest.fixture(scope="module")
+def drawn():
+    rng = np.random.default_rng(commit_seed())
+    rpm = round(float(rng.uniform(2300.0, 2400.0)), 1)
+    print("seed", commit_seed(), "speed", rpm, "rpm")
+    return rpm, _member(rpm)
+
+
+def test_the_family_is_affine_and_its_margins_move_by_a_constant(drawn):
+    """A member moved along each family direction maps onto itself, and the face forces and edge offsets change by
+    the same amount at every sample of the period: the premise of the Chebyshev centre."""
+    rpm, (ev, y, J, _) = drawn
+    _, sv, vt = np.linalg.svd(J[:, :-1])
+    V = vt[sv < NEUTRAL_TOL * sv[0]].T
+    x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+    base, lim, stuck = margins(ev, x, lam)
+    assert stuck
+    for j in range(V.shape[1]):
+        small = [float(np.max(np.abs(ev(x + k * FAMILY_STEP * V[:, j] * ev.s, lam, jacobian=False)[0])))
+                 for k in (1.0, 10.0)]
+        print(rpm, j, small)
+        assert small[0] < 1e-8, (rpm, j, small)
+        step = 10.0 * FAMILY_STEP * V[:, j] * ev.s
+        up, _, _ = margins(ev, x + step, lam)
+        down, _, _ = margins(ev, x - step, lam)
+        change = up - base
+        assert np.max(np.abs(change - change.mean(axis=0))) < 1e-3 * np.max(np.abs(change)), (rpm, j)
+        assert np.max(np.abs(up + down - 2.0 * base)) < 1e-3 * np.max(np.abs(change)), (rpm, j)
+
+
+def test_the_centred_member_is_an_orbit_farther_from_slipping(drawn):
+    """:func:`centred` returns a member that maps onto itself to the corrector's tolerance, sticks through the period,
+    keeps the multipliers, and whose largest margin (face force / μN, edge offset / δ0) is below 1 and below the
+    member the transient settled on; no small move of the offsets lowers it further (the min-max's optimum)."""
+    rpm, (ev, y, J, M) = drawn
+    opts = ContinuationOptions()
+    x, lam = y[:-1] * ev.s, y[-1] * ev.ls
+    before, lim, _ = margins(ev, x, lam)
+    got = centred(ev, y, J, opts)
+    assert got is not None, rpm
+    y_c, J_c, M_c, _, res = got
+    assert res < opts.tol and y_c[-1] == y[-1]
+    after, _, stuck = margins(ev, y_c[:-1] * ev.s, lam)
+    assert stuck
+    ratio = lambda v: float(np.max(np.hypot(v[..., 0], v[..., 1]) / lim[None, :]))
+    print(f"{rpm} rpm: largest margin {ratio(before):.3f} -> {ratio(after):.3f}")
+    assert ratio(after) < min(1.0, ratio(before) - 1e-3)
+    period = ev.pb.n_steps * ev.flow(lam).dt_s
+    rho, rho_c = floquet(M, period).spectral_radius, floquet(M_c, period).spectral_radius
+    assert rho_c == pytest.approx(rho, abs=1e-6)
+    _, sv, vt = np.linalg.svd(J_c[:, :-1])
+    V = vt[sv < NEUTRAL_TOL * sv[0]].T
+    K = np.empty(after.shape[1:] + (V.shape[1],))
+    for j in range(V.shape[1]):
+        moved, _, _ = margins(ev, y_c[:-1] * ev.s + FAMILY_STEP * V[:, j] * ev.s, lam)
+        K[..., j] = (moved - after).mean(axis=0) / FAMILY_STEP
+    zero = np.zeros(V.shape[1])
+    assert largest(after, lim, K, chebyshev_offset(after, lim, K)) > largest(after, lim, K, zero) - 2e-3
+    rng = np.random.default_rng(commit_seed() + 1)
+    for _ in range(40):
+        d = rng.normal(size=V.shape[1])
+        assert largest(after, lim, K, 1e-2 * d / np.linalg.norm(d)) > largest(after, lim, K, zero) - 1e-3
