@@ -59,7 +59,7 @@ LOCATE = {"on": True, "off": False, "default": None}
 
 def run_branch(max_points: int, locate_events: bool | None, turn_back_rpm: float | None = None,
                max_wall_s: float | None = None, friction_scheme: str = "active-set",
-               family_member: str = "kept") -> tuple:
+               family_member: str = "kept", back_fill: bool = False) -> tuple:
     """The branch (:class:`rotor.studies.orbit.BranchResult`), its ``ringcontact branch --json`` dict and wall time."""
     from rotor.dynamics.period_map import warm_up
     from rotor.periodic.continuation import ContinuationOptions
@@ -79,13 +79,13 @@ def run_branch(max_points: int, locate_events: bool | None, turn_back_rpm: float
         scale = abs(RPM_END - RPM_START) / 10.0         # the branch's speed scale (rpm)
         opts = ContinuationOptions(max_points=max_points, max_wall_s=max_wall_s,
                                    turn_back=None if turn_back_rpm is None else turn_back_rpm / scale,
-                                   centre_families=family_member == "centred")
+                                   centre_families=family_member == "centred", back_fill=back_fill)
         res = branch(SCENE, RPM_START, RPM_END, options=opts, locate_events=locate_events, tilt_ignored=False,
                      friction_scheme=friction_scheme)
     wall = time.perf_counter() - t0
     d = {"scene": SCENE, "rpm_start": RPM_START, "rpm_end": RPM_END, "period_revs": res.start.period_revs,
          "steps_per_rev": res.start.steps_per_rev, "locate_events": locate_events, "turn_back_rpm": turn_back_rpm,
-         "friction_scheme": friction_scheme, "family_member": family_member,
+         "friction_scheme": friction_scheme, "family_member": family_member, "back_fill": back_fill,
          **res.as_dict(),
          "wall_s": round(wall, 3)}
     return res, d, wall
@@ -235,10 +235,11 @@ def report(d: dict, load: list, args, commit: str, verified: list[dict], spikes:
     reached = max((p["speed_rpm"] for p in pts), default=float("nan"))
     scheme = d.get("friction_scheme", "active-set")
     member = d.get("family_member", "kept")
-    fam = "" if member == "kept" else f" --family-member {member}"
+    fam = ("" if member == "kept" else f" --family-member {member}") + (" --back-fill" if d.get("back_fill") else "")
     lines = ["# Continuation of the Table 4 rotor through stick/slip and contact switches: one branch"
              + ("" if scheme == "active-set" else ", friction by projection")
-             + ("" if member == "kept" else ", each friction-held family's centred member"), "",
+             + ("" if member == "kept" else ", each friction-held family's centred member")
+             + (", far restarts followed back" if d.get("back_fill") else ""), "",
              f"Made by `nice .venv/bin/python benchmarks/bench_branch_switches.py --max-points {args.max_points} "
              f"--verify {args.verify} --locate-events {args.locate_events} --turn-back-rpm {args.turn_back_rpm:g}"
              + (f" --max-wall-s {args.max_wall_s:g}" if args.max_wall_s else "")
@@ -314,12 +315,15 @@ def main(argv=None) -> int:
     ap.add_argument("--family-member", choices=("kept", "centred"), default="kept",
                     help="which member of a friction-held family each point is (ringcontact branch --family-member); "
                          "centred adds -centred to the report's name")
+    ap.add_argument("--back-fill", action="store_true",
+                    help="far restarts moved back along the branch they found (ringcontact branch --back-fill); adds "
+                         "-back-fill to the report's name")
     ap.add_argument("--from-json", action="store_true",
                     help="no computing: write the report again from --branch-json and the published .json (the "
                          "run's commit, load and checks kept)")
     args = ap.parse_args(argv)
     stem = ("perf-branch-switches" + ("" if args.friction_scheme == "active-set" else f"-{args.friction_scheme}")
-            + ("" if args.family_member == "kept" else f"-{args.family_member}"))
+            + ("" if args.family_member == "kept" else f"-{args.family_member}") + ("-back-fill" if args.back_fill else ""))
     if args.from_json:
         try:
             d = json.loads(args.branch_json.read_text())
@@ -337,7 +341,7 @@ def main(argv=None) -> int:
                             text=True).stdout.strip()
     load0 = os.getloadavg()
     res, d, _ = run_branch(args.max_points, LOCATE[args.locate_events], args.turn_back_rpm, args.max_wall_s,
-                           args.friction_scheme, args.family_member)
+                           args.friction_scheme, args.family_member, args.back_fill)
     load1 = os.getloadavg()
     if args.branch_json is not None:
         atomic_write_text(args.branch_json, json.dumps(d) + "\n")

@@ -163,6 +163,9 @@ def _branch_parser() -> argparse.ArgumentParser:
                         "(default: each orbit keeps the offsets the previous one stuck at, until a face slips) or "
                         "centred (each orbit is the family's member farthest from slipping and from the bore, "
                         "rotor/periodic/family_centre.py)")
+    p.add_argument("--back-fill", action="store_true",
+                   help="a restart that lands more than a hundredth of the range past the last orbit is moved back "
+                        "along the branch it found, to the orbit before that branch's fold (fewer speeds skipped)")
     return p
 
 
@@ -533,10 +536,10 @@ def _branch(args) -> int:
         args.scene, args.rpm_start, args.rpm_end, options=ContinuationOptions(
             max_points=int(args.max_points), turn_back=None if args.turn_back_rpm is None else
             args.turn_back_rpm / (abs(args.rpm_end - args.rpm_start) / 10.0),      # the branch's speed scale
-            centre_families=args.family_member == "centred"),
+            centre_families=args.family_member == "centred", back_fill=args.back_fill),
         richardson=args.richardson, friction_scheme=args.friction_scheme, **chosen, **_overrides(args)))
     d = {"scene": name, "rpm_start": args.rpm_start, "rpm_end": args.rpm_end, "friction_scheme": args.friction_scheme,
-         "family_member": args.family_member, "period_revs": res.start.period_revs,
+         "family_member": args.family_member, "back_fill": args.back_fill, "period_revs": res.start.period_revs,
          "steps_per_rev": res.start.steps_per_rev, **res.as_dict(),
          "wall_s": round(time.perf_counter() - t0, 3), "method": "shooting",
          **({"method_choice": choice} if choice else {}), **_stability(args)}

@@ -165,7 +165,10 @@ class ContinuationOptions:
     ``centre_families``: each point of a friction-held family (faces stuck through the period) is moved to the
     member farthest from slipping and from the bore (:func:`rotor.periodic.family_centre.centred`), and a
     corrector failing there halves the step ``restart_after`` times before a restart, as off the family;
-    False: each point keeps the previous point's offsets, and the first failure there restarts."""
+    False: each point keeps the previous point's offsets, and the first failure there restarts.
+    ``back_fill``: a restart landing farther than :data:`rotor.periodic.continuation.BACK_FILL_MIN` from the last
+    orbit is moved back along the branch it landed on, to its fold or the last orbit's parameter
+    (:func:`rotor.periodic.continuation._back_filled`)."""
 
     ds: float = 0.05
     ds_min: float = 1e-5
@@ -184,6 +187,7 @@ class ContinuationOptions:
     turn_back: float | None = None
     max_wall_s: float | None = None
     centre_families: bool = False
+    back_fill: bool = False
 
 
 class Evaluator:
