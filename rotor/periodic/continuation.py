@@ -68,7 +68,7 @@ from dataclasses import replace
 import numpy as np
 
 from contact.errors import ConvergenceError, InputError, OutsideDomainError
-from sweep.progress import report
+from sweep.progress import report, reporting
 from rotor.dynamics import constraints as cons
 from rotor.periodic.branch_events import bifurcations_between, confirmed_folds
 from rotor.periodic.branch_types import (COLD, GRID, NEUTRAL_TOL, PARAM_REL_STEP, RESCALE_RATIO, RESTART_NAMES,
@@ -367,10 +367,12 @@ def _back_filled(ev, got, lam_last: float, opts):
     followed back."""
     y, how, guide = got[0], got[5], got[6]
     lam, ls = y[-1] * ev.ls, ev.ls
-    back = continue_branch(replace(ev.pb, modes0=tuple(ev.modes0)), y[:-1] * ev.s, lam, lam_last * ls,
-                           scales=ev.s.copy(), lam_scale=ls,
-                           options=replace(opts, pass_switches=False, back_fill=False, max_points=BACK_FILL_POINTS,
-                                           turn_back=None, watch=None, max_wall_s=None))
+    with reporting(None):                     # the branch's progress says its own points only
+        back = continue_branch(replace(ev.pb, modes0=tuple(ev.modes0)), y[:-1] * ev.s, lam, lam_last * ls,
+                               scales=ev.s.copy(), lam_scale=ls,
+                               options=replace(opts, pass_switches=False, back_fill=False,
+                                               max_points=BACK_FILL_POINTS, turn_back=None, watch=None,
+                                               max_wall_s=None))
     run = [back.points[0]]
     for p in back.points[1:]:                       # up to the fold: the parameter moves towards lam_last
         if abs(p.parameter - lam_last * ls) >= abs(run[-1].parameter - lam_last * ls):

@@ -99,3 +99,50 @@ def test_the_centred_member_is_an_orbit_farther_from_slipping(drawn):
     for _ in range(40):
         d = rng.normal(size=V.shape[1])
         assert largest(after, lim, K, 1e-2 * d / np.linalg.norm(d)) > largest(after, lim, K, zero) - 1e-3
+
+
+def test_the_command_line_branch_with_centred_members_on_the_friswell_rotor(tmp_path):
+    """``ringcontact branch --friction-scheme projection --family-member centred --back-fill`` on a scene the centring
+    was not developed on: Friswell et al. (2010) Example 5.9.1 with its right bearing in a loose aluminium housing
+    (tests/rotor/scenes/friswell-591-loose-aluminium.toml), 200 N of preload, 2 300 -> 2 800 rpm: no restart, no
+    corrector failure, the last orbit at --rpm-end, the JSON naming the member and the back-fill (measured 10 s)."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    scene = Path(__file__).resolve().parents[2] / "rotor" / "scenes" / "friswell-591-loose-aluminium.toml"
+    out = tmp_path / "branch.json"
+    subprocess.run([sys.executable, "-m", "reports.cli", "branch", str(scene), "--rpm-start", "2300", "--rpm-end", "2800",
+                    "--preload-n", "200", "--friction-scheme", "projection", "--family-member", "centred",
+                    "--back-fill", "--accept-long", "--json", "--out", str(out)], check=True, capture_output=True)
+    d = json.loads(out.read_text())
+    assert (d["family_member"], d["back_fill"]) == ("centred", True)
+    assert d["stop"] == "end reached" and not any(d["restarts"].values()) and d["corrector_failures"] == []
+    assert d["points"][-1]["speed_rpm"] == pytest.approx(2800.0, abs=1e-9)
+
+
+@pytest.mark.slow
+def test_table4_past_the_stuck_family_end_restarts_land_within_50_rpm():
+    """Table 4 4 950 -> 5 450 rpm (the branch's speed scale a tenth of 600-18 000 rpm, turn back 250 rpm, as
+    benchmarks/bench_branch_switches.py): the stuck family ends at a fold near 5 196 rpm and the orbits past it slip
+    against the bore. With centred members and far restarts followed back, at most 3 restarts, and none lands more
+    than 50 rpm past the farthest speed reached before it (issue 36's bound). Measured 153 s: 3 restarts, the
+    largest 29.5 rpm (5 224.3 -> 5 253.8 rpm); without the back-fill one skipped 93.5 rpm."""
+    from rotor.periodic.continuation import continue_branch
+
+    first = orbit(SCENE, 4950.0, friction_scheme="projection", tilt_ignored=False)
+    assert first.converged
+    pb = speed_problem(lambda w: point_system(SCENE, w * TO_RPM, tilt_ignored=False)[2], first.steps_per_rev,
+                       period_revs=first.period_revs, modes0=first.shooting.modes, friction_scheme="projection")
+    scale = 1740.0
+    opts = ContinuationOptions(max_points=400, turn_back=250.0 / scale, centre_families=True, back_fill=True)
+    br = continue_branch(pb, first.shooting.state, 4950.0 / TO_RPM, 5450.0 / TO_RPM, scales=first.shooting.scales,
+                         lam_scale=scale / TO_RPM, options=opts)
+    assert br.stop == "end reached" and br.restarts <= 3, (br.stop, br.restarts)
+    far = -math.inf
+    for p in br.points:
+        rpm = p.parameter * TO_RPM
+        if p.restarted:
+            assert rpm - far <= 50.0, (far, rpm)
+        far = max(far, rpm)
