@@ -664,6 +664,14 @@ NOT_CLAIMS = (
      "5 058-5 184 rpm, one face at its friction limit), 445 rpm no orbit covers (5 184.5-5 630.0 rpm); every "
      "verified point's residual below 5e-10; a benchmark sample of one run, not a claim (its wall time moves with "
      "the load)"),
+    ("reports/published/perf-branch-switches-projection-centred-back-fill.md",
+     "one run of the Table 4 branch with the friction solved by projection, each friction-held family's centred "
+     "member and far restarts followed back (7b59abc, load 1.8 at start, 1.0 at end, tests running beside it part of the time): end "
+     "reached, 629 orbits, 510 s, 9 restarts (3 secant, 1 transient, 4 cold, 1 step-grid; two of them the jumps "
+     "past the folds at 5 196 and 16 929 rpm), 17.4 rpm no orbit covers; every verified point's residual below "
+     "5e-10; a benchmark sample of one run, not a claim (its wall time moves with the load); the slow test "
+     "test_family_centre.py::test_table4_past_the_stuck_family_end_restarts_land_within_50_rpm checks the stretch "
+     "past the stuck family's end"),
     ("reports/published/perf-monodromy-random-projection.md",
      "one benchmark sample of 20 speeds with the friction solved by projection (seed 1344113174, at 6579e29): 20 of "
      "20 orbits within 1e-6 of central differences of their map (largest 1.6e-7; one orbit, 16 609.8 rpm, from a "
