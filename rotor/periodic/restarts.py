@@ -33,7 +33,8 @@ def restart(ev, points, y, tau, opts, continuum: bool, step_hint: float = 0.0):
     (:func:`shot`). In a stuck face's
     continuum (``continuum``: the last orbit has neutral directions) the transient comes first: the orbit the
     corrector cannot reach lies where the face, having slipped a little, holds again, which a transient
-    finds and Newton from the secant (at the offset where the face slips) does not. Returns
+    finds and Newton from the secant (at the offset where the face slips) does not. A landing beyond a try that
+    found no orbit is bisected back towards it (:func:`nearer`). Returns
     ``(y, J, M, iterations, residual, how, guide)`` or None, ``guide`` the unit parameter direction of travel
     (for the new tangent)."""
     x_k, lam_k = y[:-1] * ev.s, y[-1] * ev.ls
