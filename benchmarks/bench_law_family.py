@@ -1,7 +1,7 @@
 """Issue 37, must-show 3: a law for every ring pair, checked held out (force and moment), and its kernel cost.
 
     .venv/bin/python benchmarks/bench_law_family.py [--pairs 30] [--seed S] [--workers 2] [--points 20000]
-                                                    [--repeats 9] [--out reports/published]
+                                                    [--repeats 9] [--out reports/published] [--pairs-only]
 
 Three parts, one run:
 
@@ -11,10 +11,12 @@ Three parts, one run:
    3D store under the cache, so a second run reads them back. The law's accuracy against issue 37's target
    (every held-out error within 2x the FEM point's stated error + 0.2 %), force and moment.
 2. **Generated pairs** (:func:`fem_reference.plane.generated.draw_pair`, a new seed each run unless ``--seed``):
-   each pair's 2D reference at :data:`POINTS_PER_PAIR` penetrations over its drawn range (the error-driven levels
-   of :func:`fem_reference.plane.adapt.adaptive_point` with their bar; a point without a bar is held to the
-   target's 0.2 % alone), every law family fitted and held out, the
-   chosen one's and the flexible family's accuracy against the same target (2D: force only).
+   each pair's 2D reference on a training grid of :data:`TRAIN_POINTS` penetrations over its drawn range and at
+   the grid's midpoints (:func:`pair_grids`; the error-driven levels of
+   :func:`fem_reference.plane.adapt.adaptive_point` with their bar; a point without a bar is held to the target's
+   0.2 % alone), every law family fitted on the training grid, the chosen one (the selection rule on the training
+   grid's leave-one-out) and every family checked at the midpoints against the same target (2D: force only).
+   ``--pairs-only`` runs this part alone and replaces its section of an existing ``law-family.md``.
 3. **Kernel cost**: the compiled loose-support kernel's point force with its Jacobian (the call the rotor's step
    loop makes), on the 20 mm ring's foundation and foundation-spline laws, straight and tilted states in contact
    over the range, beside *today's* foundation law: the kernel source of the commit before the spline family
@@ -45,12 +47,16 @@ import numba  # noqa: E402
 
 from contact import calibrate as cal  # noqa: E402
 from contact.calibrate.fit import ACCURACY_RULE, within_accuracy  # noqa: E402
+from contact.calibrate.spline import MAX_KNOTS  # noqa: E402
 from contact.dataset import read_dataset  # noqa: E402
 from contact.files import atomic_write_text  # noqa: E402
 from contact.loose_support import point_force_jacobian  # noqa: E402
 from contact.units import ARCMIN, MM  # noqa: E402
 
-POINTS_PER_PAIR = 5
+#: a generated pair's training penetrations: contact.calibrate.spline.MAX_KNOTS, so that each is a knot of the flexible
+#: family (with more, some are dropped as knots and the gaps double where they are)
+TRAIN_POINTS = MAX_KNOTS
+SPLINE = "foundation-spline"
 #: the kernel before the flexible family: "today's foundation law" of issue 37
 TODAY = "3a38b5f"
 RING = """schema = "ringcontact.ring-scene/1"
@@ -105,11 +111,20 @@ def ring_laws(out: Path) -> dict:
 
 # ---------------------------------------------------------------------------------------------- 2. generated pairs
 
+def pair_grids(low_m: float, high_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """A pair's training penetrations (:data:`TRAIN_POINTS`, geometric, the range's ends included, each a knot of the
+    flexible family) and its held-out ones, the geometric midpoints between them [m]: the law is checked where it is
+    used, inside its range, between the points it was fitted to (as reports/bearing/tilt.py checks the tilt law)."""
+    train = np.geomspace(low_m, high_m, TRAIN_POINTS)
+    return train, np.sqrt(train[:-1] * train[1:])
+
+
 def pair_check(index: int, seed: int) -> dict:
-    """One generated pair: its 2D points, every family held out, the chosen one's and the spline's accuracy."""
+    """One generated pair: its 2D points on the training grid and at the midpoints (:func:`pair_grids`), every family
+    fitted on the training grid alone; the chosen one's (the selection rule on the training grid's leave-one-out) and
+    each family's accuracy at the midpoints."""
     from fem_reference.plane.adapt import adaptive_point
     from fem_reference.plane.generated import draw_pair
-    from fem_reference.ring_scene import default_grid
 
     rng = np.random.default_rng([seed, index])
     scene, (low, high) = draw_pair(rng, index)
@@ -117,28 +132,35 @@ def pair_check(index: int, seed: int) -> dict:
     row = {"index": index, "hold": scene.support_hold, "drive": scene.bearing_drive, "plane": scene.plane,
            "clearance_mm": r.clearance_m / MM, "range_mm": [low / MM, high / MM]}
     t0 = time.perf_counter()
+    train, mid = pair_grids(low, high)
     try:
-        pen = np.array(default_grid(low / MM, high / MM, POINTS_PER_PAIR)) * MM
-        bars = [adaptive_point(scene, float(d)).bar for d in pen]
+        bars_t = [adaptive_point(scene, float(d)).bar for d in train]
+        bars_m = [adaptive_point(scene, float(d)).bar for d in mid]
     except Exception as exc:             # a pair the error-driven levels cannot solve is reported, not hidden
         return {**row, "failed": f"{type(exc).__name__}: {str(exc)[:120]}", "wall_s": time.perf_counter() - t0}
-    force = np.array([b.force_n for b in bars])
-    refused = int(sum(not math.isfinite(b.error_rel) for b in bars))
-    fem = np.array([b.error_rel if math.isfinite(b.error_rel) else 0.0 for b in bars])    # no bar: held to 0.2 %
+    refused = int(sum(not math.isfinite(b.error_rel) for b in bars_t + bars_m))
+    f_t, f_m = (np.array([b.force_n for b in bars]) for bars in (bars_t, bars_m))
+    fem_t, fem_m = (np.array([b.error_rel if math.isfinite(b.error_rel) else 0.0 for b in bars])   # no bar: 0.2 %
+                    for bars in (bars_t, bars_m))
     geo = cal.SceneGeometry(r.clearance_m, r.width_m, r.outer_radius_m, r.outer_radius_m - r.inner_radius_m,
                             r.support_outer_radius_m - r.outer_radius_m - r.clearance_m,
                             r.bearing.youngs_modulus_pa, r.bearing.poisson_ratio, r.support.youngs_modulus_pa,
                             r.support.poisson_ratio, scene.plane)
-    fits = [f for f in (cal.fit_family(fam, pen, force, geo) for fam in cal.FAMILIES)
+    fits = [f for f in (cal.fit_family(fam, train, f_t, geo) for fam in cal.FAMILIES)
             if np.all(np.isfinite(f.holdout_rel_err))]
-    chosen = cal.select_family(fits, fem)
-    spline = next((f for f in fits if f.family == "foundation-spline"), None)
-    return {**row, "wall_s": time.perf_counter() - t0, "fem_error_max_pct": 100 * float(fem.max()), "no_bar": refused,
-            "chosen": chosen.family, "chosen_holdout_max_pct": 100 * chosen.holdout_max,
-            "chosen_within": int(within_accuracy(chosen.holdout_rel_err, fem).sum()), "points": int(pen.size),
-            "families_holding": [f.family for f in fits if cal.family_holds(f.holdout_rel_err, fem)],
-            "spline_holdout_max_pct": math.nan if spline is None else 100 * spline.holdout_max,
-            "spline_within": 0 if spline is None else int(within_accuracy(spline.holdout_rel_err, fem).sum())}
+    chosen = cal.select_family(fits, fem_t)
+    mid_err = {f.family: cal.family_force(f.family, f.parameters, mid, geo) / f_m - 1.0 for f in fits}
+    within = {fam: int(within_accuracy(e, fem_m).sum()) for fam, e in mid_err.items()}
+    spline = SPLINE if SPLINE in mid_err else None
+    return {**row, "wall_s": time.perf_counter() - t0, "fem_error_max_pct": 100 * float(max(fem_t.max(), fem_m.max())),
+            "no_bar": refused, "train_points": int(train.size), "points": int(mid.size),
+            "chosen": chosen.family, "chosen_holdout_max_pct": 100 * float(np.abs(mid_err[chosen.family]).max()),
+            "chosen_within": within[chosen.family],
+            "families_holding": [f.family for f in fits if cal.family_holds(f.holdout_rel_err, fem_t)],
+            "families_meeting": [fam for fam in mid_err if within[fam] == mid.size],
+            "spline_holdout_max_pct": math.nan if spline is None else 100 * float(np.abs(mid_err[spline]).max()),
+            "spline_within": 0 if spline is None else within[spline],
+            "spline_worst_mm": None if spline is None else float(mid[np.argmax(np.abs(mid_err[spline]))] / MM)}
 
 
 def pairs(n: int, seed: int, workers: int, keep: Path) -> tuple[list[dict], float, tuple]:
@@ -257,33 +279,48 @@ def _ring_lines(summary: dict, wall_s: float, loads: tuple) -> list[str]:
 
 def _pair_lines(rows: list[dict], seed: int, wall_s: float, loads: tuple) -> list[str]:
     ok = [r for r in rows if "failed" not in r]
-    counts = sorted({r["points"] for r in ok})
-    lines = [f"Seed {seed} (numpy `default_rng([seed, index])` per pair), {len(rows)} pairs, "
-             f"{'/'.join(map(str, counts))} penetrations each (a grid of {POINTS_PER_PAIR} to 3 significant digits and "
-             f"the range's ends), {wall_s:.0f} s on the pool in this run (load average {loads[0]:.2f} → "
-             f"{loads[1]:.2f}; pairs finished by an interrupted run of the same seed are read back). Target: "
-             f"{ACCURACY_RULE} (2D: force).", "",
-             "| # | hold | drive | plane | c (mm) | range (mm) | FEM error max (%) | chosen | held-out max (%) "
-             "| within target | families holding | spline held-out max (%) | spline within | wall (s) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = [f"Seed {seed} (numpy `default_rng([seed, index])` per pair), {len(rows)} pairs. Each pair: {TRAIN_POINTS} "
+             f"training penetrations, geometric over its drawn range, ends included (every one a knot of the flexible "
+             f"family), and {TRAIN_POINTS - 1} held-out ones at their geometric midpoints (benchmarks/bench_law_family.py "
+             f"`pair_grids`); {wall_s:.0f} s on the pool in this run (load average {loads[0]:.2f} → {loads[1]:.2f}; "
+             "pairs finished by an interrupted run of the same seed are read back). Every family is fitted on the "
+             "training points alone; 'chosen' is the selection rule's pick from the training points' leave-one-out; "
+             f"the columns after it are the errors at the midpoints. Target: {ACCURACY_RULE} (2D: force).", "",
+             "| # | hold | drive | plane | c (mm) | range (mm) | FEM error max (%) | chosen | its midpoint max (%) "
+             "| within target | families holding (leave-one-out, flag bound) | families within target at every midpoint "
+             "| spline midpoint max (%) | at (mm) | spline within | wall (s) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         head = (f"| {r['index']} | {r['hold']} | {r['drive']} | {r['plane']} | {r['clearance_mm']:.4f} | "
                 f"{r['range_mm'][0]:.4f}-{r['range_mm'][1]:.4f} |")
         if "failed" in r:
-            lines.append(head + f" – | failed: {r['failed']} | | | | | | {r['wall_s']:.0f} |")
+            lines.append(head + f" – | failed: {r['failed']} | | | | | | | | {r['wall_s']:.0f} |")
             continue
         lines.append(head + f" {r['fem_error_max_pct']:.3f} | {r['chosen']} | {r['chosen_holdout_max_pct']:.3f} | "
                      f"{r['chosen_within']}/{r['points']} | {', '.join(r['families_holding']) or 'none'} | "
-                     f"{r['spline_holdout_max_pct']:.3f} | {r['spline_within']}/{r['points']} | {r['wall_s']:.0f} |")
+                     f"{', '.join(r['families_meeting']) or 'none'} | {r['spline_holdout_max_pct']:.3f} | "
+                     f"{r['spline_worst_mm']:.5f} | {r['spline_within']}/{r['points']} | {r['wall_s']:.0f} |")
     chosen_all = sum(r["chosen_within"] == r["points"] for r in ok)
     spline_all = sum(r["spline_within"] == r["points"] for r in ok)
-    holding = sum(bool(r["families_holding"]) for r in ok)
-    return lines + ["", f"Pairs solved: {len(ok)} of {len(rows)}. The chosen law meets the target at every point on "
-                    f"{chosen_all} of {len(ok)} pairs; the flexible family on {spline_all} of {len(ok)}; some family "
-                    f"holds the flag bound (FEM error + 2 %) on {holding} of {len(ok)}. Points within the target: "
-                    f"chosen {sum(r['chosen_within'] for r in ok)} of {sum(r['points'] for r in ok)}, flexible "
-                    f"{sum(r['spline_within'] for r in ok)} of {sum(r['points'] for r in ok)}. Points whose error-driven "
+    some = sum(bool(r["families_meeting"]) for r in ok)
+    n_mid = sum(r["points"] for r in ok)
+    return lines + ["", f"Pairs solved: {len(ok)} of {len(rows)}. At every midpoint within the target: the chosen law on "
+                    f"{chosen_all} of {len(ok)} pairs, the flexible family on {spline_all} of {len(ok)}, some family on "
+                    f"{some} of {len(ok)}. Midpoints within the target: chosen {sum(r['chosen_within'] for r in ok)} of "
+                    f"{n_mid}, flexible {sum(r['spline_within'] for r in ok)} of {n_mid}. Points whose error-driven "
                     f"levels gave no bar (held to 0.2 % alone): {sum(r['no_bar'] for r in ok)}."]
+
+
+def replaced_pairs(text: str, lines: list[str], argv_text: str) -> str | None:
+    """``law-family.md``'s text with its generated-pairs section replaced by ``lines`` (``--pairs-only``), or None if
+    it has no such section."""
+    head, nxt = "## Generated pairs (2D, force)", "## Kernel cost"
+    a, b = text.find(head), text.find(nxt)
+    if a < 0 or b < a:
+        return None
+    note = (f"(This section: `{argv_text}` alone; the 20 mm ring and the kernel cost above and below are the earlier "
+            "run's, named in the first lines.)")
+    return text[:a] + "\n".join([head, "", note, "", *lines, "", ""]) + text[b:]
 
 
 def _cost_lines(cost: dict, loads: tuple, n: int, repeats: int) -> list[str]:
@@ -320,12 +357,31 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--points", type=int, default=20000)
     ap.add_argument("--repeats", type=int, default=9)
     ap.add_argument("--out", type=Path, default=ROOT / "reports" / "published")
+    ap.add_argument("--pairs-only", action="store_true",
+                    help="the generated pairs alone, replacing their section of <out>/law-family.md")
     args = ap.parse_args(argv)
+    for name, value, least in (("--pairs", args.pairs, 1), ("--workers", args.workers, 1), ("--points", args.points, 1),
+                               ("--repeats", args.repeats, 1)):
+        if value < least:
+            print(f"bench_law_family: {name} {value}: must be a whole number >= {least}", file=sys.stderr)
+            return 2
     if args.seed is None:
         args.seed = int(np.random.SeedSequence().entropy % 2 ** 32)
     print(f"seed {args.seed}", file=sys.stderr)
-    ring = ring_run(args.out / "law-family-newcomer-20mm", args.workers)
+    target = args.out / "law-family.md"
+    if args.pairs_only and (not target.exists() or replaced_pairs(target.read_text(), [], "") is None):
+        print(f"bench_law_family: --pairs-only: {target} has no generated-pairs section to replace", file=sys.stderr)
+        return 2
     keep = Path(tempfile.gettempdir()) / f"bench-law-family-pairs-{args.seed}.jsonl"
+    if args.pairs_only:
+        rows, wall_s, loads = pairs(args.pairs, args.seed, args.workers, keep)
+        text = replaced_pairs(target.read_text(), _pair_lines(rows, args.seed, wall_s, loads),
+                              f"benchmarks/bench_law_family.py --pairs-only --pairs {args.pairs} --seed {args.seed} "
+                              f"--workers {args.workers}")
+        atomic_write_text(target, text)
+        print(f"wrote {target}", file=sys.stderr)
+        return 0
+    ring = ring_run(args.out / "law-family-newcomer-20mm", args.workers)
     rows, wall_s, loads = pairs(args.pairs, args.seed, args.workers, keep)
     pair = (rows, args.seed, wall_s, loads)
     cost = kernel_cost(ring_laws(args.out / "law-family-newcomer-20mm"), args.points, args.repeats)
