@@ -141,7 +141,7 @@ def test_cast_iron_pair_within_its_bar_at_every_penetration():
     generated family's check), its own uncertainty below every bar. With the bulk-refined levels (commit
     47facc7) it passed in 719 s at load 13: bars 0.0045-0.016 %, differences +0.0017 to +0.0083 %; at 0.005 mm
     the reference's uncertainty is 0.63 of the bar (1.0e-4 against 1.6e-4; at commit b3846fe 0.97 of 1.03e-4; a
-    fifth level would pass check_pair's 200k-DOF cap), the most this reference can check (the near-uniform P2
+    fifth level would then have passed check_pair's 200k-DOF cap, 400k since ccfc5da), the most this reference can check (the near-uniform P2
     reference of reports/published/fem2d-adaptive.md is no finer: its levels differ by 9e-5)."""
     from fem_reference.plane.generated import check_pair
 

@@ -176,3 +176,22 @@ def test_gap_of_the_rigidly_offset_circles_is_exact():
     # exact circles touch where R_b + δ0 = ρ; the law's relation is the small-offset form of that
     gap = (R_b + d0) - r_edge[0]
     assert abs(gap) < 0.01 * dr
+
+
+def test_contact_rows_compliance_is_the_condensed_inverse():
+    """fem_reference/plane/solve.py `_delassus` keeps only ``Df K⁻¹ Dfᵀ``: on a coarse P1 mesh it equals the
+    dense inverse of the free stiffness between the contact rows (closed form of the condensation), and it is
+    symmetric before any symmetrisation (K is)."""
+    from fem_reference.plane.contact_solver import mortar_operator
+    from fem_reference.plane.solve import _delassus
+
+    m = ContactModel.build(clamped(), MeshSpec(h_contact_m=8e-3, order=1))
+    sysm = m.system
+    assert sysm.Q is None and sysm.ndofs < 3000
+    mo = mortar_operator(m.slave, m.master, 1, sysm.ndofs, m.scene.rings.clearance_m + 1e-5)
+    Df = mo.D[:40][:, sysm.free]
+    A = _delassus(sysm, Df)
+    Kff = sysm.K[sysm.free][:, sysm.free].toarray()
+    exact = Df.toarray() @ np.linalg.solve(Kff, Df.toarray().T)
+    assert np.abs(A - exact).max() <= 1e-9 * np.abs(exact).max()
+    assert np.abs(A - A.T).max() <= 1e-9 * np.abs(A).max()

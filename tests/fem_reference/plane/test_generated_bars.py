@@ -195,7 +195,7 @@ def test_previous_seeds_clamped_lower_misses_within_their_bars():
 
 @pytest.mark.slow
 def test_reference_passes_over_a_first_mesh_that_does_not_resolve_the_arc():
-    """Seed 1928108429's pair 19 at 0.0115 mm (reports/published/fem2d-adaptive.md: refused): the reference's
+    """Seed 1928108429's pair 19 at 0.0115 mm (reports/published/fem2d-adaptive.md at b6206be: refused): the reference's
     first P1 mesh, the thinner ring's thickness / 2 (6.55 mm), has one active contact node; the reference now
     starts one refinement finer and ends at the same finest size (fem_reference/plane/uniform_reference.py:
     three levels of the four asked for) and converges there at order 2; with three asked for it still refuses."""
@@ -214,3 +214,34 @@ def test_reference_passes_over_a_first_mesh_that_does_not_resolve_the_arc():
     assert 1.5 < ref.observed_order < 2.5
     with pytest.raises(ArcNotResolvedError):
         uniform_reference(sc, pens[:1], h0, 3)
+
+
+@pytest.mark.slow
+def test_a_fifth_reference_level_settles_the_published_pair_27():
+    """Seed 1928108429's pair 27 (clamped-outer, coupled-inner, plane strain), both penetrations: the run
+    published before this test (reports/published/fem2d-adaptive.md at b6206be) put both points outside their
+    bars, 1.79 and 1.21 times, against a four-level P1 reference uncertain by 5e-4 and 3e-4, more than the bars
+    (7.6e-5 and 1.2e-5). A fifth level (253k DOFs, which the dense contact columns used to forbid:
+    fem_reference/plane/solve.py `_delassus`) moves the reference, not the error-driven force: 1327.573 to
+    1327.386 N at 0.0127 mm, where P2 on near-uniform meshes of the thinner ring's thickness / 4, / 8, / 16 gave
+    1327.016, 1327.365, 1327.413 N (measured while writing this test). With it both points lie within their bars,
+    and the four-level reference, recomputed from the same levels, still puts them outside: the test can fail.
+    Passed at ccfc5da in 1333 s at load 3 (two benchmarks beside it): differences +1.5e-5 and -5.5e-6 against bars
+    of 8.4e-5 and 8.8e-6; with four levels -1.3e-4 and -1.2e-5."""
+    from fem_reference.plane.uniform_reference import _one
+
+    rng = np.random.default_rng(1928108429)
+    sc, pens = [draw_pair(rng, i) for i in range(28)][27]
+    assert (sc.support_hold, sc.bearing_drive, sc.plane) == ("clamped-outer", "coupled-inner", "strain")
+    checks = check_pair(sc, pens)
+    for pc in checks:
+        b, ref = pc.adaptive.bar, pc.reference
+        four = _one(ref.forces_n[:4], ref.ndofs[:4], ref.h0_m, ref.wall_s)
+        d4 = b.force_n / four.force_n - 1
+        print(f"27 {pc.penetration_m * 1e3:.4f} mm: levels {ref.forces_n} N ({ref.ndofs} DOFs) -> {ref.force_n:.4f} N "
+              f"(unc. {ref.uncertainty_rel:.1e}); error-driven {b.force_n:.4f} N, bar {b.error_rel:.2e}, difference "
+              f"{pc.difference_rel:+.2e}; four levels {four.force_n:.4f} N, difference {d4:+.2e}")
+        assert len(ref.forces_n) == 5
+        assert pc.verdict == "within"
+        assert abs(d4) > b.error_rel
+        assert ref.uncertainty_rel < four.uncertainty_rel
