@@ -81,6 +81,7 @@ MAX_COARSEN = 2.0          # ... and grows it by at most 2x
 EXPECTED_ORDER = 2.0       # force error ~ ε², ε the relative energy-norm error
 ORDER_BAND = 1.5           # asymptotic: observed order within [expected/1.5, 1.5 expected]
 SAFETY_FACTOR = 1.25       # Roache's factor for three-level estimates
+NO_ORDER_BEYOND = 100.0    # an observed order past this is no order (_order): far outside any band, below overflow
 LEVEL_RATIO = math.sqrt(2.0)   # each level's target error is the previous one's / sqrt(2): its force error / 2
 FIT_CONFIDENCE = 0.95      # the fitted limit's two-sided confidence (fitted_bar)
 EXTRA_LEVELS = 2           # levels beyond the three of Richardson's bar, for the fitted one (adaptive_point)
@@ -179,10 +180,15 @@ class ForceBar:
 
 def _order(d1: float, d2: float, r21: float, r32: float) -> float:
     """Observed order p of three levels (coarse to fine) with ratios r21 = x1/x2, r32 = x2/x3 and
-    differences d1 = F1 − F2, d2 = F2 − F3 (Celik et al. 2008, Eqs. 3-4, their level 1 the finest)."""
+    differences d1 = F1 − F2, d2 = F2 − F3 (Celik et al. 2008, Eqs. 3-4, their level 1 the finest); ``inf``
+    when no order fits them: with unequal ratios ``d1/d2 = r32^p (r21^p − 1)/(r32^p − 1)`` is at least
+    ``ln r21 / ln r32`` for every p > 0 when r21 > r32, and the fixed point then runs away (seed 1615165210's
+    generated pair 12 at 0.0463 mm: d1/d2 = 1.38 on ratios 1.73 and 1.21, an OverflowError before)."""
     s = math.copysign(1.0, d1 / d2)
     p = abs(math.log(abs(d1 / d2))) / math.log(r32)
     for _ in range(500):
+        if p > NO_ORDER_BEYOND:
+            return math.inf
         q = math.log(max(r32 ** p - s, 1e-300) / max(r21 ** p - s, 1e-300))
         new = abs(math.log(abs(d1 / d2)) + q) / math.log(r32)
         if abs(new - p) < 1e-12:
@@ -212,6 +218,10 @@ def force_bar(forces_n, x, expected_order: float = EXPECTED_ORDER, band: float =
                         f"the levels spread over {spread:.1e} of the force, which is no bound)")
     p = _order(d1, d2, r21, r32)
     extrap = f3 - d2 / (r32 ** p - 1)
+    if math.isinf(p):
+        return ForceBar(f3, math.nan, p, f3, False,
+                        f"no order fits the levels: differences {d1:.3g}, {d2:.3g} N on ratios {r21:.3g}, {r32:.3g} "
+                        "(not in their asymptotic range)")
     if not expected_order / band <= p <= expected_order * band:
         return ForceBar(f3, math.nan, p, extrap, False,
                         f"observed order {p:.2f} outside [{expected_order / band:.2f}, {expected_order * band:.2f}] "

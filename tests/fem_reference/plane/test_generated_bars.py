@@ -64,6 +64,26 @@ def test_fitted_bar_refuses_too_few_levels_or_errors_that_do_not_fall():
         fitted_bar([1.0] * 5, X5[::-1])
 
 
+def test_levels_no_order_fits_are_refused_not_an_overflow():
+    """Seed 1615165210's generated pair 12 at 0.0463 mm (bench_law_family.py's run): the last three levels' force
+    differences -0.4895 and -0.3553 N on estimate ratios 1.7304 and 1.2107. With r21 > r32 the order equation's
+    right side is at least ln r21 / ln r32 = 2.87 for every order (Celik et al. 2008, Eq. 3), above d1/d2 = 1.38:
+    no order fits, and the fixed point ran away into an OverflowError, which failed the whole pair. Now no
+    Richardson bar, with the reason; a monotone sequence with an order in the band still gets one."""
+    from fem_reference.plane.adapt import _order
+
+    d1, d2, r21, r32 = -0.4894621131243184, -0.35528679702838417, 1.73041387883024, 1.2107109023801441
+    assert math.log(r21) / math.log(r32) > d1 / d2
+    assert _order(d1, d2, r21, r32) == math.inf
+    x3 = 0.01
+    x = [x3 * r32 * r21, x3 * r32, x3]
+    f3 = 7000.0
+    bar = force_bar([f3 + d2 + d1, f3 + d2, f3], x)
+    assert not bar.given and "no order fits" in bar.reason
+    good = [f3 + 0.5 * (xi / x3) ** 2 for xi in x]             # F = F_inf + C x^2: order 2 exactly
+    assert force_bar(good, x).given and force_bar(good, x).observed_order == pytest.approx(2.0, rel=1e-9)
+
+
 def test_stated_bar_is_the_larger_of_richardson_and_the_fit_and_refused_without_a_sequence():
     """adapt._combined_bar, the bar of five error-driven levels: the larger of the last three levels' Richardson
     bar (where asymptotic) and the fitted one; the fit alone where Richardson refuses; none where the estimates rise."""
