@@ -43,6 +43,7 @@ from fem_reference.plane.adapt import adaptive_point, reference_mesh  # noqa: E4
 from fem_reference.plane.generated import MAX_REFERENCE_DOFS, check_pair, draw_pair  # noqa: E402
 from fem_reference.plane.solve import ContactModel  # noqa: E402
 from fem_reference.plane.sweep import Levels, reference_point  # noqa: E402
+from reports.cli._edge import in_file, out_file  # noqa: E402
 
 PAIR = ROOT / "tests" / "fem_reference" / "ring_scenes" / "cast-iron-lower-half.toml"
 PENETRATIONS_MM = (0.003, 0.005, 0.01, 0.02, 0.03)
@@ -224,8 +225,8 @@ def main() -> int:
     ap.add_argument("--seed", type=int, default=None)
     ap.add_argument("--skip-cast-iron", action="store_true", help="generated pairs only (a trial run)")
     ap.add_argument("--jobs", type=int, default=1, help="worker processes for the generated pairs (same results)")
-    ap.add_argument("--out", type=Path, default=OUT, help="the report's path")
-    ap.add_argument("--cast-iron-from", type=Path, default=None,
+    ap.add_argument("--out", type=out_file, default=OUT, help="the report's path (checked writable before the run)")
+    ap.add_argument("--cast-iron-from", type=in_file, default=None,
                     help="copy the cast-iron section from this earlier report instead of recomputing it")
     args = ap.parse_args()
     if args.pairs < 0:

@@ -52,6 +52,7 @@ from contact.dataset import read_dataset  # noqa: E402
 from contact.files import atomic_write_text  # noqa: E402
 from contact.loose_support import point_force_jacobian  # noqa: E402
 from contact.units import ARCMIN, MM  # noqa: E402
+from reports.cli._edge import out_dir  # noqa: E402
 
 #: a generated pair's training penetrations: contact.calibrate.spline.MAX_KNOTS, so that each is a knot of the flexible
 #: family (with more, some are dropped as knots and the gaps double where they are)
@@ -356,7 +357,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--points", type=int, default=20000)
     ap.add_argument("--repeats", type=int, default=9)
-    ap.add_argument("--out", type=Path, default=ROOT / "reports" / "published")
+    ap.add_argument("--out", type=out_dir, default=ROOT / "reports" / "published",
+                    help="the report's directory (checked writable before the run)")
     ap.add_argument("--pairs-only", action="store_true",
                     help="the generated pairs alone, replacing their section of <out>/law-family.md")
     args = ap.parse_args(argv)
