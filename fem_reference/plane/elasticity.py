@@ -17,6 +17,7 @@ from skfem.helpers import ddot, dot, sym_grad, trace
 
 from contact.errors import InputError
 from fem_reference.plane.mesh import BEARING, SUPPORT, RingMesh, facets_on_circle
+from fem_reference.plane.ordering import nested_dissection
 
 
 @BilinearForm
@@ -114,9 +115,14 @@ class ElasticSystem:
     lu: object              # scipy SuperLU of the (bordered) free-DOF matrix
     Q: np.ndarray | None = None   # (n, m) constraint columns or None
     q_scale: float = 1.0          # the bordered rows hold Q·q_scale
+    order: np.ndarray | None = None   # the factor's elimination order of the bordered unknowns (None: SuperLU's)
 
     @classmethod
-    def build(cls, K: sp.csr_matrix, dirichlet: np.ndarray, Q: np.ndarray | None = None) -> "ElasticSystem":
+    def build(cls, K: sp.csr_matrix, dirichlet: np.ndarray, Q: np.ndarray | None = None,
+              points: np.ndarray | None = None) -> "ElasticSystem":
+        """Condense and factorise. ``points`` (2, n): every DOF's coordinates [m]; given, the factor is ordered
+        by :func:`fem_reference.plane.ordering.nested_dissection` (the fine reference levels), else by
+        SuperLU's minimum degree."""
         dirichlet = np.unique(np.asarray(dirichlet, dtype=np.int64))
         free = np.setdiff1d(np.arange(K.shape[0]), dirichlet)
         Kff = K[free][:, free]
@@ -126,9 +132,16 @@ class ElasticSystem:
             scale = float(np.mean(np.abs(Kff.diagonal())) / np.abs(np.asarray(Q)[free]).max())
             Qf = sp.csr_matrix(np.asarray(Q)[free] * scale)
             m = Qf.shape[1]
-            Kff = sp.bmat([[Kff, Qf], [Qf.T, sp.csr_matrix((m, m))]])
-        # symmetric ordering: half the fill of COLAMD on the plate scene (measured, 58k DOFs)
-        lu = spla.splu(Kff.tocsc(), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+            Kff = sp.bmat([[Kff, Qf], [Qf.T, sp.csr_matrix((m, m))]]).tocsr()
+        order = None
+        if points is None:
+            # symmetric ordering: half the fill of COLAMD on the plate scene (measured, 58k DOFs)
+            lu = spla.splu(Kff.tocsc(), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+        else:
+            nf = len(free)
+            order = np.concatenate([nested_dissection(Kff[:nf, :nf], np.asarray(points)[:, free]),
+                                    np.arange(nf, Kff.shape[0])])
+            lu = spla.splu(Kff.tocsr()[order][:, order].tocsc(), permc_spec="NATURAL", options={"SymmetricMode": True})
         diag = lu.U.diagonal()
         if not np.all(np.isfinite(diag)) or np.min(np.abs(diag)) < 1e-12 * np.max(np.abs(diag)):
             from contact.errors import ConvergenceError
@@ -136,7 +149,7 @@ class ElasticSystem:
             raise ConvergenceError("elastic stiffness is singular (a body is not held: check the "
                                    "boundary-condition scene)")
         return cls(K=K, dirichlet=dirichlet, free=free, lu=lu, Q=None if Q is None else np.asarray(Q),
-                   q_scale=scale)
+                   q_scale=scale, order=order)
 
     @property
     def ndofs(self) -> int:
@@ -151,7 +164,11 @@ class ElasticSystem:
         m = self.n_constraints
         if m:
             b = np.concatenate([b, np.zeros(m) if c is None else np.asarray(c, dtype=float) * self.q_scale])
-        return self.lu.solve(np.ascontiguousarray(b))[: len(self.free)]
+        if self.order is None:
+            return self.lu.solve(np.ascontiguousarray(b))[: len(self.free)]
+        x = np.empty(len(b))
+        x[self.order] = self.lu.solve(np.ascontiguousarray(b[self.order]))
+        return x[: len(self.free)]
 
     def solve(self, rhs: np.ndarray, u_dirichlet: np.ndarray | None = None,
               c: np.ndarray | None = None) -> np.ndarray:

@@ -92,12 +92,9 @@ def check_pair(scene: Scene, penetrations_m, *, reference_levels: int = 4, max_r
     """
     h0 = thinner_thickness_m(scene) / reference_h0_per_thickness
     adaptive = [adaptive_point(scene, dr, n_levels=adaptive_levels, extra_levels=extra_levels) for dr in penetrations_m]
-    levels = reference_levels
-    refs = uniform_reference(scene, penetrations_m, h0, levels)
-    while (levels < max_reference_levels and 4 * refs[0].ndofs[-1] <= MAX_REFERENCE_DOFS
-           and any(a.bar.given and r.uncertainty_rel > a.bar.error_rel / 2 for a, r in zip(adaptive, refs))):
-        levels += 1
-        refs = uniform_reference(scene, penetrations_m, h0, levels)
+    refs = uniform_reference(
+        scene, penetrations_m, h0, reference_levels, max_levels=max_reference_levels, max_dofs=MAX_REFERENCE_DOFS,
+        more=lambda refs: any(a.bar.given and r.uncertainty_rel > a.bar.error_rel / 2 for a, r in zip(adaptive, refs)))
     out = []
     for dr, ref, a in zip(penetrations_m, refs, adaptive):
         diff = a.bar.force_n / ref.force_n - 1.0

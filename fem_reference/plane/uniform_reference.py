@@ -21,6 +21,7 @@ import time
 from dataclasses import dataclass
 
 from contact.errors import InputError
+from fem_reference.plane.active_set import solve_active_set
 from fem_reference.plane.adapt import reference_mesh
 from fem_reference.plane.contact_solver import ArcNotResolvedError
 from fem_reference.plane.mesh import refined_uniformly
@@ -65,9 +66,19 @@ def _richardson(coarse: float, fine: float) -> float:
     return fine + (fine - coarse) / (2.0 ** P1_ORDER - 1.0)
 
 
-def uniform_reference(scene: Scene, penetrations_m, h0_m: float, n_levels: int = 4) -> tuple[UniformReference, ...]:
+def uniform_reference(scene: Scene, penetrations_m, h0_m: float, n_levels: int = 4, *, more=None,
+                      max_levels: int | None = None, max_dofs: int | None = None) -> tuple[UniformReference, ...]:
     """The P1 references of the penetrations [m] from a first mesh of size ``h0_m`` [m] and ``n_levels − 1``
     nested refinements (module docstring), one per penetration (each level's model is built once).
+
+    ``more``: given the references so far, whether to add a level; levels are added while it says so, up to
+    ``max_levels`` and while the next level (four times the last one's DOFs) stays within ``max_dofs``. No level
+    is solved twice.
+
+    Each level is factorised in a nested-dissection order and each point solved by the active-set method on
+    the sparse system (:func:`fem_reference.plane.active_set.solve_active_set`), its first set the coarser level's
+    contact arc: the same discrete solution as :meth:`ContactModel.solve`, at a 465k-DOF level in 44 s instead of
+    about 10 min.
 
     A first mesh too coarse to resolve a penetration's contact arc (the solver's ArcNotResolvedError) is
     passed over while three levels or more remain: the levels start one refinement finer and end at the same
@@ -86,24 +97,38 @@ def uniform_reference(scene: Scene, penetrations_m, h0_m: float, n_levels: int =
     t0 = time.perf_counter()
     pens = [float(d) for d in penetrations_m]
     rmesh = reference_mesh(scene, h0_m, order=1)
-    forces, dofs = [], []
+    forces, dofs, edges = [], [], [None] * len(pens)
     skipped = 0
-    while len(forces) + skipped < n_levels:
+
+    def done() -> bool:
+        if len(forces) + skipped < n_levels:
+            return False
+        if more is None or (max_levels is not None and len(forces) + skipped >= max_levels):
+            return True
+        if max_dofs is not None and 4 * dofs[-1] > max_dofs:
+            return True
+        return not more(_results(forces, dofs, h0_m / 2 ** skipped, time.perf_counter() - t0))
+
+    while not done():
         if forces or skipped:
             rmesh = refined_uniformly(rmesh)
-        model = ContactModel.from_mesh(scene, rmesh)
+        model = ContactModel.from_mesh(scene, rmesh, nested_dissection=True)
         try:
-            forces.append([model.solve(d).force_n for d in pens])
+            sols = [solve_active_set(model, d, edge_phi_rad=e) for d, e in zip(pens, edges)]
         except ArcNotResolvedError:
             if forces or n_levels - skipped - 1 < 3:
                 raise
             skipped += 1          # the arc not resolved at this size: the levels start one refinement finer
             continue
+        forces.append([sol.force_n for sol in sols])
+        edges = [sol.half_angle_rad for sol in sols]
         dofs.append(model.ndofs)
         del model
-    wall = time.perf_counter() - t0
-    h_first = h0_m / 2 ** skipped
-    return tuple(_one(tuple(row[j] for row in forces), tuple(dofs), h_first, wall) for j in range(len(pens)))
+    return _results(forces, dofs, h0_m / 2 ** skipped, time.perf_counter() - t0)
+
+
+def _results(forces: list, dofs: list, h_first: float, wall: float) -> tuple[UniformReference, ...]:
+    return tuple(_one(tuple(row[j] for row in forces), tuple(dofs), h_first, wall) for j in range(len(forces[0])))
 
 
 def _one(forces: tuple, dofs: tuple, h0_m: float, wall_s: float) -> UniformReference:
