@@ -40,7 +40,7 @@ sys.path.insert(0, str(ROOT))
 from contact.files import atomic_write_text  # noqa: E402
 from fem_reference import ring_scene  # noqa: E402
 from fem_reference.plane.adapt import adaptive_point, reference_mesh  # noqa: E402
-from fem_reference.plane.generated import MAX_REFERENCE_DOFS, check_pair, draw_pair  # noqa: E402
+from fem_reference.plane.generated import MAX_REFERENCE_DOFS, MAX_REFERENCE_LEVELS, check_pair, draw_pair  # noqa: E402
 from fem_reference.plane.solve import ContactModel  # noqa: E402
 from fem_reference.plane.sweep import Levels, reference_point  # noqa: E402
 from reports.cli._edge import in_file, out_file  # noqa: E402
@@ -196,8 +196,9 @@ def part2(lines, n_pairs, seed, jobs=1):
         "thickness 0.6-2.5, moduli ratio 0.3-3, clearance 0.01-0.06 mm) and two penetrations, 0.2-0.7 and 0.7-2 "
         "clearances. Reference: linear triangles (P1, another element than the error-driven P2) on a first "
         "mesh at the thinner ring's thickness / 2 (graded a priori at any clamp end) and three nested uniform "
-        f"refinements (a fourth, up to {MAX_REFERENCE_DOFS // 1000}k DOFs, where the reference's uncertainty exceeds "
-        "half the bar it checks), "
+        f"refinements (more, up to {MAX_REFERENCE_LEVELS} levels and {MAX_REFERENCE_DOFS // 1000}k DOFs, while the "
+        "reference's uncertainty exceeds half the bar it checks; each level solved by the active-set method on the "
+        "sparse system, fem_reference/plane/active_set.py), "
         "the finest two "
         "extrapolated at order 2 (fem_reference/plane/uniform_reference.py); "
         "'ref. unc.' is the distance of that extrapolation from the one a level coarser, 'ref. order' the "

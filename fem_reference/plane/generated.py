@@ -25,7 +25,8 @@ from fem_reference.scenes import BEARING_DRIVES, SUPPORT_HOLDS, Scene
 
 HOLDS_2D = tuple(h for h in SUPPORT_HOLDS if "axially" not in h)
 DRIVES_2D = tuple(d for d in BEARING_DRIVES if "axially" not in d)
-MAX_REFERENCE_DOFS = 400_000        # no further reference level past this many DOFs (its time: below)
+MAX_REFERENCE_DOFS = 800_000        # no further reference level past this many DOFs (its memory: check_pair)
+MAX_REFERENCE_LEVELS = 6             # the reference's levels at most
 REFERENCE_H0_PER_THICKNESS = 2.0     # the reference's first mesh: the thinner ring's thickness / 2
 
 
@@ -78,17 +79,19 @@ class PointCheck:
     verdict: str
 
 
-def check_pair(scene: Scene, penetrations_m, *, reference_levels: int = 4, max_reference_levels: int = 5,
+def check_pair(scene: Scene, penetrations_m, *, reference_levels: int = 4,
+               max_reference_levels: int = MAX_REFERENCE_LEVELS,
                reference_h0_per_thickness: float = REFERENCE_H0_PER_THICKNESS, adaptive_levels: int = 3,
                extra_levels: int = 2) -> tuple[PointCheck, ...]:
     """Each penetration [m] of ``scene``: error-driven force and bar against the reference (module docstring).
 
     ``reference_levels``: the reference's levels (the first at the thinner ring's thickness /
-    ``reference_h0_per_thickness``, each refinement halving it), one more (up to ``max_reference_levels``,
-    and while it stays within ``MAX_REFERENCE_DOFS``: seed 1928108429's pair 27, its fifth level of 253k DOFs took
-    272 s on one idle core for both penetrations, the contact columns' back-substitutions) while a reference's
-    own uncertainty exceeds half the bar it checks; ``adaptive_levels`` and ``extra_levels``: as :func:`adaptive_point`'s
-    ``n_levels`` and ``extra_levels``.
+    ``reference_h0_per_thickness``, each refinement halving it); more (up to ``max_reference_levels``) while a
+    reference's own uncertainty exceeds half the bar it checks and the next level stays within
+    ``MAX_REFERENCE_DOFS``: a level's memory, not its time, is the limit (seed 627535865's pair 18: its fifth
+    level, 468k DOFs, took 59 s for both penetrations and 4.8 GB; its sixth, 1.87M DOFs, passed 11.6 GB while
+    being built, and two benchmark workers share the machine). ``adaptive_levels`` and ``extra_levels``: as
+    :func:`adaptive_point`'s ``n_levels`` and ``extra_levels``.
     """
     h0 = thinner_thickness_m(scene) / reference_h0_per_thickness
     adaptive = [adaptive_point(scene, dr, n_levels=adaptive_levels, extra_levels=extra_levels) for dr in penetrations_m]
