@@ -150,6 +150,9 @@ def _checked(pairs, jobs):
         yield from pool.map(_check, *zip(*pairs))
 
 
+COPY_NOTE = "(This section is copied from "
+
+
 def kept_part1(lines, report: Path) -> str | None:
     """The cast-iron section of an earlier report, copied verbatim (``--cast-iron-from``), or why not."""
     try:
@@ -161,9 +164,13 @@ def kept_part1(lines, report: Path) -> str | None:
     if start < 0:
         return f"--cast-iron-from {report}: no section '{head}' in it"
     end = text.find("\n## ", start + len(head))
-    section = text[start:end if end >= 0 else len(text)].rstrip().splitlines()
-    lines += [*section, "", f"(This section is copied from {report.name} as it was before this run, not recomputed: "
-              "`--cast-iron-from`; the error-driven levels and the P2 reference it used are unchanged since.)", ""]
+    section = [ln for ln in text[start:end if end >= 0 else len(text)].rstrip().splitlines()
+               if not ln.startswith(COPY_NOTE)]                     # an earlier copy's note: said once, below
+    while section and not section[-1].strip():
+        section.pop()
+    lines += [*section, "", f"{COPY_NOTE}{report.name} as it was before this run, not recomputed: "
+              "`--cast-iron-from`; the error-driven levels and the P2 reference it used are unchanged in their "
+              "results since.)", ""]
     return None
 
 
