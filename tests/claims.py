@@ -703,7 +703,7 @@ _GENERATED_SAMPLE = ("one benchmark sample of generated ring pairs, drawn with a
                      "report); no test draws all 30, so the count is not reproduced by the suite (the slow tests of "
                      "tests/fem_reference/plane/test_generated_bars.py re-solve pairs of the seed published before, "
                      "2988782516: the first three, and 20, 22 and 29, whose misses the bulk-refined levels fixed; and 1928108429's "
-                     "pair 27, whose misses a fifth reference level settled)")
+                     "pair 27 and 627535865's pair 18, whose misses a fifth reference level settled)")
 UNGUARDED = (
     dict(report="reports/published/law-tilt-correction.md",
          claim="Largest ratio of the tilt-corrected law to today's foundation law: 1.85 (target: at most 2).",
@@ -715,10 +715,10 @@ UNGUARDED = (
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 256 | 0.316 | 0.255 | 1.24× |", reason=_LADDER_TIME),
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 12000 | 2240 | 0.364 | 0.313 | 1.16× |", reason=_LADDER_TIME),
     dict(report="reports/published/fem2d-adaptive.md",
-         claim='Points: 60 (30 pairs); with a bar: 60 (100%); outside their bar: 5 of 60 (8.3%); refused (no bar): 0.',
+         claim='Points: 60 (30 pairs); with a bar: 60 (100%); outside their bar: 1 of 60 (1.7%); refused (no bar): 0.',
          reason=_GENERATED_SAMPLE),
     dict(report="reports/published/fem2d-adaptive.md",
-         claim='References whose own uncertainty exceeds half the bar they check: 42 of 60;',
+         claim='References whose own uncertainty exceeds half the bar they check: 19 of 60;',
          reason=_GENERATED_SAMPLE),
     dict(report="reports/published/fem2d-adaptive.md",
          claim="points outside their bar plus the reference's own uncertainty: 0 of 60.",
