@@ -2,17 +2,11 @@
 once that it is a copy, however many runs copied it before (the report of seed 1914227559 said it twice)."""
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parents[2]
+from benchmark_modules import benchmark_module
 
 
 def _bench():
-    spec = importlib.util.spec_from_file_location("bench_fem2d_adaptive", ROOT / "benchmarks" / "bench_fem2d_adaptive.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return benchmark_module("bench_fem2d_adaptive")
 
 
 def test_a_copied_section_says_once_that_it_is_a_copy(tmp_path):

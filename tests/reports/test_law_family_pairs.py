@@ -5,20 +5,13 @@ The slow test re-solves the pair of the run published before this design whose f
 bound (seed 1141075062's pair 14), by the benchmark's own function."""
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 import pytest
-
-ROOT = Path(__file__).resolve().parents[2]
+from benchmark_modules import benchmark_module
 
 
 def _bench():
-    spec = importlib.util.spec_from_file_location("bench_law_family", ROOT / "benchmarks" / "bench_law_family.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return benchmark_module("bench_law_family")
 
 
 def test_training_grid_holds_the_ends_and_every_point_is_a_knot():
