@@ -1,6 +1,6 @@
 """reports/published/law-tilt-correction.md (benchmarks/bench_tilt_correction.py): its held-out tables and verdicts,
-recomputed from the committed grids and run folders by the benchmark's own functions (its kernel times are wall times
-and are not asserted)."""
+the smoothing's cross-validation and why it has one weight per direction, recomputed from the committed grids and run
+folders by the benchmark's own functions (its kernel times are wall times and are not asserted)."""
 from __future__ import annotations
 
 import importlib.util
@@ -33,4 +33,10 @@ def test_held_out_tables_are_the_published_ones():
         assert law_file.read_text(encoding="utf-8") == fitted["law"].to_json()      # the committed law is this fit
     for miss in bench.misses(rings):
         assert miss in md, miss
+    # why one smoothing weight per direction: the one-weight law's misses with each weight swept, and the two rules'
+    # nested cross-validation on the training points alone
+    direction = [line for line in bench.direction_lines(rings) if line.strip()]
+    assert any(line.startswith("  - ") for line in direction)           # the one-weight rule misses a point here
+    for line in direction:
+        assert line in md, line
     assert all(line in md for line in bench.slice_error_lines("newcomer-20mm", bench.PUBLISHED) if line.startswith("|"))
