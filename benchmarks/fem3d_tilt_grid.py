@@ -36,12 +36,12 @@ def _floats(text: str) -> list[float]:
     return [float(v) for v in text.split(",") if v.strip()]
 
 
-def solve(ring: str, tilts_rad: list[float], penetrations_m: list[float], have: list[dict], log=print) -> list[dict]:
-    """The points of the grid not in ``have`` (keyed by penetration and tilt to 1e-12 m / rad), solved in order."""
+def level_paths(ring: str) -> tuple[object, list[str], str]:
+    """The ring-pair file loaded, its three 3D levels' and its check level's compliance files in the 3D cache; exits
+    naming the missing ones (this script never builds a level)."""
     from fem_reference import ring_scene
     from fem_reference.solid import sweep as solid
     from fem_reference.solid.mesh import CHECK_LEVEL, DEFAULT_LEVELS
-    from fem_reference.solid.richardson import apply_orders
 
     rs = ring_scene.load(ring)
     geom, scene = rs.rings_3d(), rs.bc_3d
@@ -51,21 +51,35 @@ def solve(ring: str, tilts_rad: list[float], penetrations_m: list[float], have: 
     missing = [p for p in paths + [check] if not Path(p).exists()]
     if missing:
         raise SystemExit(f"not in the 3D cache: {missing}; run `ringcontact bearing` on the ring with tilt first")
-    done = {(round(p["penetration_m"] * 1e12), round(p["tilt_rad"] * 1e12)) for p in have}
-    out = list(have)
-    for t in tilts_rad:
-        for pen in penetrations_m:
-            if (round(pen * 1e12), round(t * 1e12)) in done:
-                continue
-            t0 = time.perf_counter()
-            _, info = solid.point_task(paths, pen, t, check)
-            row = apply_orders(solid._row(info), ORDERS)
-            row = {k: v for k, v in row.items() if k not in DROPPED}
-            row["scene"] = rs.name
-            out.append(row)
-            log(f"{pen * 1e6:.4g} um {t / ARCMIN:g}': F {row['force_n']:.2f} N M {row['moment_nm']:.4g} N m "
-                f"({time.perf_counter() - t0:.1f} s)")
+    return rs, paths, check
+
+
+def solve_points(ring: str, pairs: list[tuple[float, float]], log=print) -> list[dict]:
+    """The points ``(mid-plane penetration (m), tilt (rad))`` solved in order on the cached levels, as dataset rows
+    (error estimates with :data:`ORDERS`, pressure maps left out)."""
+    from fem_reference.solid import sweep as solid
+    from fem_reference.solid.richardson import apply_orders
+
+    rs, paths, check = level_paths(ring)
+    out = []
+    for pen, t in pairs:
+        t0 = time.perf_counter()
+        _, info = solid.point_task(paths, pen, t, check)
+        row = apply_orders(solid._row(info), ORDERS)
+        row = {k: v for k, v in row.items() if k not in DROPPED}
+        row["scene"] = rs.name
+        out.append(row)
+        log(f"{pen * 1e6:.4g} um {t / ARCMIN:g}': F {row['force_n']:.2f} N M {row['moment_nm']:.4g} N m "
+            f"({time.perf_counter() - t0:.1f} s)")
     return out
+
+
+def solve(ring: str, tilts_rad: list[float], penetrations_m: list[float], have: list[dict], log=print) -> list[dict]:
+    """The points of the grid not in ``have`` (keyed by penetration and tilt to 1e-12 m / rad), solved in order."""
+    done = {(round(p["penetration_m"] * 1e12), round(p["tilt_rad"] * 1e12)) for p in have}
+    pairs = [(pen, t) for t in tilts_rad for pen in penetrations_m
+             if (round(pen * 1e12), round(t * 1e12)) not in done]
+    return list(have) + solve_points(ring, pairs, log)
 
 
 def main(argv: list[str] | None = None) -> int:

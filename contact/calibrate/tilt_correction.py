@@ -33,10 +33,14 @@ on ``n`` intervals in ξ and ``m`` in ψ, its coefficients mirrored at the four 
   in θ and zero at θ = 0 because ``M_slices`` is.
 
 The coefficients are a penalised weighted least-squares fit (P-splines, Eilers & Marx 1996: second differences of
-the coefficients in both directions, weight :data:`SMOOTHING`) of ``ln(F_FEM / F_slices)`` and
-``ln(M_FEM / M_slices)`` at the 3D tilted points, each point weighted by 1/its accuracy bound (2x its stated FEM
-error + 0.2 %). The compiled kernel evaluates the same surfaces with their exact derivatives
-(``contact._kernel_tilt``); this module is the fit and the readable numpy form the tests compare it with.
+the coefficients along ξ and along ψ, each direction with its own weight, as tensor-product P-splines have (Eilers &
+Marx 2003; Wood 2006): default :data:`SMOOTHING` in both) of ``ln(F_FEM / F_slices)`` and ``ln(M_FEM / M_slices)`` at
+the 3D tilted points, each point weighted by 1/its accuracy bound (2x its stated FEM error + 0.2 %). One weight per
+direction because the surfaces are not alike along them: along ψ the moment's correction rises sharply where the
+slices' patch turns partial (``φ`` ≈ π/4), along ξ (``ln r``) it changes slowly; a weight shared by both smooths the
+rise away (the 20 mm ring, reports/published/law-tilt-correction.md). The compiled kernel evaluates the same
+surfaces with their exact derivatives (``contact._kernel_tilt``); this module is the fit and the readable numpy form
+the tests compare it with.
 """
 from __future__ import annotations
 
@@ -53,7 +57,7 @@ MAX_XI_INTERVALS = TILT_XI_INTERVALS
 MAX_PSI_INTERVALS = TILT_PSI_INTERVALS
 #: the kernel's slots of a correction (contact._kernel_tilt)
 N_KERNEL_SLOTS = N_TILT_SLOTS
-#: weight of the second-difference penalty relative to the weighted squared residuals
+#: weight of the second-difference penalty relative to the weighted squared residuals (both directions)
 SMOOTHING = 1e-3
 
 
@@ -174,26 +178,39 @@ def check_parameters(params: dict) -> str | None:
     return None
 
 
-def _penalty(n: int, m: int) -> np.ndarray:
-    """Second differences of the (n+1, m+1) coefficients along both directions, squared (Eilers & Marx 1996)."""
+def _penalty(n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Second differences of the (n+1, m+1) coefficients along ξ and along ψ, squared (Eilers & Marx 1996): the two
+    penalty matrices ((n+1)(m+1) square each), in that order."""
     def d2(k):
         return np.diff(np.eye(k + 1), 2, axis=0) if k >= 2 else np.zeros((0, k + 1))
     dx, dp = d2(n), d2(m)
-    return np.kron(dx.T @ dx, np.eye(m + 1)) + np.kron(np.eye(n + 1), dp.T @ dp)
+    return np.kron(dx.T @ dx, np.eye(m + 1)), np.kron(np.eye(n + 1), dp.T @ dp)
 
 
-def _solve(X: np.ndarray, y: np.ndarray, w: np.ndarray, P: np.ndarray, N: np.ndarray, smoothing: float) -> np.ndarray:
-    """Coefficients ``N z`` minimising ``Σ (w (X N z − y))² + smoothing · tr-scaled zᵀ Nᵀ P N z``."""
+def smoothing_pair(smoothing) -> tuple[float, float]:
+    """``(along ξ, along ψ)`` (–) of a smoothing given as one weight (both directions) or as that pair."""
+    pair = (smoothing, smoothing) if np.isscalar(smoothing) else tuple(smoothing)
+    if len(pair) != 2 or not all(isinstance(v, (int, float, np.floating)) and math.isfinite(v) and v >= 0
+                                 for v in pair):
+        raise InputError(f"smoothing = {smoothing!r}: must be a weight >= 0 or a pair (along ξ, along ψ) of them")
+    return float(pair[0]), float(pair[1])
+
+
+def _solve(X: np.ndarray, y: np.ndarray, w: np.ndarray, P: tuple, N: np.ndarray, smoothing: tuple) -> np.ndarray:
+    """Coefficients ``N z`` minimising ``Σ (w (X N z − y))² + tr-scaled zᵀ Nᵀ (s_ξ P_ξ + s_ψ P_ψ) N z``, the scale
+    the trace of the normal matrix over that of the unweighted ``Nᵀ (P_ξ + P_ψ) N``."""
     A = X @ N * w[:, None]
     lhs = A.T @ A
-    scale = np.trace(lhs) / max(np.trace(N.T @ P @ N), 1e-300)
-    z = np.linalg.solve(lhs + smoothing * scale * (N.T @ P @ N) + 1e-14 * scale * np.eye(N.shape[1]), A.T @ (w * y))
+    px, pp = (N.T @ p @ N for p in P)
+    scale = np.trace(lhs) / max(np.trace(px + pp), 1e-300)
+    pen = smoothing[0] * px + smoothing[1] * pp
+    z = np.linalg.solve(lhs + scale * pen + 1e-14 * scale * np.eye(N.shape[1]), A.T @ (w * y))
     return N @ z
 
 
 def fit(pen_edge_m, tilt_rad, width_m: float, force_log_ratio, moment_log_ratio, bound_force, bound_moment, *,
         intervals: tuple[int, int] = (MAX_XI_INTERVALS, MAX_PSI_INTERVALS), log_r_range: tuple | None = None,
-        smoothing: float = SMOOTHING) -> TiltCorrection:
+        smoothing: float | tuple[float, float] = SMOOTHING) -> TiltCorrection:
     """The correction fitted to tilted points (t > 0, Δr_e > 0).
 
     Parameters
@@ -210,8 +227,12 @@ def fit(pen_edge_m, tilt_rad, width_m: float, force_log_ratio, moment_log_ratio,
         B-spline intervals in ξ and ψ (the kernel evaluates only the default, the largest).
     log_r_range : (float, float), optional
         ``ln r`` (r in m) at ξ = 0 and 1; default the points' range.
+    smoothing : float or (float, float)
+        Weight (–) of the second-difference penalty along ξ and along ψ (one number: both), relative to the
+        weighted squared residuals.
     """
     n, m = intervals
+    weights = smoothing_pair(smoothing)
     if not (1 <= n <= MAX_XI_INTERVALS and 1 <= m <= MAX_PSI_INTERVALS):
         raise InputError(f"intervals = {intervals}: must be within (1..{MAX_XI_INTERVALS}, 1..{MAX_PSI_INTERVALS})")
     pe, t = np.asarray(pen_edge_m, dtype=float), np.asarray(tilt_rad, dtype=float)
@@ -231,8 +252,8 @@ def fit(pen_edge_m, tilt_rad, width_m: float, force_log_ratio, moment_log_ratio,
             nf[i * (m + 1) + j, col] = 1.0
             if j == 1:
                 nf[i * (m + 1), col] = -0.5
-    cf = _solve(X, np.asarray(force_log_ratio, float), 1 / np.asarray(bound_force, float), P, nf, smoothing)
+    cf = _solve(X, np.asarray(force_log_ratio, float), 1 / np.asarray(bound_force, float), P, nf, weights)
     cm = _solve(X, np.asarray(moment_log_ratio, float), 1 / np.asarray(bound_moment, float), P,
-                np.eye(shape[0] * shape[1]), smoothing)
+                np.eye(shape[0] * shape[1]), weights)
     return TiltCorrection(lo, hi, cf.reshape(shape), cm.reshape(shape))
 

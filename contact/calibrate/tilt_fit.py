@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import dataclasses
+import itertools
 
 import numpy as np
 
@@ -34,13 +35,21 @@ def log_ratios(law, points: list[dict]) -> dict:
             + ACCURACY_ADD_REL}
 
 
-#: penalty weights the smoothing is chosen from, by cross-validation on the fitted points only
+#: penalty weights the smoothing is chosen from, along ξ and along ψ independently (every pair of them), by
+#: cross-validation on the fitted points only
 SMOOTHING_GRID = (1e-4, 1e-3, 1e-2, 1e-1)
 #: folds of that cross-validation (points sorted by tilt, then penetration; point i in fold i mod FOLDS)
 FOLDS = 5
 
 
-def _fit(law, data: dict, idx: np.ndarray, smoothing: float) -> tilt_correction.TiltCorrection:
+def smoothing_label(smoothing) -> str:
+    """A smoothing (one weight, or the pair along ξ and along ψ) as the reports and the fit record write it: one
+    number when both directions have it, else ``"<along ξ>/<along ψ>"``."""
+    sx, sp = tilt_correction.smoothing_pair(smoothing)
+    return f"{sx:g}" if sx == sp else f"{sx:g}/{sp:g}"
+
+
+def _fit(law, data: dict, idx: np.ndarray, smoothing) -> tilt_correction.TiltCorrection:
     g = law.geometry
     lo = float(np.log(law.validity_penetration_m[0]))
     hi = float(np.log(np.hypot(law.validity_penetration_m[1], 0.5 * g.width_m * max(
@@ -50,16 +59,19 @@ def _fit(law, data: dict, idx: np.ndarray, smoothing: float) -> tilt_correction.
                                log_r_range=(lo, hi), smoothing=smoothing)
 
 
-def choose_smoothing(law, data: dict) -> tuple[float, dict]:
-    """The smoothing of :data:`SMOOTHING_GRID` whose :data:`FOLDS`-fold cross-validation on ``data`` (the fitted
-    points, :func:`log_ratios`) gives the smallest worst held-out error over its bound, force and moment; and that
-    worst ratio per candidate."""
+def choose_smoothing(law, data: dict) -> tuple[tuple[float, float], dict]:
+    """The smoothing, a pair (along ξ, along ψ) of :data:`SMOOTHING_GRID`'s weights, whose :data:`FOLDS`-fold
+    cross-validation on ``data`` (the fitted points, :func:`log_ratios`) gives the smallest worst held-out error over
+    its bound, force and moment; and that worst ratio per candidate (keyed by :func:`smoothing_label`). On a tie the
+    first candidate in the grid's order (the same weight in both directions first) wins."""
     n = data["tilt_rad"].size
     order = np.lexsort((data["pen_edge_m"], data["tilt_rad"]))
     fold = np.empty(n, dtype=int)
     fold[order] = np.arange(n) % FOLDS
+    pairs = [(s, s) for s in SMOOTHING_GRID]
+    pairs += [p for p in itertools.product(SMOOTHING_GRID, SMOOTHING_GRID) if p[0] != p[1]]
     worst = {}
-    for s in SMOOTHING_GRID:
+    for s in pairs:
         w = 0.0
         for k in range(FOLDS):
             c = _fit(law, data, np.flatnonzero(fold != k), s)
@@ -68,13 +80,16 @@ def choose_smoothing(law, data: dict) -> tuple[float, dict]:
             w = max(w, float(np.max(np.abs(np.expm1(a - data["force"][test])) / data["bound_force"][test])),
                     float(np.max(np.abs(np.expm1(b - data["moment"][test])) / data["bound_moment"][test])))
         worst[s] = w
-    return min(worst, key=worst.get), worst
+    best = min(worst, key=worst.get)
+    return best, {smoothing_label(k): v for k, v in worst.items()}
 
 
-def with_tilt_correction(law, points: list[dict], *, smoothing: float | None = None, source: str = ""):
+def with_tilt_correction(law, points: list[dict], *, smoothing=None, source: str = ""):
     """``law`` (family foundation or foundation-spline) with a tilt correction fitted to ``points`` (3D tilted FEM
-    points, dataset rows; mid-plane penetrations > 0), the smoothing chosen by :func:`choose_smoothing` unless given.
-    The law's name gets ``-tilt``; its ``fit`` records what the correction was fitted to (``tilt_correction``)."""
+    points, dataset rows; mid-plane penetrations > 0), the smoothing (one weight, or the pair along ξ and along ψ)
+    chosen by :func:`choose_smoothing` unless given. The law's name gets ``-tilt``; its ``fit`` records what the
+    correction was fitted to (``tilt_correction``; its ``smoothing`` the pair along ξ and along ψ, its
+    cross-validation keyed by :func:`smoothing_label`)."""
     plain = dataclasses.replace(law, parameters={k: v for k, v in law.parameters.items() if not k.startswith("tilt_")})
     data = log_ratios(plain, points)
     cv = None
@@ -82,8 +97,9 @@ def with_tilt_correction(law, points: list[dict], *, smoothing: float | None = N
         smoothing, cv = choose_smoothing(plain, data)
     c = _fit(plain, data, np.arange(data["tilt_rad"].size), smoothing)
     tilt_max = max(law.validity_tilt_max_rad, float(data["tilt_rad"].max()))
-    info = {"points": int(data["tilt_rad"].size), "source": source, "smoothing": smoothing,
-            "cross_validation_worst_error_over_bound": None if cv is None else {f"{k:g}": v for k, v in cv.items()},
+    pair = tilt_correction.smoothing_pair(smoothing)
+    info = {"points": int(data["tilt_rad"].size), "source": source, "smoothing": list(pair),
+            "cross_validation_worst_error_over_bound": cv,
             "surfaces": "tensor-product uniform cubic B-splines, contact.calibrate.tilt_correction"}
     name = law.name if law.name.endswith("-tilt") else f"{law.name}-tilt"
     return dataclasses.replace(plain, name=name, parameters={**plain.parameters, **c.to_parameters()},

@@ -188,7 +188,8 @@ def correct(rs: RingScene, fit: dict, paths: dict[str, Path]) -> dict:
     # the choice is made on the training grid alone: the correction's cross-validated worst error over its bound
     # against the straight law's at the same tilted points (which that law, fitted at zero tilt, never saw)
     own = errors(straight, tilted)
-    worst = {"corrected": info["cross_validation_worst_error_over_bound"][f"{info['smoothing']:g}"],
+    cv = info["cross_validation_worst_error_over_bound"]
+    worst = {"corrected": cv[tilt_fit.smoothing_label(info["smoothing"])],
              "straight": max(tally(*own[q][:2])["worst_ratio"] for q in QUANTITIES[1:])}
     chosen = worst["corrected"] <= worst["straight"]
     holds = all(sets[s][q]["corrected"]["within"] == sets[s][q]["corrected"]["points"] for s in sets for q in QUANTITIES)
@@ -232,7 +233,8 @@ def _reason(law, straight, sets, worst, chosen, n_fitted, smoothing) -> str:
               f"with the correction, {_count(sets, 'straight', QUANTITIES[1])} and "
               f"{_count(sets, 'straight', QUANTITIES[2])} with the straight law")
     what = (f"`{law.name}`: the slices multiplied by a tilt correction fitted on the training grid's {n_fitted} "
-            f"tilted points (smoothing {smoothing:g}, chosen by {tilt_fit.FOLDS}-fold cross-validation on them alone)")
+            f"tilted points (smoothing {tilt_fit.smoothing_label(smoothing)}, chosen by {tilt_fit.FOLDS}-fold "
+            "cross-validation on them alone)")
     return f"{what} is {'shipped' if chosen else 'not shipped, the straight law is'}: {why}; {counts}"
 
 
