@@ -32,6 +32,7 @@ import scipy.sparse.linalg as spla
 
 from contact.errors import ConvergenceError
 from fem_reference.plane.contact_solver import ContactSolution
+from fem_reference.plane.elasticity import refined_solve
 from fem_reference.plane.solve import ContactModel, contact_solution
 
 MAX_ACTIVE_SET_CHANGES = 30
@@ -65,8 +66,7 @@ def _solve_set(Kb: sp.csr_matrix, Ds: sp.csr_matrix, rhs_gap: np.ndarray, scale:
     else:
         p = np.concatenate([order, np.arange(n, n + k)])
         lu = spla.splu(M[p][:, p].tocsc(), permc_spec="NATURAL", options={"SymmetricMode": True})
-        x = np.empty(n + k)
-        x[p] = lu.solve(rhs[p])
+        x = refined_solve(lu, p, M, rhs)
     return x[:n], -x[n:] * scale
 
 

@@ -40,8 +40,11 @@ def test_active_set_and_condensed_solves_agree_on_generated_pairs():
     """Pairs drawn from the commit's seed (printed) until every drive (the coupled one bordered by its constraint)
     and every hold appeared, both penetrations, on the reference's first refinement: the active-set force equals
     the condensed solve's to 1e-9, from the rigid overlap's set and from a coarser level's arc; the nested-dissection
-    factor gives the same force as the minimum-degree one. (Rounding: the two factors' forces differ by up to 4e-11 on
-    a coupled drive, measured; the reference these levels give is checked at 1e-7 and coarser.)"""
+    factor gives the same force as the minimum-degree one, and the multipliers agree to 1e-8 of the largest. (Rounding,
+    measured over 30 seeds: forces up to 3e-10 apart and multipliers up to 2e-9 of the largest, on coupled drives whose
+    net force, 30-400 N, is the small difference of pressures of 1e5 Pa around the arc; with the same minimum-degree
+    factor both ways too, so it is the problem's conditioning, not either method. The reference these levels give is
+    checked at 1e-7 and coarser.)"""
     seed = commit_seed()
     print(f"seed {seed}")
     for sc, pens in _pairs_covering_every_drive_and_hold(seed):
@@ -62,7 +65,7 @@ def test_active_set_and_condensed_solves_agree_on_generated_pairs():
                 assert got.method == "active-set"
                 assert got.force_n == pytest.approx(want.force_n, rel=1e-9)
                 assert got.half_angle_rad == pytest.approx(want.half_angle_rad, abs=1e-9)
-                assert np.max(np.abs(got.lam - want.lam)) <= 1e-9 * np.max(want.lam)
+                assert np.max(np.abs(got.lam - want.lam)) <= 1e-8 * np.max(want.lam)
 
 
 def test_active_set_without_contact_is_zero():
