@@ -28,7 +28,8 @@ from contact.package_data import entries, location, shipped, shipped_name
 DATASET_2D = shipped("fem_reference", "data", "fem2d-reference.json")
 DATA_3D_DIR = shipped("fem_reference", "data", "3d")
 #: a calibration whose held-out error exceeds a point's own stated FEM error by more than this is flagged
-#: (its file's ``fit.warning``, the calibrate job's output, ringcontact bearing's law file and report)
+#: (its file's ``fit.warning``, the calibrate job's output, ringcontact bearing's law file and report); the selection
+#: rule's fallback when no family meets the accuracy target (:func:`family_holds`)
 HOLDOUT_BOUND_REL = 0.02
 #: issue 37's accuracy target for a held-out error (:func:`within_accuracy`), the first test of the selection rule:
 #: ``|e| <= ACCURACY_FEM_FACTOR x the point's stated FEM error + ACCURACY_ADD_REL``
