@@ -747,7 +747,7 @@ _GENERATED_SAMPLE = ("one benchmark sample of generated ring pairs, drawn with a
                      "pair 27 and 627535865's pair 18, whose misses a fifth reference level settled)")
 UNGUARDED = (
     dict(report="reports/published/law-tilt-correction.md",
-         claim="Largest ratio of the tilt-corrected law to today's foundation law: 1.83 (target: at most 2).",
+         claim="Largest ratio of the tilt-corrected law to today's foundation law: 1.89 (target: at most 2).",
          reason="a ratio of wall times of the compiled kernel, measured on a shared machine (the load is printed)"),
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 0.500 | 0.398 | 1.26× |", reason=_LADDER_TIME),
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 0.556 | 0.460 | 1.21× |", reason=_LADDER_TIME),
