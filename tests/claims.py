@@ -122,10 +122,10 @@ CLAIMS = (
 
     # bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md
     dict(report="reports/published/bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md",
-         claim="Checks: holdout_max_rel_2d 0.895 %; fem2d_error_max_rel 0.074 %; holdout_max_rel_3d_zero_tilt 0.997 %",
+         claim="Checks: holdout_max_rel_2d 0.061 %; fem2d_error_max_rel 0.074 %; holdout_max_rel_3d_zero_tilt 0.146 %",
          test="tests/test_published_fem.py::test_steel_in_aluminium_law_refits_from_its_committed_fem", tier="default"),
     dict(report="reports/published/bearing-steel-in-aluminium/accuracy-steel-in-aluminium.md",
-         claim="foundation_modulus_Pa_per_m = 3.89956e+12 ± 7.8e+09 Pa/m",
+         claim="`steel-in-aluminium-3d-foundation-spline` (foundation-spline), 6 knots from 0.004 to 0.04 mm",
          test="tests/test_published_fem.py::test_steel_in_aluminium_law_refits_from_its_committed_fem", tier="default"),
 
     # bearing-plane-choice.md (plane stress or strain by the 3D ring; the check's wall times are not claims)
@@ -147,10 +147,10 @@ CLAIMS = (
     # are recomputed from the datasets the benchmark keeps in reports/published/perf-bearing/)
     dict(report="reports/published/perf-bearing.md",
          claim="Law of the tilted run: `steel-in-aluminium-3d-foundation-spline-tilt` (foundation-spline); checks: "
-               "holdout_max_rel_2d 0.895 %",
+               "holdout_max_rel_2d 0.061 %",
          test="tests/reports/test_bearing_tilt.py::test_the_benchmark_s_tilted_run_is_recomputed_from_its_kept_datasets", tier="default"),
     dict(report="reports/published/perf-bearing.md",
-         claim="| verification grid | force, tilted | 48 / 48 | 0.059 vs 0.207 | 18 / 48 |",
+         claim="| verification grid | force, tilted | 48 / 48 | 0.059 vs 0.207 | 47 / 48 |",
          test="tests/reports/test_bearing_tilt.py::test_the_benchmark_s_tilted_run_is_recomputed_from_its_kept_datasets", tier="default"),
     dict(report="reports/published/perf-bearing.md",
          claim="| verification grid | moment, tilted | 48 / 48 | 0.090 vs 0.355 | 0 / 48 |",
@@ -747,7 +747,7 @@ _GENERATED_SAMPLE = ("one benchmark sample of generated ring pairs, drawn with a
                      "pair 27 and 627535865's pair 18, whose misses a fifth reference level settled)")
 UNGUARDED = (
     dict(report="reports/published/law-tilt-correction.md",
-         claim="Largest ratio of the tilt-corrected law to today's foundation law: 1.83 (target: at most 2).",
+         claim="Largest ratio of the tilt-corrected law to today's foundation law: 1.89 (target: at most 2).",
          reason="a ratio of wall times of the compiled kernel, measured on a shared machine (the load is printed)"),
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 256 | 0.500 | 0.398 | 1.26× |", reason=_LADDER_TIME),
     dict(report="reports/published/perf-monodromy-ladder.md", claim="| 7000 | 2240 | 0.556 | 0.460 | 1.21× |", reason=_LADDER_TIME),

@@ -153,10 +153,12 @@ def _base_law(rs: RingScene, path: Path):
     info["path"] = path.name
     preferred, fits = cal.calibrate_scene(train, rs.name, info, families=cal.FAMILIES)
     law, _ = cal.calibrate_scene(train, rs.name, info, families=(spline.FAMILY,))
-    why = (f"the flexible family, interpolating the training grid's zero-tilt points: the target ({ACCURACY_RULE}) "
-           "asks more than the zero-tilt selection rule, whose choice here would be "
-           f"{preferred.family} ({preferred.fit.get('selection_reason', '')}); the correction's form was chosen on "
-           f"{spline.FAMILY} (reports/published/law-tilt-correction.md)")
+    rule = (f"the zero-tilt selection rule chooses it here too ({preferred.fit.get('selection_reason', '')})"
+            if preferred.family == spline.FAMILY else
+            f"the zero-tilt selection rule's choice here would be {preferred.family} "
+            f"({preferred.fit.get('selection_reason', '')})")
+    why = (f"the flexible family, interpolating the training grid's zero-tilt points: {rule}; the correction's form "
+           f"was chosen on {spline.FAMILY} (reports/published/law-tilt-correction.md)")
     law = dataclasses.replace(law, fit={**law.fit, "families": preferred.fit.get("families", []),
                                         "selection_reason": why})
     return law, fits, train, why

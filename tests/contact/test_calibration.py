@@ -102,12 +102,60 @@ def test_selection_when_no_family_holds_takes_the_lowest_held_out_max():
     fem = np.full(3, 1e-3)
     assert cal.select_family(fits, fem).family == "power"
     from contact.calibrate.fit import selection_reason
-    assert selection_reason(fits, fits[1], fem).startswith("no family holds; power has the lowest held-out max")
-    # a family within the bound beats a more accurate one with more parameters; equal maxima: fewer parameters
-    fits = [_fake_fit("foundation", 1, [0.015, 0.0]), _fake_fit("foundation-spline", 6, [0.001, 0.0])]
-    assert cal.select_family(fits, np.zeros(2)).family == "foundation"
+    assert selection_reason(fits, fits[1], fem) == ("no family holds; power has the lowest held-out max error "
+                                                    "(12.400 %), next foundation (14.200 %)")
+    # equal maxima, none within the flag bound: fewer parameters
     fits = [_fake_fit("power", 2, [0.05, 0.0]), _fake_fit("foundation", 1, [0.05, 0.01])]
     assert cal.select_family(fits, np.zeros(2)).family == "foundation"
+
+
+def test_selection_takes_the_fewest_parameters_among_the_families_that_meet_the_target():
+    """Issue 37's target (2x the stated FEM error + 0.2 %) decides first: a 1-parameter family within the flag bound
+    but beyond the target loses to a 6-parameter one within the target (the old rule chose the former); among the
+    families within the target, the fewest parameters win; equal parameters, the lower held-out max."""
+    from contact.calibrate.fit import selection_reason
+    fem = np.array([1e-3, 5e-4])                       # target: 0.4 % and 0.3 %
+    found = _fake_fit("foundation", 1, [0.015, 0.0])   # 1.5 %: holds (<= 0.1 % + 2 %), misses the target
+    flex = _fake_fit("foundation-spline", 6, [0.0039, -0.0029])
+    assert cal.family_holds(found.holdout_rel_err, fem) and not cal.meets_target(found.holdout_rel_err, fem)
+    assert cal.meets_target(flex.holdout_rel_err, fem)
+    assert cal.select_family([found, flex], fem) is flex
+    assert selection_reason([found, flex], flex, fem) == (
+        "foundation-spline met the target (6 parameters, held-out max 0.390 %); families with fewer parameters "
+        "missed it: foundation (1.500 %); no other family meets it")
+    # the target is per point: the same 0.39 % misses at the point whose FEM error is 0.05 %
+    assert not cal.meets_target([0.0029, 0.0039], fem)
+    power = _fake_fit("power", 2, [0.003, 0.001])
+    assert cal.select_family([found, flex, power], fem) is power
+    assert selection_reason([found, flex, power], power, fem).endswith(
+        "missed it: foundation (1.500 %); also meeting it, with as many or more parameters: foundation-spline")
+    other = _fake_fit("conformal-compliance", 2, [0.002, 0.0])
+    assert cal.select_family([power, other], fem) is other                   # 2 parameters each: lower max
+    # no FEM error given: the target is 0.2 % flat
+    assert cal.select_family([found, _fake_fit("foundation-spline", 6, [0.0019, 0.0])]).family == "foundation-spline"
+    assert cal.select_family([found, _fake_fit("foundation-spline", 6, [0.0021, 0.0])]).family == "foundation"
+
+
+def test_selection_falls_back_to_the_flag_bound_when_no_family_meets_the_target():
+    """None within the target: of the families within the flag bound (2 % beyond the FEM's stated error) the fewest
+    parameters win, the reason says the winner holds only the flag bound; none within it: the lowest max."""
+    from contact.calibrate.fit import selection_reason
+    fem = np.full(2, 1e-3)
+    fits = [_fake_fit("foundation", 1, [0.018, 0.0]), _fake_fit("power", 2, [0.009, 0.0]),
+            _fake_fit("foundation-spline", 6, [0.005, 0.0]), _fake_fit("conformal-scaled", 1, [0.3, 0.0])]
+    assert not any(cal.meets_target(f.holdout_rel_err, fem) for f in fits)
+    assert cal.select_family(fits, fem).family == "foundation"
+    assert selection_reason(fits, fits[0], fem) == (
+        "no family meets the target; foundation holds only the flag bound (1 parameter, held-out max 1.800 %); "
+        "also holding, with as many or more parameters: power, foundation-spline")
+    alone = fits[1:]
+    assert cal.select_family(alone, fem).family == "power"
+    assert selection_reason(alone, fits[1], fem).endswith("also holding, with as many or more parameters: "
+                                                          "foundation-spline")
+    assert selection_reason(fits[1:2] + fits[3:], fits[1], fem).endswith("; no other family holds")
+    # a family with a non-finite held-out error meets nothing
+    nan = _fake_fit("foundation-spline", 6, [math.nan, 0.0])
+    assert not cal.meets_target(nan.holdout_rel_err, fem) and not cal.family_holds(nan.holdout_rel_err, fem)
 
 
 def test_bad_fit_inputs_raise_named_errors():

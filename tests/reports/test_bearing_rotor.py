@@ -31,14 +31,14 @@ def test_scene_takes_its_geometry_from_the_law():
     ls = load_scene(SCENE).loose_support
     assert (ls.clearance_m, ls.ring_width_m, ls.bearing_modulus_pa, ls.bearing_poisson, ls.support_modulus_pa,
             ls.support_poisson) == pytest.approx((3e-5, 0.022, 208e9, 0.29, 72e9, 0.33))
-    assert ls.calibrated.name == "steel-in-aluminium-3d-foundation"
+    assert ls.calibrated.name == "steel-in-aluminium-3d-foundation-spline"
 
 
 def test_simulate_with_the_law_reports_contact_and_validity(tmp_path, capsys):
     from reports.cli.simulate import main
     assert main(["--scene", SCENE, "--speed-rpm", "6000", "--revolutions", "60", "--out", str(tmp_path / "s")]) == 0
     s = json.loads((tmp_path / "s" / "simulate-summary.json").read_text())
-    assert s["law"] == "steel-in-aluminium-3d-foundation" and Path(s["law_file"]).name == LAW.name
+    assert s["law"] == "steel-in-aluminium-3d-foundation-spline" and Path(s["law_file"]).name == LAW.name
     assert s["contact_fraction"] > 0 and s["max_edge_penetration_mm"] > 0
     assert s["beyond_law_validity"] is False and s["law_validity_max_penetration_mm"] == pytest.approx(0.04)
     assert s["law_tilt_checked_up_to_arcmin"] == pytest.approx(2.0) and s["beyond_law_tilt_validity"] is False
@@ -94,8 +94,9 @@ def test_law_job_evaluates_a_law_file_and_flags_beyond_its_checked_range(capsys)
 def test_a_run_that_crosses_the_contact_step_limit_says_so(tmp_path, capsys):
     """The numerical guard during a run: 38 steps a revolution pass the pre-run check (the law probed at 0.2 δ0,
     rotor/dynamics/system.py) but the ring at 17 000 rpm penetrates deeper (about 0.33 δ0), where the law is
-    stiffer: the run meets ω_c·Δt > 2 (measured 3.0). The summary and stderr say so and name a finer step, with
-    which the same run stays below the limit (measured 1.69 at 72 steps)."""
+    stiffer: the run meets ω_c·Δt > 2 (measured 3.21 on the foundation-spline law, 3.39 on the foundation law before
+    it). The summary and stderr say so and name a finer step, with which the same run stays below the limit (measured
+    1.61 at the 77 steps named; 1.61 at 81 before)."""
     from reports.cli.simulate import STEP_LIMIT_OMEGA_DT, main
     argv = ["--scene", SCENE, "--speed-rpm", "17000", "--revolutions", "200", "--record-per-rev", "1"]
     assert main([*argv, "--steps-per-rev", "38", "--out", str(tmp_path / "coarse")]) == 0
