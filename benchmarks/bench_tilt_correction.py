@@ -57,6 +57,7 @@ from contact.dataset import read_dataset  # noqa: E402
 from contact.files import atomic_write_text  # noqa: E402
 from contact.loose_support import point_force_jacobian  # noqa: E402
 from contact.units import ARCMIN  # noqa: E402
+from reports.cli._edge import Parser, count, out_dir  # noqa: E402
 
 PUBLISHED = ROOT / "reports" / "published"
 #: ring -> its run folder under reports/published and its published law file there
@@ -404,8 +405,9 @@ def report(rings: dict, cost: tuple, args, wall_s: float) -> tuple[str, bool]:
 def blind(args, out: Path) -> int:
     """``--blind N [--seed S]``: draw, solve and check the blind points; replace the report's blind section."""
     target = out / "law-tilt-correction.md"
-    if args.blind < 8 or not target.exists():
-        print(f"bench_tilt_correction: --blind {args.blind}: needs N >= 8 and an existing {target}", file=sys.stderr)
+    if not target.exists():
+        print(f"bench_tilt_correction: error: --blind = {args.blind} points: needs the report {target} (a full run "
+              "writes it)", file=sys.stderr)
         return 2
     seed = tilt_blind.new_seed() if args.seed is None else args.seed
     print(f"seed {seed}", file=sys.stderr, flush=True)
@@ -417,15 +419,22 @@ def blind(args, out: Path) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--points", type=int, default=20000)
-    ap.add_argument("--repeats", type=int, default=9)
-    ap.add_argument("--out", default=str(PUBLISHED))
-    ap.add_argument("--blind", type=int, default=0, metavar="N",
+    ap = Parser(prog="bench_tilt_correction", description=__doc__.splitlines()[0])
+    ap.add_argument("--points", type=count(1, 10 ** 7, "points"), default=20000)
+    ap.add_argument("--repeats", type=count(1, 1000), default=9)
+    ap.add_argument("--out", type=out_dir, default=PUBLISHED, help="the report's directory (checked writable first)")
+    ap.add_argument("--blind", type=count(8, 480, "points"), default=0, metavar="N",
                     help="only the 20 mm ring's blind check on N new tilted points (and N // 8 at zero tilt)")
-    ap.add_argument("--seed", type=int, default=None, help="the blind points' seed; default: a new one each run")
+    ap.add_argument("--seed", type=count(0, 2 ** 32 - 1), default=None,
+                    help="the blind points' seed; default: a new one each run")
     args = ap.parse_args(argv)
     out = Path(args.out)
+    if args.seed is not None and not args.blind:
+        ap.error(f"--seed = {args.seed}: the seed of --blind's points; give --blind N with it")
+    data = out / "law-tilt-correction"
+    if not data.is_dir():
+        ap.error(f"--out = {args.out}: holds no law-tilt-correction/ folder of 3D points (the committed one is in "
+                 f"{PUBLISHED.relative_to(ROOT)})")
     if args.blind:
         return blind(args, out)
     t0 = time.perf_counter()
