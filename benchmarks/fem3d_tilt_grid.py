@@ -25,6 +25,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from contact.threads import set_thread_env  # noqa: E402
+
+set_thread_env(1)     # before numpy loads: one BLAS thread per solve (a shared 2-core machine)
+
 from contact.dataset import read_dataset, write_dataset  # noqa: E402
 from contact.units import ARCMIN  # noqa: E402
 
