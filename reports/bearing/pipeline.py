@@ -212,7 +212,8 @@ def accuracy(fit: dict, name: str) -> list[dict]:
     """Issue 37's accuracy rule (:func:`contact.calibrate.fit.within_accuracy`: every held-out error within 2x the
     FEM point's stated error + 0.2 %) for the chosen law, per reference and quantity: ``reference``, ``quantity``,
     ``points``, ``within`` (how many meet it), ``holds``, ``worst_error_pct``, ``worst_bound_pct`` (at the point
-    that misses its bound the most, or the largest error when all meet it), ``within_inside`` (zero tilt: of the
+    of largest error − bound: the one missing its bound the most, or, when all meet it, the one nearest its bound,
+    which need not be the largest error), ``within_inside`` (zero tilt: of the
     points between the ends, whose hold-out interpolates; None for tilted points). Zero-tilt points: leave-one-out;
     tilted points: never fitted (the law is calibrated at zero tilt)."""
     out = []
