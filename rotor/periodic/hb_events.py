@@ -24,6 +24,12 @@ from rotor.periodic.hb_aft import HarmonicSystem, full_coefficients, largest_pen
 
 #: scaled step below which a tangent turn above ``max_turn_deg`` is accepted (a corner)
 CORNER_DS = 1e-4
+#: a corrected point farther than this many steps from its predictor jumped to another part of the curve (the
+#: corrector on the hyperplane moves a point of a smooth curve by ~ds·tan(turn), a corner's by at most ds for a
+#: 45° turn); the step is halved. Measured: 0.005-0.06 steps on smooth stretches, 23 on a jump (a random conformal
+#: rotor of tests/rotor/periodic/test_harmonic_balance.py: from 138.9 rad/s next to grazing on the branch's middle
+#: part, back onto its rising part at 134.6 rad/s, which the branch then followed back to the start)
+MAX_CORRECTION_STEPS = 1.0
 
 
 @dataclass(frozen=True)
@@ -61,9 +67,9 @@ def _make_point(tr, got, tau_prev) -> _Point:
 
 def _advance(tr, pt: _Point, ds: float, corner_first: bool = False):
     """One accepted step from ``pt``: ``(point, ds used, rejected steps)``, or ``(None, ds, rejected)`` below
-    ``ds_min``. A step is retried with half the length when the corrector fails or the tangent turns more than
-    ``max_turn_deg``, unless the step is already below :data:`CORNER_DS` or crossed the ring's surface going on
-    (the penetration changed sign and grows along the new tangent: the turn is the grazing corner's, and the
+    ``ds_min``. A step is retried with half the length when the corrector fails or lands farther than
+    :data:`MAX_CORRECTION_STEPS` steps from its predictor, or the tangent turns more than ``max_turn_deg``, unless
+    the step is already below :data:`CORNER_DS` or crossed the ring's surface going on (the penetration changed sign and grows along the new tangent: the turn is the grazing corner's, and the
     grazing is located afterwards by its own solves). A step that crossed with the new tangent heading back to
     the surface jumped over a turn there (a grazing fold, which :func:`_corner` passes): always halved. ``corner_first``:
     a failed corrector from a point within 1e-5 δ0 of grazing returns ``(None, ds, …)`` at once, for
@@ -73,6 +79,8 @@ def _advance(tr, pt: _Point, ds: float, corner_first: bool = False):
     cos_max = math.cos(math.radians(o.max_turn_deg))
     while ds >= o.ds_min:
         got = tr.correct(pt.y + ds * pt.tau, pt.tau)
+        if got is not None and np.linalg.norm(got[0] - pt.y - ds * pt.tau) > MAX_CORRECTION_STEPS * ds:
+            got = None                      # jumped: treated as a failed corrector
         if got is not None:
             new = _make_point(tr, got, pt.tau)
             crossed = new.pen * pt.pen < 0.0

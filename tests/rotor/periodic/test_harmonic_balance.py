@@ -160,6 +160,25 @@ def test_branch_through_folds_matches_the_closed_form(law):
         assert kinds <= ({"fold"} if law == "pereira" else {"fold", "grazing_fold"})
 
 
+def test_a_step_that_lands_on_another_part_of_the_curve_is_halved():
+    """A conformal rotor the random family drew (seed 101 of the test above, its second rotor, rounded): from
+    140.9 rad/s on the middle part, 0.004 δ0 from grazing, a step of 0.053 landed 23 steps from its predictor on the
+    rising part at 134.6 rad/s, and the branch followed that back below its start. With a step farther than
+    rotor.periodic.hb_events.MAX_CORRECTION_STEPS from its predictor halved, it passes both turns of the closed
+    form (the fold near 153.0 and the grazing fold near 138.5 rad/s, each within 0.1 %) and reaches its end, every
+    orbit on the closed form within 1e-10."""
+    p = JeffcottParams(mass_kg=3.80835, stiffness_N_m=66954.4, damping_N_s_m=75.8908, eccentricity_m=5.55615e-6,
+                       clearance_m=3.33561e-5, modulus_Pa=1.17398e7, law="conformal")
+    wn = math.sqrt(p.stiffness_N_m / p.mass_kg)
+    turns = _expected_turns(p, 0.3 * wn, math.inf)
+    br = hb_branch(lambda w: jeffcott_system(p, w), 0.3 * wn, 3.5 * wn, 1)
+    got = sorted(e.speed_rad_s for e in br.folds())
+    print(turns, got, br.stop)
+    assert br.stop == "reached the end speed"
+    assert len(turns) == 2 and len(got) == 2 and all(abs(g / x - 1) < FOLD_TOL for g, x in zip(got, turns))
+    assert max(_radius_error(p, w, c) for w, c in zip(br.speeds_rad_s, br.coefficients)) < RADIUS_TOL
+
+
 def test_end_face_friction_is_refused_with_a_pointer_to_shooting():
     """μN > 0: stick/slip states, not a Fourier series; the chooser's reason and the solver's error say so."""
     import dataclasses
