@@ -145,6 +145,20 @@ def test_a_ladder_level_off_the_starts_piece_is_not_chosen():
     assert J[0, 0] == pytest.approx(3.0) and gap[0] == np.inf
 
 
+def test_a_narrow_band_off_the_piece_does_not_shut_out_the_levels_past_it():
+    """rotor/dynamics/period_map_events.py ``_best_of_ladder`` with ``off`` at one level in the middle of the ladder
+    (the step's derivative 1.0, curvature ``1e3 h² + 1e15 h⁴``, a replay at 2e-6 missing the stick onset, 50.0):
+    chosen on the levels on the piece, successive among themselves, the short levels' 1.0 to 1e-9; with every
+    pair of levels touching the band left out (the earlier rule) only the long levels 3.2e-5 and 8e-6 were left,
+    6.6e-5 off."""
+    hs = np.array(pme.LADDER)
+    d = (1.0 + 1e3 * hs ** 2 + 1e15 * hs ** 4)[:, None, None]
+    off = np.isclose(hs, 2e-6)[:, None]
+    d[off[:, 0]] = 50.0
+    J, gap = pme._best_of_ladder(hs, d, np.ones(1), off)
+    assert J[0, 0] == pytest.approx(1.0, abs=1e-9) and gap[0] < 1e-7
+
+
 @pytest.mark.slow
 def test_table4_period_4_orbit_at_10_180_3_rpm():
     """Dai et al. (2025) Table 4 at 10 180.3 rpm: the period-4 orbit ``ringcontact orbit`` finds (T/256), drawn by
