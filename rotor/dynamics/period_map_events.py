@@ -105,8 +105,9 @@ EXACT_CONTACT = True
 #: 2.2e-7; at 222, 1.1e-7. False: every differenced step a block of its own unless :func:`blocks` chains it
 MERGE_CONSECUTIVE = True
 #: a ladder level whose replays of a column made other discrete decisions than the unperturbed replay (a stick trial,
-#: a held slow slip, a located event, an end mode: :func:`_signature`) lies on another smooth piece of the step, and a
-#: pair of levels touching it is not chosen for that column while another pair is left (:func:`_best_of_ladder`):
+#: a held slow slip, a located event, an end mode: :func:`_signature`) lies on another smooth piece of the step, and
+#: the column is chosen on its other levels (:func:`_best_of_ladder`; at 10 893.9 rpm a narrow band at 2e-6 and
+#: 2.5e-7, the pairs touching it left out, left the long levels only: 4.2e-5, 4.4e-7 on the other levels):
 #: long levels past a threshold near the start agree with each other on that piece and not with the derivative at
 #: the start. Measured on the period-4 orbit of Table 4 at 10 180.3 rpm (T/256, drawn by seed 1503871632 of
 #: benchmarks/bench_monodromy_random.py; a release at step 381, the face then slipping slowly near the hold's speed
@@ -270,23 +271,45 @@ def replay_steps_tiled(pm, starts, modes, phi, t, n_steps):
 def _best_of_ladder(hs, d, scales, off=None) -> tuple[np.ndarray, np.ndarray]:
     """Per column of ``d`` (central differences at the steps ``hs``, largest first): the Richardson extrapolation of
     the pair of successive levels that agrees best with the next pair, and that agreement (scaled, the largest
-    over the components). ``off`` (level, column): levels whose replays left the start's smooth piece; a pair
-    touching one is not chosen while the column has a pair that does not (else it is chosen as without ``off``, and
-    its agreement is infinite: refined, and counted as not smooth if no level of the refinement is on the piece)."""
+    over the components). ``off`` (level, column): levels whose replays left the start's smooth piece; such a
+    column is chosen on its other levels alone, successive among themselves (the extrapolation takes any ratio of
+    steps), so a narrow band off the piece between two levels does not shut out the levels past it. A column with
+    fewer than three levels on the piece is chosen as without ``off``, and its agreement is infinite: refined, and
+    counted as not smooth if no level of the refinement is on the piece. Measured on Table 4 at 10 893.9 rpm
+    (T/256, the state 60 revolutions after the linear start, drawn by seed 404 in
+    tests/rotor/dynamics/test_monodromy_random_speeds.py): the stick onset of step 239 missed in narrow bands at
+    2e-6 and 2.5e-7 of column 48's scale, between levels on the piece whose central differences agree to 3e-7
+    from 1.25e-7 down; with every pair touching such a band left out, only the long levels 8e-6 and 4e-6 were left
+    (5e-5 off, their curvature) and the located monodromy was 4.2e-5 from central differences of the whole map."""
+    rich, gap = _ladder_pairs(hs, d, scales)
+    best = np.argmin(gap, axis=0)
+    idx = np.arange(d.shape[1])
+    J, agreement = rich[best + 1, idx], gap[best, idx]
+    if off is None or not off.any():
+        return J, agreement
+    patterns, which = np.unique(np.asarray(off, bool).T, axis=0, return_inverse=True)
+    for k, pattern in enumerate(patterns):
+        cols = np.flatnonzero(which.ravel() == k)
+        if not pattern.any():
+            continue
+        if np.count_nonzero(~pattern) < 3:
+            agreement[cols] = np.inf
+            continue
+        rich_on, gap_on = _ladder_pairs(hs[~pattern], d[~pattern][:, cols], scales)
+        best_on = np.argmin(gap_on, axis=0)
+        J[cols], agreement[cols] = rich_on[best_on + 1, np.arange(cols.size)], gap_on[best_on, np.arange(cols.size)]
+    return J, agreement
+
+
+def _ladder_pairs(hs, d, scales) -> tuple[np.ndarray, np.ndarray]:
+    """The Richardson extrapolations ``(pair, column, component)`` of the central differences ``d`` at successive
+    steps ``hs`` (their ``c h²`` error removed, any ratio of steps) and each pair's agreement with the next
+    ``(pair, column)``: scaled by ``scales``, the largest over the components, infinite where a replay diverged."""
     q = (hs[:-1] / hs[1:]) ** 2
     with np.errstate(over="ignore", invalid="ignore"):                               # a diverged replay: inf, nan
         rich = (q[:, None, None] * d[1:] - d[:-1]) / (q[:, None, None] - 1.0)         # (pair, column, component)
         gap = np.abs((rich[1:] - rich[:-1]) / scales[None, None, :]).max(axis=2)    # (pair, column)
-    gap = np.where(np.isnan(gap), np.inf, gap)                                      # a non-finite replay
-    use, none = gap, np.zeros(d.shape[1], dtype=bool)
-    if off is not None and off.any():
-        bad = off[:-2] | off[1:-1] | off[2:]                                          # levels k, k+1, k+2 of pair k
-        masked = np.where(bad, np.inf, gap)
-        none = ~np.isfinite(masked).any(axis=0)
-        use = np.where(none[None, :], gap, masked)
-    best = np.argmin(use, axis=0)
-    idx = np.arange(d.shape[1])
-    return rich[best + 1, idx], np.where(none, np.inf, gap[best, idx])
+    return rich, np.where(np.isnan(gap), np.inf, gap)
 
 
 def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True):

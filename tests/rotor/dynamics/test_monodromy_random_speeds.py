@@ -145,6 +145,34 @@ def test_a_ladder_level_off_the_starts_piece_is_not_chosen():
     assert J[0, 0] == pytest.approx(3.0) and gap[0] == np.inf
 
 
+def test_a_narrow_band_off_the_piece_does_not_shut_out_the_levels_past_it():
+    """rotor/dynamics/period_map_events.py ``_best_of_ladder`` with ``off`` at one level in the middle of the ladder
+    (the step's derivative 1.0, curvature ``1e3 h² + 1e15 h⁴``, a replay at 2e-6 missing the stick onset, 50.0):
+    chosen on the levels on the piece, successive among themselves, the short levels' 1.0 to 1e-9; with every
+    pair of levels touching the band left out (the earlier rule) only the long levels 3.2e-5 and 8e-6 were left,
+    6.6e-5 off."""
+    hs = np.array(pme.LADDER)
+    d = (1.0 + 1e3 * hs ** 2 + 1e15 * hs ** 4)[:, None, None]
+    off = np.isclose(hs, 2e-6)[:, None]
+    d[off[:, 0]] = 50.0
+    J, gap = pme._best_of_ladder(hs, d, np.ones(1), off)
+    assert J[0, 0] == pytest.approx(1.0, abs=1e-9) and gap[0] < 1e-7
+
+
+def test_table4_at_10_893_9_rpm_a_stick_onset_missed_in_narrow_bands():
+    """Dai et al. (2025) Table 4 at 10 893.9 rpm, T/256, the state 60 revolutions after the linear start: drawn by
+    ``RINGCONTACT_TEST_SEED=404`` in test_located_monodromy_at_random_speeds_equals_central_differences_of_its_map.
+    The reference converged to 3.4e-7 (columns 22 and one other one-sided: a threshold 1e-7 from the state; central
+    differences of columns 14, 17, 18 and 22 agree with it from 3e-8 down to 1e-9). The stick onset of step 239 is
+    missed by replays at 2e-6 and 2.5e-7 of column 48's scale alone (the levels around them stick): with every pair
+    of ladder levels touching those left out, the step's column 48 came from the levels 8e-6 and 4e-6, 5e-5 off its
+    central differences at 1.25e-7 to 1e-9, and the located monodromy was 4.2e-5 from the reference; chosen on the
+    levels on the piece (``_best_of_ladder``), 4.4e-7."""
+    got = _errors(10893.9)
+    assert got is not None and got[1] < REFERENCE_CONVERGED
+    assert got[0] < BOUND, got
+
+
 @pytest.mark.slow
 def test_table4_period_4_orbit_at_10_180_3_rpm():
     """Dai et al. (2025) Table 4 at 10 180.3 rpm: the period-4 orbit ``ringcontact orbit`` finds (T/256), drawn by
