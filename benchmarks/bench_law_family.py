@@ -143,18 +143,32 @@ def pair_check(index: int, seed: int) -> dict:
     f_t, f_m = (np.array([b.force_n for b in bars]) for bars in (bars_t, bars_m))
     fem_t, fem_m = (np.array([b.error_rel if math.isfinite(b.error_rel) else 0.0 for b in bars])   # no bar: 0.2 %
                     for bars in (bars_t, bars_m))
-    geo = cal.SceneGeometry(r.clearance_m, r.width_m, r.outer_radius_m, r.outer_radius_m - r.inner_radius_m,
-                            r.support_outer_radius_m - r.outer_radius_m - r.clearance_m,
-                            r.bearing.youngs_modulus_pa, r.bearing.poisson_ratio, r.support.youngs_modulus_pa,
-                            r.support.poisson_ratio, scene.plane)
+    return {**row, "wall_s": time.perf_counter() - t0, "fem_error_max_pct": 100 * float(max(fem_t.max(), fem_m.max())),
+            "no_bar": refused, **pair_fits(scene_geometry(scene), (train, f_t, fem_t), (mid, f_m, fem_m))}
+
+
+def scene_geometry(scene) -> "cal.SceneGeometry":
+    """The calibration's geometry of a generated pair's scene."""
+    r = scene.rings
+    return cal.SceneGeometry(r.clearance_m, r.width_m, r.outer_radius_m, r.outer_radius_m - r.inner_radius_m,
+                             r.support_outer_radius_m - r.outer_radius_m - r.clearance_m,
+                             r.bearing.youngs_modulus_pa, r.bearing.poisson_ratio, r.support.youngs_modulus_pa,
+                             r.support.poisson_ratio, scene.plane)
+
+
+def pair_fits(geo, training: tuple, held_out: tuple) -> dict:
+    """Every family fitted on ``training`` = (penetrations m, forces N, FEM errors relative) alone and checked at
+    ``held_out`` (the same three): the chosen one (the selection rule on the training points' leave-one-out) and
+    each family's accuracy at the held-out points, as the columns of the report's pairs table."""
+    train, f_t, fem_t = training
+    mid, f_m, fem_m = held_out
     fits = [f for f in (cal.fit_family(fam, train, f_t, geo) for fam in cal.FAMILIES)
             if np.all(np.isfinite(f.holdout_rel_err))]
     chosen = cal.select_family(fits, fem_t)
     mid_err = {f.family: cal.family_force(f.family, f.parameters, mid, geo) / f_m - 1.0 for f in fits}
     within = {fam: int(within_accuracy(e, fem_m).sum()) for fam, e in mid_err.items()}
     spline = SPLINE if SPLINE in mid_err else None
-    return {**row, "wall_s": time.perf_counter() - t0, "fem_error_max_pct": 100 * float(max(fem_t.max(), fem_m.max())),
-            "no_bar": refused, "train_points": int(train.size), "points": int(mid.size),
+    return {"train_points": int(train.size), "points": int(mid.size),
             "chosen": chosen.family, "chosen_holdout_max_pct": 100 * float(np.abs(mid_err[chosen.family]).max()),
             "chosen_within": within[chosen.family],
             "families_holding": [f.family for f in fits if cal.family_holds(f.holdout_rel_err, fem_t)],
