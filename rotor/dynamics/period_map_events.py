@@ -14,7 +14,8 @@ Gantmacher 1958), which the analytic pass of :mod:`rotor.dynamics.period_map_ker
   right angle: every step the loop may have split, and a few more), the derivative of that step with respect to
   its start ``(p, v, a)``, by central differences of the compiled step itself on a ladder of steps
   (:func:`_step_jacobian`; a located step is smooth in its start while the event stays inside it: the event time
-  is the root of a polynomial whose coefficients are smooth), composed with the carried sensitivities;
+  is the root of a polynomial whose coefficients are smooth), taken along the carried sensitivities
+  (:data:`ALONG_SENSITIVITIES`);
 * *blocks*: a step that holds a face at rest at ``μN`` along its start force takes that force's direction from
   the step before, the loop's memory outside ``(p, v, a)``; it is differenced together with the step that set the
   force, one block replayed from that step's start (:func:`blocks`). Measured at the 9 000 rpm orbit of Table 4
@@ -123,6 +124,18 @@ SAME_PIECE = True
 #: monodromy was 1.3e-1 from central differences of the whole map (converged to 2.8e-7); differenced, 2.6e-7. The
 #: replays of the plain steps cost about one more run of the period. False: the candidates alone (the earlier route)
 REPLAY_EVERY_STEP = True
+#: a differenced block is differenced along the columns of the carried sensitivities ``∂(p, v, a)/∂(p₀, v₀)`` (each
+#: scaled to 1 in the block's scales), giving their image directly, not along each component of ``(p, v, a)``
+#: (:func:`_step_jacobian` with ``dirs``): a component the step barely depends on but whose carried sensitivity is large
+#: multiplies the replays' noise in its column. Measured on the Table 4 rotor with the steel-in-aluminium bearing at
+#: 11 148.3 rpm (T/256, the state 60 revolutions after the linear start; step 178 a release from rest at μN, its start
+#: acceleration component 21 moving 9.2e4 of its scale per unit of the state's, the step's derivative in it 6.2e-4 of
+#: the step's scale, differenced with noise of 2e-6 of that at the ladder's longest level): the located monodromy
+#: 2.1e-6 from central differences of the whole map (converged to 4.1e-7) by components, 3.2e-7 along them; on the
+#: 30 Table 4 speeds of seeds 1, 2, 3, 404, 505, 606, 707, 808, 909 and 1111 of tests/rotor/dynamics/
+#: test_monodromy_random_speeds.py, 8.3e-9 to 4.5e-7 (by components 1.3e-8 to 4.4e-7, 2.4e-7 at 14 051.4 rpm now 2.5e-8)
+#: False: the block's Jacobian by components, then multiplied (the earlier route)
+ALONG_SENSITIVITIES = True
 
 
 def event_steps(pm, tr) -> list[int]:
@@ -235,23 +248,30 @@ def _signature(status, modes) -> np.ndarray:
     return np.hstack([status[:, :7], modes])
 
 
-def _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols) -> tuple[np.ndarray, np.ndarray]:
+def _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols, dirs=None) -> tuple[np.ndarray, np.ndarray]:
     """Central differences ``(level, column, component)`` of the block from ``start`` in the columns ``cols`` at the
     steps ``hs`` (relative to ``scales``), all replays in one compiled call (:func:`_replays_at`), and which of them
     left the start's smooth piece (``(level, column)``: a replay whose decisions, :func:`_signature`, differ from
-    the unperturbed replay's; :data:`SAME_PIECE`)."""
+    the unperturbed replay's; :data:`SAME_PIECE`). ``dirs`` ``(3 n_r, m)``: difference along its columns ``cols``
+    instead (each in units of ``scales``), the derivative along ``dirs[:, c] · scales`` (:data:`ALONG_SENSITIVITIES`)."""
     n3 = start.size
     starts = np.tile(start, (2 * hs.size * cols.size + 1, 1))
     pert = starts[1:].reshape(hs.size, cols.size, 2, n3)
     idx = np.arange(cols.size)
+    step = None if dirs is None else (dirs[:, cols] * scales[:, None]).T                 # (column, component)
     for li in range(hs.size):
-        pert[li, idx, 0, cols] += hs[li] * scales[cols]
-        pert[li, idx, 1, cols] -= hs[li] * scales[cols]
+        if step is None:
+            pert[li, idx, 0, cols] += hs[li] * scales[cols]
+            pert[li, idx, 1, cols] -= hs[li] * scales[cols]
+        else:
+            pert[li, :, 0] += hs[li] * step
+            pert[li, :, 1] -= hs[li] * step
     ends, status, end_modes, _ = replay_steps_tiled(pm, starts, modes, phi, t, n_steps)
     e = ends[1:].reshape(hs.size, cols.size, 2, n3)
     sig = _signature(status, end_modes)
     off = np.any(sig[1:] != sig[0], axis=1).reshape(hs.size, cols.size, 2).any(axis=2)
-    return (e[:, :, 0] - e[:, :, 1]) / (2.0 * hs[:, None, None] * scales[cols][None, :, None]), off & SAME_PIECE
+    unit = scales[cols] if dirs is None else np.ones(cols.size)
+    return (e[:, :, 0] - e[:, :, 1]) / (2.0 * hs[:, None, None] * unit[None, :, None]), off & SAME_PIECE
 
 
 def replay_steps_tiled(pm, starts, modes, phi, t, n_steps):
@@ -312,7 +332,7 @@ def _ladder_pairs(hs, d, scales) -> tuple[np.ndarray, np.ndarray]:
     return rich, np.where(np.isnan(gap), np.inf, gap)
 
 
-def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True):
+def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True, dirs=None):
     """The central differences of :data:`LADDER` ``(level, column, component)``, each column's choice on them
     (:func:`_best_of_ladder`) and its agreement: the first part of :func:`_step_jacobian`.
 
@@ -333,15 +353,16 @@ def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True)
     """
     hs = np.array(LADDER)
     n3 = start.size
-    cols = np.arange(n3)
+    m = n3 if dirs is None else dirs.shape[1]           # columns: the components, or the directions ``dirs``
+    cols = np.arange(m)
     if not progressive:
-        d, off = _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols)
+        d, off = _differences(pm, start, modes, phi, t, scales, n_steps, hs, cols, dirs)
         return (d, off, *_best_of_ladder(hs, d, scales, off))
-    d = np.empty((hs.size, n3, n3))
-    J, gap = np.empty((n3, n3)), np.empty(n3)
-    off = np.zeros((hs.size, n3), dtype=bool)
+    d = np.empty((hs.size, m, n3))
+    J, gap = np.empty((m, n3)), np.empty(m)
+    off = np.zeros((hs.size, m), dtype=bool)
     d[:FIRST_LEVELS], off[:FIRST_LEVELS] = _differences(pm, start, modes, phi, t, scales, n_steps, hs[:FIRST_LEVELS],
-                                                        cols)
+                                                        cols, dirs)
     active = cols
     for top in range(FIRST_LEVELS, hs.size + 1):
         J[active], gap[active] = _best_of_ladder(hs[:top], d[:top, active], scales, off[:top, active])
@@ -349,12 +370,12 @@ def _ladder(pm, start, modes, phi, t, scales, n_steps, progressive: bool = True)
         active = active[gap[active] > REFINE_TOL * size]
         if top == hs.size or not active.size:
             break
-        got, got_off = _differences(pm, start, modes, phi, t, scales, n_steps, hs[top:top + 1], active)
+        got, got_off = _differences(pm, start, modes, phi, t, scales, n_steps, hs[top:top + 1], active, dirs)
         d[top, active], off[top, active] = got[0], got_off[0]
     return d, off, J, gap
 
 
-def _refine(pm, start, modes, phi, t, scales, n_steps, d, off, redo, progressive: bool = True):
+def _refine(pm, start, modes, phi, t, scales, n_steps, d, off, redo, progressive: bool = True, dirs=None):
     """The choice (:func:`_best_of_ladder`) and agreement of the columns ``redo`` on the ladder merged with its half
     levels (:data:`LADDER` times 1/2, each between its level and the next), ``d`` their differences at every level
     of :data:`LADDER`: the refinement of :func:`_step_jacobian`.
@@ -372,12 +393,13 @@ def _refine(pm, start, modes, phi, t, scales, n_steps, d, off, redo, progressive
     moff = np.zeros((2 * hs.size, redo.size), dtype=bool)
     moff[0::2] = off
     if not progressive:
-        merged[1::2], moff[1::2] = _differences(pm, start, modes, phi, t, scales, n_steps, hs * 0.5, redo)
+        merged[1::2], moff[1::2] = _differences(pm, start, modes, phi, t, scales, n_steps, hs * 0.5, redo, dirs)
         return _best_of_ladder(both, merged, scales, moff)
     J, gap = np.empty((redo.size, n3)), np.empty(redo.size)
     active = np.arange(redo.size)
     for k in range(hs.size):
-        got, got_off = _differences(pm, start, modes, phi, t, scales, n_steps, hs[k:k + 1] * 0.5, redo[active])
+        got, got_off = _differences(pm, start, modes, phi, t, scales, n_steps, hs[k:k + 1] * 0.5, redo[active],
+                                    dirs)
         merged[2 * k + 1, active], moff[2 * k + 1, active] = got[0], got_off[0]
         top = min(2 * k + 3, both.size)
         J[active], gap[active] = _best_of_ladder(both[:top], merged[:top, active], scales, moff[:top, active])
@@ -388,7 +410,8 @@ def _refine(pm, start, modes, phi, t, scales, n_steps, d, off, redo, progressive
     return J, gap
 
 
-def _step_jacobian(pm, start, modes, phi, t, scales, n_steps: int = 1) -> tuple[np.ndarray, np.ndarray, int]:
+def _step_jacobian(pm, start, modes, phi, t, scales, n_steps: int = 1, dirs=None) -> tuple[np.ndarray, np.ndarray,
+                                                                                              int]:
     """``∂(p, v, a)_{n+k}/∂(p, v, a)_n`` (3nr × 3nr) of ``k = n_steps`` located steps (one step, or a block whose
     face forces carry over: :func:`blocks`) by central differences, the replayed end state, and how many of its
     columns are not smooth at any level of the ladder.
@@ -403,14 +426,15 @@ def _step_jacobian(pm, start, modes, phi, t, scales, n_steps: int = 1) -> tuple[
     long one. A column whose best agreement is worse than :data:`REFINE_TOL` of its size is differenced again
     halfway between the levels (:data:`LADDER` times 1/2, :func:`_refine`, level by level as the ladder) and chosen
     again on the merged ladder; one whose best agreement is still worse than :data:`SHRINK_TOL` of its size is
-    counted as not smooth."""
+    counted as not smooth. ``dirs`` ``(3 n_r, m)``: the derivatives along its columns (in units of ``scales``)
+    instead, ``(3 n_r, m)`` (:data:`ALONG_SENSITIVITIES`)."""
     scales = np.asarray(scales, float)
-    d, off, J, gap = _ladder(pm, start, modes, phi, t, scales, n_steps, PROGRESSIVE)
+    d, off, J, gap = _ladder(pm, start, modes, phi, t, scales, n_steps, PROGRESSIVE, dirs)
     size = np.maximum(np.nan_to_num(np.abs(J / scales[None, :]), posinf=0.0).max(axis=1), 1e-300)
     redo = np.flatnonzero(gap > REFINE_TOL * size)
     if redo.size:
         J[redo], gap[redo] = _refine(pm, start, modes, phi, t, scales, n_steps, d[:, redo], off[:, redo], redo,
-                                     PROGRESSIVE)
+                                     PROGRESSIVE, dirs)
     for c in np.flatnonzero(~np.all(np.isfinite(J), axis=1)):
         # every pair of levels touched a replay that did not end finite: the shortest level whose difference is
         # finite, counted as not smooth (its agreement infinite)
@@ -475,10 +499,15 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
             Spv, Sa, miss = contact_step_sensitivity(pm, plans[first], Spv, Sa)
             mismatch = max(mismatch, miss)
             continue
-        J, end, bad = _step_jacobian(pm, x_at(first), modes[first], face[first], tr.t[first], scales, last + 1 - first)
+        U = np.vstack([Spv, Sa])
+        size = np.abs(U / scales[:, None]).max(axis=0) if ALONG_SENSITIVITIES else None
+        if ALONG_SENSITIVITIES:
+            size = np.where(size > 0.0, size, 1.0)
+        J, end, bad = _step_jacobian(pm, x_at(first), modes[first], face[first], tr.t[first], scales, last + 1 - first,
+                                     None if size is None else U / scales[:, None] / size)
         unsmooth += bad
         mismatch = max(mismatch, float(np.max(np.abs(end - x_at(last + 1)) / scales)))
-        S = J @ np.vstack([Spv, Sa])
+        S = J @ U if size is None else J * size
         Spv, Sa = np.ascontiguousarray(S[:2 * nr]), np.ascontiguousarray(S[2 * nr:])
     return Spv, mismatch, unsmooth
 

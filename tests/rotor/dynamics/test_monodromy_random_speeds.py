@@ -173,6 +173,21 @@ def test_table4_at_10_893_9_rpm_a_stick_onset_missed_in_narrow_bands():
     assert got[0] < BOUND, got
 
 
+def test_steel_in_aluminium_at_11_148_3_rpm_a_weak_acceleration_column_with_a_strong_sensitivity():
+    """The Table 4 rotor with the steel-in-aluminium bearing (friction 0.3) at 11 148.3 rpm, T/256, the state 60
+    revolutions after the linear start: drawn by ``RINGCONTACT_TEST_SEED=808`` in
+    test_located_monodromy_at_random_speeds_equals_central_differences_of_its_map. The reference converged to 4.1e-7
+    (its Richardson extrapolations of columns 14 and 18 agree from 3.2e-8 down to 4e-9). Step 178 (face 1 released
+    from rest at μN) is differenced; the carried sensitivity of its start acceleration component 21 is 9.2e4 of its
+    scale per unit of the state's, the step's derivative in it 6.2e-4 of the step's scale, and the ladder's central
+    differences there carry replay noise of 2e-6 to 3e-4 of that: differenced by components and multiplied, the located
+    monodromy was 2.1e-6 from the reference (4.9e-7 with that one column from a ladder four times longer); along the
+    sensitivities (rotor/dynamics/period_map_events.py ``ALONG_SENSITIVITIES``), 3.2e-7."""
+    got = _errors(11148.3, "table4-steel-in-aluminium")
+    assert got is not None and got[1] < REFERENCE_CONVERGED
+    assert got[0] < BOUND, got
+
+
 @pytest.mark.slow
 def test_table4_period_4_orbit_at_10_180_3_rpm():
     """Dai et al. (2025) Table 4 at 10 180.3 rpm: the period-4 orbit ``ringcontact orbit`` finds (T/256), drawn by
