@@ -29,6 +29,7 @@ from __future__ import annotations
 import argparse
 import concurrent.futures as cf
 import importlib.util
+import json
 import math
 import os
 import statistics
@@ -143,8 +144,24 @@ def pair_check(index: int, seed: int) -> dict:
     f_t, f_m = (np.array([b.force_n for b in bars]) for bars in (bars_t, bars_m))
     fem_t, fem_m = (np.array([b.error_rel if math.isfinite(b.error_rel) else 0.0 for b in bars])   # no bar: 0.2 %
                     for bars in (bars_t, bars_m))
+    points = {name: [{"penetration_m": float(d), "force_N": float(f), "error_rel": float(e)} for d, f, e in zip(*sets)]
+              for name, sets in (("train", (train, f_t, fem_t)), ("midpoints", (mid, f_m, fem_m)))}
     return {**row, "wall_s": time.perf_counter() - t0, "fem_error_max_pct": 100 * float(max(fem_t.max(), fem_m.max())),
-            "no_bar": refused, **pair_fits(scene_geometry(scene), (train, f_t, fem_t), (mid, f_m, fem_m))}
+            "no_bar": refused, **pair_fits(scene_geometry(scene), (train, f_t, fem_t), (mid, f_m, fem_m)),
+            "fem_points": points}
+
+
+def write_points(rows: list[dict], seed: int, out: Path) -> Path:
+    """The pairs' FEM points (``fem_points`` of each row that has them, as :func:`pair_check` solved them) to
+    ``<out>/law-family-pairs/seed-<seed>.json``, so a changed law family can be re-checked on the same pairs without
+    solving them again (:func:`pair_fits` on ``train`` and ``midpoints``); the file the pairs' table was made from."""
+    doc = {"about": "FEM points of law-family.md's generated pairs (benchmarks/bench_law_family.py pair_check): "
+                    "force_N the finest level's, error_rel its stated bar (relative; 0 where no bar)",
+           "seed": seed, "pairs": [{"index": r["index"], **r["fem_points"]} for r in rows if "fem_points" in r]}
+    path = out / "law-family-pairs" / f"seed-{seed}.json"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    atomic_write_text(path, json.dumps(doc, indent=1) + "\n")
+    return path
 
 
 def scene_geometry(scene) -> "cal.SceneGeometry":
@@ -181,8 +198,6 @@ def pair_fits(geo, training: tuple, held_out: tuple) -> dict:
 def pairs(n: int, seed: int, workers: int, keep: Path) -> tuple[list[dict], float, tuple]:
     """Every pair's row; finished rows are kept in ``keep`` (JSON lines of this seed), so an interrupted run
     resumes. Wall time: this run's (kept rows carry their own ``wall_s``)."""
-    import json
-
     done = {}
     if keep.exists():
         for line in keep.read_text(encoding="utf-8").splitlines():
@@ -395,14 +410,14 @@ def main(argv: list[str] | None = None) -> int:
                               f"benchmarks/bench_law_family.py --pairs-only --pairs {args.pairs} --seed {args.seed} "
                               f"--workers {args.workers}")
         atomic_write_text(target, text)
-        print(f"wrote {target}", file=sys.stderr)
+        print(f"wrote {target} and {write_points(rows, args.seed, args.out)}", file=sys.stderr)
         return 0
     ring = ring_run(args.out / "law-family-newcomer-20mm", args.workers)
     rows, wall_s, loads = pairs(args.pairs, args.seed, args.workers, keep)
     pair = (rows, args.seed, wall_s, loads)
     cost = kernel_cost(ring_laws(args.out / "law-family-newcomer-20mm"), args.points, args.repeats)
     atomic_write_text(args.out / "law-family.md", report(ring, pair, cost, args))
-    print(f"wrote {args.out / 'law-family.md'}", file=sys.stderr)
+    print(f"wrote {args.out / 'law-family.md'} and {write_points(rows, args.seed, args.out)}", file=sys.stderr)
     return 0
 
 

@@ -70,6 +70,32 @@ def test_the_pair_no_family_holds_is_the_published_row_from_its_committed_points
     assert slope[0] < 1.5 and slope.max() > 5.0 and slope[-1] < 3.0
 
 
+def test_the_pairs_fem_points_are_written_beside_the_report_and_refit_to_the_same_row(tmp_path):
+    """``write_points`` keeps each pair's FEM points (``pair_check``'s ``fem_points``) in
+    ``<out>/law-family-pairs/seed-<seed>.json``, so a changed family can be re-checked without solving again: pair 29's
+    committed points written through it and read back give the same fit row; rows without points (a failed pair)
+    are left out."""
+    import json
+    from pathlib import Path
+
+    from fem_reference.plane.generated import draw_pair
+
+    bench = _bench()
+    data = json.loads((Path(__file__).resolve().parents[2]
+                       / "reports/published/law-family-pairs/seed-2755664993-pair-29.json").read_text())
+    points = {name: data[name] for name in ("train", "midpoints")}
+    path = bench.write_points([{"index": 29, "fem_points": points}, {"index": 3, "failed": "x"}], 7, tmp_path)
+    assert path == tmp_path / "law-family-pairs" / "seed-7.json" and oct(path.stat().st_mode & 0o777) == "0o644"
+    back = json.loads(path.read_text())
+    assert back["seed"] == 7 and [p["index"] for p in back["pairs"]] == [29]
+    scene, _ = draw_pair(np.random.default_rng([2755664993, 29]), 29)
+    geo = bench.scene_geometry(scene)
+    rows = [bench.pair_fits(geo, *[tuple(np.array([p[k] for p in d[name]]) for k in ("penetration_m", "force_N",
+                                                                                       "error_rel"))
+                                   for name in ("train", "midpoints")]) for d in (data, back["pairs"][0])]
+    assert rows[0] == rows[1]
+
+
 @pytest.mark.slow
 def test_published_pair_14_holds_at_every_midpoint():
     """Seed 1141075062's pair 14 (clamped-outer-lower, rigid-inner, plane stress, 0.0105-0.094 mm): on the run
