@@ -500,14 +500,14 @@ def located_monodromy(pm, tr, rec_p, rec_v, carry_held: bool = True) -> tuple[np
             mismatch = max(mismatch, miss)
             continue
         U = np.vstack([Spv, Sa])
-        size = np.abs(U / scales[:, None]).max(axis=0) if ALONG_SENSITIVITIES else None
-        if ALONG_SENSITIVITIES:
-            size = np.where(size > 0.0, size, 1.0)
+        size = np.abs(U / scales[:, None]).max(axis=0)              # each sensitivity column scaled to 1
+        size = np.where(size > 0.0, size, 1.0)
+        dirs = U / scales[:, None] / size if ALONG_SENSITIVITIES else None
         J, end, bad = _step_jacobian(pm, x_at(first), modes[first], face[first], tr.t[first], scales, last + 1 - first,
-                                     None if size is None else U / scales[:, None] / size)
+                                     dirs)
         unsmooth += bad
         mismatch = max(mismatch, float(np.max(np.abs(end - x_at(last + 1)) / scales)))
-        S = J @ U if size is None else J * size
+        S = J * size if ALONG_SENSITIVITIES else J @ U
         Spv, Sa = np.ascontiguousarray(S[:2 * nr]), np.ascontiguousarray(S[2 * nr:])
     return Spv, mismatch, unsmooth
 

@@ -82,7 +82,7 @@ def smoothed_offset(values, lim, K) -> np.ndarray:
     (``p`` :data:`P_NORM`, BFGS from ``c = 0``): the member :func:`centred` moves to."""
     def merit(c):
         w = (values + np.einsum("mak,k->ma", K, c)[None]) / lim[None, :, None]
-        m2 = (w ** 2).sum(-1)
+        m2 = (w ** 2).sum(-1)          # not _ratios' sqrt squared: the round-off moves the slow branch's restarts
         top = m2.max()
         weight = (m2 / top) ** (P_NORM / 2.0)
         g = np.einsum("tm,tma,mak->k", weight / m2.clip(1e-300), w / lim[None, :, None], K) * 2.0 / weight.sum()
