@@ -692,9 +692,10 @@ NOT_CLAIMS = (
     ("reports/published/perf-test-suite.md", "wall times and load of the test command's runs; their pass or fail is "
                                              "the suite itself"),
     ("reports/published/perf-monodromy-random-steel-in-aluminium.md",
-     "one benchmark sample of 20 speeds (seed 41420051, at 80e59d2): 20 of 20 orbits within 1e-6 of the derivative "
-     "of their map's piece (largest 6.1e-7, at 8 902.4 rpm against a reference converged to 6.0e-7); the draws "
-     "before: seed 3613193897 (ddbf938) 16 of 16 where the reference converged and 4 orbits (6 105.5, 7 784.0, "
+     "one benchmark sample of 20 speeds (seed 1224269704, at 6cadf64, differenced blocks along the carried "
+     "sensitivities): 19 of 19 orbits within 1e-6 of the derivative of their map's piece (largest 5.3e-7, at "
+     "10 504.7 rpm against a reference converged to 6.4e-7) and one (9 063.3 rpm) whose reference did not converge; "
+     "the draws before: seed 41420051 (80e59d2, by components) 20 of 20 (largest 6.1e-7), seed 3613193897 (ddbf938) 16 of 16 where the reference converged and 4 orbits (6 105.5, 7 784.0, "
      "8 203.9, 9 026.5 rpm) where none did (the map jumps within 1e-7 of the state: at 8 203.9 rpm seven columns "
      "at every step from 3e-8 to 1e-6), seed 4269954154 (1b1a63c) 20 of 20, seed 2376377958 one miss (1.15e-6 "
      "against a reference converged to 4.8e-7) and one unresolved; a sample, not a claim: each run draws a new "
