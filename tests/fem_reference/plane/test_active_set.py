@@ -39,12 +39,16 @@ def _pairs_covering_every_drive_and_hold(seed: int) -> list:
 def test_active_set_and_condensed_solves_agree_on_generated_pairs():
     """Pairs drawn from the commit's seed (printed) until every drive (the coupled one bordered by its constraint)
     and every hold appeared, both penetrations, on the reference's first refinement: the active-set force equals
-    the condensed solve's to 1e-9, from the rigid overlap's set and from a coarser level's arc; the nested-dissection
-    factor gives the same force as the minimum-degree one, and the multipliers agree to 1e-8 of the largest. (Rounding,
-    measured over 30 seeds: forces up to 3e-10 apart and multipliers up to 2e-9 of the largest, on coupled drives whose
-    net force, 30-400 N, is the small difference of pressures of 1e5 Pa around the arc; with the same minimum-degree
-    factor both ways too, so it is the problem's conditioning, not either method. The reference these levels give is
-    checked at 1e-7 and coarser.)"""
+    the condensed solve's on the same factor to 1e-9, from the rigid overlap's set and from a coarser level's arc,
+    and the multipliers agree with the minimum-degree condensed solve's to 1e-8 of the largest (1e-7 from the
+    nested-dissection factor); the condensed solve on that factor gives the minimum-degree one's force to 1e-8.
+    (Rounding, on coupled drives whose net force, 30-400 N, is the small difference of pressures of 1e5 Pa around
+    the arc. Over 30 seeds the two orderings were within 3e-10 (force) and 2e-9 of the largest multiplier; seed
+    3789911695 (a clamped-upper housing, 61.4 N) put their condensed forces 1.0e-9 apart and the active set on the
+    nested-dissection factor 1.1e-9 (force) and 1.6e-8 (multipliers) from the minimum-degree condensed solve, which
+    failed the bounds of 1e-9 and 1e-8 those had across orderings; on one factor the two methods stay within
+    5.1e-11 there. The cross-ordering bounds were raised tenfold for that; the same-factor force bound is kept. The
+    reference these levels give is checked at 1e-7 and coarser.)"""
     seed = commit_seed()
     print(f"seed {seed}")
     for sc, pens in _pairs_covering_every_drive_and_hold(seed):
@@ -57,15 +61,18 @@ def test_active_set_and_condensed_solves_agree_on_generated_pairs():
                 edge = ContactModel.from_mesh(sc, coarse).solve(d).half_angle_rad
             except Exception:                 # the first mesh may not resolve the arc (the reference passes it over)
                 edge = None
-            want = mmd.solve(d)
+            condensed = {id(mmd): mmd.solve(d), id(nd): nd.solve(d)}
+            assert condensed[id(nd)].force_n == pytest.approx(condensed[id(mmd)].force_n, rel=1e-8)
             for model, first in ((mmd, None), (nd, None), (nd, edge)):
+                want = condensed[id(mmd)]
                 got = solve_active_set(model, d, edge_phi_rad=first)
                 print(f"{sc.support_hold} {sc.bearing_drive} {d * 1e3:.4f} mm: {want.force_n!r} vs {got.force_n!r} "
                       f"({got.iterations} sets, first {first})")
                 assert got.method == "active-set"
-                assert got.force_n == pytest.approx(want.force_n, rel=1e-9)
+                assert got.force_n == pytest.approx(condensed[id(model)].force_n, rel=1e-9)
+                across = 1.0 if model is mmd else 10.0          # the other ordering: its own rounding (docstring)
                 assert got.half_angle_rad == pytest.approx(want.half_angle_rad, abs=1e-9)
-                assert np.max(np.abs(got.lam - want.lam)) <= 1e-8 * np.max(want.lam)
+                assert np.max(np.abs(got.lam - want.lam)) <= across * 1e-8 * np.max(want.lam)
 
 
 def test_active_set_without_contact_is_zero():
