@@ -55,9 +55,14 @@ from contact.loose_support import point_force_jacobian  # noqa: E402
 from contact.units import ARCMIN, MM  # noqa: E402
 from reports.cli._edge import out_dir  # noqa: E402
 
-#: a generated pair's training penetrations: contact.calibrate.spline.MAX_KNOTS, so that each is a knot of the flexible
-#: family (with more, some are dropped as knots and the gaps double where they are)
-TRAIN_POINTS = MAX_KNOTS
+#: a generated pair's first training penetrations (geometric); the refinement adds up to MAX_KNOTS - TRAIN_POINTS more
+#: where the data says the spline does not resolve the curve (:func:`refined_training`), so that every training point
+#: is a knot of the flexible family (contact.calibrate.spline.MAX_KNOTS)
+TRAIN_POINTS = 12
+#: an interval is refined where the flexible family's correction and the not-a-knot cubic through the same training
+#: points differ by more than this at its midpoint (contact.calibrate.spline.unsure_intervals): a quarter of the
+#: target's 0.2 %
+DOUBT_REL = 5e-4
 SPLINE = "foundation-spline"
 #: the kernel before the flexible family: "today's foundation law" of issue 37
 TODAY = "3a38b5f"
@@ -137,6 +142,10 @@ def pair_check(index: int, seed: int) -> dict:
     train, mid = pair_grids(low, high)
     try:
         bars_t = [adaptive_point(scene, float(d)).bar for d in train]
+        extra = refined_training(scene, train, np.array([b.force_n for b in bars_t]))
+        solved = sorted(zip(train.tolist() + extra.tolist(), bars_t + [adaptive_point(scene, float(d)).bar
+                                                                          for d in extra]), key=lambda t: t[0])
+        train, bars_t = np.array([d for d, _ in solved]), [bar for _, bar in solved]
         bars_m = [adaptive_point(scene, float(d)).bar for d in mid]
     except Exception as exc:             # a pair the error-driven levels cannot solve is reported, not hidden
         return {**row, "failed": f"{type(exc).__name__}: {str(exc)[:120]}", "wall_s": time.perf_counter() - t0}
@@ -146,9 +155,20 @@ def pair_check(index: int, seed: int) -> dict:
                     for bars in (bars_t, bars_m))
     points = {name: [{"penetration_m": float(d), "force_N": float(f), "error_rel": float(e)} for d, f, e in zip(*sets)]
               for name, sets in (("train", (train, f_t, fem_t)), ("midpoints", (mid, f_m, fem_m)))}
-    return {**row, "wall_s": time.perf_counter() - t0, "fem_error_max_pct": 100 * float(max(fem_t.max(), fem_m.max())),
+    return {**row, "wall_s": time.perf_counter() - t0, "refined": int(extra.size), "fem_error_max_pct": 100 * float(max(fem_t.max(), fem_m.max())),
             "no_bar": refused, **pair_fits(scene_geometry(scene), (train, f_t, fem_t), (mid, f_m, fem_m)),
             "fem_points": points}
+
+
+def refined_training(scene, train_m: np.ndarray, force_N: np.ndarray) -> np.ndarray:
+    """The penetrations (m) a pair's training grid gains: two in each interval where the flexible family's spline and
+    the not-a-knot cubic through the first points disagree by more than :data:`DOUBT_REL`
+    (:func:`contact.calibrate.spline.refinement`; the training data alone decides, the held-out midpoints stay
+    unseen and still lie strictly between training points)."""
+    from contact.calibrate.fit import foundation_force
+    from contact.calibrate.spline import refinement
+
+    return refinement(train_m, force_N, foundation_force(train_m, scene_geometry(scene)), DOUBT_REL, MAX_KNOTS)
 
 
 def write_points(rows: list[dict], seed: int, out: Path) -> Path:
@@ -310,23 +330,26 @@ def _ring_lines(summary: dict, wall_s: float, loads: tuple) -> list[str]:
 def _pair_lines(rows: list[dict], seed: int, wall_s: float, loads: tuple) -> list[str]:
     ok = [r for r in rows if "failed" not in r]
     lines = [f"Seed {seed} (numpy `default_rng([seed, index])` per pair), {len(rows)} pairs. Each pair: {TRAIN_POINTS} "
-             f"training penetrations, geometric over its drawn range, ends included (every one a knot of the flexible "
-             f"family), and {TRAIN_POINTS - 1} held-out ones at their geometric midpoints (benchmarks/bench_law_family.py "
-             f"`pair_grids`); {wall_s:.0f} s on the pool in this run (load average {loads[0]:.2f} → {loads[1]:.2f}; "
+             f"training penetrations, geometric over its drawn range, ends included, and {TRAIN_POINTS - 1} held-out ones "
+             f"at their geometric midpoints (benchmarks/bench_law_family.py `pair_grids`); the training grid then gains "
+             f"two points at the thirds of each interval where the flexible family's spline and the not-a-knot cubic "
+             f"through the training points differ by more than {100 * DOUBT_REL:g} % at the midpoint, the most doubtful "
+             f"first, up to {MAX_KNOTS} training points in all (`refined_training`; every training point a knot; "
+             f"column 'train'); {wall_s:.0f} s on the pool in this run {wall_s:.0f} s on the pool in this run (load average {loads[0]:.2f} → {loads[1]:.2f}; "
              "pairs finished by an interrupted run of the same seed are read back). Every family is fitted on the "
              "training points alone; 'chosen' is the selection rule's pick from the training points' leave-one-out; "
              f"the columns after it are the errors at the midpoints. Target: {ACCURACY_RULE} (2D: force).", "",
-             "| # | hold | drive | plane | c (mm) | range (mm) | FEM error max (%) | chosen | its midpoint max (%) "
+             "| # | hold | drive | plane | c (mm) | range (mm) | FEM error max (%) | train | chosen | its midpoint max (%) "
              "| within target | families holding (leave-one-out, flag bound) | families within target at every midpoint "
              "| spline midpoint max (%) | at (mm) | spline within | wall (s) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         head = (f"| {r['index']} | {r['hold']} | {r['drive']} | {r['plane']} | {r['clearance_mm']:.4f} | "
                 f"{r['range_mm'][0]:.4f}-{r['range_mm'][1]:.4f} |")
         if "failed" in r:
-            lines.append(head + f" – | failed: {r['failed']} | | | | | | | | {r['wall_s']:.0f} |")
+            lines.append(head + f" – | – | failed: {r['failed']} | | | | | | | | {r['wall_s']:.0f} |")
             continue
-        lines.append(head + f" {r['fem_error_max_pct']:.3f} | {r['chosen']} | {r['chosen_holdout_max_pct']:.3f} | "
+        lines.append(head + f" {r['fem_error_max_pct']:.3f} | {r['train_points']} | {r['chosen']} | {r['chosen_holdout_max_pct']:.3f} | "
                      f"{r['chosen_within']}/{r['points']} | {', '.join(r['families_holding']) or 'none'} | "
                      f"{', '.join(r['families_meeting']) or 'none'} | {r['spline_holdout_max_pct']:.3f} | "
                      f"{r['spline_worst_mm']:.5f} | {r['spline_within']}/{r['points']} | {r['wall_s']:.0f} |")

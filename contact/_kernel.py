@@ -33,7 +33,7 @@ Parameter tuple ``p`` (all floats, built by ``LooseSupportParams.kernel_args``):
       piecewise-smooth system continued past its switching surface)
 15…   law code 3 only (else 0): the number of knots K (2 <= K <= SPLINE_MAX_KNOTS), then the knots' ln Δr,
       their values c and slopes dc/d ln Δr (SPLINE_MAX_KNOTS slots each, the first K used); c linear beyond
-52…   only in a tuple of N_PARAMS_TILT slots (law codes 2 and 3): a tilt correction of the slice-integrated
+88…   only in a tuple of N_PARAMS_TILT slots (law codes 2 and 3): a tilt correction of the slice-integrated
       patch fitted to 3D tilted points, P exp(a) and moment × exp(b) (contact._kernel_tilt,
       contact.calibrate.tilt_correction). The usual tuple of N_PARAMS slots has none, and compiles as before
 ====  ==================================================================
@@ -59,7 +59,7 @@ from contact.errors import OutsideDomainError
 
 compiled_with(__file__, ["contact._kernel_friction", "contact._kernel_tilt"])  # cached in the user's cache folder
 
-SPLINE_MAX_KNOTS = 12
+SPLINE_MAX_KNOTS = 24
 SPLINE_SLOT = 15                                   # first slot of a code-3 law's spline
 N_SPLINE_SLOTS = 1 + 3 * SPLINE_MAX_KNOTS
 N_PARAMS = SPLINE_SLOT + N_SPLINE_SLOTS
@@ -135,9 +135,14 @@ def _spline_law(pen, p):
         c = p[y0 + nk - 1] + p[m0 + nk - 1] * (u - p[x0 + nk - 1])
         dc = p[m0 + nk - 1]
     else:
-        k = 0
-        while k < nk - 2 and u > p[x0 + k + 1]:
-            k += 1
+        k = 0                    # bisection: the interval [x_k, x_k+1] holding u (x_0 < u < x_nk-1)
+        hi = nk - 1
+        while hi - k > 1:
+            mid = (k + hi) // 2
+            if u > p[x0 + mid]:
+                k = mid
+            else:
+                hi = mid
         h = p[x0 + k + 1] - p[x0 + k]
         t = (u - p[x0 + k]) / h
         t2 = t * t

@@ -27,7 +27,7 @@ from contact.compiled_cache import compiled_with
 compiled_with(__file__, [])  # cached in the user's cache folder (contact.compiled_cache)
 
 #: first slot of the tilt correction (contact._kernel checks it is its N_PARAMS: the correction comes last)
-TILT_SLOT = 52
+TILT_SLOT = 88
 TILT_XI_INTERVALS = 4
 TILT_PSI_INTERVALS = 6
 TILT_BLOCK = (TILT_XI_INTERVALS + 1) * (TILT_PSI_INTERVALS + 1)
@@ -100,8 +100,8 @@ def _straight(pen, p):
     wx3, _d3 = _folded(xi, 3, 4)
     wx4, _d4 = _folded(xi, 4, 4)
     w0, w1 = _folded(0.0, 0, 6)[0], _folded(0.0, 1, 6)[0]
-    b = wx0 * (w0 * p[91] + w1 * p[92]) + wx1 * (w0 * p[98] + w1 * p[99]) + wx2 * (w0 * p[105] + w1 * p[106]) \
-        + wx3 * (w0 * p[112] + w1 * p[113]) + wx4 * (w0 * p[119] + w1 * p[120])
+    b = wx0 * (w0 * p[127] + w1 * p[128]) + wx1 * (w0 * p[134] + w1 * p[135]) + wx2 * (w0 * p[141] + w1 * p[142]) \
+        + wx3 * (w0 * p[148] + w1 * p[149]) + wx4 * (w0 * p[155] + w1 * p[156])
     return 0.0, 0.0, 0.0, b, 0.0, 0.0
 
 
@@ -122,29 +122,29 @@ def _static(pen, t, l0, p):
     wy4, dy4 = _folded(psi, 4, 6)
     wy5, dy5 = _folded(psi, 5, 6)
     wy6, dy6 = _folded(psi, 6, 6)
-    ar0 = wy0 * p[56] + wy1 * p[57] + wy2 * p[58] + wy3 * p[59] + wy4 * p[60] + wy5 * p[61] + wy6 * p[62]
-    ad0 = dy0 * p[56] + dy1 * p[57] + dy2 * p[58] + dy3 * p[59] + dy4 * p[60] + dy5 * p[61] + dy6 * p[62]
-    ar1 = wy0 * p[63] + wy1 * p[64] + wy2 * p[65] + wy3 * p[66] + wy4 * p[67] + wy5 * p[68] + wy6 * p[69]
-    ad1 = dy0 * p[63] + dy1 * p[64] + dy2 * p[65] + dy3 * p[66] + dy4 * p[67] + dy5 * p[68] + dy6 * p[69]
-    ar2 = wy0 * p[70] + wy1 * p[71] + wy2 * p[72] + wy3 * p[73] + wy4 * p[74] + wy5 * p[75] + wy6 * p[76]
-    ad2 = dy0 * p[70] + dy1 * p[71] + dy2 * p[72] + dy3 * p[73] + dy4 * p[74] + dy5 * p[75] + dy6 * p[76]
-    ar3 = wy0 * p[77] + wy1 * p[78] + wy2 * p[79] + wy3 * p[80] + wy4 * p[81] + wy5 * p[82] + wy6 * p[83]
-    ad3 = dy0 * p[77] + dy1 * p[78] + dy2 * p[79] + dy3 * p[80] + dy4 * p[81] + dy5 * p[82] + dy6 * p[83]
-    ar4 = wy0 * p[84] + wy1 * p[85] + wy2 * p[86] + wy3 * p[87] + wy4 * p[88] + wy5 * p[89] + wy6 * p[90]
-    ad4 = dy0 * p[84] + dy1 * p[85] + dy2 * p[86] + dy3 * p[87] + dy4 * p[88] + dy5 * p[89] + dy6 * p[90]
+    ar0 = wy0 * p[92] + wy1 * p[93] + wy2 * p[94] + wy3 * p[95] + wy4 * p[96] + wy5 * p[97] + wy6 * p[98]
+    ad0 = dy0 * p[92] + dy1 * p[93] + dy2 * p[94] + dy3 * p[95] + dy4 * p[96] + dy5 * p[97] + dy6 * p[98]
+    ar1 = wy0 * p[99] + wy1 * p[100] + wy2 * p[101] + wy3 * p[102] + wy4 * p[103] + wy5 * p[104] + wy6 * p[105]
+    ad1 = dy0 * p[99] + dy1 * p[100] + dy2 * p[101] + dy3 * p[102] + dy4 * p[103] + dy5 * p[104] + dy6 * p[105]
+    ar2 = wy0 * p[106] + wy1 * p[107] + wy2 * p[108] + wy3 * p[109] + wy4 * p[110] + wy5 * p[111] + wy6 * p[112]
+    ad2 = dy0 * p[106] + dy1 * p[107] + dy2 * p[108] + dy3 * p[109] + dy4 * p[110] + dy5 * p[111] + dy6 * p[112]
+    ar3 = wy0 * p[113] + wy1 * p[114] + wy2 * p[115] + wy3 * p[116] + wy4 * p[117] + wy5 * p[118] + wy6 * p[119]
+    ad3 = dy0 * p[113] + dy1 * p[114] + dy2 * p[115] + dy3 * p[116] + dy4 * p[117] + dy5 * p[118] + dy6 * p[119]
+    ar4 = wy0 * p[120] + wy1 * p[121] + wy2 * p[122] + wy3 * p[123] + wy4 * p[124] + wy5 * p[125] + wy6 * p[126]
+    ad4 = dy0 * p[120] + dy1 * p[121] + dy2 * p[122] + dy3 * p[123] + dy4 * p[124] + dy5 * p[125] + dy6 * p[126]
     a = wx0 * ar0 + wx1 * ar1 + wx2 * ar2 + wx3 * ar3 + wx4 * ar4
     a_x = dx0 * ar0 + dx1 * ar1 + dx2 * ar2 + dx3 * ar3 + dx4 * ar4
     a_y = wx0 * ad0 + wx1 * ad1 + wx2 * ad2 + wx3 * ad3 + wx4 * ad4
-    br0 = wy0 * p[91] + wy1 * p[92] + wy2 * p[93] + wy3 * p[94] + wy4 * p[95] + wy5 * p[96] + wy6 * p[97]
-    bd0 = dy0 * p[91] + dy1 * p[92] + dy2 * p[93] + dy3 * p[94] + dy4 * p[95] + dy5 * p[96] + dy6 * p[97]
-    br1 = wy0 * p[98] + wy1 * p[99] + wy2 * p[100] + wy3 * p[101] + wy4 * p[102] + wy5 * p[103] + wy6 * p[104]
-    bd1 = dy0 * p[98] + dy1 * p[99] + dy2 * p[100] + dy3 * p[101] + dy4 * p[102] + dy5 * p[103] + dy6 * p[104]
-    br2 = wy0 * p[105] + wy1 * p[106] + wy2 * p[107] + wy3 * p[108] + wy4 * p[109] + wy5 * p[110] + wy6 * p[111]
-    bd2 = dy0 * p[105] + dy1 * p[106] + dy2 * p[107] + dy3 * p[108] + dy4 * p[109] + dy5 * p[110] + dy6 * p[111]
-    br3 = wy0 * p[112] + wy1 * p[113] + wy2 * p[114] + wy3 * p[115] + wy4 * p[116] + wy5 * p[117] + wy6 * p[118]
-    bd3 = dy0 * p[112] + dy1 * p[113] + dy2 * p[114] + dy3 * p[115] + dy4 * p[116] + dy5 * p[117] + dy6 * p[118]
-    br4 = wy0 * p[119] + wy1 * p[120] + wy2 * p[121] + wy3 * p[122] + wy4 * p[123] + wy5 * p[124] + wy6 * p[125]
-    bd4 = dy0 * p[119] + dy1 * p[120] + dy2 * p[121] + dy3 * p[122] + dy4 * p[123] + dy5 * p[124] + dy6 * p[125]
+    br0 = wy0 * p[127] + wy1 * p[128] + wy2 * p[129] + wy3 * p[130] + wy4 * p[131] + wy5 * p[132] + wy6 * p[133]
+    bd0 = dy0 * p[127] + dy1 * p[128] + dy2 * p[129] + dy3 * p[130] + dy4 * p[131] + dy5 * p[132] + dy6 * p[133]
+    br1 = wy0 * p[134] + wy1 * p[135] + wy2 * p[136] + wy3 * p[137] + wy4 * p[138] + wy5 * p[139] + wy6 * p[140]
+    bd1 = dy0 * p[134] + dy1 * p[135] + dy2 * p[136] + dy3 * p[137] + dy4 * p[138] + dy5 * p[139] + dy6 * p[140]
+    br2 = wy0 * p[141] + wy1 * p[142] + wy2 * p[143] + wy3 * p[144] + wy4 * p[145] + wy5 * p[146] + wy6 * p[147]
+    bd2 = dy0 * p[141] + dy1 * p[142] + dy2 * p[143] + dy3 * p[144] + dy4 * p[145] + dy5 * p[146] + dy6 * p[147]
+    br3 = wy0 * p[148] + wy1 * p[149] + wy2 * p[150] + wy3 * p[151] + wy4 * p[152] + wy5 * p[153] + wy6 * p[154]
+    bd3 = dy0 * p[148] + dy1 * p[149] + dy2 * p[150] + dy3 * p[151] + dy4 * p[152] + dy5 * p[153] + dy6 * p[154]
+    br4 = wy0 * p[155] + wy1 * p[156] + wy2 * p[157] + wy3 * p[158] + wy4 * p[159] + wy5 * p[160] + wy6 * p[161]
+    bd4 = dy0 * p[155] + dy1 * p[156] + dy2 * p[157] + dy3 * p[158] + dy4 * p[159] + dy5 * p[160] + dy6 * p[161]
     b = wx0 * br0 + wx1 * br1 + wx2 * br2 + wx3 * br3 + wx4 * br4
     b_x = dx0 * br0 + dx1 * br1 + dx2 * br2 + dx3 * br3 + dx4 * br4
     b_y = wx0 * bd0 + wx1 * bd1 + wx2 * bd2 + wx3 * bd3 + wx4 * bd4
@@ -159,7 +159,7 @@ def spline_law_fixed(pen, p):
     operations in the same order, so the same numbers (the tests compare them bit for bit)."""
     nk = int(p[15])
     if pen <= 0.0:
-        return 0.0, (0.0 if p[40] > -0.5 else math.inf), 1
+        return 0.0, (0.0 if p[64] > -0.5 else math.inf), 1
     e = p[0] + pen
     sn = math.sqrt(pen * (2.0 * p[0] + pen)) / e
     cs = p[0] / e
@@ -167,55 +167,103 @@ def spline_law_fixed(pen, p):
     hb = p[6] * e * (eps - sn * cs)
     dhb = p[6] * (eps + sn * cs)
     u = math.log(pen)
-    xl, yl, ml = p[17], p[29], p[41]
+    xl, yl, ml = p[17], p[41], p[65]
     if nk == 3:
-        xl, yl, ml = p[18], p[30], p[42]
+        xl, yl, ml = p[18], p[42], p[66]
     if nk == 4:
-        xl, yl, ml = p[19], p[31], p[43]
+        xl, yl, ml = p[19], p[43], p[67]
     if nk == 5:
-        xl, yl, ml = p[20], p[32], p[44]
+        xl, yl, ml = p[20], p[44], p[68]
     if nk == 6:
-        xl, yl, ml = p[21], p[33], p[45]
+        xl, yl, ml = p[21], p[45], p[69]
     if nk == 7:
-        xl, yl, ml = p[22], p[34], p[46]
+        xl, yl, ml = p[22], p[46], p[70]
     if nk == 8:
-        xl, yl, ml = p[23], p[35], p[47]
+        xl, yl, ml = p[23], p[47], p[71]
     if nk == 9:
-        xl, yl, ml = p[24], p[36], p[48]
+        xl, yl, ml = p[24], p[48], p[72]
     if nk == 10:
-        xl, yl, ml = p[25], p[37], p[49]
+        xl, yl, ml = p[25], p[49], p[73]
     if nk == 11:
-        xl, yl, ml = p[26], p[38], p[50]
+        xl, yl, ml = p[26], p[50], p[74]
     if nk == 12:
-        xl, yl, ml = p[27], p[39], p[51]
+        xl, yl, ml = p[27], p[51], p[75]
+    if nk == 13:
+        xl, yl, ml = p[28], p[52], p[76]
+    if nk == 14:
+        xl, yl, ml = p[29], p[53], p[77]
+    if nk == 15:
+        xl, yl, ml = p[30], p[54], p[78]
+    if nk == 16:
+        xl, yl, ml = p[31], p[55], p[79]
+    if nk == 17:
+        xl, yl, ml = p[32], p[56], p[80]
+    if nk == 18:
+        xl, yl, ml = p[33], p[57], p[81]
+    if nk == 19:
+        xl, yl, ml = p[34], p[58], p[82]
+    if nk == 20:
+        xl, yl, ml = p[35], p[59], p[83]
+    if nk == 21:
+        xl, yl, ml = p[36], p[60], p[84]
+    if nk == 22:
+        xl, yl, ml = p[37], p[61], p[85]
+    if nk == 23:
+        xl, yl, ml = p[38], p[62], p[86]
+    if nk == 24:
+        xl, yl, ml = p[39], p[63], p[87]
     if u <= p[16]:
-        c = p[28] + p[40] * (u - p[16])
-        dc = p[40]
+        c = p[40] + p[64] * (u - p[16])
+        dc = p[64]
     elif u >= xl:
         c = yl + ml * (u - xl)
         dc = ml
     else:
-        xa, xb, ya, yb, ma, mb = p[16], p[17], p[28], p[29], p[40], p[41]
+        xa, xb, ya, yb, ma, mb = p[16], p[17], p[40], p[41], p[64], p[65]
         if nk > 2 and u > p[17]:
-            xa, xb, ya, yb, ma, mb = p[17], p[18], p[29], p[30], p[41], p[42]
+            xa, xb, ya, yb, ma, mb = p[17], p[18], p[41], p[42], p[65], p[66]
         if nk > 3 and u > p[18]:
-            xa, xb, ya, yb, ma, mb = p[18], p[19], p[30], p[31], p[42], p[43]
+            xa, xb, ya, yb, ma, mb = p[18], p[19], p[42], p[43], p[66], p[67]
         if nk > 4 and u > p[19]:
-            xa, xb, ya, yb, ma, mb = p[19], p[20], p[31], p[32], p[43], p[44]
+            xa, xb, ya, yb, ma, mb = p[19], p[20], p[43], p[44], p[67], p[68]
         if nk > 5 and u > p[20]:
-            xa, xb, ya, yb, ma, mb = p[20], p[21], p[32], p[33], p[44], p[45]
+            xa, xb, ya, yb, ma, mb = p[20], p[21], p[44], p[45], p[68], p[69]
         if nk > 6 and u > p[21]:
-            xa, xb, ya, yb, ma, mb = p[21], p[22], p[33], p[34], p[45], p[46]
+            xa, xb, ya, yb, ma, mb = p[21], p[22], p[45], p[46], p[69], p[70]
         if nk > 7 and u > p[22]:
-            xa, xb, ya, yb, ma, mb = p[22], p[23], p[34], p[35], p[46], p[47]
+            xa, xb, ya, yb, ma, mb = p[22], p[23], p[46], p[47], p[70], p[71]
         if nk > 8 and u > p[23]:
-            xa, xb, ya, yb, ma, mb = p[23], p[24], p[35], p[36], p[47], p[48]
+            xa, xb, ya, yb, ma, mb = p[23], p[24], p[47], p[48], p[71], p[72]
         if nk > 9 and u > p[24]:
-            xa, xb, ya, yb, ma, mb = p[24], p[25], p[36], p[37], p[48], p[49]
+            xa, xb, ya, yb, ma, mb = p[24], p[25], p[48], p[49], p[72], p[73]
         if nk > 10 and u > p[25]:
-            xa, xb, ya, yb, ma, mb = p[25], p[26], p[37], p[38], p[49], p[50]
+            xa, xb, ya, yb, ma, mb = p[25], p[26], p[49], p[50], p[73], p[74]
         if nk > 11 and u > p[26]:
-            xa, xb, ya, yb, ma, mb = p[26], p[27], p[38], p[39], p[50], p[51]
+            xa, xb, ya, yb, ma, mb = p[26], p[27], p[50], p[51], p[74], p[75]
+        if nk > 12 and u > p[27]:
+            xa, xb, ya, yb, ma, mb = p[27], p[28], p[51], p[52], p[75], p[76]
+        if nk > 13 and u > p[28]:
+            xa, xb, ya, yb, ma, mb = p[28], p[29], p[52], p[53], p[76], p[77]
+        if nk > 14 and u > p[29]:
+            xa, xb, ya, yb, ma, mb = p[29], p[30], p[53], p[54], p[77], p[78]
+        if nk > 15 and u > p[30]:
+            xa, xb, ya, yb, ma, mb = p[30], p[31], p[54], p[55], p[78], p[79]
+        if nk > 16 and u > p[31]:
+            xa, xb, ya, yb, ma, mb = p[31], p[32], p[55], p[56], p[79], p[80]
+        if nk > 17 and u > p[32]:
+            xa, xb, ya, yb, ma, mb = p[32], p[33], p[56], p[57], p[80], p[81]
+        if nk > 18 and u > p[33]:
+            xa, xb, ya, yb, ma, mb = p[33], p[34], p[57], p[58], p[81], p[82]
+        if nk > 19 and u > p[34]:
+            xa, xb, ya, yb, ma, mb = p[34], p[35], p[58], p[59], p[82], p[83]
+        if nk > 20 and u > p[35]:
+            xa, xb, ya, yb, ma, mb = p[35], p[36], p[59], p[60], p[83], p[84]
+        if nk > 21 and u > p[36]:
+            xa, xb, ya, yb, ma, mb = p[36], p[37], p[60], p[61], p[84], p[85]
+        if nk > 22 and u > p[37]:
+            xa, xb, ya, yb, ma, mb = p[37], p[38], p[61], p[62], p[85], p[86]
+        if nk > 23 and u > p[38]:
+            xa, xb, ya, yb, ma, mb = p[38], p[39], p[62], p[63], p[86], p[87]
         h = xb - xa
         t = (u - xa) / h
         t2 = t * t

@@ -137,7 +137,7 @@ class CalibratedLaw:
         """Kernel law slots ``(code, slot 3, slot 6, slot 7)`` of ``contact._kernel`` for this law, followed for
         ``foundation-spline`` (code 3) by its knots (the kernel's slots 15 on, :func:`contact.calibrate.spline.
         kernel_slots`), and for a law with a tilt correction by the spline slots (zeros for code 2) and the
-        correction's (slots 52 on, :meth:`contact.calibrate.tilt_correction.TiltCorrection.kernel_slots`).
+        correction's (slots 88 on, :meth:`contact.calibrate.tilt_correction.TiltCorrection.kernel_slots`).
 
         Raises
         ------
@@ -233,7 +233,7 @@ class CalibratedSupportParams(LooseSupportParams):
     """:class:`~contact.loose_support.LooseSupportParams` whose radial law is a calibrated one.
 
     Identical to its base for damping, friction, tilt geometry and validation; only the law
-    slots of the compiled kernel (``kernel_args`` 2, 3, 6, 7, 15 on for a spline, 52 on for a tilt correction) come
+    slots of the compiled kernel (``kernel_args`` 2, 3, 6, 7, 15 on for a spline, 88 on for a tilt correction) come
     from ``calibrated_kernel_law``
     (see :meth:`CalibratedLaw.kernel_law`). ``law`` keeps the base family for validation
     ("pereira" for a power law, "conformal" otherwise); ``calibration_name`` says which law is used.

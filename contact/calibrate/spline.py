@@ -85,6 +85,37 @@ def knot_indices(n: int) -> np.ndarray:
     return np.unique(np.round(np.linspace(0, n - 1, MAX_KNOTS)).astype(int))
 
 
+def unsure_intervals(pen_m: np.ndarray, force_N: np.ndarray, base_N: np.ndarray) -> np.ndarray:
+    """Each interval's doubt (-): at the geometric midpoint of each pair of neighbouring points (Δr > 0 rising,
+    forces > 0, the foundation base there, N), the relative difference between this family's correction (PCHIP,
+    :func:`pchip_slopes`) and the not-a-knot cubic spline through the same points. Two interpolants of one data set
+    disagree by about their interpolation error where the curve bends more than the knots resolve (a stiffening that
+    the foundation base does not follow); where they agree the data is resolved. Needs >= 4 points (else zeros)."""
+    from scipy.interpolate import CubicSpline
+
+    x = np.log(pen_m)
+    y = np.log(force_N) - np.log(base_N)
+    if x.size < 4:
+        return np.zeros(max(x.size - 1, 0))
+    xm = 0.5 * (x[:-1] + x[1:])
+    pchip = hermite(x, y, pchip_slopes(x, y), xm)[0]
+    return np.abs(np.expm1(pchip - CubicSpline(x, y, bc_type="not-a-knot")(xm)))
+
+
+def refinement(pen_m: np.ndarray, force_N: np.ndarray, base_N: np.ndarray, doubt_rel: float,
+               max_points: int = MAX_KNOTS) -> np.ndarray:
+    """Penetrations (m) to add so that the spline resolves the curve: two per interval whose doubt
+    (:func:`unsure_intervals`) exceeds ``doubt_rel``, at the interval's geometric thirds (so its geometric midpoint,
+    where a held-out check sits, lies in the middle of the middle third), the most doubtful intervals first, as many
+    as keep the total within ``max_points``. Sorted; empty when every interval is resolved."""
+    doubt = unsure_intervals(pen_m, force_N, base_N)
+    room = max(0, (max_points - pen_m.size) // 2)
+    worst = [int(i) for i in np.argsort(-doubt, kind="stable") if doubt[i] > doubt_rel][:room]
+    x = np.log(pen_m)
+    new = [math.exp(x[i] + f * (x[i + 1] - x[i])) for i in worst for f in (1 / 3, 2 / 3)]
+    return np.sort(np.array(new, dtype=float))
+
+
 def parameters(pen_m: np.ndarray, force_N: np.ndarray, base_N: np.ndarray) -> dict:
     """The family's parameters from points (Δr > 0 rising, forces > 0) and the foundation base there (N)."""
     idx = knot_indices(pen_m.size)
