@@ -79,7 +79,7 @@ def test_the_spline_within_the_target_wins_where_the_flag_bound_chose_power():
     assert cal.select_family(list(fits.values()), fem) is flex
     from contact.calibrate.fit import selection_reason
     reason = selection_reason(list(fits.values()), flex, fem)
-    assert reason.startswith("foundation-spline met the target (16 parameters, held-out max 0.18")
+    assert reason.startswith(f"foundation-spline met the target (16 parameters, held-out max {100 * flex.holdout_max:.3f} %)")
     assert f"power ({100 * power.holdout_max:.3f} %)" in reason and reason.endswith("no other family meets it")
 
 
@@ -92,8 +92,11 @@ def test_a_correction_that_would_make_the_force_fall_is_left_out():
 
 def test_more_points_than_knots_keeps_the_others_held_out():
     pen = np.geomspace(5e-7, 3e-5, spline.MAX_KNOTS + 5)
-    fit = cal.fit_family(spline.FAMILY, pen, _curve(pen), GEO)
+    # a bend no cubic follows exactly (the not-a-knot spline reproduces _curve's quadratic correction everywhere)
+    fit = cal.fit_family(spline.FAMILY, pen, _curve(pen) * np.exp(0.05 * np.tanh(np.log(pen / 4e-6))), GEO)
     assert fit.n_parameters == spline.MAX_KNOTS
+    knots = spline.knot_indices(pen.size)
+    assert np.all(np.abs(fit.fit_rel_err[knots]) < 1e-12)
     assert np.count_nonzero(np.abs(fit.fit_rel_err) > 1e-12) == 5
 
 

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from contact import calibrate as cal
+from contact.calibrate import spline
 from contact.calibrate import tilt_correction as tc
 from contact.calibrate import tilt_fit
 from contact.dataset import document_sha256, read_dataset
@@ -125,11 +126,21 @@ def test_zero_tilt_limit_parity_and_smoothness():
             assert np.all(np.abs(v) > 1e-9) and np.all(np.abs(v[:-1] / v[1:] - 4.0) < 0.4), v
 
 
-@pytest.mark.parametrize("family_law", ["spline", "foundation"])
+def _every_knot_slot():
+    """The published 20 mm law refitted on its own force at as many penetrations as the kernel has knot slots
+    (contact._kernel.SPLINE_MAX_KNOTS): every slot of the fixed-index spline copy in use."""
+    law = _published()
+    pen = np.geomspace(*law.validity_penetration_m, spline.MAX_KNOTS)
+    fit = cal.fit_family(spline.FAMILY, pen, law.force(pen).force_N, law.geometry)
+    assert fit.n_parameters == spline.MAX_KNOTS
+    return dataclasses.replace(law, name=law.name + "-every-knot", parameters=fit.parameters)
+
+
+@pytest.mark.parametrize("family_law", ["spline", "spline-every-knot", "foundation"])
 def test_a_zero_correction_is_the_law_bit_for_bit(family_law):
     """A long tuple whose correction is zero runs the fixed-slot copies of the law and the slices
     (contact._kernel_tilt.law_fixed, slices_fixed) and must give the law's own numbers exactly, Jacobian included."""
-    law = _published() if family_law == "spline" else _foundation()
+    law = {"spline": _published, "spline-every-knot": _every_knot_slot, "foundation": _foundation}[family_law]()
     lawt, _ = _random_correction(law)
     args = list(lawt.loose_support_params().kernel_args)
     args[TILT_SLOT + 4:] = [0.0] * (len(args) - TILT_SLOT - 4)
