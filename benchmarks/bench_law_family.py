@@ -93,6 +93,12 @@ def load() -> float:
     return round(os.getloadavg()[0], 2)
 
 
+def commit() -> str:
+    """The repository's HEAD (short hash), or "unknown" outside a git checkout."""
+    r = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    return r.stdout.strip() or "unknown"
+
+
 # ---------------------------------------------------------------------------------------------- 1. the 20 mm ring
 
 def ring_run(out: Path, workers: int) -> tuple[dict, float, tuple]:
@@ -126,18 +132,24 @@ def pair_grids(low_m: float, high_m: float) -> tuple[np.ndarray, np.ndarray]:
     return train, np.sqrt(train[:-1] * train[1:])
 
 
+def pair_scene(index: int, seed: int) -> tuple:
+    """Pair ``index`` of ``seed``: its scene, penetration range (m) and the row's head (hold, drive, plane, mm)."""
+    from fem_reference.plane.generated import draw_pair
+
+    scene, (low, high) = draw_pair(np.random.default_rng([seed, index]), index)
+    r = scene.rings
+    return scene, (low, high), {"index": index, "hold": scene.support_hold, "drive": scene.bearing_drive,
+                                "plane": scene.plane, "clearance_mm": r.clearance_m / MM,
+                                "range_mm": [low / MM, high / MM]}
+
+
 def pair_check(index: int, seed: int) -> dict:
     """One generated pair: its 2D points on the training grid and at the midpoints (:func:`pair_grids`), every family
     fitted on the training grid alone; the chosen one's (the selection rule on the training grid's leave-one-out) and
     each family's accuracy at the midpoints."""
     from fem_reference.plane.adapt import adaptive_point
-    from fem_reference.plane.generated import draw_pair
 
-    rng = np.random.default_rng([seed, index])
-    scene, (low, high) = draw_pair(rng, index)
-    r = scene.rings
-    row = {"index": index, "hold": scene.support_hold, "drive": scene.bearing_drive, "plane": scene.plane,
-           "clearance_mm": r.clearance_m / MM, "range_mm": [low / MM, high / MM]}
+    scene, (low, high), row = pair_scene(index, seed)
     t0 = time.perf_counter()
     train, mid = pair_grids(low, high)
     try:
@@ -161,8 +173,8 @@ def pair_check(index: int, seed: int) -> dict:
 
 
 def refined_training(scene, train_m: np.ndarray, force_N: np.ndarray) -> np.ndarray:
-    """The penetrations (m) a pair's training grid gains: two in each interval where the flexible family's spline and
-    the not-a-knot cubic through the first points disagree by more than :data:`DOUBT_REL`
+    """The penetrations (m) a pair's training grid gains: two in each interval where the PCHIP and the not-a-knot cubic
+    interpolants of the correction through the first points disagree by more than :data:`DOUBT_REL`
     (:func:`contact.calibrate.spline.refinement`; the training data alone decides, the held-out midpoints stay
     unseen and still lie strictly between training points)."""
     from contact.calibrate.fit import foundation_force
@@ -171,13 +183,19 @@ def refined_training(scene, train_m: np.ndarray, force_N: np.ndarray) -> np.ndar
     return refinement(train_m, force_N, foundation_force(train_m, scene_geometry(scene)), DOUBT_REL, MAX_KNOTS)
 
 
-def write_points(rows: list[dict], seed: int, out: Path) -> Path:
+def write_points(rows: list[dict], seed: int, out: Path, run: dict | None = None) -> Path:
     """The pairs' FEM points (``fem_points`` of each row that has them, as :func:`pair_check` solved them) to
     ``<out>/law-family-pairs/seed-<seed>.json``, so a changed law family can be re-checked on the same pairs without
-    solving them again (:func:`pair_fits` on ``train`` and ``midpoints``); the file the pairs' table was made from."""
+    solving them again (:func:`pair_fits` on ``train`` and ``midpoints``; benchmarks/refit_law_family_pairs.py); the
+    file the pairs' table was made from. Each pair also keeps its solve's ``wall_s``, ``no_bar`` (points without a
+    bar) and ``refined`` (training points the refinement added); ``run``: the pool's wall time (s), load averages and
+    the code's commit."""
+    meta = ("wall_s", "no_bar", "refined")
     doc = {"about": "FEM points of law-family.md's generated pairs (benchmarks/bench_law_family.py pair_check): "
                     "force_N the finest level's, error_rel its stated bar (relative; 0 where no bar)",
-           "seed": seed, "pairs": [{"index": r["index"], **r["fem_points"]} for r in rows if "fem_points" in r]}
+           "seed": seed, "run": run or {},
+           "pairs": [{"index": r["index"], **{k: r[k] for k in meta if k in r}, **r["fem_points"]}
+                     for r in rows if "fem_points" in r]}
     path = out / "law-family-pairs" / f"seed-{seed}.json"
     path.parent.mkdir(parents=True, exist_ok=True)
     atomic_write_text(path, json.dumps(doc, indent=1) + "\n")
@@ -327,15 +345,16 @@ def _ring_lines(summary: dict, wall_s: float, loads: tuple) -> list[str]:
                         if not a["holds"]) + ".")]
 
 
-def _pair_lines(rows: list[dict], seed: int, wall_s: float, loads: tuple) -> list[str]:
+def _pair_lines(rows: list[dict], seed: int, wall_s: float, loads: tuple, solved: str = "this run") -> list[str]:
     ok = [r for r in rows if "failed" not in r]
     lines = [f"Seed {seed} (numpy `default_rng([seed, index])` per pair), {len(rows)} pairs. Each pair: {TRAIN_POINTS} "
              f"training penetrations, geometric over its drawn range, ends included, and {TRAIN_POINTS - 1} held-out ones "
              f"at their geometric midpoints (benchmarks/bench_law_family.py `pair_grids`); the training grid then gains "
-             f"two points at the thirds of each interval where the flexible family's spline and the not-a-knot cubic "
-             f"through the training points differ by more than {100 * DOUBT_REL:g} % at the midpoint, the most doubtful "
-             f"first, up to {MAX_KNOTS} training points in all (`refined_training`; every training point a knot; "
-             f"column 'train'); {wall_s:.0f} s on the pool in this run {wall_s:.0f} s on the pool in this run (load average {loads[0]:.2f} → {loads[1]:.2f}; "
+             f"two points at the thirds of each interval where the PCHIP and the not-a-knot cubic interpolants of the "
+             f"flexible family's correction through the training points differ by more than {100 * DOUBT_REL:g} % at "
+             f"the interval's midpoint, the most doubtful first, up to {MAX_KNOTS} training points in all "
+             f"(`refined_training`, from the training points alone; every training point a knot; column 'train'). "
+             f"FEM points: {wall_s:.0f} s on the pool in {solved} (load average {loads[0]:.2f} → {loads[1]:.2f}; "
              "pairs finished by an interrupted run of the same seed are read back). Every family is fitted on the "
              "training points alone; 'chosen' is the selection rule's pick from the training points' leave-one-out; "
              f"the columns after it are the errors at the midpoints. Target: {ACCURACY_RULE} (2D: force).", "",
@@ -433,7 +452,8 @@ def main(argv: list[str] | None = None) -> int:
                               f"benchmarks/bench_law_family.py --pairs-only --pairs {args.pairs} --seed {args.seed} "
                               f"--workers {args.workers}")
         atomic_write_text(target, text)
-        print(f"wrote {target} and {write_points(rows, args.seed, args.out)}", file=sys.stderr)
+        run = {"wall_s": wall_s, "load_average": list(loads), "commit": commit()}
+        print(f"wrote {target} and {write_points(rows, args.seed, args.out, run)}", file=sys.stderr)
         return 0
     ring = ring_run(args.out / "law-family-newcomer-20mm", args.workers)
     rows, wall_s, loads = pairs(args.pairs, args.seed, args.workers, keep)
