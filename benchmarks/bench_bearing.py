@@ -127,6 +127,7 @@ def refit(args) -> int:
         print(f"bench_bearing: --refit: needs the report {args.out} (with its law line) and the kept run {folder} "
               "(a run without --refit writes both)", file=sys.stderr)
         return 2
+    version = version_line()                  # before the run writes: the code it ran, not its own output
     with tempfile.TemporaryDirectory(prefix="bench-bearing-refit-") as tmp:
         run = Path(tmp) / "run"
         shutil.copytree(folder, run)
@@ -136,7 +137,7 @@ def refit(args) -> int:
             print(f"bench_bearing: --refit: {exc}", file=sys.stderr)
             return 2
         keep(run, folder, summary)
-    note = (f"(From here on: `benchmarks/bench_bearing.py --refit`, {version_line()}: the tilted run's laws refitted "
+    note = (f"(From here on: `benchmarks/bench_bearing.py --refit`, {version}: the tilted run's laws refitted "
             f"from its kept datasets in {folder.name}/, no FEM point solved; the timings above are those of the run "
             f"of {summary['refit_of']}.)")
     atomic_write_text(args.out, text[:cut + 1] + "\n".join([note, "", *law_lines(summary), *tilt_lines(summary)]))

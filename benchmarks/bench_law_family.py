@@ -397,17 +397,17 @@ def replaced_pairs(text: str, lines: list[str], argv_text: str) -> str | None:
     return text[:a] + "\n".join([head, "", note, "", *lines, "", ""]) + text[b:]
 
 
-def replaced_ring_and_cost(text: str, ring: list[str], cost: list[str], argv_text: str) -> str | None:
+def replaced_ring_and_cost(text: str, ring: list[str], cost: list[str], argv_text: str,
+                           version: str = "") -> str | None:
     """``law-family.md``'s text with its 20 mm ring and kernel-cost sections replaced by ``ring`` and ``cost``
-    (``--ring-and-cost-only``; the generated-pairs section between them kept as it is), or None if it lacks one."""
-    from reports.version import version_line
-
+    (``--ring-and-cost-only``, run at code ``version``; the generated-pairs section between them kept as it is), or
+    None if it lacks one."""
     heads = ("## The 20 mm ring", "## Generated pairs (2D, force)", "## Kernel cost")
     a, b, c = (text.find(h) for h in heads)
     if a < 0 or not a < b < c:
         return None
     ring_head = text[a:text.index("\n", a)]
-    note = (f"(This section and the kernel cost below: `{argv_text}`, {version_line()}; the generated pairs "
+    note = (f"(This section and the kernel cost below: `{argv_text}`, {version}; the generated pairs "
             "between them are not re-run by it.)")
     return (text[:a] + "\n".join([ring_head, "", note, "", *ring, "", ""]) + text[b:c]
             + "\n".join([text[c:text.index("\n", c)], "", *cost, ""]))
@@ -507,12 +507,16 @@ def ring_and_cost(args) -> int:
         print(f"bench_law_family: --ring-and-cost-only: needs {target} with its ring, pairs and kernel-cost sections "
               f"and the ring's run folder {folder} (a full run writes both)", file=sys.stderr)
         return 2
+    from reports.version import version_line
+
+    version = version_line()                  # before the run writes: the code it ran, not its own output
     ring = ring_refit(folder)
     cost = kernel_cost(ring_laws(folder), args.points, args.repeats)
     argv_text = (f"benchmarks/bench_law_family.py --ring-and-cost-only --points {args.points} --repeats "
                  f"{args.repeats}")
     atomic_write_text(target, replaced_ring_and_cost(text, _ring_lines(*ring), _cost_lines(*cost, args.points,
-                                                                                           args.repeats), argv_text))
+                                                                                           args.repeats), argv_text,
+                                                     version))
     print(f"wrote {target} and the run folder {folder}", file=sys.stderr)
     return 0
 
