@@ -36,6 +36,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))       # this checkout's packages (the --refit and report code runs in this process)
 OUT = ROOT / "reports" / "published"
 TARGET_S = {"2D only": 120.0, "with tilt": 900.0}
 
