@@ -1,6 +1,7 @@
 """A new bearing through ``ringcontact bearing``, cold, each stage timed: 2D only and with tilt.
 
     .venv/bin/python benchmarks/bench_bearing.py [--repeats 1] [--scene steel-in-aluminium] [--workers 2]
+    .venv/bin/python benchmarks/bench_bearing.py --refit [--scene steel-in-aluminium]
 
 Writes reports/published/perf-bearing.md. The ring pair (default: the bundled ``steel-in-aluminium``,
 which the suite was not tuned on) is run twice per repeat through its own command line in a child
@@ -14,7 +15,9 @@ temporary directory):
 
 The tilted run's FEM datasets, law files and summary are kept in ``reports/published/perf-bearing/`` (the last
 repeat's), so the tilt correction's held-out table below can be recomputed from them
-(tests/reports/test_bearing_tilt.py). Per stage the job's own ``timings.json`` (wall time, 1-minute load average at its start and end) and
+(tests/reports/test_bearing_tilt.py); after a change of a law family, ``--refit`` refits them from those datasets
+(:func:`reports.bearing.pipeline.refit`, no FEM solved) and replaces the report's law and tilt-correction lines,
+keeping its timings, which it says are the earlier run's. Per stage the job's own ``timings.json`` (wall time, 1-minute load average at its start and end) and
 the wall time around the whole process (interpreter start and imports included). Targets (issue
 "your bearing, end to end"): 2D only <= 2 min, with tilt cold <= 15 min, on 2 cores. The machine is
 shared: the load average is written beside every figure.
@@ -33,6 +36,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))       # this checkout's packages (the --refit and report code runs in this process)
 OUT = ROOT / "reports" / "published"
 TARGET_S = {"2D only": 120.0, "with tilt": 900.0}
 
@@ -78,7 +82,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeats", type=int, default=1)
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--out", type=Path, default=OUT / "perf-bearing.md")
+    ap.add_argument("--refit", action="store_true",
+                    help="no job run: the kept tilted run's laws refitted from its datasets (no FEM solved), the "
+                         "report's law and tilt-correction lines replaced, its timings kept")
     args = ap.parse_args(argv)
+    if args.refit:
+        return refit(args)
     text = scene_text(args.scene)
     flat = re.sub(r"(?m)^tilt_arcmin\s*=.*$", "tilt_arcmin = [0, 0]", text)
     flat = re.sub(r"(?m)^(penetration_points_3d_mm|tilt_points_arcmin)\s*=.*$\n?", "", flat)
@@ -97,6 +106,43 @@ def main(argv: list[str] | None = None) -> int:
     from contact.files import atomic_write_text
     atomic_write_text(args.out, report(args, runs))
     print(f"wrote {args.out}")
+    return 0
+
+
+def refit(args) -> int:
+    """``--refit``: the kept tilted run (``<out>`` without its suffix) refitted from its FEM datasets by
+    :func:`reports.bearing.pipeline.refit` in a copy of the folder, kept back as a run's is (:func:`keep`); the
+    report's lines from its law on replaced, its timing tables kept and said to be the earlier run's."""
+    import shutil
+
+    from contact.errors import InputError
+    from contact.files import atomic_write_text
+    from fem_reference import ring_scene
+    from reports.bearing import pipeline
+    from reports.version import version_line
+
+    folder = args.out.with_suffix("")
+    text = args.out.read_text(encoding="utf-8") if args.out.is_file() else ""
+    cut = text.find("\nLaw of the tilted run:")
+    if cut < 0 or not (folder / "summary.json").is_file():
+        print(f"bench_bearing: --refit: needs the report {args.out} (with its law line) and the kept run {folder} "
+              "(a run without --refit writes both)", file=sys.stderr)
+        return 2
+    version = version_line()                  # before the run writes: the code it ran, not its own output
+    with tempfile.TemporaryDirectory(prefix="bench-bearing-refit-") as tmp:
+        run = Path(tmp) / "run"
+        shutil.copytree(folder, run)
+        try:
+            summary = pipeline.refit(ring_scene.load(args.scene), run, log=lambda s: print(s, file=sys.stderr))
+        except InputError as exc:
+            print(f"bench_bearing: --refit: {exc}", file=sys.stderr)
+            return 2
+        keep(run, folder, summary)
+    note = (f"(From here on: `benchmarks/bench_bearing.py --refit`, {version}: the tilted run's laws refitted "
+            f"from its kept datasets in {folder.name}/, no FEM point solved; the timings above are those of the run "
+            f"of {summary['refit_of']}.)")
+    atomic_write_text(args.out, text[:cut + 1] + "\n".join([note, "", *law_lines(summary), *tilt_lines(summary)]))
+    print(f"wrote {args.out} and {folder}")
     return 0
 
 
@@ -129,10 +175,14 @@ def report(args, runs: dict) -> str:
             for s in r["stages"]:
                 lines.append(f"| {variant} | {k + 1} | {s['stage']} | {s['wall_s']:.1f} | "
                              f"{s['load_average_1min_start']:.2f} → {s['load_average_1min_end']:.2f} |")
-    lines += ["", f"Law of the tilted run: `{first['law_name']}` ({first['family']}); checks: "
-              + "; ".join(f"{k} {100 * v:.3f} %" for k, v in first["checks"].items() if v is not None)
-              + (f"; warnings: {first['warnings']}" if first["warnings"] else "; no warnings") + ".", ""]
-    return "\n".join(lines + tilt_lines(first))
+    return "\n".join(lines + [""] + law_lines(first) + tilt_lines(first))
+
+
+def law_lines(summary: dict) -> list[str]:
+    """The tilted run's law and its checks (the job's summary)."""
+    return [f"Law of the tilted run: `{summary['law_name']}` ({summary['family']}); checks: "
+            + "; ".join(f"{k} {100 * v:.3f} %" for k, v in summary["checks"].items() if v is not None)
+            + (f"; warnings: {summary['warnings']}" if summary["warnings"] else "; no warnings") + ".", ""]
 
 
 def tilt_lines(summary: dict) -> list[str]:

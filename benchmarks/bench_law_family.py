@@ -2,6 +2,7 @@
 
     .venv/bin/python benchmarks/bench_law_family.py [--pairs 30] [--seed S] [--workers 2] [--points 20000]
                                                     [--repeats 9] [--out reports/published] [--pairs-only]
+    .venv/bin/python benchmarks/bench_law_family.py --ring-and-cost-only [--points 20000] [--repeats 9]
 
 Three parts, one run:
 
@@ -10,6 +11,9 @@ Three parts, one run:
    (:data:`RING`), its run folder written to ``<out>/law-family-newcomer-20mm/``; the 3D points are kept in the
    3D store under the cache, so a second run reads them back. The law's accuracy against issue 37's target
    (every held-out error within 2x the FEM point's stated error + 0.2 %), force and moment.
+   ``--ring-and-cost-only`` (after a change of a law family): the ring's law refitted from the run folder's kept FEM
+   datasets, no point solved (:func:`reports.bearing.pipeline.refit`; its FEM stages' timings stay the kept run's,
+   named), and part 3 measured again; both sections of an existing ``law-family.md`` replaced, the pairs kept.
 2. **Generated pairs** (:func:`fem_reference.plane.generated.draw_pair`, a new seed each run unless ``--seed``):
    each pair's 2D reference on a training grid of :data:`TRAIN_POINTS` penetrations over its drawn range and at
    the grid's midpoints (:func:`pair_grids`; the error-driven levels of
@@ -112,6 +116,18 @@ def ring_run(out: Path, workers: int) -> tuple[dict, float, tuple]:
     rs = ring_scene.load(str(path))
     l0, t0 = load(), time.perf_counter()
     summary = pipeline.run(rs, out, workers=workers, log=lambda s: print(s, file=sys.stderr))
+    return summary, time.perf_counter() - t0, (l0, load())
+
+
+def ring_refit(out: Path) -> tuple[dict, float, tuple]:
+    """The 20 mm ring's law refitted from its kept run folder ``out`` (:func:`reports.bearing.pipeline.refit`: the
+    folder's committed FEM datasets, no point solved): the new summary, wall time (s) and load (start, end)."""
+    from fem_reference import ring_scene
+    from reports.bearing import pipeline
+
+    rs = ring_scene.load(str(out / "newcomer-20mm.toml"))
+    l0, t0 = load(), time.perf_counter()
+    summary = pipeline.refit(rs, out, log=lambda s: print(s, file=sys.stderr))
     return summary, time.perf_counter() - t0, (l0, load())
 
 
@@ -327,9 +343,14 @@ def _ring_lines(summary: dict, wall_s: float, loads: tuple) -> list[str]:
     from reports.bearing.report import accuracy_table
 
     acc = summary["accuracy"]
+    how = (f"{wall_s:.0f} s (load average {loads[0]:.2f} → {loads[1]:.2f}; 3D points read back from the 3D store "
+           "when an earlier run computed them)")
+    if summary.get("refit_of"):
+        how = (f"the law refitted from the run folder's kept FEM datasets, no point solved "
+               f"(`reports.bearing.pipeline.refit`, {wall_s:.0f} s, load average {loads[0]:.2f} → {loads[1]:.2f}; the "
+               f"FEM stages are those of the run of {summary['refit_of']})")
     lines = [f"`ringcontact bearing` on the ring-pair file [newcomer-20mm.toml](law-family-newcomer-20mm/newcomer-20mm.toml): "
-             f"{wall_s:.0f} s (load average {loads[0]:.2f} → {loads[1]:.2f}; 3D points read back from the 3D store "
-             "when an earlier run computed them). Law: "
+             f"{how}. Law: "
              f"`{summary['law_name']}`; why: {summary['selection_reason']}. Report: "
              "[accuracy-newcomer-20mm.md](law-family-newcomer-20mm/accuracy-newcomer-20mm.md).", "",
              f"Target: {ACCURACY_RULE}.", "", *accuracy_table(acc)]
@@ -395,6 +416,22 @@ def replaced_pairs(text: str, lines: list[str], argv_text: str) -> str | None:
     return text[:a] + "\n".join([head, "", note, "", *lines, "", ""]) + text[b:]
 
 
+def replaced_ring_and_cost(text: str, ring: list[str], cost: list[str], argv_text: str,
+                           version: str = "") -> str | None:
+    """``law-family.md``'s text with its 20 mm ring and kernel-cost sections replaced by ``ring`` and ``cost``
+    (``--ring-and-cost-only``, run at code ``version``; the generated-pairs section between them kept as it is), or
+    None if it lacks one."""
+    heads = ("## The 20 mm ring", "## Generated pairs (2D, force)", "## Kernel cost")
+    a, b, c = (text.find(h) for h in heads)
+    if a < 0 or not a < b < c:
+        return None
+    ring_head = text[a:text.index("\n", a)]
+    note = (f"(This section and the kernel cost below: `{argv_text}`, {version}; the generated pairs "
+            "between them are not re-run by it.)")
+    return (text[:a] + "\n".join([ring_head, "", note, "", *ring, "", ""]) + text[b:c]
+            + "\n".join([text[c:text.index("\n", c)], "", *cost, ""]))
+
+
 def _cost_lines(cost: dict, loads: tuple, n: int, repeats: int) -> list[str]:
     lines = [f"{n} states per case, {repeats} interleaved repeats; time per call of `point_force_jacobian` (force, "
              f"moment and their 4x8 Jacobian) in a compiled loop, median (min-max); load average {loads[0]:.2f} → "
@@ -406,7 +443,15 @@ def _cost_lines(cost: dict, loads: tuple, n: int, repeats: int) -> list[str]:
         lines.append(f"| {k} | {med:.1f} | {lo:.1f}-{hi:.1f} | {med / base:.2f} |")
     worst = max(v[0] / next(b[0] for kk, b in cost.items() if kk.startswith("foundation, today's")
                             and kk.endswith(k.rsplit(", ", 1)[1])) for k, v in cost.items())
-    return lines + ["", f"Largest ratio to today's foundation law: {worst:.2f} (target: at most 2)."]
+    return lines + ["", f"Largest ratio to today's foundation law: {worst:.2f} (target: at most 2)."] + busy_lines(loads)
+
+
+def busy_lines(loads: tuple) -> list[str]:
+    """A sentence when the load average (start, end) says the 2 cores were oversubscribed during the timing."""
+    if max(loads) <= 2:
+        return []
+    return ["", f"The load average was above 2 while this was measured ({loads[0]:.2f} → {loads[1]:.2f}): other work "
+            "shared the 2 cores, so every time is inflated and the ratios, interleaved, are the figures to read."]
 
 
 def report(ring: tuple, pair: tuple, cost: tuple, args) -> str:
@@ -432,12 +477,21 @@ def main(argv: list[str] | None = None) -> int:
                     help="the report's directory (checked writable before the run)")
     ap.add_argument("--pairs-only", action="store_true",
                     help="the generated pairs alone, replacing their section of <out>/law-family.md")
+    ap.add_argument("--ring-and-cost-only", action="store_true",
+                    help="the 20 mm ring's law refitted from its kept run folder (no FEM solved) and the kernel cost, "
+                         "replacing those two sections of <out>/law-family.md")
     args = ap.parse_args(argv)
     for name, value, least in (("--pairs", args.pairs, 1), ("--workers", args.workers, 1), ("--points", args.points, 1),
                                ("--repeats", args.repeats, 1)):
         if value < least:
             print(f"bench_law_family: {name} {value}: must be a whole number >= {least}", file=sys.stderr)
             return 2
+    if args.pairs_only and args.ring_and_cost_only:
+        print("bench_law_family: --pairs-only and --ring-and-cost-only: give one (each replaces its sections)",
+              file=sys.stderr)
+        return 2
+    if args.ring_and_cost_only:
+        return ring_and_cost(args)
     if args.seed is None:
         args.seed = int(np.random.SeedSequence().entropy % 2 ** 32)
     print(f"seed {args.seed}", file=sys.stderr)
@@ -461,6 +515,29 @@ def main(argv: list[str] | None = None) -> int:
     cost = kernel_cost(ring_laws(args.out / "law-family-newcomer-20mm"), args.points, args.repeats)
     atomic_write_text(args.out / "law-family.md", report(ring, pair, cost, args))
     print(f"wrote {args.out / 'law-family.md'} and {write_points(rows, args.seed, args.out)}", file=sys.stderr)
+    return 0
+
+
+def ring_and_cost(args) -> int:
+    """``--ring-and-cost-only``: the 20 mm ring refitted from ``<out>/law-family-newcomer-20mm/`` (:func:`ring_refit`)
+    and the kernel cost measured again; both sections of ``<out>/law-family.md`` replaced, the pairs kept."""
+    target, folder = args.out / "law-family.md", args.out / "law-family-newcomer-20mm"
+    text = target.read_text(encoding="utf-8") if target.exists() else ""
+    if replaced_ring_and_cost(text, [], [], "") is None or not (folder / "summary.json").is_file():
+        print(f"bench_law_family: --ring-and-cost-only: needs {target} with its ring, pairs and kernel-cost sections "
+              f"and the ring's run folder {folder} (a full run writes both)", file=sys.stderr)
+        return 2
+    from reports.version import version_line
+
+    version = version_line()                  # before the run writes: the code it ran, not its own output
+    ring = ring_refit(folder)
+    cost = kernel_cost(ring_laws(folder), args.points, args.repeats)
+    argv_text = (f"benchmarks/bench_law_family.py --ring-and-cost-only --points {args.points} --repeats "
+                 f"{args.repeats}")
+    atomic_write_text(target, replaced_ring_and_cost(text, _ring_lines(*ring), _cost_lines(*cost, args.points,
+                                                                                           args.repeats), argv_text,
+                                                     version))
+    print(f"wrote {target} and the run folder {folder}", file=sys.stderr)
     return 0
 
 

@@ -27,7 +27,7 @@ Writes ``<out>/law-tilt-correction.md`` and the laws ``<out>/law-tilt-correction
 ``--blind N`` alone (no fit, no kernel timing): a blind check of the 20 mm ring's committed law on N new tilted points
 and N // 8 zero-tilt ones drawn from ``--seed`` (default: a new one each run, printed), solved on the cached 3D levels
 (:mod:`tilt_blind`); it writes ``<out>/law-tilt-correction/fem3d-tilt-blind-newcomer-20mm.json`` and replaces the
-report's blind section, which a full run keeps.
+report's blind section, which a full run recomputes from the kept points with the law it writes (none solved).
 """
 from __future__ import annotations
 
@@ -304,8 +304,9 @@ This rule was adopted after the verification grid had shown the miss, so for the
 blind. `benchmarks/tilt_smoothing_cv.py` compares the two rules on the training points alone (nested
 cross-validation: the rule, its cross-validation included, run without one outer fold and checked on it); see the
 sentence after the lines. It also prints the straight law's share in the miss: the slices' moment at the point with the
-spline's knots chosen otherwise (another of the 13 training penetrations dropped by the 12-knot limit, or C²
-not-a-knot knot slopes instead of PCHIP's)."""
+spline's knots chosen otherwise (written when the spline held 12 knots with PCHIP slopes: another of the 13 training
+penetrations dropped, or C² not-a-knot knot slopes instead of PCHIP's; since b832f06 and ebe06fe the straight law has
+all 13 as knots with the not-a-knot slopes)."""
 
 
 def direction_lines(rings: dict) -> list[str]:
@@ -446,7 +447,10 @@ def main(argv: list[str] | None = None) -> int:
     cost = kernel_cost(rings["newcomer-20mm"][0]["law"], args.points, args.repeats)
     text, ok = report(rings, cost, args, time.perf_counter() - t0)
     target = out / "law-tilt-correction.md"
-    kept = tilt_blind.kept_section(target.read_text(encoding="utf-8")) if target.exists() else None
+    if (out / "law-tilt-correction" / tilt_blind.POINTS_FILE).is_file():      # the kept points, the law just written
+        kept = tilt_blind.section_lines(out)
+    else:
+        kept = tilt_blind.kept_section(target.read_text(encoding="utf-8")) if target.exists() else None
     if kept is not None:
         text = tilt_blind.spliced(text, kept)
     atomic_write_text(target, text)

@@ -329,11 +329,8 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
     ``range_from``: the note of :func:`reports.bearing.range_from.widened` when ``rs``'s range was widened to a rotor
     run's (into the law's provenance, the report and the summary). ``plane_check``: stage 0 (None: as the module
     docstring says; True: always; False: never, an ``auto`` file then on plane strain, said so)."""
-    import json
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    names = file_names(rs.name)
     stages = Stages(log)
     rs, plane = _plane(rs, stages, plane_check, workers=workers, executor=executor, fresh=fresh, progress=progress)
     log(f"plane {plane['used']}: {plane['why']}")
@@ -341,6 +338,18 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
                                            progress=progress)
     what = "law families with hold-out" + (", tilt correction fitted and held out" if tilt_paths else "")
     fit = stages.run("calibrate", what, lambda: calibrate(rs, path2, path3, tilt_paths))
+    return _write_outputs(rs, out, fit, stages, (path2, path3, tilt_paths), plane, range_from, log)
+
+
+def _write_outputs(rs: RingScene, out: Path, fit: dict, stages: Stages, paths: tuple, plane: dict,
+                   range_from: dict | None, log, refit_of: str | None = None) -> dict:
+    """The law files, the report, ``timings.json`` and ``summary.json`` of a calibrated run into ``out`` (``paths``:
+    the 2D and 3D datasets and the tilt grids it was calibrated on; ``refit_of``: the code version of the run whose
+    FEM stages a :func:`refit` keeps); returns the summary."""
+    import json
+
+    path2, path3, tilt_paths = paths
+    names = file_names(rs.name)
     fit["range_from"], fit["plane"] = range_from, plane
     law = law_file(rs, fit, range_from)
     files = [atomic_write_text(out / names["law"], law.to_json())]
@@ -366,10 +375,59 @@ def run(rs: RingScene, out: Path, *, workers: int = 2, executor=None, fresh: boo
                "moment_check": fit.get("moment_check"),
                "tilt_correction": law.provenance.get("tilt_correction"),
                "law_straight_file": names["law_straight"] if fit["straight"] is not None else None,
-               "range_from": range_from, "plane": plane,
+               "range_from": range_from, "plane": plane, "refit_of": refit_of,
                "stages": stages.rows, "files": sorted({Path(f).name for f in files} | {path2.name}
                                                       | ({path3.name} if path3 else set())
                                                       | {Path(p).name for p in (tilt_paths or {}).values()})}
     atomic_write_text(out / names["timings"], json.dumps({"stages": stages.rows}, indent=1) + "\n")
     atomic_write_text(out / names["summary"], json.dumps(summary, indent=1, allow_nan=False) + "\n")
     return summary
+
+
+def refit(rs: RingScene, out: Path, *, log=print) -> dict:
+    """The law-dependent outputs of a kept run folder ``out`` again, from its kept FEM datasets: no FEM point solved.
+
+    For a law family that changed after the run: the calibrate stage on the folder's 2D and 3D datasets (and, when
+    the run fitted a tilt correction, its training and verification grids), then the law files, the report and the
+    summary as :func:`run` writes them. The plane evidence, ``range_from`` and the FEM stages' timings are the kept
+    run's (each such stage row gains ``"kept_from"``: that run's code version, from its law file; the report says
+    so); ``calibrate`` and ``report`` are this call's. Returns the summary (its ``refit_of``: the kept run's code
+    version).
+
+    Raises
+    ------
+    InputError
+        ``out`` holds no run of ``rs`` (no ``summary.json`` or datasets, or another ring-pair file's).
+    """
+    import json
+
+    from contact.errors import InputError
+    from fem_reference.ring_scene import with_plane
+    from reports.bearing.tilt import grid_files
+
+    out, names = Path(out), file_names(rs.name)
+    try:
+        kept = json.loads((out / names["summary"]).read_text(encoding="utf-8"))
+        old_law = json.loads((out / kept["law_file"]).read_text(encoding="utf-8"))
+    except (OSError, ValueError, KeyError) as exc:
+        raise InputError(f"refit: {out} holds no readable run (summary.json and its law file): "
+                         f"{type(exc).__name__}") from None
+    if rs.plane_auto and kept.get("plane", {}).get("used") in ("strain", "stress"):
+        rs = with_plane(rs, kept["plane"]["used"])            # the kept run's plane check decided it
+    if kept.get("ring_scene_sha256") != rs.sha256:
+        raise InputError(f"refit: {out} is a run of another ring-pair file (sha256 "
+                         f"{str(kept.get('ring_scene_sha256'))[:16]}…, not {rs.sha256[:16]}…)")
+    path2 = out / names["fem2d"]
+    path3 = out / names["fem3d"] if names["fem3d"] in kept["files"] else None
+    grids = ({k: out / v for k, v in grid_files(rs.name).items()} if kept.get("tilt_correction") else None)
+    missing = [p.name for p in [path2, path3, *(grids or {}).values()] if p is not None and not p.is_file()]
+    if missing:
+        raise InputError(f"refit: {out} lacks the kept dataset(s) {', '.join(missing)}")
+    version = kept.get("refit_of") or old_law["provenance"]["code_version"]      # the run that solved the FEM
+    stages = Stages(log)
+    stages.rows = [dict(s, kept_from=s.get("kept_from", version)) for s in kept["stages"]
+                   if s["stage"] not in ("calibrate", "report")]
+    what = "law families with hold-out on the kept datasets" + (", tilt correction" if grids else "")
+    fit = stages.run("calibrate", what, lambda: calibrate(rs, path2, path3, grids))
+    return _write_outputs(rs, out, fit, stages, (path2, path3, grids), kept["plane"], kept.get("range_from"), log,
+                          refit_of=version)

@@ -283,15 +283,25 @@ def markdown(rs, fit: dict, law, t2: dict, speed: list[dict], stages: list[dict]
               "|---|---|---|---|"]
     lines += [f"| {r['method']} | {r['time_per_point_s']:.3g} s | {r['max_abs_error_pct']:.3g} | {r['points_without_solution']} |"
               for r in speed]
-    lines += ["", f"![speed]({Path(names['report']).stem}-speed.png)", "", "## Stages", "",
-              "Wall times of the run that wrote this report; FEM points kept from an earlier run of the same file "
-              "are read back, not recomputed (cold times of a new bearing: reports/published/perf-bearing.md).", "",
-              "| stage | wall (s) | load average (1 min, start → end) |", "|---|---|---|"]
-    lines += [f"| {s['stage']} | {s['wall_s']:.1f} | {s['load_average_1min_start']:.2f} → {s['load_average_1min_end']:.2f} |"
-              for s in stages]
+    lines += ["", f"![speed]({Path(names['report']).stem}-speed.png)", "", "## Stages", "", *_stages_lines(stages)]
     lines += ["", f"Data: [{names['csv']}]({names['csv']}), [{names['fem2d']}]({names['fem2d']})"
               + (f", [{names['fem3d']}]({names['fem3d']})" if fit["rows3"] else "") + ".", ""]
     return "\n".join(lines)
+
+
+def _stages_lines(stages: list[dict]) -> list[str]:
+    """The stage table; a stage kept from an earlier run (``kept_from``: its code version, set by
+    :func:`reports.bearing.pipeline.refit`) is marked and that run named."""
+    earlier = sorted({s["kept_from"] for s in stages if s.get("kept_from")})
+    head = ("Wall times of the run that wrote this report; FEM points kept from an earlier run of the same file "
+            "are read back, not recomputed (cold times of a new bearing: reports/published/perf-bearing.md).")
+    if earlier:
+        head = ("The law was refitted from this folder's kept FEM datasets (no FEM point solved): the stages marked "
+                "'(kept)' are those of the run that solved them, " + "; ".join(earlier) + "; calibrate and report "
+                "are the refit's.")
+    return [head, "", "| stage | wall (s) | load average (1 min, start → end) |", "|---|---|---|"] + [
+        f"| {s['stage']}{' (kept)' if s.get('kept_from') else ''} | {s['wall_s']:.1f} | "
+        f"{s['load_average_1min_start']:.2f} → {s['load_average_1min_end']:.2f} |" for s in stages]
 
 
 def csv_text(t2: dict, fit: dict) -> str:
