@@ -131,7 +131,7 @@ def _spline_law(pen, p):
     if u <= p[x0]:
         c = p[y0] + p[m0] * (u - p[x0])
         dc = p[m0]
-    elif u >= p[x0 + nk - 1]:
+    elif u > p[x0 + nk - 1]:
         c = p[y0 + nk - 1] + p[m0 + nk - 1] * (u - p[x0 + nk - 1])
         dc = p[m0 + nk - 1]
     else:
