@@ -55,7 +55,7 @@ from contact.calibrate import tilt_fit  # noqa: E402
 from contact.calibrate.fit import ACCURACY_RULE  # noqa: E402
 from contact.dataset import read_dataset  # noqa: E402
 from contact.files import atomic_write_text  # noqa: E402
-from contact.loose_support import point_force_jacobian  # noqa: E402
+from contact.loose_support import N_PARAMS, point_force_jacobian  # noqa: E402
 from contact.units import ARCMIN  # noqa: E402
 from reports.cli._edge import Parser, count, out_dir  # noqa: E402
 
@@ -395,7 +395,7 @@ def report(rings: dict, cost: tuple, args, wall_s: float) -> tuple[str, bool]:
               f"**{worst:.2f}x** today's foundation law ({'within' if worst <= 2 else 'beyond'} 2x).", "",
               "Not done here: `ringcontact bearing` does not fit the correction yet (its 20 mm ring law, "
               "`law-family.md`, is still the slices' alone); the rotor's step loops build the law's parameter tuple once, "
-              "as 52 slots (`law_tuple` in rotor/dynamics/production_loop.py and production_kernels.py), so they "
+              f"as {N_PARAMS} slots (`law_tuple` in rotor/dynamics/production_loop.py and production_kernels.py), so they "
               "would drop a correction: `support_law_from_params` refuses a law with one (tried: sending "
               "rotor.dynamics.kernels.contact_point's long arrays to the long kernel is not enough, a Table 4 run "
               "with and without the correction came out identical; the loops must be compiled for the long tuple); "
