@@ -163,3 +163,34 @@ def test_published_pair_14_holds_at_every_midpoint():
     assert row["spline_within"] == 11
     assert row["spline_holdout_max_pct"] < 0.242
     assert row["families_meeting"] == ["foundation-spline"]
+
+
+def _kept_runs():
+    """The committed points files of law-family.md's generated pairs (one per published run; pair 29's own file of
+    seed 2755664993 aside)."""
+    from pathlib import Path
+
+    folder = Path(__file__).resolve().parents[2] / "reports/published/law-family-pairs"
+    return sorted(p for p in folder.glob("seed-*.json") if "-pair-" not in p.name)
+
+
+def test_the_published_pairs_table_is_the_refit_of_its_kept_points():
+    """law-family.md's generated-pairs section (issue 37, must-show 3: a law for every pair) is what
+    benchmarks/refit_law_family_pairs.py makes of the committed FEM points of its run
+    (reports/published/law-family-pairs/seed-<seed>.json): every row (chosen family, its worst midpoint error, how
+    many midpoints within the target, the families meeting it) and the summary line, refitted here with the code as
+    it is; and every pair's chosen law within the target at every held-out midpoint."""
+    import json
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    refit = benchmark_module("refit_law_family_pairs")
+    md = (root / "reports/published/law-family.md").read_text(encoding="utf-8")
+    files = [p for p in _kept_runs() if f"Seed {json.loads(p.read_text())['seed']} " in md]
+    assert len(files) == 1, files
+    rows, lines = refit.refit(json.loads(files[0].read_text()))
+    assert len(rows) >= 30
+    for line in lines:
+        if line.startswith("| ") and line[2].isdigit() or line.startswith("Pairs solved"):
+            assert line in md, line
+    assert all(r["chosen_within"] == r["points"] for r in rows), [(r["index"], r["chosen_within"]) for r in rows]
